@@ -1,0 +1,42 @@
+#pragma once
+// Where the alignment engine gets the score of pairing element i of A with element j of B.
+//
+// Images, fingerprints and DNA letters are three ways of producing such a score; the engine does not
+// care which. A source is a dense row-major matrix (not owned: the caller keeps it alive) or any
+// callable `score(i, j)`. The engine reads it a row segment at a time, so a callable costs one
+// indirect call per row segment, not per cell.
+#include <cstddef>
+#include <functional>
+#include <span>
+
+namespace seqtopo::align {
+
+using Score = float;
+
+class ScoreSource {
+ public:
+  // Fills out[0 .. j_end - j_begin) with score(i, j) for j in [j_begin, j_end).
+  using RowReader = std::function<void(std::size_t i, std::size_t j_begin, std::size_t j_end, Score* out)>;
+
+  ScoreSource(std::size_t rows, std::size_t cols, RowReader reader);
+
+  // A dense row-major rows x cols matrix. Throws std::invalid_argument if the size does not match.
+  static ScoreSource dense(std::span<const float> values, std::size_t rows, std::size_t cols);
+  static ScoreSource dense(std::span<const double> values, std::size_t rows, std::size_t cols);
+  // Any callable; it must be safe to call from two threads at once (forward and reverse passes).
+  static ScoreSource function(std::size_t rows, std::size_t cols, std::function<Score(std::size_t, std::size_t)> score);
+
+  std::size_t rows() const { return rows_; }
+  std::size_t cols() const { return cols_; }
+  void read_row(std::size_t i, std::size_t j_begin, std::size_t j_end, Score* out) const {
+    reader_(i, j_begin, j_end, out);
+  }
+  Score at(std::size_t i, std::size_t j) const;
+
+ private:
+  std::size_t rows_;
+  std::size_t cols_;
+  RowReader reader_;
+};
+
+}  // namespace seqtopo::align

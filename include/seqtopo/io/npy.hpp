@@ -1,0 +1,34 @@
+#pragma once
+// NumPy .npy files (format versions 1-3): little-endian float32 / float64, C order.
+// Other dtypes, Fortran order, NaN/Inf values and shapes of the wrong rank are rejected with an
+// InputError naming the file.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "seqtopo/core/dense_matrix.hpp"
+
+namespace seqtopo::io {
+
+struct NpyHeader {
+  std::string dtype;                // "<f4" or "<f8"
+  bool fortran_order = false;
+  std::vector<std::size_t> shape;
+  std::size_t data_offset = 0;      // bytes from the start of the file to the data
+};
+
+NpyHeader read_npy_header(const std::filesystem::path& path);
+
+// A 2-D array, converted to T. Values must be finite.
+template <typename T>
+DenseMatrix<T> read_npy_matrix(const std::filesystem::path& path);
+
+// Writes a 2-D float32 / float64 array (version 1.0), atomically.
+template <typename T>
+void write_npy(const std::filesystem::path& path, const DenseMatrix<T>& matrix);
+// The same bytes, for callers that stage files themselves.
+template <typename T>
+std::string encode_npy(const DenseMatrix<T>& matrix);
+
+}  // namespace seqtopo::io

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Installs the dependencies, builds seqtopo (Release, warnings as errors) and runs the whole test suite.
+# Usage: scripts/test.sh [release|sanitize]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+preset="${1:-release}"
+scripts/setup.sh
+cmake --workflow --preset "$preset"

@@ -1,0 +1,52 @@
+#include "seqtopo/align/score_source.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace seqtopo::align {
+namespace {
+
+template <typename T>
+ScoreSource dense_source(std::span<const T> values, std::size_t rows, std::size_t cols) {
+  if (values.size() != rows * cols) {
+    throw std::invalid_argument("score matrix has " + std::to_string(values.size()) + " values, expected " +
+                                std::to_string(rows) + " x " + std::to_string(cols));
+  }
+  return ScoreSource(rows, cols, [values, cols](std::size_t i, std::size_t j_begin, std::size_t j_end, Score* out) {
+    const T* row = values.data() + i * cols;
+    std::transform(row + j_begin, row + j_end, out, [](T v) { return static_cast<Score>(v); });
+  });
+}
+
+}  // namespace
+
+ScoreSource::ScoreSource(std::size_t rows, std::size_t cols, RowReader reader)
+    : rows_(rows), cols_(cols), reader_(std::move(reader)) {
+  if (!reader_) throw std::invalid_argument("score source needs a row reader");
+}
+
+ScoreSource ScoreSource::dense(std::span<const float> values, std::size_t rows, std::size_t cols) {
+  return dense_source(values, rows, cols);
+}
+
+ScoreSource ScoreSource::dense(std::span<const double> values, std::size_t rows, std::size_t cols) {
+  return dense_source(values, rows, cols);
+}
+
+ScoreSource ScoreSource::function(std::size_t rows, std::size_t cols,
+                                  std::function<Score(std::size_t, std::size_t)> score) {
+  if (!score) throw std::invalid_argument("score source needs a score function");
+  return ScoreSource(rows, cols,
+                     [score = std::move(score)](std::size_t i, std::size_t j_begin, std::size_t j_end, Score* out) {
+                       for (std::size_t j = j_begin; j < j_end; ++j) *out++ = score(i, j);
+                     });
+}
+
+Score ScoreSource::at(std::size_t i, std::size_t j) const {
+  Score s = 0;
+  reader_(i, j, j + 1, &s);
+  return s;
+}
+
+}  // namespace seqtopo::align

@@ -1,0 +1,268 @@
+#include "seqtopo/align/smith_waterman.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <future>
+#include <stdexcept>
+#include <string>
+
+namespace seqtopo::align {
+
+std::string_view to_string(Direction direction) { return direction == Direction::forward ? "forward" : "reverse"; }
+
+namespace {
+
+constexpr Score kNegInf = -std::numeric_limits<Score>::infinity();
+
+void validate(const ScoreSource& scores, const AlignConfig& config) {
+  auto bad = [](Score v) { return std::isnan(v) || v < 0; };
+  if (bad(config.gap_a) || bad(config.gap_b)) throw std::invalid_argument("gap penalties must be >= 0");
+  if (config.cap && (std::isnan(*config.cap) || *config.cap <= 0)) throw std::invalid_argument("cap must be > 0");
+  if (std::isnan(config.threshold)) throw std::invalid_argument("threshold must be a number");
+  if (config.self && scores.rows() != scores.cols()) {
+    throw std::invalid_argument("self alignment needs a square score matrix, got " + std::to_string(scores.rows()) +
+                                " x " + std::to_string(scores.cols()));
+  }
+  if (config.self && config.min_separation == 0) throw std::invalid_argument("min_separation must be >= 1");
+}
+
+// The dynamic-programming table of one pass. Cells use 1-based (i, j); column j of the pass is column
+// j-1 of B, or column n-j of B for the reverse pass. Cells outside the searched region stay 0.
+class Pass {
+ public:
+  Pass(const ScoreSource& scores, const AlignConfig& config)
+      : scores_(scores), config_(config), m_(scores.rows()), n_(scores.cols()), stride_(n_ + 1),
+        h_((m_ + 1) * stride_, 0.0F), row_best_(m_ + 1, {0.0F, 0}), buffer_(n_) {
+    for (std::size_t i = 1; i <= m_; ++i) {
+      auto [lo, hi] = region(i);
+      if (lo <= hi) compute_cells(i, lo, hi);
+      rescan_row_best(i);
+    }
+  }
+
+  std::vector<LocalAlignment> run() {
+    std::vector<LocalAlignment> out;
+    const Score floor = std::max(config_.threshold, std::numeric_limits<Score>::min());
+    while (out.size() < config_.max_alignments) {
+      auto [i, j] = best_cell();
+      if (i == 0 || h(i, j) < floor) break;
+      out.push_back(trace_back(i, j));
+      forbid_and_update(out.back());
+    }
+    return out;
+  }
+
+ private:
+  // Columns [lo, hi] (1-based, inclusive) that row i may use.
+  std::pair<std::size_t, std::size_t> region(std::size_t i) const {
+    if (!config_.self) return {1, n_};
+    const std::size_t sep = config_.min_separation;
+    const std::size_t r = i - 1;  // row index in A
+    if (config_.direction == Direction::forward) {
+      // original pair (r, c) with r - c >= sep  <=>  c <= r - sep
+      if (r < sep) return {1, 0};
+      return {1, r - sep + 1};
+    }
+    // reverse: pass column t (0-based) is original c = n-1-t; r - c >= sep  <=>  t >= n-1-r+sep
+    const std::size_t t_lo = n_ - 1 - r + sep;
+    if (t_lo >= n_) return {1, 0};
+    return {t_lo + 1, n_};
+  }
+
+  bool in_region(std::size_t i, std::size_t j) const {
+    auto [lo, hi] = region(i);
+    return j >= lo && j <= hi;
+  }
+
+  Score& h(std::size_t i, std::size_t j) { return h_[i * stride_ + j]; }
+  Score h(std::size_t i, std::size_t j) const { return h_[i * stride_ + j]; }
+
+  std::size_t original_col(std::size_t j) const {
+    return config_.direction == Direction::forward ? j - 1 : n_ - j;
+  }
+
+  // Scores of pass row i, pass columns [lo, hi] into buffer_[lo-1 .. hi-1].
+  void fetch(std::size_t i, std::size_t lo, std::size_t hi) {
+    if (config_.direction == Direction::forward) {
+      scores_.read_row(i - 1, lo - 1, hi, buffer_.data() + (lo - 1));
+    } else {
+      // pass columns lo..hi are original columns n-hi .. n-lo, in the opposite order
+      scores_.read_row(i - 1, n_ - hi, n_ - lo + 1, buffer_.data() + (lo - 1));
+      std::reverse(buffer_.begin() + static_cast<std::ptrdiff_t>(lo - 1), buffer_.begin() + static_cast<std::ptrdiff_t>(hi));
+    }
+  }
+
+  bool used(std::size_t i, std::size_t j) const {
+    return !used_.empty() && used_[(i - 1) * n_ + (j - 1)] != 0;
+  }
+
+  Score clamp(Score v) const { return config_.cap ? std::min(v, *config_.cap) : v; }
+
+  Score cell_value(std::size_t i, std::size_t j, Score s) const {
+    Score v = 0.0F;
+    if (!used(i, j)) v = std::max(v, h(i - 1, j - 1) + s);
+    v = std::max(v, h(i - 1, j) - config_.gap_a);
+    v = std::max(v, h(i, j - 1) - config_.gap_b);
+    return clamp(v);
+  }
+
+  void compute_cells(std::size_t i, std::size_t lo, std::size_t hi) {
+    fetch(i, lo, hi);
+    for (std::size_t j = lo; j <= hi; ++j) h(i, j) = cell_value(i, j, buffer_[j - 1]);
+  }
+
+  void rescan_row_best(std::size_t i) {
+    std::pair<Score, std::size_t> best{0.0F, 0};
+    for (std::size_t j = 1; j <= n_; ++j) {
+      if (h(i, j) >= best.first && h(i, j) > 0) best = {h(i, j), j};
+    }
+    row_best_[i] = best;
+  }
+
+  std::pair<std::size_t, std::size_t> best_cell() const {
+    std::size_t bi = 0;
+    for (std::size_t i = 1; i <= m_; ++i) {
+      if (row_best_[i].second != 0 && (bi == 0 || row_best_[i].first >= row_best_[bi].first)) bi = i;
+    }
+    return {bi, bi == 0 ? 0 : row_best_[bi].second};
+  }
+
+  LocalAlignment trace_back(std::size_t i, std::size_t j) const {
+    LocalAlignment a;
+    a.direction = config_.direction;
+    a.score = h(i, j);
+    while (h(i, j) > 0) {
+      const Score v = h(i, j);
+      const Score s = scores_.at(i - 1, original_col(j));
+      if (!used(i, j) && clamp(h(i - 1, j - 1) + s) == v) {
+        a.pairs.emplace_back(i - 1, original_col(j));
+        --i;
+        --j;
+      } else if (clamp(h(i - 1, j) - config_.gap_a) == v) {
+        --i;
+      } else if (clamp(h(i, j - 1) - config_.gap_b) == v) {
+        --j;
+      } else {
+        throw std::logic_error("alignment traceback found no predecessor");
+      }
+    }
+    std::reverse(a.pairs.begin(), a.pairs.end());
+    a.a_begin = a.pairs.front().first;
+    a.a_end = a.pairs.back().first + 1;
+    auto [b_min, b_max] = std::minmax_element(a.pairs.begin(), a.pairs.end(),
+                                              [](const auto& x, const auto& y) { return x.second < y.second; });
+    a.b_begin = b_min->second;
+    a.b_end = b_max->second + 1;
+    return a;
+  }
+
+  // Forbids the alignment's pairs and recomputes, row by row, only the cells whose value can change:
+  // a cell changes only if it was just forbidden or one of its three predecessors changed.
+  void forbid_and_update(const LocalAlignment& a) {
+    if (used_.empty()) used_.assign(m_ * n_, 0);
+    std::vector<std::vector<std::size_t>> seeds_by_row;  // pass columns newly forbidden, per row offset
+    const std::size_t first_row = a.pairs.front().first + 1;
+    const std::size_t last_row = a.pairs.back().first + 1;
+    seeds_by_row.resize(last_row - first_row + 1);
+    for (auto [r, c] : a.pairs) {
+      const std::size_t j = config_.direction == Direction::forward ? c + 1 : n_ - c;
+      used_[r * n_ + (j - 1)] = 1;
+      seeds_by_row[r + 1 - first_row].push_back(j);
+    }
+
+    std::vector<std::size_t> changed_prev, changed_cur, candidates;
+    for (std::size_t i = first_row; i <= m_; ++i) {
+      candidates.clear();
+      for (std::size_t j : changed_prev) {
+        candidates.push_back(j);
+        if (j < n_) candidates.push_back(j + 1);
+      }
+      if (i <= last_row) {
+        const auto& seeds = seeds_by_row[i - first_row];
+        candidates.insert(candidates.end(), seeds.begin(), seeds.end());
+      }
+      if (candidates.empty()) {
+        if (i >= last_row) break;
+        changed_prev.clear();
+        continue;
+      }
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+
+      changed_cur.clear();
+      auto [lo, hi] = region(i);
+      bool best_changed = false;
+      std::size_t next = 0;      // index into candidates
+      std::size_t left_next = 0; // column to visit because its left neighbour changed (0 = none)
+      while (next < candidates.size() || left_next != 0) {
+        std::size_t j;
+        if (left_next != 0 && (next >= candidates.size() || left_next <= candidates[next])) {
+          j = left_next;
+          if (next < candidates.size() && candidates[next] == j) ++next;
+        } else {
+          j = candidates[next++];
+        }
+        left_next = 0;
+        if (j < lo || j > hi) continue;
+        const Score s = scores_.at(i - 1, original_col(j));
+        const Score v = cell_value(i, j, s);
+        if (v != h(i, j)) {
+          h(i, j) = v;
+          changed_cur.push_back(j);
+          if (j == row_best_[i].second) best_changed = true;
+          if (j < hi) left_next = j + 1;
+        }
+      }
+      // Values only decrease, so the row's best moves only if the best cell itself changed.
+      if (best_changed) rescan_row_best(i);
+      if (changed_cur.empty() && i >= last_row) break;
+      std::swap(changed_prev, changed_cur);
+    }
+  }
+
+  const ScoreSource& scores_;
+  const AlignConfig& config_;
+  std::size_t m_, n_, stride_;
+  std::vector<Score> h_;
+  std::vector<std::uint8_t> used_;
+  std::vector<std::pair<Score, std::size_t>> row_best_;  // (value, column) of each row's best cell; column 0 = none
+  std::vector<Score> buffer_;
+};
+
+}  // namespace
+
+std::vector<LocalAlignment> local_alignments(const ScoreSource& scores, const AlignConfig& config) {
+  validate(scores, config);
+  if (scores.rows() == 0 || scores.cols() == 0 || config.max_alignments == 0) return {};
+  return Pass(scores, config).run();
+}
+
+std::vector<LocalAlignment> local_alignments_both(const ScoreSource& scores, AlignConfig config, unsigned threads) {
+  AlignConfig forward = config, reverse = config;
+  forward.direction = Direction::forward;
+  reverse.direction = Direction::reverse;
+  std::vector<LocalAlignment> fwd, rev;
+  if (threads > 1) {
+    auto rev_future = std::async(std::launch::async, [&] { return local_alignments(scores, reverse); });
+    fwd = local_alignments(scores, forward);
+    rev = rev_future.get();
+  } else {
+    fwd = local_alignments(scores, forward);
+    rev = local_alignments(scores, reverse);
+  }
+  std::vector<LocalAlignment> all;
+  all.reserve(fwd.size() + rev.size());
+  std::move(fwd.begin(), fwd.end(), std::back_inserter(all));
+  std::move(rev.begin(), rev.end(), std::back_inserter(all));
+  std::stable_sort(all.begin(), all.end(), [](const LocalAlignment& x, const LocalAlignment& y) {
+    if (x.score != y.score) return x.score > y.score;
+    if (x.direction != y.direction) return x.direction == Direction::forward;
+    if (x.a_begin != y.a_begin) return x.a_begin < y.a_begin;
+    return x.b_begin < y.b_begin;
+  });
+  if (all.size() > config.max_alignments) all.resize(config.max_alignments);
+  return all;
+}
+
+}  // namespace seqtopo::align

@@ -1,0 +1,177 @@
+#include "seqtopo/io/npy.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <cctype>
+#include <regex>
+
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/io/input_error.hpp"
+
+static_assert(std::endian::native == std::endian::little, "the .npy reader assumes a little-endian machine");
+
+namespace seqtopo::io {
+namespace {
+
+constexpr char kMagic[] = "\x93NUMPY";
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& message) {
+  throw InputError(path.string(), message);
+}
+
+// The value of `key` in the header's Python dict literal: a quoted string, a tuple, or a bare word.
+std::string dict_value(const std::string& header, const std::string& key, const std::filesystem::path& path) {
+  std::size_t pos = header.find("'" + key + "'");
+  if (pos == std::string::npos) pos = header.find("\"" + key + "\"");
+  if (pos == std::string::npos) fail(path, "not a valid .npy header (no '" + key + "')");
+  pos = header.find(':', pos + key.size() + 2);
+  if (pos == std::string::npos) fail(path, "not a valid .npy header ('" + key + "')");
+  ++pos;
+  while (pos < header.size() && std::isspace(static_cast<unsigned char>(header[pos]))) ++pos;
+  if (pos >= header.size()) fail(path, "not a valid .npy header ('" + key + "')");
+  const char open = header[pos];
+  std::size_t end;
+  if (open == '(') {
+    end = header.find(')', pos);
+    if (end != std::string::npos) ++end;
+  } else if (open == '\'' || open == '"') {
+    end = header.find(open, pos + 1);
+    if (end != std::string::npos) ++end;
+  } else {
+    end = header.find_first_of(",}", pos);
+  }
+  if (end == std::string::npos) fail(path, "not a valid .npy header ('" + key + "')");
+  std::string v = header.substr(pos, end - pos);
+  while (!v.empty() && std::isspace(static_cast<unsigned char>(v.back()))) v.pop_back();
+  return v;
+}
+
+}  // namespace
+
+NpyHeader read_npy_header(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open file");
+  char magic[6];
+  std::uint8_t version[2];
+  if (!in.read(magic, 6) || std::memcmp(magic, kMagic, 6) != 0) fail(path, "not a .npy file (bad magic)");
+  if (!in.read(reinterpret_cast<char*>(version), 2)) fail(path, "truncated .npy header");
+  std::size_t header_len = 0;
+  std::size_t prefix = 0;
+  if (version[0] == 1) {
+    std::uint16_t len = 0;
+    if (!in.read(reinterpret_cast<char*>(&len), 2)) fail(path, "truncated .npy header");
+    header_len = len;
+    prefix = 10;
+  } else if (version[0] == 2 || version[0] == 3) {
+    std::uint32_t len = 0;
+    if (!in.read(reinterpret_cast<char*>(&len), 4)) fail(path, "truncated .npy header");
+    header_len = len;
+    prefix = 12;
+  } else {
+    fail(path, "unsupported .npy version " + std::to_string(version[0]));
+  }
+  if (header_len > (1U << 20)) fail(path, "implausible .npy header length");
+  std::string header(header_len, '\0');
+  if (!in.read(header.data(), static_cast<std::streamsize>(header_len))) fail(path, "truncated .npy header");
+
+  NpyHeader h;
+  h.data_offset = prefix + header_len;
+  std::string descr = dict_value(header, "descr", path);
+  if (descr.size() >= 2 && (descr.front() == '\'' || descr.front() == '"')) descr = descr.substr(1, descr.size() - 2);
+  if (descr == "<f4" || descr == "=f4") {
+    h.dtype = "<f4";
+  } else if (descr == "<f8" || descr == "=f8") {
+    h.dtype = "<f8";
+  } else {
+    fail(path, "unsupported dtype '" + descr + "' (need float32 or float64, little-endian)");
+  }
+  const std::string fortran = dict_value(header, "fortran_order", path);
+  if (fortran == "True") {
+    h.fortran_order = true;
+  } else if (fortran != "False") {
+    fail(path, "not a valid .npy header (fortran_order)");
+  }
+  const std::string shape = dict_value(header, "shape", path);
+  if (shape.empty() || shape.front() != '(') fail(path, "not a valid .npy header (shape)");
+  const std::regex num("\\d+");
+  for (auto it = std::sregex_iterator(shape.begin(), shape.end(), num); it != std::sregex_iterator(); ++it) {
+    h.shape.push_back(static_cast<std::size_t>(std::stoull(it->str())));
+  }
+  return h;
+}
+
+template <typename T>
+DenseMatrix<T> read_npy_matrix(const std::filesystem::path& path) {
+  const NpyHeader h = read_npy_header(path);
+  if (h.fortran_order) fail(path, "Fortran-order arrays are not supported (save with numpy.ascontiguousarray)");
+  if (h.shape.size() != 2) fail(path, "expected a 2-D array, got " + std::to_string(h.shape.size()) + "-D");
+  const std::size_t rows = h.shape[0], cols = h.shape[1];
+  if (rows == 0 || cols == 0) fail(path, "empty array (" + std::to_string(rows) + " x " + std::to_string(cols) + ")");
+  const std::size_t item = h.dtype == "<f4" ? 4 : 8;
+  if (cols > std::numeric_limits<std::size_t>::max() / item / rows) fail(path, "array too large");
+  const std::size_t count = rows * cols;
+
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const auto size = static_cast<std::size_t>(in.tellg());
+  if (size < h.data_offset + count * item) {
+    fail(path, "truncated data: " + std::to_string(rows) + " x " + std::to_string(cols) + " needs " +
+                   std::to_string(count * item) + " bytes");
+  }
+  in.seekg(static_cast<std::streamoff>(h.data_offset));
+  DenseMatrix<T> m(rows, cols);
+  auto load = [&]<typename S>(S) {
+    std::vector<S> raw(count);
+    in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(count * sizeof(S)));
+    for (std::size_t k = 0; k < count; ++k) {
+      if (!std::isfinite(raw[k])) {
+        fail(path, "non-finite value at row " + std::to_string(k / cols) + ", column " + std::to_string(k % cols));
+      }
+      m.values[k] = static_cast<T>(raw[k]);
+    }
+  };
+  if (item == 4) {
+    load(float{});
+  } else {
+    load(double{});
+  }
+  if (!in) fail(path, "read failed");
+  return m;
+}
+
+template <typename T>
+std::string encode_npy(const DenseMatrix<T>& matrix) {
+  static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>);
+  std::string dict = std::string("{'descr': '") + (sizeof(T) == 4 ? "<f4" : "<f8") +
+                     "', 'fortran_order': False, 'shape': (" + std::to_string(matrix.rows) + ", " +
+                     std::to_string(matrix.cols) + "), }";
+  // The whole header (10-byte prefix + dict + padding + '\n') is a multiple of 64 bytes.
+  const std::size_t total = ((10 + dict.size() + 1 + 63) / 64) * 64;
+  dict.append(total - 10 - dict.size() - 1, ' ');
+  dict.push_back('\n');
+  std::string out(kMagic, 6);
+  out.push_back('\x01');
+  out.push_back('\x00');
+  const auto len = static_cast<std::uint16_t>(dict.size());
+  out.append(reinterpret_cast<const char*>(&len), 2);
+  out += dict;
+  out.append(reinterpret_cast<const char*>(matrix.values.data()), matrix.values.size() * sizeof(T));
+  return out;
+}
+
+template <typename T>
+void write_npy(const std::filesystem::path& path, const DenseMatrix<T>& matrix) {
+  write_file_atomic(path, encode_npy(matrix));
+}
+
+template DenseMatrix<float> read_npy_matrix<float>(const std::filesystem::path&);
+template DenseMatrix<double> read_npy_matrix<double>(const std::filesystem::path&);
+template std::string encode_npy<float>(const DenseMatrix<float>&);
+template std::string encode_npy<double>(const DenseMatrix<double>&);
+template void write_npy<float>(const std::filesystem::path&, const DenseMatrix<float>&);
+template void write_npy<double>(const std::filesystem::path&, const DenseMatrix<double>&);
+
+}  // namespace seqtopo::io
