@@ -1,0 +1,43 @@
+#pragma once
+// Loop-closure accuracy counted per image, as in the loop-closure literature (INTERFACE.md):
+//  * image i is a detection when some candidate pair (i, j) has j < i; its best-scoring pair counts;
+//  * the detection is a true positive when the ground truth says i and j are the same place, else a
+//    false positive;
+//  * an image with a ground-truth partner j < i (at least min_separation frames earlier) but no
+//    true-positive detection is a false negative.
+// The PR curve sweeps a threshold over the detections' scores (a detection counts when its score is
+// >= the threshold). AUC is the average precision: sum over the curve of (recall step) x precision.
+// recall_at_100_precision is the highest recall at a threshold with no false positive (0 if none).
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace seqtopo::evaluation {
+
+struct ScoredPair {
+  std::size_t i = 0, j = 0;  // i > j
+  float score = 0;
+};
+
+struct PrPoint {
+  float threshold = 0;
+  double precision = 0, recall = 0;
+};
+
+struct LoopClosureMetrics {
+  std::size_t tp = 0, fp = 0, fn = 0;
+  double precision = 0, recall = 0, f1 = 0, auc = 0, recall_at_100_precision = 0;
+  std::size_t images_with_partner = 0;  // the recall denominator
+  std::vector<PrPoint> curve;           // by decreasing threshold
+};
+
+// Same-place relation of the ground truth (symmetric).
+using SamePlace = std::function<bool(std::size_t, std::size_t)>;
+
+// The best-scoring pair (i, j < i) of every image i, by increasing i. Ties: the larger j.
+std::vector<ScoredPair> best_pair_per_image(const std::vector<ScoredPair>& pairs);
+
+LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, std::size_t images,
+                                          const SamePlace& same_place, std::size_t min_separation);
+
+}  // namespace seqtopo::evaluation

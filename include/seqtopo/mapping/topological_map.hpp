@@ -1,0 +1,47 @@
+#pragma once
+// The topological map (mapping paper, IV-C/D): places are the place labels, an edge joins the places
+// of two consecutive images, junctions are where the robot's path branches or merges, and chains of
+// places between junctions collapse into path segments.
+//
+// Junctions are the union of two tests:
+//  * degree: a place with three or more neighbouring places;
+//  * alignment boundary: at the first retained pair (i, j) of a kept alignment, the two traversals
+//    arrived from different places (label[i-1] != label of j's predecessor along the alignment), or
+//    at the last pair they leave to different places. Boundaries at the ends of the sequence
+//    (no predecessor/successor) and U-turns (a reverse alignment meeting itself, |i - j| <=
+//    u_turn_separation) are not junctions: the path starts, stops or turns back there.
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/mapping/place_labels.hpp"
+#include "seqtopo/mapping/pruning.hpp"
+
+namespace seqtopo::mapping {
+
+struct Place {
+  PlaceLabel id = 0;
+  std::vector<std::size_t> images;  // in increasing order
+};
+
+struct PathSegment {
+  std::vector<PlaceLabel> places;  // from one end (a junction or an end of the path) to the other
+};
+
+struct TopologicalMap {
+  std::vector<PlaceLabel> labels;                       // one per image
+  std::vector<Place> places;                            // indexed by label
+  std::vector<std::pair<PlaceLabel, PlaceLabel>> edges; // (p, q) with p < q, sorted, unique
+  std::vector<PlaceLabel> junctions;                    // sorted
+  std::vector<PathSegment> segments;                    // sorted by first place
+};
+
+struct TopologyConfig {
+  std::size_t u_turn_separation = 10;  // [frames]
+};
+
+TopologicalMap build_topology(const std::vector<PlaceLabel>& labels, const std::vector<align::LocalAlignment>& alignments,
+                              const PruningResult& pruning, const TopologyConfig& config = {});
+
+}  // namespace seqtopo::mapping

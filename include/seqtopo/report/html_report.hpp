@@ -1,0 +1,29 @@
+#pragma once
+// A self-contained HTML report: every figure is inlined (data: URIs or inline SVG), so the page opens
+// with no network access and can be mailed or archived as one file.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace seqtopo::report {
+
+class HtmlReport {
+ public:
+  explicit HtmlReport(std::string title);
+  void heading(const std::string& text);
+  void paragraph(const std::string& text);                       // text is escaped
+  void table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
+  void key_values(const std::vector<std::pair<std::string, std::string>>& rows);
+  void png(const std::string& caption, const std::string& png_bytes, const std::string& file_name);
+  void svg(const std::string& caption, const std::string& svg_text, const std::string& file_name);
+  std::string html() const;
+
+ private:
+  std::string title_;
+  std::string body_;
+};
+
+std::string escape_html(const std::string& text);
+std::string base64(const std::string& bytes);
+
+}  // namespace seqtopo::report

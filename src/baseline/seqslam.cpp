@@ -1,0 +1,77 @@
+#include "seqtopo/baseline/seqslam.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <omp.h>
+
+namespace seqtopo::baseline {
+
+SimilarityMatrix enhance_contrast(const SimilarityMatrix& s, std::size_t window) {
+  if (window == 0) return s;
+  SimilarityMatrix out(s.rows, s.cols);
+#pragma omp parallel for schedule(static)
+  for (long r = 0; r < static_cast<long>(s.rows); ++r) {
+    const auto row = s.row(static_cast<std::size_t>(r));
+    for (std::size_t c = 0; c < s.cols; ++c) {
+      const std::size_t lo = c > window ? c - window : 0;
+      const std::size_t hi = std::min(s.cols, c + window + 1);
+      double sum = 0, sum2 = 0;
+      for (std::size_t k = lo; k < hi; ++k) {
+        sum += row[k];
+        sum2 += static_cast<double>(row[k]) * row[k];
+      }
+      const double n = static_cast<double>(hi - lo);
+      const double mean = sum / n;
+      const double sd = std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+      out(static_cast<std::size_t>(r), c) = static_cast<float>((row[c] - mean) / (sd > 1e-9 ? sd : 1e-9));
+    }
+  }
+  return out;
+}
+
+std::vector<SequenceMatch> seqslam_matches(const SimilarityMatrix& similarity, const SeqSlamConfig& config) {
+  if (config.sequence_length == 0) throw std::invalid_argument("sequence_length must be >= 1");
+  if (!(config.min_velocity > 0) || config.max_velocity < config.min_velocity || config.velocity_steps == 0) {
+    throw std::invalid_argument("velocities must satisfy 0 < min <= max, with at least one step");
+  }
+  if (config.self && !similarity.square()) throw std::invalid_argument("self mode needs a square similarity matrix");
+  const SimilarityMatrix e = enhance_contrast(similarity, config.enhancement_window);
+  std::vector<float> velocities;
+  for (std::size_t v = 0; v < config.velocity_steps; ++v) {
+    const float t = config.velocity_steps == 1 ? 0.0F : static_cast<float>(v) / static_cast<float>(config.velocity_steps - 1);
+    velocities.push_back(config.min_velocity + t * (config.max_velocity - config.min_velocity));
+  }
+  const std::size_t len = config.sequence_length;
+  std::vector<SequenceMatch> out(similarity.rows);
+  const int threads = config.threads == 0 ? omp_get_max_threads() : static_cast<int>(config.threads);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+  for (long qi = 0; qi < static_cast<long>(similarity.rows); ++qi) {
+    const auto q = static_cast<std::size_t>(qi);
+    SequenceMatch best{q, 0, 0, false};
+    // The sequence ends at query q and runs back over min(len, q + 1) frames.
+    const std::size_t steps = std::min(len, q + 1);
+    std::size_t last_column = similarity.cols;
+    if (config.self) last_column = q >= config.min_separation ? q - config.min_separation + 1 : 0;
+    for (std::size_t j = 0; j < last_column; ++j) {
+      for (float v : velocities) {
+        double sum = 0;
+        std::size_t count = 0;
+        for (std::size_t k = 0; k < steps; ++k) {
+          const double col = static_cast<double>(j) - static_cast<double>(v) * static_cast<double>(k);
+          if (col < 0) break;
+          sum += e(q - k, static_cast<std::size_t>(std::lround(col)));
+          ++count;
+        }
+        if (count == 0) continue;
+        const auto score = static_cast<float>(sum / static_cast<double>(count));
+        if (!best.valid || score > best.score) best = {q, j, score, true};
+      }
+    }
+    out[q] = best;
+  }
+  return out;
+}
+
+}  // namespace seqtopo::baseline

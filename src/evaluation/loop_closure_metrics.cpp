@@ -1,0 +1,80 @@
+#include "seqtopo/evaluation/loop_closure_metrics.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace seqtopo::evaluation {
+
+std::vector<ScoredPair> best_pair_per_image(const std::vector<ScoredPair>& pairs) {
+  std::map<std::size_t, ScoredPair> best;
+  for (const auto& p : pairs) {
+    if (p.j >= p.i) continue;
+    auto it = best.find(p.i);
+    if (it == best.end() || p.score > it->second.score || (p.score == it->second.score && p.j > it->second.j)) {
+      best[p.i] = p;
+    }
+  }
+  std::vector<ScoredPair> out;
+  out.reserve(best.size());
+  for (const auto& [i, p] : best) out.push_back(p);
+  return out;
+}
+
+LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, std::size_t images,
+                                          const SamePlace& same_place, std::size_t min_separation) {
+  for (const auto& p : pairs) {
+    if (p.i >= images || p.j >= images) {
+      throw std::invalid_argument("pair (" + std::to_string(p.i) + ", " + std::to_string(p.j) + ") outside " +
+                                  std::to_string(images) + " images");
+    }
+  }
+  std::vector<bool> has_partner(images, false);
+  LoopClosureMetrics m;
+  for (std::size_t i = 0; i < images; ++i) {
+    for (std::size_t j = 0; j + min_separation <= i; ++j) {
+      if (same_place(i, j)) {
+        has_partner[i] = true;
+        break;
+      }
+    }
+    m.images_with_partner += has_partner[i] ? 1 : 0;
+  }
+
+  auto detections = best_pair_per_image(pairs);
+  std::vector<bool> correct(detections.size());
+  for (std::size_t k = 0; k < detections.size(); ++k) correct[k] = same_place(detections[k].i, detections[k].j);
+
+  auto finish = [&](std::size_t tp, std::size_t fp, double& precision, double& recall) {
+    precision = tp + fp == 0 ? 1.0 : static_cast<double>(tp) / static_cast<double>(tp + fp);
+    recall = m.images_with_partner == 0 ? 0.0 : static_cast<double>(tp) / static_cast<double>(m.images_with_partner);
+  };
+  for (std::size_t k = 0; k < detections.size(); ++k) (correct[k] ? m.tp : m.fp) += 1;
+  m.fn = m.images_with_partner - m.tp;  // every true positive is an image with a partner
+  finish(m.tp, m.fp, m.precision, m.recall);
+  m.f1 = m.precision + m.recall == 0 ? 0.0 : 2 * m.precision * m.recall / (m.precision + m.recall);
+
+  // Sweep: detections by decreasing score; a threshold admits every detection scoring >= it.
+  std::vector<std::size_t> order(detections.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return detections[a].score > detections[b].score;
+  });
+  std::size_t tp = 0, fp = 0;
+  double previous_recall = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    (correct[order[k]] ? tp : fp) += 1;
+    const bool last_of_score = k + 1 == order.size() || detections[order[k + 1]].score != detections[order[k]].score;
+    if (!last_of_score) continue;
+    PrPoint point{detections[order[k]].score, 0, 0};
+    finish(tp, fp, point.precision, point.recall);
+    m.auc += (point.recall - previous_recall) * point.precision;
+    previous_recall = point.recall;
+    if (fp == 0) m.recall_at_100_precision = point.recall;
+    m.curve.push_back(point);
+  }
+  return m;
+}
+
+}  // namespace seqtopo::evaluation

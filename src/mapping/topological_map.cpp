@@ -1,0 +1,123 @@
+#include "seqtopo/mapping/topological_map.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace seqtopo::mapping {
+namespace {
+
+using Adjacency = std::vector<std::set<PlaceLabel>>;
+
+// Whether the two traversals of an alignment come from (or go to) different places at pair (i, j).
+// step = -1 looks at predecessors, +1 at successors, along the alignment's own direction.
+bool diverges(const std::vector<PlaceLabel>& labels, std::size_t i, std::size_t j, int step, align::Direction direction,
+              std::size_t u_turn_separation) {
+  const auto n = static_cast<long>(labels.size());
+  const long ni = static_cast<long>(i) + step;
+  const long nj = static_cast<long>(j) + (direction == align::Direction::forward ? step : -step);
+  if (ni < 0 || ni >= n || nj < 0 || nj >= n) return false;
+  const std::size_t separation = i > j ? i - j : j - i;
+  if (direction == align::Direction::reverse && separation <= u_turn_separation) return false;
+  return labels[static_cast<std::size_t>(ni)] != labels[static_cast<std::size_t>(nj)];
+}
+
+std::vector<PathSegment> collapse_segments(const Adjacency& adjacency, const std::set<PlaceLabel>& stops) {
+  const auto count = static_cast<PlaceLabel>(adjacency.size());
+  std::set<std::pair<PlaceLabel, PlaceLabel>> walked;  // directed edges already part of a segment
+  std::vector<PathSegment> segments;
+  auto walk = [&](PlaceLabel from, PlaceLabel next) {
+    PathSegment s{{from}};
+    PlaceLabel prev = from, cur = next;
+    walked.insert({from, next});
+    while (true) {
+      s.places.push_back(cur);
+      if (stops.count(cur) || cur == from) break;
+      // a non-stop place has exactly two neighbours: continue through the other one
+      const PlaceLabel other = *adjacency[cur].begin() == prev ? *adjacency[cur].rbegin() : *adjacency[cur].begin();
+      walked.insert({cur, other});
+      prev = cur;
+      cur = other;
+    }
+    walked.insert({cur, prev});
+    segments.push_back(std::move(s));
+  };
+  for (PlaceLabel p = 0; p < count; ++p) {
+    if (!stops.count(p)) continue;
+    if (adjacency[p].empty()) segments.push_back({{p}});
+    for (PlaceLabel q : adjacency[p]) {
+      if (!walked.count({p, q})) walk(p, q);
+    }
+  }
+  // Loops made only of degree-2 places: start each at its smallest place.
+  for (PlaceLabel p = 0; p < count; ++p) {
+    if (stops.count(p) || adjacency[p].size() != 2) continue;
+    const PlaceLabel q = *adjacency[p].begin();
+    if (!walked.count({p, q}) && !walked.count({q, p})) walk(p, q);
+  }
+  std::sort(segments.begin(), segments.end(), [](const PathSegment& a, const PathSegment& b) { return a.places < b.places; });
+  return segments;
+}
+
+}  // namespace
+
+TopologicalMap build_topology(const std::vector<PlaceLabel>& labels, const std::vector<align::LocalAlignment>& alignments,
+                              const PruningResult& pruning, const TopologyConfig& config) {
+  if (pruning.kept.size() != alignments.size()) throw std::invalid_argument("pruning result does not match the alignments");
+  TopologicalMap map;
+  map.labels = labels;
+  PlaceLabel count = 0;
+  for (PlaceLabel l : labels) {
+    if (l < 0) throw std::invalid_argument("place labels must be >= 0");
+    count = std::max(count, l + 1);
+  }
+  map.places.resize(static_cast<std::size_t>(count));
+  for (PlaceLabel p = 0; p < count; ++p) map.places[p].id = p;
+  for (std::size_t k = 0; k < labels.size(); ++k) map.places[labels[k]].images.push_back(k);
+
+  Adjacency adjacency(static_cast<std::size_t>(count));
+  for (std::size_t k = 1; k < labels.size(); ++k) {
+    const PlaceLabel a = labels[k - 1], b = labels[k];
+    if (a == b) continue;
+    adjacency[a].insert(b);
+    adjacency[b].insert(a);
+  }
+  for (PlaceLabel p = 0; p < count; ++p) {
+    for (PlaceLabel q : adjacency[p]) {
+      if (p < q) map.edges.emplace_back(p, q);
+    }
+  }
+
+  std::set<PlaceLabel> junctions;
+  for (PlaceLabel p = 0; p < count; ++p) {
+    if (adjacency[p].size() >= 3) junctions.insert(p);
+  }
+  // First and last retained pair of each kept alignment.
+  std::map<std::size_t, std::pair<RetainedPair, RetainedPair>> ends;
+  for (const auto& pair : pruning.pairs) {
+    auto it = ends.find(pair.alignment);
+    if (it == ends.end()) {
+      ends.emplace(pair.alignment, std::make_pair(pair, pair));
+    } else {
+      if (pair.i < it->second.first.i) it->second.first = pair;
+      if (pair.i > it->second.second.i) it->second.second = pair;
+    }
+  }
+  for (const auto& [k, first_last] : ends) {
+    const auto direction = alignments[k].direction;
+    const auto& [first, last] = first_last;
+    if (diverges(labels, first.i, first.j, -1, direction, config.u_turn_separation)) junctions.insert(labels[first.i]);
+    if (diverges(labels, last.i, last.j, +1, direction, config.u_turn_separation)) junctions.insert(labels[last.i]);
+  }
+  map.junctions.assign(junctions.begin(), junctions.end());
+
+  std::set<PlaceLabel> stops = junctions;
+  for (PlaceLabel p = 0; p < count; ++p) {
+    if (adjacency[p].size() != 2) stops.insert(p);
+  }
+  map.segments = collapse_segments(adjacency, stops);
+  return map;
+}
+
+}  // namespace seqtopo::mapping

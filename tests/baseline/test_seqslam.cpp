@@ -1,0 +1,77 @@
+// The SeqSLAM-style baseline against a direct brute-force evaluation of its definition.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "seqtopo/baseline/seqslam.hpp"
+
+namespace seqtopo::baseline {
+namespace {
+
+TEST(SeqSlam, FindsPlantedSequenceAtDifferentSpeed) {
+  // The query (rows) drives the database route at 1.2x the speed: query q sees database 1.2 q + 5.
+  const std::size_t nq = 40, nd = 80;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> noise(0.0F, 0.5F);
+  SimilarityMatrix s(nq, nd);
+  for (auto& v : s.values) v = noise(rng);
+  for (std::size_t q = 0; q < nq; ++q) s(q, static_cast<std::size_t>(std::lround(1.2 * static_cast<double>(q))) + 5) = 1.0F;
+  SeqSlamConfig config;
+  config.sequence_length = 8;
+  config.min_velocity = 1.0F;
+  config.max_velocity = 1.4F;
+  const auto matches = seqslam_matches(s, config);
+  for (std::size_t q = 10; q < nq; ++q) {
+    ASSERT_TRUE(matches[q].valid);
+    EXPECT_EQ(matches[q].match, static_cast<std::size_t>(std::lround(1.2 * static_cast<double>(q))) + 5) << q;
+  }
+}
+
+TEST(SeqSlam, EqualsBruteForceDefinition) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0F, 1.0F);
+  for (int round = 0; round < 20; ++round) {
+    const std::size_t n = 15 + rng() % 20;
+    SimilarityMatrix s(n, n);
+    for (auto& v : s.values) v = u(rng);
+    SeqSlamConfig config;
+    config.self = true;
+    config.min_separation = 3;
+    config.sequence_length = 4;
+    config.enhancement_window = 0;
+    config.velocity_steps = 3;
+    const auto got = seqslam_matches(s, config);
+    for (std::size_t q = 0; q < n; ++q) {
+      bool valid = false;
+      float best = 0;
+      std::size_t best_j = 0;
+      for (std::size_t j = 0; j + 3 <= q; ++j) {
+        for (float v : {0.8F, 1.025F, 1.25F}) {
+          double sum = 0;
+          int count = 0;
+          for (std::size_t k = 0; k < 4 && k <= q; ++k) {
+            const double col = static_cast<double>(j) - static_cast<double>(v) * static_cast<double>(k);
+            if (col < 0) break;
+            sum += s(q - k, static_cast<std::size_t>(std::lround(col)));
+            ++count;
+          }
+          const auto score = static_cast<float>(sum / count);
+          if (!valid || score > best) {
+            valid = true;
+            best = score;
+            best_j = j;
+          }
+        }
+      }
+      ASSERT_EQ(got[q].valid, valid) << q;
+      if (valid) {
+        EXPECT_EQ(got[q].match, best_j);
+        EXPECT_FLOAT_EQ(got[q].score, best);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace seqtopo::baseline

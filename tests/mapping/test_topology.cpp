@@ -1,0 +1,114 @@
+// Graph construction on a figure-eight (mapping paper Fig. 1): start -> shared section -> loop ->
+// shared section again (same direction) -> exit. Images 0..9 lead in, 10..19 are the shared section,
+// 20..29 the loop, 30..39 the shared section again, 40..49 the exit.
+#include <gtest/gtest.h>
+
+#include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/mapping/topological_map.hpp"
+
+namespace seqtopo::mapping {
+namespace {
+
+constexpr std::size_t kImages = 50;
+
+std::vector<std::pair<std::size_t, std::size_t>> revisit_pairs() {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t k = 0; k < 10; ++k) pairs.emplace_back(30 + k, 10 + k);
+  return pairs;
+}
+
+void expect_figure_eight(const TopologicalMap& map) {
+  const auto& labels = map.labels;
+  for (std::size_t k = 0; k < 10; ++k) EXPECT_EQ(labels[30 + k], labels[10 + k]);
+  EXPECT_EQ(map.places.size(), 40U);  // 50 images, 10 of them revisits
+  const PlaceLabel merge = labels[10], branch = labels[19];
+  // The shared section starts where the loop's end and the lead-in merge, and ends where the loop and
+  // the exit branch off: both are junctions (degree 3), and nothing else is.
+  EXPECT_EQ(map.junctions, (std::vector<PlaceLabel>{merge, branch}));
+  ASSERT_EQ(map.segments.size(), 4U);
+  // lead-in: from the start (a dead end) to the merge junction
+  EXPECT_EQ(map.segments[0].places.front(), labels[0]);
+  EXPECT_EQ(map.segments[0].places.back(), merge);
+  EXPECT_EQ(map.segments[0].places.size(), 11U);
+  // every segment starts and ends at a junction or a dead end
+  for (const auto& s : map.segments) {
+    for (PlaceLabel end : {s.places.front(), s.places.back()}) {
+      const bool junction = end == merge || end == branch;
+      const bool dead_end = end == labels[0] || end == labels[49];
+      EXPECT_TRUE(junction || dead_end) << "segment ends at place " << end;
+    }
+  }
+  // edges: 49 consecutive steps, 10 of them repeat an existing edge (the second pass of the shared
+  // section repeats 9 edges, and 29 -> 30 is the new loop-closing edge): 49 - 9 = 40 distinct edges.
+  EXPECT_EQ(map.edges.size(), 40U);
+}
+
+TEST(Topology, FigureEightFromHandBuiltAlignment) {
+  align::LocalAlignment a;
+  a.score = 10;
+  a.pairs = revisit_pairs();
+  a.a_begin = 30;
+  a.a_end = 40;
+  a.b_begin = 10;
+  a.b_end = 20;
+  const std::vector<align::LocalAlignment> alignments{a};
+  const auto pruning = prune_per_column(alignments);
+  const auto labels = label_places(kImages, revisit_pairs());
+  expect_figure_eight(build_topology(labels, alignments, pruning));
+}
+
+TEST(Topology, FigureEightFromSimilarityMatrix) {
+  // Similarity: consecutive images alike, the revisited section alike, everything else not.
+  SimilarityMatrix s(kImages, kImages, -0.5F);
+  for (std::size_t i = 0; i < kImages; ++i) {
+    s(i, i) = 1.0F;
+    if (i + 1 < kImages) s(i, i + 1) = s(i + 1, i) = 0.5F;
+  }
+  for (auto [i, j] : revisit_pairs()) s(i, j) = s(j, i) = 1.0F;
+  MapConfig config;
+  config.min_separation = 5;
+  config.cap = 5.0F;
+  config.threshold = 4.0F;
+  const auto result = build_map(s, config);
+  ASSERT_FALSE(result.alignments.empty());
+  EXPECT_EQ(result.alignments.front().pairs, revisit_pairs());
+  expect_figure_eight(result.map);
+  // the kept alignment is the revisit; nothing else survives pruning
+  std::size_t kept = 0;
+  for (bool k : result.pruning.kept) kept += k ? 1 : 0;
+  EXPECT_EQ(kept, 1U);
+}
+
+TEST(Topology, CorridorWalkedBackIsAReverseRevisitWithoutJunctionAtTheTurn) {
+  // Out along a corridor (0..19), around a loop (20..39), back along the corridor (40..59 revisit
+  // 19..0 in reverse). The loop's ends meet at image 19/40: a junction; the corridor's far end
+  // (image 0 / 59) is where the walk started and stopped: not a junction.
+  const std::size_t n = 60;
+  SimilarityMatrix s(n, n, -0.5F);
+  for (std::size_t i = 0; i < n; ++i) s(i, i) = 1.0F;
+  for (std::size_t k = 0; k < 20; ++k) s(40 + k, 19 - k) = s(19 - k, 40 + k) = 1.0F;
+  MapConfig config;
+  config.min_separation = 5;
+  const auto result = build_map(s, config);
+  ASSERT_FALSE(result.alignments.empty());
+  EXPECT_EQ(result.alignments.front().direction, align::Direction::reverse);
+  for (std::size_t k = 0; k < 20; ++k) EXPECT_EQ(result.map.labels[40 + k], result.map.labels[19 - k]);
+  EXPECT_EQ(result.map.junctions, (std::vector<PlaceLabel>{result.map.labels[19]}));
+}
+
+TEST(Topology, NoRevisitIsOneSegment) {
+  const std::vector<PlaceLabel> labels{0, 1, 2, 3, 4};
+  const auto map = build_topology(labels, {}, PruningResult{});
+  EXPECT_TRUE(map.junctions.empty());
+  ASSERT_EQ(map.segments.size(), 1U);
+  EXPECT_EQ(map.segments[0].places, labels);
+}
+
+TEST(Topology, RejectsNonSquareSimilarity) {
+  EXPECT_THROW(build_map(SimilarityMatrix(3, 4)), std::invalid_argument);
+  EXPECT_THROW(build_map(SimilarityMatrix()), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace seqtopo::mapping
