@@ -6,4 +6,4 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh
 cmake --preset release >/dev/null
 cmake --build --preset release --target seqtopo
-exec build/release/src/seqtopo align --a data/examples/walk_a.fa --b data/examples/walk_b.fa --match 2 --mismatch -1 --gap 1 --max-alignments 5 "$@"
+exec build/release/src/seqtopo map "$@"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <future>
 #include <stdexcept>
 #include <string>
@@ -30,6 +31,8 @@ void validate(const ScoreSource& scores, const AlignConfig& config) {
 // The dynamic-programming table of one pass. Cells use 1-based (i, j); column j of the pass is column
 // j-1 of B, or column n-j of B for the reverse pass. Cells outside the searched region stay 0.
 class Pass {
+  using Cell = std::pair<std::size_t, std::size_t>;  // (i, j) in pass coordinates
+
  public:
   Pass(const ScoreSource& scores, const AlignConfig& config)
       : scores_(scores), config_(config), m_(scores.rows()), n_(scores.cols()), stride_(n_ + 1),
@@ -45,9 +48,11 @@ class Pass {
     std::vector<LocalAlignment> out;
     const Score floor = std::max(config_.threshold, std::numeric_limits<Score>::min());
     while (out.size() < config_.max_alignments) {
-      auto [i, j] = best_cell();
-      if (i == 0 || h(i, j) < floor) break;
-      out.push_back(trace_back(i, j));
+      const Cell first = best_cell();
+      if (first.first == 0 || h(first.first, first.second) < floor) break;
+      // A maximum at the cap is a plateau: take it whole. Otherwise the first maximum, as SIM does.
+      const Cell end = config_.cap && h(first.first, first.second) == *config_.cap ? far_end(first) : first;
+      out.push_back(recover(end));
       forbid_and_update(out.back());
     }
     return out;
@@ -115,39 +120,159 @@ class Pass {
   void rescan_row_best(std::size_t i) {
     std::pair<Score, std::size_t> best{0.0F, 0};
     for (std::size_t j = 1; j <= n_; ++j) {
-      if (h(i, j) >= best.first && h(i, j) > 0) best = {h(i, j), j};
+      if (h(i, j) > best.first) best = {h(i, j), j};  // the first maximum of the row
     }
     row_best_[i] = best;
   }
 
-  std::pair<std::size_t, std::size_t> best_cell() const {
+  // The first maximal cell in row-major order ({0, 0} if none is positive).
+  Cell best_cell() const {
     std::size_t bi = 0;
     for (std::size_t i = 1; i <= m_; ++i) {
-      if (row_best_[i].second != 0 && (bi == 0 || row_best_[i].first >= row_best_[bi].first)) bi = i;
+      if (row_best_[i].second != 0 && (bi == 0 || row_best_[i].first > row_best_[bi].first)) bi = i;
     }
     return {bi, bi == 0 ? 0 : row_best_[bi].second};
   }
 
-  LocalAlignment trace_back(std::size_t i, std::size_t j) const {
-    LocalAlignment a;
-    a.direction = config_.direction;
-    a.score = h(i, j);
-    while (h(i, j) > 0) {
-      const Score v = h(i, j);
-      const Score s = scores_.at(i - 1, original_col(j));
-      if (!used(i, j) && clamp(h(i - 1, j - 1) + s) == v) {
-        a.pairs.emplace_back(i - 1, original_col(j));
-        --i;
-        --j;
-      } else if (clamp(h(i - 1, j) - config_.gap_a) == v) {
-        --i;
-      } else if (clamp(h(i, j - 1) - config_.gap_b) == v) {
-        --j;
-      } else {
-        throw std::logic_error("alignment traceback found no predecessor");
+  Score h(Cell c) const { return h(c.first, c.second); }
+  Score score_at(std::size_t i, std::size_t j) const { return scores_.at(i - 1, original_col(j)); }
+
+  // "Tight" steps into cell (i, j): steps that attain the cell's (positive) value, i.e. steps of an
+  // optimal alignment ending there. The same expressions as in cell_value, so equality is exact.
+  bool tight_diag(std::size_t i, std::size_t j) const {
+    return h(i, j) > 0 && !used(i, j) && clamp(h(i - 1, j - 1) + score_at(i, j)) == h(i, j);
+  }
+  bool tight_down(std::size_t i, std::size_t j) const {  // from (i-1, j): element of A against a gap
+    return h(i, j) > 0 && clamp(h(i - 1, j) - config_.gap_a) == h(i, j);
+  }
+  bool tight_right(std::size_t i, std::size_t j) const {  // from (i, j-1): element of B against a gap
+    return h(i, j) > 0 && clamp(h(i, j - 1) - config_.gap_b) == h(i, j);
+  }
+
+  // The last maximal cell (row-major) reachable from `first` by tight steps: for a maximum at the cap,
+  // the far end of its plateau.
+  Cell far_end(Cell first) const {
+    const Score top = h(first);
+    Cell end = first;
+    std::vector<std::size_t> seeds{first.second}, closed;
+    for (std::size_t i = first.first; !seeds.empty(); ++i) {
+      std::sort(seeds.begin(), seeds.end());
+      seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+      closed.clear();
+      for (std::size_t j : seeds) {  // close the row under rightward tight steps
+        if (!closed.empty() && j <= closed.back()) continue;
+        closed.push_back(j);
+        while (j < n_ && tight_right(i, j + 1)) closed.push_back(++j);
+      }
+      seeds.clear();
+      for (std::size_t j : closed) {
+        if (h(i, j) == top) end = {i, j};
+        if (i == m_) continue;
+        if (tight_down(i + 1, j)) seeds.push_back(j);
+        if (j < n_ && tight_diag(i + 1, j + 1)) seeds.push_back(j + 1);
       }
     }
-    std::reverse(a.pairs.begin(), a.pairs.end());
+    return end;
+  }
+
+  // The latest start (largest i, then largest j) of an optimal alignment ending at `end`: the zero cell
+  // just before its first pair. Searched backwards along tight steps, one row at a time; `spans`
+  // receives, from the end's row upwards, the column span of the cells that reach the end.
+  Cell start_of(Cell end, std::vector<std::pair<std::size_t, std::size_t>>& spans) const {
+    spans.clear();
+    std::vector<std::size_t> seeds{end.second}, closed;
+    for (std::size_t i = end.first; i > 0; --i) {
+      std::sort(seeds.begin(), seeds.end(), std::greater<>());
+      seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+      closed.clear();
+      for (std::size_t j : seeds) {  // close the row under leftward tight steps
+        if (!closed.empty() && j >= closed.back()) continue;
+        closed.push_back(j);
+        while (j > 1 && tight_right(i, j)) closed.push_back(--j);
+      }
+      spans.emplace_back(closed.back(), closed.front());
+      seeds.clear();
+      std::size_t start_col = 0;
+      bool found = false;
+      for (std::size_t j : closed) {
+        if (tight_diag(i, j)) {
+          if (h(i - 1, j - 1) == 0) {
+            if (!found || j - 1 > start_col) start_col = j - 1;
+            found = true;
+          } else {
+            seeds.push_back(j - 1);
+          }
+        }
+        if (tight_down(i, j)) seeds.push_back(j);
+      }
+      if (found) return {i - 1, start_col};
+    }
+    throw std::logic_error("alignment has no start");
+  }
+
+  // Tight steps between the start and the end, so the bisection below reads no scores. Only cells of
+  // an optimal start-to-end path matter, and all of those reach the end: row r keeps just the columns
+  // lo[r] .. hi[r] that start_of found reaching it (relative to the start; everything else reads 0).
+  // Step bits: 1 diagonal step into the cell, 2 step down into it, 4 step right into it.
+  struct Box {
+    std::size_t r0 = 0, c0 = 0;
+    std::vector<std::size_t> lo, hi, offset;
+    std::vector<std::uint8_t> steps, fwd, bwd;  // fwd, bwd: scratch flags of the bisection
+    bool inside(std::size_t r, std::size_t c) const { return c >= lo[r] && c <= hi[r]; }
+    std::size_t index(std::size_t r, std::size_t c) const { return offset[r] + (c - lo[r]); }
+    std::uint8_t at(std::size_t r, std::size_t c) const { return inside(r, c) ? steps[index(r, c)] : 0; }
+    bool diag(std::size_t r, std::size_t c) const { return (at(r, c) & 1U) != 0; }
+    bool down(std::size_t r, std::size_t c) const { return (at(r, c) & 2U) != 0; }
+    bool right(std::size_t r, std::size_t c) const { return (at(r, c) & 4U) != 0; }
+    bool f(std::size_t r, std::size_t c) const { return inside(r, c) && fwd[index(r, c)] != 0; }
+    bool b(std::size_t r, std::size_t c) const { return inside(r, c) && bwd[index(r, c)] != 0; }
+  };
+
+  LocalAlignment recover(Cell end) {
+    std::vector<std::pair<std::size_t, std::size_t>> spans;
+    const Cell start = start_of(end, spans);
+    Box box;
+    box.r0 = start.first;
+    box.c0 = start.second;
+    const std::size_t rows = end.first - start.first + 1;
+    box.lo.assign(rows, 0);
+    box.hi.assign(rows, 0);
+    box.offset.assign(rows, 0);
+    std::size_t size = 1;  // row 0: the start alone
+    for (std::size_t r = 1; r < rows; ++r) {
+      const auto [lo, hi] = spans[rows - 1 - r];  // every row between start and end has such a cell
+      box.lo[r] = std::max(lo, box.c0 + 1) - box.c0;
+      box.hi[r] = hi - box.c0;
+      box.offset[r] = size;
+      size += box.hi[r] - box.lo[r] + 1;
+    }
+    box.steps.assign(size, 0);
+    box.fwd.assign(size, 0);
+    box.bwd.assign(size, 0);
+    for (std::size_t r = 1; r < rows; ++r) {
+      const std::size_t i = box.r0 + r;
+      fetch(i, box.c0 + box.lo[r], box.c0 + box.hi[r]);
+      for (std::size_t c = box.lo[r]; c <= box.hi[r]; ++c) {
+        const std::size_t j = box.c0 + c;
+        const Score v = h(i, j);
+        if (v <= 0) continue;
+        std::uint8_t bits = 0;
+        if (!used(i, j) && clamp(h(i - 1, j - 1) + buffer_[j - 1]) == v) bits |= 1U;
+        if (clamp(h(i - 1, j) - config_.gap_a) == v) bits |= 2U;
+        if (clamp(h(i, j - 1) - config_.gap_b) == v) bits |= 4U;
+        box.steps[box.index(r, c)] = bits;
+      }
+    }
+    LocalAlignment a;
+    a.direction = config_.direction;
+    a.score = h(end);
+    bisect(box, {0, 0}, {rows - 1, end.second - box.c0}, a.pairs);
+    if (a.pairs.empty()) throw std::logic_error("alignment has no pair");
+    for (auto& [r, c] : a.pairs) {
+      const std::size_t i = box.r0 + r, j = box.c0 + c;
+      r = i - 1;
+      c = original_col(j);
+    }
     a.a_begin = a.pairs.front().first;
     a.a_end = a.pairs.back().first + 1;
     auto [b_min, b_max] = std::minmax_element(a.pairs.begin(), a.pairs.end(),
@@ -155,6 +280,71 @@ class Pass {
     a.b_begin = b_min->second;
     a.b_end = b_max->second + 1;
     return a;
+  }
+
+  // The path between two cells p and q of an optimal alignment (box coordinates), by recursive
+  // bisection (Myers-Miller, as in SIM): the path crosses the middle row at the leftmost possible
+  // column, unless it can cross further right at a cell it enters by a diagonal or rightward step
+  // only and leaves downwards, in which case at the rightmost such cell. A single row takes no pair if
+  // a gap-only route is optimal, else its leftmost possible pair. Appends the pairs (box cells of the
+  // diagonal steps) in order.
+  static void bisect(Box& box, Cell p, Cell q, std::vector<std::pair<std::size_t, std::size_t>>& pairs) {
+    const std::size_t rows = q.first - p.first, cols = q.second - p.second;
+    if (rows == 0 || cols == 0) return;
+    if (rows == 1) {
+      // suffix[k]: the rightward steps along row q.first after column p.second + k are all tight
+      std::vector<std::uint8_t> suffix(cols + 1, 1);
+      for (std::size_t k = cols; k-- > 0;) suffix[k] = suffix[k + 1] && box.right(q.first, p.second + k + 1);
+      // A gap-only route (right along row p.first, down, right along row q.first) wins ties.
+      bool prefix = true;  // the rightward steps along row p.first up to column p.second + k are tight
+      for (std::size_t k = 0; k <= cols && prefix; ++k) {
+        if (k > 0) prefix = box.right(p.first, p.second + k);
+        if (prefix && box.down(q.first, p.second + k) && suffix[k]) return;
+      }
+      prefix = true;
+      for (std::size_t k = 1; k <= cols && prefix; ++k) {
+        if (box.diag(q.first, p.second + k) && suffix[k]) {
+          pairs.emplace_back(q.first, p.second + k);
+          return;
+        }
+        prefix = box.right(p.first, p.second + k);
+      }
+      throw std::logic_error("alignment bisection found no route");
+    }
+    const std::size_t mid = p.first + rows / 2;
+    // fwd: reachable from p by tight steps (rows p.first .. mid); bwd: reaches q (rows mid .. q.first).
+    // Each cell read below was written in this call or lies outside the band (reads 0).
+    for (std::size_t r = p.first; r <= mid; ++r) {
+      for (std::size_t c = std::max(p.second, box.lo[r]); c <= std::min(q.second, box.hi[r]); ++c) {
+        const bool up = r > p.first, left = c > p.second;
+        box.fwd[box.index(r, c)] = (r == p.first && c == p.second) ||
+                                   (up && left && box.diag(r, c) && box.f(r - 1, c - 1)) ||
+                                   (up && box.down(r, c) && box.f(r - 1, c)) ||
+                                   (left && box.right(r, c) && box.f(r, c - 1));
+      }
+    }
+    for (std::size_t r = q.first + 1; r-- > mid;) {
+      const std::size_t c_lo = std::max(p.second, box.lo[r]), c_hi = std::min(q.second, box.hi[r]);
+      for (std::size_t c = c_hi + 1; c-- > c_lo;) {
+        const bool below = r < q.first, right = c < q.second;
+        box.bwd[box.index(r, c)] = (r == q.first && c == q.second) ||
+                                   (below && right && box.diag(r + 1, c + 1) && box.b(r + 1, c + 1)) ||
+                                   (below && box.down(r + 1, c) && box.b(r + 1, c)) ||
+                                   (right && box.right(r, c + 1) && box.b(r, c + 1));
+      }
+    }
+    std::size_t cross = 0;
+    bool found = false;
+    for (std::size_t c = std::max(p.second, box.lo[mid]); c <= std::min(q.second, box.hi[mid]); ++c) {
+      if (!box.f(mid, c) || !box.b(mid, c)) continue;
+      const bool enters_down = box.down(mid, c) && box.f(mid - 1, c);
+      const bool leaves_down = box.down(mid + 1, c) && box.b(mid + 1, c);
+      if (!found || (!enters_down && leaves_down)) cross = c;
+      found = true;
+    }
+    if (!found) throw std::logic_error("alignment bisection found no crossing");
+    bisect(box, p, {mid, cross}, pairs);
+    bisect(box, {mid, cross}, q, pairs);
   }
 
   // Forbids the alignment's pairs and recomputes, row by row, only the cells whose value can change:

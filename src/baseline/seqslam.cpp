@@ -1,5 +1,7 @@
 #include "seqtopo/baseline/seqslam.hpp"
 
+#include "seqtopo/similarity/contrast_enhancement.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -8,36 +10,13 @@
 
 namespace seqtopo::baseline {
 
-SimilarityMatrix enhance_contrast(const SimilarityMatrix& s, std::size_t window) {
-  if (window == 0) return s;
-  SimilarityMatrix out(s.rows, s.cols);
-#pragma omp parallel for schedule(static)
-  for (long r = 0; r < static_cast<long>(s.rows); ++r) {
-    const auto row = s.row(static_cast<std::size_t>(r));
-    for (std::size_t c = 0; c < s.cols; ++c) {
-      const std::size_t lo = c > window ? c - window : 0;
-      const std::size_t hi = std::min(s.cols, c + window + 1);
-      double sum = 0, sum2 = 0;
-      for (std::size_t k = lo; k < hi; ++k) {
-        sum += row[k];
-        sum2 += static_cast<double>(row[k]) * row[k];
-      }
-      const double n = static_cast<double>(hi - lo);
-      const double mean = sum / n;
-      const double sd = std::sqrt(std::max(0.0, sum2 / n - mean * mean));
-      out(static_cast<std::size_t>(r), c) = static_cast<float>((row[c] - mean) / (sd > 1e-9 ? sd : 1e-9));
-    }
-  }
-  return out;
-}
-
 std::vector<SequenceMatch> seqslam_matches(const SimilarityMatrix& similarity, const SeqSlamConfig& config) {
   if (config.sequence_length == 0) throw std::invalid_argument("sequence_length must be >= 1");
   if (!(config.min_velocity > 0) || config.max_velocity < config.min_velocity || config.velocity_steps == 0) {
     throw std::invalid_argument("velocities must satisfy 0 < min <= max, with at least one step");
   }
   if (config.self && !similarity.square()) throw std::invalid_argument("self mode needs a square similarity matrix");
-  const SimilarityMatrix e = enhance_contrast(similarity, config.enhancement_window);
+  const SimilarityMatrix e = similarity::enhance_contrast(similarity, config.enhancement_window);
   std::vector<float> velocities;
   for (std::size_t v = 0; v < config.velocity_steps; ++v) {
     const float t = config.velocity_steps == 1 ? 0.0F : static_cast<float>(v) / static_cast<float>(config.velocity_steps - 1);

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <limits>
 #include <cctype>
-#include <regex>
 
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/input_error.hpp"
@@ -97,9 +96,17 @@ NpyHeader read_npy_header(const std::filesystem::path& path) {
   }
   const std::string shape = dict_value(header, "shape", path);
   if (shape.empty() || shape.front() != '(') fail(path, "not a valid .npy header (shape)");
-  const std::regex num("\\d+");
-  for (auto it = std::sregex_iterator(shape.begin(), shape.end(), num); it != std::sregex_iterator(); ++it) {
-    h.shape.push_back(static_cast<std::size_t>(std::stoull(it->str())));
+  for (std::size_t k = 0; k < shape.size();) {
+    if (!std::isdigit(static_cast<unsigned char>(shape[k]))) {
+      ++k;
+      continue;
+    }
+    std::size_t value = 0;
+    for (; k < shape.size() && std::isdigit(static_cast<unsigned char>(shape[k])); ++k) {
+      if (value > std::numeric_limits<std::size_t>::max() / 10) fail(path, "implausible shape");
+      value = value * 10 + static_cast<std::size_t>(shape[k] - '0');
+    }
+    h.shape.push_back(value);
   }
   return h;
 }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::mapping {
 namespace {
@@ -13,12 +14,40 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 }  // namespace
 
-MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config) {
-  if (similarity.empty()) throw std::invalid_argument("empty similarity matrix");
-  if (!similarity.square()) {
-    throw std::invalid_argument("similarity matrix must be square, got " + std::to_string(similarity.rows) + " x " +
-                                std::to_string(similarity.cols));
+SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config) {
+  if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
+  const std::size_t n = similarities.front().rows;
+  for (const auto& s : similarities) {
+    if (!s.square() || s.rows != n) {
+      throw std::invalid_argument("similarity matrix must be square and " + std::to_string(n) + " x " + std::to_string(n) +
+                                  ", got " + std::to_string(s.rows) + " x " + std::to_string(s.cols));
+    }
   }
+  if (similarities.size() == 1) {
+    return config.contrast_window == 0
+               ? similarities.front()
+               : similarity::enhance_contrast_symmetric(similarities.front(), config.contrast_window, config.contrast_offset);
+  }
+  SimilarityMatrix sum(n, n, 0.0F);
+  for (const auto& s : similarities) {
+    const SimilarityMatrix e =
+        config.contrast_window == 0 ? s : similarity::enhance_contrast_symmetric(s, config.contrast_window, 0.0F);
+    for (std::size_t k = 0; k < sum.values.size(); ++k) sum.values[k] += e.values[k];
+  }
+  const float offset = config.contrast_window == 0 ? 0.0F : config.contrast_offset;
+  const auto count = static_cast<float>(similarities.size());
+  for (auto& v : sum.values) v = v / count - offset;
+  return sum;
+}
+
+MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config) {
+  return build_map(std::vector<SimilarityMatrix>{similarity}, config);
+}
+
+MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config) {
+  MapResult result;
+  auto start = std::chrono::steady_clock::now();
+  result.scores = alignment_scores(similarities, config);
   align::AlignConfig align_config;
   align_config.gap_a = align_config.gap_b = config.gap;
   align_config.cap = config.cap;
@@ -26,9 +55,7 @@ MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config)
   align_config.self = true;
   align_config.min_separation = config.min_separation;
 
-  MapResult result;
-  auto start = std::chrono::steady_clock::now();
-  const auto source = align::ScoreSource::dense(similarity.values, similarity.rows, similarity.cols);
+  const auto source = align::ScoreSource::dense(result.scores.values, result.scores.rows, result.scores.cols);
   if (config.reverse) {
     result.alignments = align::local_alignments_both(source, align_config, config.threads);
   } else {
@@ -41,7 +68,7 @@ MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config)
   std::vector<std::pair<std::size_t, std::size_t>> same_place;
   same_place.reserve(result.pruning.pairs.size());
   for (const auto& p : result.pruning.pairs) same_place.emplace_back(p.i, p.j);
-  const auto labels = label_places(similarity.rows, same_place);
+  const auto labels = label_places(result.scores.rows, same_place);
   result.map = build_topology(labels, result.alignments, result.pruning, config.topology);
   result.seconds_prune_label = seconds_since(start);
   return result;

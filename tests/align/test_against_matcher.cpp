@@ -3,14 +3,31 @@
 //
 // Gap convention: matcher charges a gap of length L as gapopen + gapextend * (L - 1) (checked by hand
 // on a planted gap: open 3 / extend 2 costs 3, 5, 7, 9 for L = 1..4). Our linear gap L * G is
-// therefore -gapopen G -gapextend G.
+// therefore -gapopen G -gapextend G (SIM's affine parts then vanish: its extra open cost is 0).
 //
-// What must agree: the best score, in every case. The top-10 lists agree in most cases; where a
-// later score differs, an earlier alignment with the same score must have consumed a different set
-// of pairs (two equally good tracebacks): the lists are identical up to the first alignment whose
-// pairs differ, and the test checks exactly that instead of loosening the comparison.
+// Tie conventions of SIM as matcher implements them (they decide which pairs an alignment consumes,
+// hence every later score), and what the engine does (smith_waterman.hpp):
+//  * Every cell carries its best score and the start point of an alignment reaching it; among equal
+//    scores (diagonal, vertical, horizontal, or a fresh start at 0) the larger start point wins, row
+//    first, then column: the latest start. The engine: the same start rule.
+//  * Candidates are kept one per start point (the K best); a candidate's end is the first cell in
+//    row-major order reaching its score (only a strictly larger score moves it). The best candidate is
+//    taken, the earliest in the list among equals. The engine: the first maximal cell in row-major
+//    order (with a cap it keeps taking a plateau at the cap whole; matcher has no cap).
+//  * The path between start and end is recovered by a linear-space divide and conquer: at the middle
+//    row the leftmost optimal column, or the rightmost optimal one that is entered without a vertical
+//    step and left with one; a single row prefers all gaps over an equally good pair, else its
+//    leftmost best pair. Used pairs are forbidden to diagonal steps throughout. The engine: the same
+//    bisection, run on the tight steps of its own table.
+// With these, the top-10 lists agree score for score in all 300 cases here, and nearly every alignment
+// uses the same pairs. What must agree: the best score, in every case, and the top-10 lists in the
+// large majority. Where a later score differs, an earlier alignment with the same score must have
+// consumed a different set of pairs (two equally good choices): the lists are identical up to the
+// first alignment whose pairs differ, and the test checks exactly that instead of loosening the
+// comparison.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -141,10 +158,23 @@ std::set<std::pair<std::size_t, std::size_t>> pair_set(const align::LocalAlignme
   return {a.pairs.begin(), a.pairs.end()};
 }
 
+// One line per list: score and the A range (first..last aligned element) of each alignment.
+std::string describe(const std::vector<align::LocalAlignment>& got, const std::vector<MatcherAlignment>& want) {
+  std::ostringstream out;
+  out << " ours:";
+  for (const auto& x : got) out << ' ' << x.score << '[' << x.a_begin << ".." << x.a_end - 1 << ']';
+  out << "\n them:";
+  for (const auto& x : want) {
+    out << ' ' << x.score << '[' << (x.pairs.empty() ? 0 : x.pairs.begin()->first) << ".."
+        << (x.pairs.empty() ? 0 : x.pairs.rbegin()->first) << ']';
+  }
+  return out.str();
+}
+
 TEST_F(AgainstMatcher, BestScoreAlwaysAndTopTenExplained) {
   std::mt19937 rng(424242);
   const int cases = 300;
-  int top10_identical = 0, explained = 0, compared_scores = 0;
+  int top10_identical = 0, explained = 0, compared_scores = 0, same_pairs = 0;
   for (int c = 0; c < cases; ++c) {
     const std::size_t n = std::uniform_int_distribution<std::size_t>(40, 160)(rng);
     const std::size_t m = std::uniform_int_distribution<std::size_t>(40, 160)(rng);
@@ -172,6 +202,10 @@ TEST_F(AgainstMatcher, BestScoreAlwaysAndTopTenExplained) {
     ASSERT_FALSE(got.empty());
     ASSERT_EQ(got.front().score, static_cast<float>(want.front().score)) << "best score differs; case " << c;
 
+    // alignments of matcher's list that the engine also found, pair for pair
+    for (const auto& w : want) {
+      same_pairs += std::any_of(got.begin(), got.end(), [&](const auto& x) { return pair_set(x) == w.pairs; });
+    }
     std::size_t k = 0;
     while (k < want.size() && k < got.size() && got[k].score == static_cast<float>(want[k].score)) ++k;
     compared_scores += static_cast<int>(std::min(want.size(), got.size()));
@@ -183,23 +217,23 @@ TEST_F(AgainstMatcher, BestScoreAlwaysAndTopTenExplained) {
     bool different_earlier = false;
     for (std::size_t q = 0; q < k; ++q) different_earlier |= pair_set(got[q]) != want[q].pairs;
     EXPECT_TRUE(different_earlier) << "case " << c << ": score " << k << " differs (" << got[k].score << " vs "
-                                   << want[k].score << ") although every earlier alignment used the same pairs";
+                                   << want[k].score << ") although every earlier alignment used the same pairs\n"
+                                   << describe(got, want);
     ++explained;
     if (std::getenv("SEQTOPO_DEBUG_MATCHER")) {
-      std::printf("case %d k=%zu\n ours:", c, k);
-      for (const auto& x : got) std::printf(" %g[%zu,%zu)x[%zu,%zu)", x.score, x.a_begin, x.a_end, x.b_begin, x.b_end);
-      std::printf("\n them:");
-      for (const auto& x : want) std::printf(" %d[%zu..%zu]", x.score, x.pairs.empty() ? 0 : x.pairs.begin()->first, x.pairs.empty() ? 0 : x.pairs.rbegin()->first);
-      std::printf("\n");
+      std::printf("case %d differs at %zu\n%s\n", c, k, describe(got, want).c_str());
     }
   }
-  // "The large majority" of top-10 lists agree score for score.
-  EXPECT_GE(top10_identical, cases * 8 / 10) << explained << " cases differed after an earlier tie";
+  // Observed: 300 of 300. The margin is for ties among equal candidates, where matcher's order
+  // (its candidate list) and ours (row-major) may pick differently.
+  EXPECT_GE(top10_identical, cases * 97 / 100) << explained << " cases differed after an earlier tie";
   RecordProperty("cases", cases);
   RecordProperty("top10_identical", top10_identical);
   RecordProperty("scores_compared", compared_scores);
-  std::printf("matcher comparison: %d cases, %d scores compared, top-10 identical in %d, explained ties in %d\n",
-              cases, compared_scores, top10_identical, explained);
+  RecordProperty("alignments_with_same_pairs", same_pairs);
+  std::printf("matcher comparison: %d cases, %d scores compared, top-10 identical in %d, explained ties in %d, "
+              "%d alignments with the same pairs\n",
+              cases, compared_scores, top10_identical, explained, same_pairs);
 }
 
 }  // namespace

@@ -73,8 +73,15 @@ TEST(Properties, CapAboveBestScoreChangesNothing) {
     const auto uncapped = align::local_alignments(p.source(), p.naive.config);
     if (uncapped.empty()) continue;
     auto capped_config = p.naive.config;
-    capped_config.cap = uncapped.front().score + static_cast<float>(k % 3);
+    capped_config.cap = uncapped.front().score + 0.5F + static_cast<float>(k % 3);
     EXPECT_EQ(align::local_alignments(p.source(), capped_config), uncapped);
+    // A cap equal to the best score changes no value, but the best alignment now ends on a plateau at
+    // the cap and is taken whole: same score, ending no earlier.
+    capped_config.cap = uncapped.front().score;
+    const auto at_cap = align::local_alignments(p.source(), capped_config);
+    ASSERT_FALSE(at_cap.empty());
+    EXPECT_EQ(at_cap.front().score, uncapped.front().score);
+    EXPECT_GE(at_cap.front().a_end, uncapped.front().a_end);
   }
 }
 

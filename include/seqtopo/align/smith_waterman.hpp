@@ -9,15 +9,29 @@
 // step into such a cell is forbidden; gaps may still pass through it). Only the cells whose value
 // changes are recomputed (they lie below and to the right of the alignment's first pair).
 //
-// Choice rules, stated because ties are common with a cap (a matching stretch is a plateau at the cap):
-//  * next alignment: the highest cell; among equal scores the one with the largest i, then largest j
-//    (in the pass's own coordinates), so a capped plateau is taken at its far end, whole;
-//  * traceback: prefer the diagonal step, then the vertical (gap in B), then the horizontal step.
+// Choice rules, stated because ties are common (small integer scores; with a cap, a matching stretch
+// is a plateau of cells at the cap). They follow Huang & Miller's SIM (EMBOSS matcher), so the
+// alignments, not only their scores, agree with it. A step into a cell is "tight" if it attains the
+// cell's (positive) value; an optimal alignment ending at a cell is a path of tight steps.
+//  * end: the first maximal cell in row-major order (smallest i, then smallest j, in the pass's own
+//    coordinates). If that maximum is the cap, the end is instead the last maximal cell (row-major)
+//    reachable from it by tight steps, so a capped plateau is taken at its far end, whole (SIM would
+//    stop at its near end).
+//  * start: of all optimal alignments ending there, the one whose start (the zero cell before its
+//    first pair) is latest: largest i, then largest j. Leading stretches that net zero are dropped.
+//  * path between start and end, by recursive bisection as in SIM's linear-space traceback: the path
+//    crosses the middle row of the current rectangle (top + height / 2, rounded down) at the leftmost
+//    column an optimal path can use, except that it crosses at the rightmost column where it can
+//    enter the row by a diagonal or rightward step only and leave it downwards, if there is such a
+//    column right of the leftmost; a rectangle one row high takes no pair if a gap-only route is
+//    optimal, else its leftmost possible pair. (With tie-free scores, e.g. real-valued similarities,
+//    all of this yields the unique optimal alignment.)
 //
 // Worked example (match +2, mismatch -1, gap 1), A = "abedx", B = "ecdab":
 //   the best alignment is A[2..4) = "ed" with B[0..3) = "ecd": e-e (+2), gap over c (-1), d-d (+2) = 3.
-// Memory: one float per cell and one byte per cell for the used pairs. Time: one full fill, then work
-// proportional to the changed region per alignment.
+// Memory: one float per cell and one byte per cell for the used pairs, plus one byte per cell of the
+// alignment's rectangle while its path is recovered. Time: one full fill, then per alignment work
+// proportional to the changed region and to its rectangle.
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"

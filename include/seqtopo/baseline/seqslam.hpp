@@ -33,8 +33,4 @@ struct SequenceMatch {
 // Rows are query frames, columns database frames (or both the same sequence in self mode).
 std::vector<SequenceMatch> seqslam_matches(const SimilarityMatrix& similarity, const SeqSlamConfig& config = {});
 
-// The contrast-enhanced matrix: each cell normalised by the mean and standard deviation of its row
-// within +-window columns.
-SimilarityMatrix enhance_contrast(const SimilarityMatrix& similarity, std::size_t window);
-
 }  // namespace seqtopo::baseline

@@ -12,10 +12,17 @@
 namespace seqtopo::mapping {
 
 struct MapConfig {
-  float gap = 1.0F;                 // penalty per skipped image, both sequences [similarity units]
-  std::optional<float> cap = 6.0F;  // cap on the cumulative score (paper IV-B)
-  float threshold = 4.0F;           // minimum alignment score for a revisit
-  std::size_t min_separation = 10;  // [frames] pairs closer than this in time never count
+  // Local contrast enhancement before alignment (similarity/contrast_enhancement.hpp): the aligned
+  // score is 0.5 (E + E^T) - contrast_offset, in standard deviations of each row's neighbourhood.
+  // contrast_window = 0 aligns the raw S = 1 - kappa D, as the paper does.
+  // Defaults chosen on the real corridor loop and on Nordland summer+winter (bench/tune_map.cpp,
+  // README "Accuracy on real data").
+  std::size_t contrast_window = 10;  // [frames]
+  float contrast_offset = 0.5F;      // [standard deviations]
+  float gap = 1.5F;                  // penalty per skipped image, both sequences [score units]
+  std::optional<float> cap = 40.0F;  // cap on the cumulative score (paper IV-B)
+  float threshold = 8.0F;            // minimum alignment score for a revisit
+  std::size_t min_separation = 10;   // [frames] pairs closer than this in time never count
   bool reverse = true;              // also look for paths revisited in the opposite direction
   PruningConfig pruning;
   TopologyConfig topology;
@@ -23,6 +30,7 @@ struct MapConfig {
 };
 
 struct MapResult {
+  SimilarityMatrix scores;                        // what was aligned (S, or its contrast-enhanced form)
   std::vector<align::LocalAlignment> alignments;  // best first, forward and reverse merged
   PruningResult pruning;
   TopologicalMap map;
@@ -31,5 +39,13 @@ struct MapResult {
 
 // Throws std::invalid_argument for a non-square or empty matrix.
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config = {});
+
+// Several sensors or descriptors of the same sequence, fused: each matrix is contrast-enhanced on its
+// own (so their scales need not agree) and the enhanced scores are averaged before the offset is
+// applied; without contrast enhancement the raw matrices are averaged. All must be N x N.
+MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config = {});
+
+// The fused score matrix that build_map aligns.
+SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config);
 
 }  // namespace seqtopo::mapping

@@ -1,0 +1,134 @@
+// Chooses the map defaults on real data: sweeps the alignment parameters over a similarity matrix and
+// scores each setting against the ground truth, next to the SeqSLAM-style baseline on the same matrix.
+//
+//   tune_map SIMILARITY.npy (GT_IMAGE | POSES.csv RADIUS) [kappa multipliers, e.g. 0.5,1,2]
+//
+// A kappa multiplier m rescales S = 1 - kappa D to 1 - m kappa D = 1 - m (1 - S) (more or fewer pairs
+// rewarded) without recomputing descriptors. Prints the best settings by F1 and by AUC.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+#include "seqtopo/baseline/seqslam.hpp"
+#include "seqtopo/evaluation/loop_closure_metrics.hpp"
+#include "seqtopo/image/grey_matrix_file.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/io/odometry_csv.hpp"
+#include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/similarity/contrast_enhancement.hpp"
+
+using namespace seqtopo;
+
+namespace {
+
+struct Row {
+  double f1, auc, r100, precision, recall;
+  std::string setting;
+};
+
+std::vector<double> parse_list(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream s(text);
+  for (std::string item; std::getline(s, item, ',');) out.push_back(std::stod(item));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::cerr << "usage: tune_map SIMILARITY.npy (GT_IMAGE | POSES.csv RADIUS) [kappa multipliers]\n";
+    return 2;
+  }
+  const auto base = io::read_npy_matrix<float>(argv[1]);
+  const std::size_t n = base.rows;
+  int next = 2;
+  evaluation::SamePlace same_place;
+  const std::string gt = argv[next++];
+  if (gt.size() > 4 && gt.substr(gt.size() - 4) == ".csv") {
+    const auto poses = io::read_poses_csv(gt);
+    const double r = std::stod(argv[next++]);
+    same_place = [poses, r](std::size_t i, std::size_t j) {
+      return std::hypot(poses[i].x - poses[j].x, poses[i].y - poses[j].y) <= r;
+    };
+  } else {
+    auto m = std::make_shared<DenseMatrix<std::uint8_t>>(image::read_grey_matrix_image(gt));
+    same_place = [m](std::size_t i, std::size_t j) { return (*m)(i, j) != 0 || (*m)(j, i) != 0; };
+  }
+  const auto multipliers = argc > next ? parse_list(argv[next]) : std::vector<double>{1.0};
+  const auto gaps = std::getenv("GAPS") ? parse_list(std::getenv("GAPS")) : std::vector<double>{0.3, 1, 2};
+  const auto caps = std::getenv("CAPS") ? parse_list(std::getenv("CAPS")) : std::vector<double>{2, 4, 8, 0};
+  const auto thresholds = std::getenv("THRESHOLDS") ? parse_list(std::getenv("THRESHOLDS")) : std::vector<double>{1, 2, 3, 5, 8};
+  const auto separations = std::getenv("SEPARATIONS") ? parse_list(std::getenv("SEPARATIONS")) : std::vector<double>{5, 15};
+
+  std::vector<Row> rows, baseline_rows;
+  for (double mult : multipliers) {
+    SimilarityMatrix s = base;
+    if (const char* window = std::getenv("ENHANCE")) {
+      // contrast-enhanced scores in standard deviations, symmetrised, minus an offset of `mult`
+      const auto w = static_cast<std::size_t>(std::atoi(window));
+      s = similarity::enhance_contrast_symmetric(base, w, static_cast<float>(mult));
+      if (const char* other = std::getenv("FUSE")) {
+        // average with a second descriptor's enhanced scores (offset applied once)
+        const auto t = similarity::enhance_contrast_symmetric(io::read_npy_matrix<float>(other), w, 0.0F);
+        for (std::size_t k = 0; k < s.values.size(); ++k) s.values[k] = 0.5F * (s.values[k] + static_cast<float>(mult) + t.values[k]) - static_cast<float>(mult);
+      }
+    } else {
+      for (auto& v : s.values) v = static_cast<float>(1.0 - mult * (1.0 - v));
+    }
+    for (double sep : separations) {
+      baseline::SeqSlamConfig sc;
+      sc.self = true;
+      sc.min_separation = static_cast<std::size_t>(sep);
+      for (std::size_t len : {5, 10, 20}) {
+        sc.sequence_length = len;
+        std::vector<evaluation::ScoredPair> pairs;
+        for (const auto& m : baseline::seqslam_matches(s, sc)) {
+          if (m.valid) pairs.push_back({m.query, m.match, m.score});
+        }
+        // the baseline's operating point: the best F1 over its threshold sweep
+        const auto all = evaluation::evaluate_loop_closures(pairs, n, same_place, sc.min_separation);
+        double best_f1 = 0;
+        for (const auto& p : all.curve) best_f1 = std::max(best_f1, p.precision + p.recall > 0 ? 2 * p.precision * p.recall / (p.precision + p.recall) : 0.0);
+        baseline_rows.push_back({best_f1, all.auc, all.recall_at_100_precision, 0, 0,
+                                 fmt::format("seqslam len {} sep {} kmult {}", len, sep, mult)});
+      }
+      for (double gap : gaps) {
+        for (double cap : caps) {
+          for (double thr : thresholds) {
+            mapping::MapConfig c;
+            c.gap = static_cast<float>(gap);
+            c.cap = cap > 0 ? std::optional<float>(static_cast<float>(cap)) : std::nullopt;
+            c.threshold = static_cast<float>(thr);
+            c.min_separation = static_cast<std::size_t>(sep);
+            const auto result = mapping::build_map(s, c);
+            std::vector<evaluation::ScoredPair> pairs;
+            for (const auto& p : result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
+            const auto m = evaluation::evaluate_loop_closures(pairs, n, same_place, c.min_separation);
+            rows.push_back({m.f1, m.auc, m.recall_at_100_precision, m.precision, m.recall,
+                            fmt::format("kmult {} gap {} cap {} threshold {} sep {} ({} alignments, {:.2f} s)", mult, gap,
+                                        cap > 0 ? fmt::format("{}", cap) : "none", thr, sep, result.alignments.size(),
+                                        result.seconds_align)});
+          }
+        }
+      }
+    }
+  }
+  auto print = [](const char* title, std::vector<Row> r, auto key) {
+    std::sort(r.begin(), r.end(), [&](const Row& a, const Row& b) { return key(a) > key(b); });
+    fmt::print("{}\n", title);
+    for (std::size_t k = 0; k < std::min<std::size_t>(8, r.size()); ++k) {
+      fmt::print("  F1 {:.3f}  AUC {:.3f}  R@100P {:.3f}  P {:.3f} R {:.3f}  | {}\n", r[k].f1, r[k].auc, r[k].r100, r[k].precision,
+                 r[k].recall, r[k].setting);
+    }
+  };
+  print("seqtopo by F1", rows, [](const Row& r) { return r.f1; });
+  print("seqtopo by AUC", rows, [](const Row& r) { return r.auc; });
+  print("seqtopo by R@100P", rows, [](const Row& r) { return r.r100 + 1e-3 * r.f1; });
+  print("baseline by best F1", baseline_rows, [](const Row& r) { return r.f1; });
+  print("baseline by AUC", baseline_rows, [](const Row& r) { return r.auc; });
+  return 0;
+}

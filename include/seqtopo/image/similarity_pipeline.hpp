@@ -1,0 +1,68 @@
+#pragma once
+// One call from a sequence (image folder, video, descriptors.npy or similarity.npy) to the similarity
+// matrix S = 1 - kappa * D of the mapping paper (section IV-A). The parts are usable on their own:
+// image_io.hpp and sequence_input.hpp (reading), joint_histogram.hpp and patch_thumbnail.hpp (descriptors),
+// seqtopo/similarity/* (distances, matrix, kappa).
+//
+//   auto result = seqtopo::image::compute_similarity({"data/rtabmap-corridor"});
+//   // result.similarity: 84 x 84, result.kappa chosen by the rule in similarity_from_distance.hpp
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "seqtopo/core/dense_matrix.hpp"
+#include "seqtopo/image/joint_histogram.hpp"
+#include "seqtopo/image/patch_thumbnail.hpp"
+#include "seqtopo/image/sequence_input.hpp"
+#include "seqtopo/similarity/distance.hpp"
+#include "seqtopo/similarity/similarity_from_distance.hpp"
+
+namespace seqtopo::image {
+
+enum class Descriptor { joint_histogram, patch, npy };  // npy = rows of descriptors.npy
+using Metric = similarity::Metric;
+
+// "joint-histogram", "patch", "npy"; throws std::invalid_argument otherwise.
+Descriptor parse_descriptor(std::string_view name);
+std::string_view descriptor_name(Descriptor descriptor);
+// chi2 for histograms, sad for thumbnails, cosine for external descriptors.
+Metric default_metric(Descriptor descriptor);
+
+struct SimilarityConfig {
+  Descriptor descriptor = Descriptor::joint_histogram;  // a descriptors.npy input always uses its rows
+  std::optional<Metric> metric;            // default by descriptor: default_metric()
+  std::optional<float> kappa;              // nullopt = auto (kappa_rule)
+  unsigned threads = 0;                    // 0 = all cores
+  JointHistogramConfig joint_histogram;
+  PatchConfig patch;
+  similarity::KappaRule kappa_rule;
+  std::size_t tile = 64;                   // matrix tile side [cells]
+
+  // Reports from long stages (never printed by the library): progress(stage, done, total) and notes such
+  // as the memory estimate made before the matrix is allocated. Both are called from one thread at a time.
+  std::function<void(std::string_view, std::size_t, std::size_t)> progress;
+  std::function<void(std::string_view)> note;
+  std::size_t note_memory_above = std::size_t{64} << 20U;  // [bytes] estimates below this are not reported
+};
+
+struct SimilarityResult {
+  SimilarityMatrix similarity;             // S, rows = first sequence, cols = second (or same)
+  float kappa = 0;                         // the kappa used (NaN when the input was a similarity matrix)
+  bool kappa_auto = false;
+  double kappa_fraction = 0;               // kappa auto: the fraction p of candidate pairs given S > 0
+  std::optional<Metric> metric;            // nullopt when the input was a similarity matrix
+  std::vector<std::string> frame_names;    // file names / "frame 17" / "row 17", one per row
+  std::vector<std::string> column_names;   // one per column
+  double seconds_descriptors = 0, seconds_matrix = 0;
+};
+
+// N x N of one sequence (symmetric). Bad input throws io::InputError naming the file, misuse
+// std::invalid_argument; a matrix that would not fit in memory is refused with io::InputError.
+SimilarityResult compute_similarity(const SequenceInput& input, const SimilarityConfig& config = {});
+// N x M between two sequences: rows = a, cols = b. For InputKind::similarity on `a`, `b` is ignored and the
+// N x M matrix is returned as is.
+SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b, const SimilarityConfig& config = {});
+
+}  // namespace seqtopo::image

@@ -1,0 +1,34 @@
+#pragma once
+// Distances between two descriptors (mapping paper, section IV-A). Each function has a dense form (two
+// equally long vectors) and, where it makes sense, a sparse-histogram form that gives the same value up to
+// rounding. All return a distance >= 0 that is 0 for identical inputs.
+#include <span>
+#include <string_view>
+
+#include "seqtopo/similarity/sparse_histogram.hpp"
+
+namespace seqtopo::similarity {
+
+enum class Metric {
+  chi2,    // paper eq. (1): sum_k (a_k - b_k)^2 / (a_k + b_k), bins with a_k + b_k = 0 skipped. Needs a, b >= 0.
+  l1,      // sum_k |a_k - b_k|
+  cosine,  // 1 - a.b / (|a| |b|); 0 when both are zero vectors, 1 when only one is
+  sad,     // SeqSLAM's sum of absolute differences, divided by the length so it is a per-element mean
+};
+
+std::string_view metric_name(Metric metric);
+// "chi2", "l1", "cosine", "sad"; throws std::invalid_argument otherwise.
+Metric parse_metric(std::string_view name);
+
+double chi2_distance(std::span<const float> a, std::span<const float> b);
+double l1_distance(std::span<const float> a, std::span<const float> b);
+double cosine_distance(std::span<const float> a, std::span<const float> b);
+double sad_distance(std::span<const float> a, std::span<const float> b);
+// One entry point for the dense form; throws std::invalid_argument when the lengths differ.
+double distance(Metric metric, std::span<const float> a, std::span<const float> b);
+
+// Sparse forms: only the stored bins are visited (the dimensions must agree).
+double chi2_distance(const SparseHistogram& a, const SparseHistogram& b);
+double distance(Metric metric, const SparseHistogram& a, const SparseHistogram& b);
+
+}  // namespace seqtopo::similarity

@@ -1,0 +1,145 @@
+// seqtopo fingerprint: panoramic images -> fingerprint strings (INTERFACE.md, "Strings files").
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "command_registry.hpp"
+#include "seqtopo/fingerprint/fingerprint.hpp"
+#include "seqtopo/image/image_io.hpp"
+#include "seqtopo/image/sequence_input.hpp"
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/strings/strings_file.hpp"
+
+namespace seqtopo::cli {
+namespace {
+
+struct FingerprintOptions {
+  std::vector<std::string> inputs;
+  std::string out_path = "-", positions_path, role;
+  fingerprint::FingerprintConfig config;
+};
+
+struct PointRow {
+  std::string role, place;
+  double x = 0.0, y = 0.0;
+};
+
+// points.csv as the simulator writes it: header id,role,x,y,place.
+std::map<std::string, PointRow> read_points(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw io::InputError(path, "cannot open file");
+  std::map<std::string, PointRow> rows;
+  std::string line;
+  std::size_t line_no = 0;
+  bool header = true;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line.front() == '#') continue;
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string field; std::getline(ss, field, ',');) f.push_back(field);
+    const std::string where = fmt::format("{}:{}", path, line_no);
+    if (header) {
+      header = false;
+      if (f != std::vector<std::string>{"id", "role", "x", "y", "place"}) throw io::InputError(where, "expected the header id,role,x,y,place");
+      continue;
+    }
+    if (f.size() != 5) throw io::InputError(where, "expected 5 comma-separated fields (id,role,x,y,place)");
+    PointRow row{f[1], f[4]};
+    try {
+      std::size_t used_x = 0, used_y = 0;
+      row.x = std::stod(f[2], &used_x);
+      row.y = std::stod(f[3], &used_y);
+      if (used_x != f[2].size() || used_y != f[3].size()) throw std::invalid_argument("trailing characters");
+    } catch (const std::exception&) {
+      throw io::InputError(where, "x and y must be numbers");
+    }
+    if (f[0].empty() || row.place.empty()) throw io::InputError(where, "empty id or place");
+    if (!rows.emplace(f[0], row).second) throw io::InputError(where, "repeated id '" + f[0] + "'");
+  }
+  if (header) throw io::InputError(path, "empty file (expected the header id,role,x,y,place)");
+  return rows;
+}
+
+void run(const FingerprintOptions& o) {
+  if (!o.role.empty() && o.positions_path.empty()) throw io::InputError("--role", "needs --positions");
+  std::vector<std::filesystem::path> files;
+  for (const auto& input : o.inputs) {
+    if (std::filesystem::is_directory(input)) {
+      const auto listed = image::list_images(input);
+      files.insert(files.end(), listed.begin(), listed.end());
+    } else if (std::filesystem::exists(input)) {
+      files.emplace_back(input);
+    } else {
+      throw io::InputError(input, "no such file or folder");
+    }
+  }
+  std::map<std::string, PointRow> points;
+  if (!o.positions_path.empty()) points = read_points(o.positions_path);
+
+  std::vector<strings::StringRecord> records;
+  std::map<std::string, std::string> seen;
+  for (const auto& file : files) {
+    strings::StringRecord r;
+    r.id = file.stem().string();
+    if (!o.positions_path.empty()) {
+      const auto it = points.find(r.id);
+      if (it == points.end()) throw io::InputError(o.positions_path, "no row for image '" + file.string() + "'");
+      if (!o.role.empty() && it->second.role != o.role) continue;
+      r.x = it->second.x;
+      r.y = it->second.y;
+      r.place = it->second.place;
+    }
+    if (const auto [it, fresh] = seen.emplace(r.id, file.string()); !fresh) {
+      throw io::InputError(file.string(), "same id '" + r.id + "' as " + it->second);
+    }
+    try {
+      r.symbols = fingerprint::extract_fingerprint(image::load_image(file), o.config).symbols;
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError(file.string(), e.what());
+    }
+    records.push_back(std::move(r));
+  }
+  if (records.empty()) throw io::InputError("IMAGES", o.role.empty() ? "no image" : "no image with role '" + o.role + "'");
+  const std::string text = strings::format_strings_tsv(
+      records, "id<TAB>fingerprint ('v' vertical edge, 'A'..'P' colour patch)[<TAB>x<TAB>y<TAB>place]");
+  if (o.out_path == "-") {
+    std::cout << text;
+  } else {
+    io::write_file_atomic(o.out_path, text);
+  }
+  std::cerr << fmt::format("seqtopo fingerprint: {} panorama(s)\n", records.size());
+}
+
+const RegisterCommand registered{{
+    "fingerprint",
+    "Panoramic images -> fingerprint strings: 'v' = vertical edge, 'A'..'P' = colour patch, in angular order",
+    [](CLI::App& app) {
+      auto o = std::make_shared<FingerprintOptions>();
+      app.add_option("IMAGES", o->inputs, "panoramas (360 degrees across the width): files or folders (natural order)")
+          ->required();
+      app.add_option("--out", o->out_path, "output strings file F.tsv ('-' = standard output)")->capture_default_str();
+      app.add_option("--positions", o->positions_path, "CSV id,role,x,y,place (e.g. the simulator's points.csv): adds x, y, place")
+          ->check(CLI::ExistingFile);
+      app.add_option("--role", o->role, "keep only the images of this role in --positions (map or test)");
+      auto& c = o->config;
+      app.add_option("--edge-step", c.edge_step, "vertical edge: brightness step [grey levels]")->capture_default_str();
+      app.add_option("--edge-fraction", c.edge_min_fraction, "vertical edge: fraction of band rows with the step")
+          ->capture_default_str();
+      app.add_option("--min-patch-width", c.min_patch_width, "colour patch: minimum width [columns]")->capture_default_str();
+      app.add_option("--saturation-min", c.saturation_min, "colour classes: below this saturation a pixel is grey")
+          ->capture_default_str();
+      app.add_option("--brightness-percentile", c.brightness_percentile,
+                     "colour classes: scale brightness so this percentile of the band reaches a fixed level (0 = off)")
+          ->capture_default_str();
+      app.callback([o] { run(*o); });
+    }}};
+
+}  // namespace
+}  // namespace seqtopo::cli

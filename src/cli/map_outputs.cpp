@@ -1,0 +1,272 @@
+#include "map_outputs.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "seqtopo/io/alignment_json.hpp"
+#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/plot/matrix_image.hpp"
+#include "seqtopo/plot/metric_map.hpp"
+#include "seqtopo/plot/png.hpp"
+#include "seqtopo/plot/pr_curve.hpp"
+#include "seqtopo/report/html_report.hpp"
+
+namespace seqtopo::cli {
+namespace {
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+nlohmann::json metrics_json(const evaluation::LoopClosureMetrics& m) {
+  return {{"tp", m.tp},
+          {"fp", m.fp},
+          {"fn", m.fn},
+          {"precision", m.precision},
+          {"recall", m.recall},
+          {"f1", m.f1},
+          {"auc", m.auc},
+          {"recall_at_100_precision", m.recall_at_100_precision}};
+}
+
+// Small maps are drawn place by place; large ones (more places than a layout can place legibly) as
+// their collapsed graph: junctions and path ends as nodes, each path segment one edge labelled with
+// its number of places.
+constexpr std::size_t kMaxDrawnPlaces = 300;
+
+std::string topology_dot(const mapping::TopologicalMap& map) {
+  std::ostringstream dot;
+  dot << "graph topology {\n  graph [overlap=false, splines=true];\n  node [shape=circle, width=0.25, fixedsize=true, "
+         "fontsize=8, style=filled, fillcolor=\"#dddddd\"];\n";
+  std::vector<bool> junction(map.places.size(), false);
+  for (auto j : map.junctions) junction[j] = true;
+  auto node = [&](const mapping::Place& place) {
+    dot << "  p" << place.id << " [label=\"" << place.id << "\", tooltip=\"images";
+    for (std::size_t k = 0; k < place.images.size() && k < 12; ++k) dot << ' ' << place.images[k];
+    dot << "\"";
+    if (junction[place.id]) {
+      dot << ", fillcolor=\"#e41a1c\", width=0.4";
+    } else if (place.images.size() > 1) {
+      dot << ", fillcolor=\"#377eb8\", fontcolor=white";
+    }
+    dot << "];\n";
+  };
+  if (map.places.size() <= kMaxDrawnPlaces) {
+    for (const auto& place : map.places) node(place);
+    for (auto [p, q] : map.edges) dot << "  p" << p << " -- p" << q << ";\n";
+  } else {
+    std::vector<bool> drawn(map.places.size(), false);
+    for (const auto& s : map.segments) {
+      for (auto end : {s.places.front(), s.places.back()}) {
+        if (!drawn[end]) node(map.places[end]);
+        drawn[end] = true;
+      }
+      dot << "  p" << s.places.front() << " -- p" << s.places.back() << " [label=\"" << s.places.size() << "\", fontsize=8];\n";
+    }
+  }
+  dot << "}\n";
+  return dot.str();
+}
+
+// Runs Graphviz on a staged .dot file to make the .svg beside it.
+void render_svg(const std::filesystem::path& dot_file, const std::filesystem::path& svg_file) {
+  const std::string command = "dot -Kneato -Tsvg '" + dot_file.string() + "' -o '" + svg_file.string() + "' 2>/dev/null";
+  if (std::system(command.c_str()) != 0) {
+    throw io::InputError("topology.svg", "Graphviz 'dot' failed or is missing (scripts/setup.sh installs graphviz)");
+  }
+}
+
+std::vector<plot::Polyline> alignment_overlays(const MapRun& run) {
+  std::vector<plot::Polyline> lines;
+  const auto& alignments = run.result.alignments;
+  const auto& pruning = run.result.pruning;
+  // Pruned parts first (blue), then the retained pairs (red) over them, as in the paper's Fig. 2.
+  for (const auto& a : alignments) {
+    plot::Polyline line;
+    line.rgb = {40, 110, 255};
+    line.thickness = 2;
+    for (auto [i, j] : a.pairs) line.points.emplace_back(static_cast<double>(i), static_cast<double>(j));
+    lines.push_back(std::move(line));
+  }
+  plot::Polyline current;
+  std::size_t current_alignment = static_cast<std::size_t>(-1);
+  std::size_t previous_i = 0;
+  for (const auto& p : pruning.pairs) {
+    // break the red line where pruning removed pairs inside a kept alignment
+    if (p.alignment != current_alignment || p.i > previous_i + 3) {
+      if (!current.points.empty()) lines.push_back(current);
+      current = {};
+      current.rgb = {255, 30, 30};
+      current.thickness = 2;
+      current_alignment = p.alignment;
+    }
+    current.points.emplace_back(static_cast<double>(p.i), static_cast<double>(p.j));
+    previous_i = p.i;
+  }
+  if (!current.points.empty()) lines.push_back(current);
+  return lines;
+}
+
+}  // namespace
+
+void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
+  const auto& result = run.result;
+  const auto& map = result.map;
+  const std::size_t n = map.labels.size();
+
+  nlohmann::json places = nlohmann::json::array();
+  for (const auto& p : map.places) places.push_back({{"id", p.id}, {"images", p.images}});
+  nlohmann::json edges = nlohmann::json::array();
+  for (auto [p, q] : map.edges) edges.push_back({p, q});
+  nlohmann::json segments = nlohmann::json::array();
+  for (const auto& s : map.segments) segments.push_back(s.places);
+  const nlohmann::json alignments = io::alignments_to_json(result.alignments, &result.pruning.kept)["alignments"];
+  const nlohmann::json map_json = {{"images", n},          {"labels", map.labels},    {"places", places},
+                                   {"edges", edges},       {"junctions", map.junctions}, {"segments", segments},
+                                   {"alignments", alignments}};
+  out.write("map.json", map_json.dump(1) + "\n");
+  out.write("alignments.json", nlohmann::json{{"alignments", alignments}}.dump(1) + "\n");
+
+  std::string csv = "i,j,score\n";
+  for (const auto& p : result.pruning.pairs) csv += fmt::format("{},{},{}\n", p.i, p.j, p.score);
+  out.write("loop_closures.csv", csv);
+
+  out.write("similarity.npy", io::encode_npy(run.similarities.front().similarity));
+  out.write("scores.npy", io::encode_npy(result.scores));
+  // The picture shows what was aligned: S itself, or its contrast-enhanced form (see the report).
+  out.write("similarity.png", plot::encode_png(plot::matrix_image(result.scores, alignment_overlays(run))));
+
+  out.write("topology.dot", topology_dot(map));
+  render_svg(out.staged("topology.dot"), out.staged("topology.svg"));
+
+  if (!run.odometry.empty()) {
+    std::vector<std::pair<std::size_t, std::size_t>> loops;
+    for (const auto& p : result.pruning.pairs) loops.emplace_back(p.i, p.j);
+    std::vector<plot::MetricMapPanel> panels{{"(a) cumulative odometry", run.odometry}};
+    if (run.paper_metric) {
+      panels.push_back({"(b) topological map with odometry (EKF)", run.ekf});
+    } else {
+      panels.push_back({"(b) topological map with odometry (pose graph)", run.pose_graph});
+    }
+    out.write("metric_map.png", plot::encode_png(plot::metric_map_image(panels, map.labels, loops)));
+  }
+
+  if (run.metrics || run.ate || run.topology) {
+    nlohmann::json metrics = nlohmann::json::object();
+    if (run.metrics) {
+      metrics["loop_closure"] = metrics_json(*run.metrics);
+      metrics["baseline"] = metrics_json(*run.baseline_metrics);
+      metrics["baseline"]["method"] = run.baseline_name;
+      nlohmann::json curve = nlohmann::json::array();
+      for (const auto& p : run.metrics->curve) curve.push_back({{"threshold", p.threshold}, {"precision", p.precision}, {"recall", p.recall}});
+      metrics["loop_closure"]["pr_curve"] = curve;
+
+      std::vector<plot::Curve> curves(2);
+      curves[0].label = "seqtopo alignment";
+      curves[0].rgb = {220, 30, 30};
+      for (const auto& p : run.metrics->curve) curves[0].recall_precision.emplace_back(p.recall, p.precision);
+      curves[1].label = "SeqSLAM-style baseline";
+      curves[1].rgb = {40, 90, 220};
+      for (const auto& p : run.baseline_metrics->curve) curves[1].recall_precision.emplace_back(p.recall, p.precision);
+      out.write("pr_curve.png", plot::encode_png(plot::pr_curve_image(curves)));
+    }
+    if (run.topology) {
+      const auto& t = *run.topology;
+      metrics["topology"] = {{"adjusted_rand_index", t.adjusted_rand_index}, {"false_merges", t.false_merges},
+                             {"missed_merges", t.missed_merges}, {"junctions_true", t.junctions_true},
+                             {"junctions_found", t.junctions_found}, {"junctions_matched", t.junctions_matched}};
+    }
+    if (run.ate) {
+      metrics["metric"] = {{"ate_odometry", run.ate->odometry}, {"ate_ekf", run.ate->ekf}, {"ate_pose_graph", run.ate->pose_graph}};
+    }
+    out.write("metrics.json", metrics.dump(1) + "\n");
+  }
+}
+
+void write_report(const MapRun& run, io::OutputDirectory& out) {
+  report::HtmlReport html("seqtopo map: " + run.input);
+  const auto& result = run.result;
+  const auto kept = std::count(result.pruning.kept.begin(), result.pruning.kept.end(), true);
+  html.heading("Summary");
+  html.key_values({{"images", std::to_string(result.map.labels.size())},
+                   {"alignments (kept / found)", fmt::format("{} / {}", kept, result.alignments.size())},
+                   {"loop-closure pairs retained", std::to_string(result.pruning.pairs.size())},
+                   {"places", std::to_string(result.map.places.size())},
+                   {"junctions", std::to_string(result.map.junctions.size())},
+                   {"path segments", std::to_string(result.map.segments.size())}});
+  if (run.metrics) {
+    html.heading("Loop-closure accuracy");
+    auto row = [](const std::string& name, const evaluation::LoopClosureMetrics& m) {
+      return std::vector<std::string>{name,
+                                      fmt::format("{:.3f}", m.precision),
+                                      fmt::format("{:.3f}", m.recall),
+                                      fmt::format("{:.3f}", m.f1),
+                                      fmt::format("{:.3f}", m.auc),
+                                      fmt::format("{:.3f}", m.recall_at_100_precision),
+                                      fmt::format("{} / {} / {}", m.tp, m.fp, m.fn)};
+    };
+    html.table({"method", "precision", "recall", "F1", "AUC", "R@100P", "TP / FP / FN"},
+               {row("seqtopo alignment", *run.metrics), row(run.baseline_name, *run.baseline_metrics)});
+    html.png("Precision-recall, sweeping the score threshold", read_file(out.staged("pr_curve.png")), "pr_curve.png");
+  }
+  if (run.topology) {
+    const auto& t = *run.topology;
+    html.heading("Topological correctness");
+    html.table({"adjusted Rand index", "false merges", "missed merges", "junctions true / found / matched"},
+               {{fmt::format("{:.3f}", t.adjusted_rand_index), std::to_string(t.false_merges), std::to_string(t.missed_merges),
+                 fmt::format("{} / {} / {}", t.junctions_true, t.junctions_found, t.junctions_matched)}});
+  }
+  if (run.ate) {
+    html.heading("Metric error (ATE, RMSE after rigid alignment)");
+    html.table({"odometry [m]", "EKF [m]", "pose graph [m]"},
+               {{fmt::format("{:.3f}", run.ate->odometry), fmt::format("{:.3f}", run.ate->ekf), fmt::format("{:.3f}", run.ate->pose_graph)}});
+  }
+  html.heading("Similarity matrix and alignments");
+  html.png(std::string(run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity" : "Similarity matrix") +
+               " (bright = similar) with the alignments: kept pairs red, pruned blue",
+           read_file(out.staged("similarity.png")), "similarity.png");
+  html.heading("Topological map");
+  html.svg(run.result.map.places.size() <= kMaxDrawnPlaces
+               ? "Places (red: junctions, blue: revisited places) and their connections"
+               : "Junctions (red) and path ends joined by path segments (edge label: number of places)",
+           read_file(out.staged("topology.svg")),
+           "topology.svg");
+  if (!run.odometry.empty()) {
+    html.heading("Metric picture");
+    html.png("Odometry beside the corrected map; dots coloured by place", read_file(out.staged("metric_map.png")),
+             "metric_map.png");
+  }
+  html.heading("Parameters");
+  const auto& c = run.map_config;
+  html.key_values({{"input", run.input},
+                   {"preset", run.preset},
+                   {"descriptors", [&] {
+                      std::string names;
+                      for (std::size_t k = 0; k < run.descriptor_names.size(); ++k) {
+                        names += (k ? ", " : "") + run.descriptor_names[k] + fmt::format(" (kappa {:.4g})", run.similarities[k].kappa);
+                      }
+                      return names;
+                    }()},
+                   {"contrast enhancement", c.contrast_window > 0 ? fmt::format("window {} frames, offset {} sd", c.contrast_window, c.contrast_offset) : "off"},
+                   {"gap", fmt::format("{}", c.gap)},
+                   {"cap", c.cap ? fmt::format("{}", *c.cap) : "none"},
+                   {"threshold", fmt::format("{}", c.threshold)},
+                   {"min separation [frames]", std::to_string(c.min_separation)},
+                   {"reverse pass", c.reverse ? "yes" : "no"},
+                   {"pruning: min retained fraction", fmt::format("{}", c.pruning.min_retained_fraction)}});
+  html.heading("Timings");
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& [stage, seconds] : run.timings) rows.push_back({stage, fmt::format("{:.3f}", seconds)});
+  html.table({"stage", "seconds"}, rows);
+  out.write("report.html", html.html());
+}
+
+}  // namespace seqtopo::cli

@@ -1,0 +1,42 @@
+#pragma once
+// What `seqtopo map` computed, and how it is written: JSON/CSV files, figures, report.
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "seqtopo/evaluation/loop_closure_metrics.hpp"
+#include "seqtopo/evaluation/topology_metrics.hpp"
+#include "seqtopo/image/similarity_pipeline.hpp"
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/metric/pose2.hpp"
+
+namespace seqtopo::cli {
+
+struct TrajectoryErrors {
+  double odometry = 0, ekf = 0, pose_graph = 0;  // [m]
+};
+
+struct MapRun {
+  std::string input, preset;
+  mapping::MapConfig map_config;
+  bool paper_metric = false;
+  std::vector<image::SimilarityResult> similarities;  // one per descriptor
+  std::vector<std::string> descriptor_names;
+  mapping::MapResult result;
+  std::vector<metric::Pose2> odometry, ekf, pose_graph;
+  std::optional<evaluation::LoopClosureMetrics> metrics, baseline_metrics;
+  std::string baseline_name;
+  std::optional<TrajectoryErrors> ate;
+  std::optional<evaluation::TopologyMetrics> topology;
+  std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+};
+
+// map.json, alignments.json, loop_closures.csv, similarity.npy, similarity.png, topology.dot/.svg,
+// metric_map.png, pr_curve.png, metrics.json (each when it applies).
+void write_map_outputs(const MapRun& run, io::OutputDirectory& out);
+// report.html from the staged files.
+void write_report(const MapRun& run, io::OutputDirectory& out);
+
+}  // namespace seqtopo::cli

@@ -1,0 +1,229 @@
+// seqtopo match-strings: string-matching localization (INTERFACE.md, González-Buesa & Campos).
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "command_registry.hpp"
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/strings/localization.hpp"
+#include "seqtopo/strings/strings_file.hpp"
+
+namespace seqtopo::cli {
+namespace {
+
+struct MatchStringsOptions {
+  std::string db_path, queries_path, adjacency_path, out_dir = "seqtopo-out";
+  std::string algorithm = "A", preset = "A1";
+  std::optional<std::size_t> k;
+  std::optional<double> deletion, insertion, colour_difference, coincidence, discordance;
+  bool cyclic = false;
+  std::size_t window = 1;
+};
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw io::InputError(path, "cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<strings::StringRecord> read_strings(const std::string& path) {
+  try {
+    auto records = strings::parse_strings_tsv(read_text(path));
+    if (records.empty()) throw io::InputError(path, "no string record");
+    return records;
+  } catch (const strings::StringsFileError& e) {
+    throw io::InputError(fmt::format("{}:{}", path, e.line()), e.what());
+  }
+}
+
+// `test_id,map_id` pairs (header first); ids must name a query and a database record.
+std::vector<std::vector<bool>> read_adjacency(const std::string& path, const std::map<std::string, std::size_t>& queries,
+                                              const std::map<std::string, std::size_t>& db) {
+  std::vector<std::vector<bool>> adjacent(queries.size(), std::vector<bool>(db.size(), false));
+  std::istringstream in(read_text(path));
+  std::string line;
+  std::size_t line_no = 0;
+  bool header = true;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line.front() == '#') continue;
+    const auto comma = line.find(',');
+    const std::string where = fmt::format("{}:{}", path, line_no);
+    if (comma == std::string::npos || line.find(',', comma + 1) != std::string::npos) {
+      throw io::InputError(where, "expected test_id,map_id");
+    }
+    const std::string test = line.substr(0, comma), map = line.substr(comma + 1);
+    if (header) {
+      header = false;
+      if (test != "test_id" || map != "map_id") throw io::InputError(where, "expected the header test_id,map_id");
+      continue;
+    }
+    const auto q = queries.find(test);
+    const auto d = db.find(map);
+    // Pairs naming points of another data set (e.g. a map point absent from this database) are skipped.
+    if (q == queries.end() || d == db.end()) continue;
+    adjacent[q->second][d->second] = true;
+  }
+  if (header) throw io::InputError(path, "empty file (expected the header test_id,map_id)");
+  return adjacent;
+}
+
+nlohmann::json rates_json(const strings::Rates& r) {
+  return {{"total", r.total},
+          {"exact", r.exact},
+          {"correct", r.correct},
+          {"wrong", r.wrong},
+          {"exact_percent", r.percent(r.exact)},
+          {"correct_percent", r.percent(r.correct)},
+          {"wrong_percent", r.percent(r.wrong)}};
+}
+
+std::string metrics_table(const strings::LocalizationMetrics& m, const std::string& title) {
+  std::string out = title + "\n";
+  auto rows = [&](const char* kind, const strings::Rates& r) {
+    out += fmt::format("{} exact   {:6.1f} %\n", kind, r.percent(r.exact));
+    out += fmt::format("{} correct {:6.1f} %\n", kind, r.percent(r.correct));
+    out += fmt::format("{} wrong   {:6.1f} %   (of {} test points)\n", kind, r.percent(r.wrong), r.total);
+  };
+  if (m.topological) rows("Top. ", *m.topological);
+  if (m.geometric) rows("Geom.", *m.geometric);
+  return out;
+}
+
+void run(const MatchStringsOptions& o) {
+  strings::MatchConfig config;
+  try {
+    config.algorithm = strings::parse_algorithm(o.algorithm);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError("--algorithm", e.what());
+  }
+  try {
+    config.costs = strings::preset_costs(o.preset);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError("--preset", e.what());
+  }
+  if (o.deletion) config.costs.deletion = *o.deletion;
+  if (o.insertion) config.costs.insertion = *o.insertion;
+  if (o.colour_difference) config.costs.colour_difference = *o.colour_difference;
+  if (o.coincidence) config.costs.coincidence = *o.coincidence;
+  if (o.discordance) config.costs.discordance = *o.discordance;
+  try {
+    strings::validate(config.costs);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError("--preset/--*-cost", e.what());
+  }
+  if (o.k) config.k = *o.k;
+  config.cyclic = o.cyclic;
+  if (o.window == 0) throw io::InputError("--window", "must be >= 1");
+
+  const auto db = read_strings(o.db_path);
+  const auto queries = read_strings(o.queries_path);
+  std::vector<std::string> db_strings, query_strings;
+  std::map<std::string, std::size_t> db_index, query_index;
+  for (const auto& r : db) db_index[r.id] = db_strings.size(), db_strings.push_back(r.symbols);
+  for (const auto& r : queries) query_index[r.id] = query_strings.size(), query_strings.push_back(r.symbols);
+
+  const auto matches = strings::match_all_windowed(db_strings, query_strings, config, o.window);
+
+  io::OutputDirectory out(o.out_dir);
+  // With --cyclic a fifth column gives the rotation (in symbols) of the database string that matched best.
+  std::string tsv = fmt::format("# seqtopo match-strings --algorithm {}{}{}\nquery_id\trank\tdb_id\tscore{}\n", o.algorithm,
+                                o.cyclic ? " --cyclic" : "", o.k ? fmt::format(" --k {}", *o.k) : "",
+                                o.cyclic ? "\trotation" : "");
+  for (std::size_t q = 0; q < matches.size(); ++q) {
+    for (const auto& c : matches[q].ranked) {
+      tsv += fmt::format("{}\t{}\t{}\t{:.6g}", queries[q].id, c.rank, db[c.db_index].id, c.score);
+      tsv += o.cyclic ? fmt::format("\t{}\n", c.rotation) : "\n";
+    }
+  }
+  out.write("matches.tsv", tsv);
+
+  // Ground truth: adjacency from --adjacency or shared place labels; positions from the x, y columns.
+  strings::GroundTruth truth;
+  const bool places = std::all_of(db.begin(), db.end(), [](const auto& r) { return r.place.has_value(); }) &&
+                      std::all_of(queries.begin(), queries.end(), [](const auto& r) { return r.place.has_value(); });
+  if (!o.adjacency_path.empty()) {
+    truth.adjacent = read_adjacency(o.adjacency_path, query_index, db_index);
+  } else if (places) {
+    truth.adjacent.assign(queries.size(), std::vector<bool>(db.size(), false));
+    for (std::size_t q = 0; q < queries.size(); ++q) {
+      for (std::size_t d = 0; d < db.size(); ++d) truth.adjacent[q][d] = *queries[q].place == *db[d].place;
+    }
+  }
+  const bool positions = std::any_of(db.begin(), db.end(), [](const auto& r) { return r.x.has_value(); }) &&
+                         std::any_of(queries.begin(), queries.end(), [](const auto& r) { return r.x.has_value(); });
+  if (positions) {
+    auto point = [](const strings::StringRecord& r) -> std::optional<strings::Point2> {
+      if (!r.x) return std::nullopt;
+      return strings::Point2{*r.x, *r.y};
+    };
+    for (const auto& r : db) truth.db_positions.push_back(point(r));
+    for (const auto& r : queries) truth.query_positions.push_back(point(r));
+  }
+  const auto metrics = strings::score_localization(matches, truth);
+  if (metrics.topological || metrics.geometric) {
+    nlohmann::json j = {{"algorithm", o.algorithm}, {"cyclic", o.cyclic}, {"window", o.window}, {"queries", queries.size()},
+                        {"database", db.size()}};
+    if (o.k) j["k"] = *o.k;
+    if (config.algorithm == strings::Algorithm::A) {
+      j["costs"] = {{"deletion", config.costs.deletion}, {"insertion", config.costs.insertion},
+                    {"colour_difference", config.costs.colour_difference}, {"coincidence", config.costs.coincidence},
+                    {"discordance", config.costs.discordance}};
+    }
+    if (metrics.topological) j["topological"] = rates_json(*metrics.topological);
+    if (metrics.geometric) j["geometric"] = rates_json(*metrics.geometric);
+    out.write("metrics.json", j.dump(1) + "\n");
+    const std::string table = metrics_table(metrics, fmt::format("algorithm {}{}", o.algorithm, o.cyclic ? " (cyclic)" : ""));
+    out.write("metrics.txt", table);
+    std::cout << table;
+  }
+  out.commit();
+  std::size_t best_total = 0;
+  for (const auto& m : matches) best_total += m.best().size();
+  std::cerr << fmt::format("seqtopo match-strings: {} queries x {} database strings, {:.2f} best matchings per query\n",
+                           queries.size(), db.size(),
+                           queries.empty() ? 0.0 : static_cast<double>(best_total) / static_cast<double>(queries.size()));
+}
+
+const RegisterCommand registered{{
+    "match-strings",
+    "String-matching localization: every query fingerprint against every database fingerprint (algorithm A, B or C)",
+    [](CLI::App& app) {
+      auto o = std::make_shared<MatchStringsOptions>();
+      app.add_option("--db", o->db_path, "database strings (map points): id<TAB>string[<TAB>x<TAB>y[<TAB>place]]")
+          ->required()->check(CLI::ExistingFile);
+      app.add_option("--queries", o->queries_path, "query strings (test points), same format")->required()->check(CLI::ExistingFile);
+      app.add_option("--algorithm", o->algorithm,
+                     "A = global alignment with <= k differences (weighted costs), B = k-differences inexact matching "
+                     "(Landau-Vishkin), C = longest common subsequence (Hunt-Szymanski)")
+          ->capture_default_str();
+      app.add_option("--k", o->k, "maximum number of differences for A and B (default: no limit)");
+      app.add_option("--preset", o->preset, "cost table for A: A1, A2-rooms, A2-ground-floor, A2-white-hall, A2-global")
+          ->capture_default_str();
+      app.add_option("--deletion-cost", o->deletion, "cost of deleting a query symbol (overrides the preset)");
+      app.add_option("--insertion-cost", o->insertion, "cost of inserting a database symbol (overrides the preset)");
+      app.add_option("--colour-difference-cost", o->colour_difference, "cost of two different colour patches (overrides the preset)");
+      app.add_option("--coincidence-cost", o->coincidence, "cost of two equal symbols, may be negative (overrides the preset)");
+      app.add_option("--discordance-cost", o->discordance, "cost of an edge against a colour patch (overrides the preset)");
+      app.add_flag("--cyclic", o->cyclic, "panoramas: compare with every rotation of each database string (heading unknown)");
+      app.add_option("--window", o->window,
+                     "localize each query with the W queries ending at it, along a monotone chain of database points "
+                     "(both files in travel order)")
+          ->capture_default_str();
+      app.add_option("--adjacency", o->adjacency_path, "CSV test_id,map_id of adjacent points (default: same place label)")
+          ->check(CLI::ExistingFile);
+      app.add_option("--out", o->out_dir, "output folder: matches.tsv, and metrics.json + metrics.txt with ground truth")
+          ->capture_default_str();
+      app.callback([o] { run(*o); });
+    }}};
+
+}  // namespace
+}  // namespace seqtopo::cli

@@ -1,0 +1,117 @@
+// seqtopo similarity: a sequence in, the similarity matrix S = 1 - kappa * D out (mapping paper IV-A).
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+#include "command_registry.hpp"
+#include "seqtopo/image/similarity_pipeline.hpp"
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/plot/matrix_image.hpp"
+#include "seqtopo/plot/png.hpp"
+
+namespace seqtopo::cli {
+namespace {
+
+struct SimilarityOptions {
+  std::string input, against, out_dir = "seqtopo-out", input_kind = "auto", descriptor = "joint-histogram";
+  std::string metric, kappa = "auto";
+  std::size_t every = 1;
+  unsigned threads = 0;
+  bool descriptor_given = false;
+};
+
+template <typename F>
+auto option_value(const char* option, F&& parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(option, e.what());
+  }
+}
+
+void run(const SimilarityOptions& o) {
+  image::SimilarityConfig config;
+  const auto kind = option_value("--input-kind", [&] { return image::parse_input_kind(o.input_kind); });
+  config.descriptor = option_value("--descriptor", [&] { return image::parse_descriptor(o.descriptor); });
+  if (!o.metric.empty()) config.metric = option_value("--metric", [&] { return similarity::parse_metric(o.metric); });
+  if (o.kappa != "auto") {
+    config.kappa = option_value("--kappa", [&] {
+      std::size_t used = 0;
+      float k = 0;
+      try {
+        k = std::stof(o.kappa, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != o.kappa.size() || !(k > 0) || !std::isfinite(k)) {
+        throw std::invalid_argument("expected a positive number or auto, got '" + o.kappa + "'");
+      }
+      return k;
+    });
+  }
+  if (o.every == 0) throw io::InputError("--every", "must be at least 1");
+  config.threads = resolve_threads(o.threads);
+  const bool interactive = isatty(STDERR_FILENO) != 0;
+  config.note = [](std::string_view text) { std::cerr << "seqtopo similarity: " << text << "\n"; };
+  if (interactive) {
+    config.progress = [](std::string_view stage, std::size_t done, std::size_t total) {
+      std::cerr << fmt::format("\rseqtopo similarity: {} {}/{}   ", stage, done, total);
+      if (done >= total) std::cerr << "\n";
+    };
+  }
+
+  const image::SequenceInput a{o.input, kind, o.every};
+  image::SimilarityResult result;
+  try {
+    result = o.against.empty() ? image::compute_similarity(a, config)
+                               : image::compute_similarity(a, image::SequenceInput{o.against, kind, o.every}, config);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(o.input, e.what());
+  }
+
+  io::OutputDirectory out(o.out_dir);
+  out.write("similarity.npy", io::encode_npy(result.similarity));
+  out.write("similarity.png", plot::encode_png(plot::matrix_image(result.similarity)));
+  out.commit();
+
+  std::string kappa_text = "input was a similarity matrix";
+  if (!std::isnan(result.kappa)) {
+    kappa_text = result.kappa_auto ? fmt::format("kappa {:.4g} (auto: S > 0 for the closest {:.2f}% of candidate pairs)",
+                                                 result.kappa, 100.0 * result.kappa_fraction)
+                                   : fmt::format("kappa {:.4g}", result.kappa);
+  }
+  std::cerr << fmt::format("seqtopo similarity: {} x {}{}, {}; descriptors {:.2f} s, matrix {:.2f} s -> {}\n",
+                           result.similarity.rows, result.similarity.cols,
+                           result.metric ? fmt::format(" ({})", similarity::metric_name(*result.metric)) : "", kappa_text,
+                           result.seconds_descriptors, result.seconds_matrix, (out.dir() / "similarity.npy").string());
+}
+
+const RegisterCommand registered{{
+    "similarity",
+    "Similarity matrix S = 1 - kappa * D of an image folder, video, descriptors.npy or similarity.npy",
+    [](CLI::App& app) {
+      auto o = std::make_shared<SimilarityOptions>();
+      app.add_option("INPUT", o->input, "image folder, video file, descriptors.npy (N x D) or similarity.npy")
+          ->required()
+          ->check(CLI::ExistingPath);
+      app.add_option("--against", o->against, "second sequence of the same kind: N x M matrix, rows = INPUT")
+          ->check(CLI::ExistingPath);
+      app.add_option("--out", o->out_dir, "output folder for similarity.npy and similarity.png")->capture_default_str();
+      app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
+      app.add_option("--every", o->every, "video: keep every K-th frame")->capture_default_str();
+      app.add_option("--descriptor", o->descriptor, "joint-histogram|patch|npy (a descriptors.npy input uses its rows)")
+          ->capture_default_str();
+      app.add_option("--metric", o->metric,
+                     "chi2|l1|cosine|sad (default: chi2 for joint-histogram, sad for patch, cosine for npy)");
+      app.add_option("--kappa", o->kappa, "K > 0 in S = 1 - K * D, or auto (see docs/similarity.md)")->capture_default_str();
+      app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
+      app.callback([o] { run(*o); });
+    }}};
+
+}  // namespace
+}  // namespace seqtopo::cli

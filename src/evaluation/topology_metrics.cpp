@@ -1,0 +1,68 @@
+#include "seqtopo/evaluation/topology_metrics.hpp"
+
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace seqtopo::evaluation {
+namespace {
+double choose2(double n) { return n * (n - 1) / 2; }
+}  // namespace
+
+double adjusted_rand_index(const std::vector<int>& a, const std::vector<int>& b) {
+  if (a.size() != b.size()) throw std::invalid_argument("partitions of different sizes");
+  std::map<std::pair<int, int>, double> joint;
+  std::map<int, double> ca, cb;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    joint[{a[k], b[k]}] += 1;
+    ca[a[k]] += 1;
+    cb[b[k]] += 1;
+  }
+  double index = 0, sum_a = 0, sum_b = 0;
+  for (const auto& [key, n] : joint) index += choose2(n);
+  for (const auto& [key, n] : ca) sum_a += choose2(n);
+  for (const auto& [key, n] : cb) sum_b += choose2(n);
+  const double total = choose2(static_cast<double>(a.size()));
+  if (total == 0) return 1.0;
+  const double expected = sum_a * sum_b / total;
+  const double max_index = (sum_a + sum_b) / 2;
+  if (max_index == expected) return 1.0;  // both partitions trivial (all singletons or one block)
+  return (index - expected) / (max_index - expected);
+}
+
+TopologyMetrics evaluate_topology(const std::vector<int>& map_labels, const std::vector<int>& map_junctions,
+                                  const std::vector<int>& true_places, const std::vector<int>& true_junctions,
+                                  std::size_t min_separation, std::size_t junction_tolerance) {
+  if (map_labels.size() != true_places.size()) {
+    throw std::invalid_argument("the map has " + std::to_string(map_labels.size()) + " images, the ground truth " +
+                                std::to_string(true_places.size()));
+  }
+  const std::size_t n = map_labels.size();
+  TopologyMetrics m;
+  m.adjusted_rand_index = adjusted_rand_index(map_labels, true_places);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j + min_separation <= i; ++j) {
+      const bool same_map = map_labels[i] == map_labels[j];
+      const bool same_true = true_places[i] == true_places[j];
+      m.false_merges += same_map && !same_true;
+      m.missed_merges += !same_map && same_true;
+    }
+  }
+  const std::set<int> truth(true_junctions.begin(), true_junctions.end());
+  const std::set<int> found(map_junctions.begin(), map_junctions.end());
+  m.junctions_true = truth.size();
+  m.junctions_found = found.size();
+  std::set<int> matched;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!found.count(map_labels[k])) continue;
+    const std::size_t lo = k >= junction_tolerance ? k - junction_tolerance : 0;
+    const std::size_t hi = std::min(n, k + junction_tolerance + 1);
+    for (std::size_t q = lo; q < hi; ++q) {
+      if (truth.count(true_places[q])) matched.insert(true_places[q]);
+    }
+  }
+  m.junctions_matched = matched.size();
+  return m;
+}
+
+}  // namespace seqtopo::evaluation

@@ -1,0 +1,368 @@
+#include "seqtopo/image/similarity_pipeline.hpp"
+
+#include <omp.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "seqtopo/image/image_io.hpp"
+#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/similarity/distance_matrix.hpp"
+#include "seqtopo/similarity/memory.hpp"
+
+namespace seqtopo::image {
+
+Descriptor parse_descriptor(std::string_view name) {
+  if (name == "joint-histogram" || name == "joint_histogram") return Descriptor::joint_histogram;
+  if (name == "patch") return Descriptor::patch;
+  if (name == "npy") return Descriptor::npy;
+  throw std::invalid_argument("unknown descriptor '" + std::string(name) + "' (expected joint-histogram, patch or npy)");
+}
+
+std::string_view descriptor_name(Descriptor descriptor) {
+  switch (descriptor) {
+    case Descriptor::joint_histogram: return "joint-histogram";
+    case Descriptor::patch: return "patch";
+    case Descriptor::npy: return "npy";
+  }
+  return "?";
+}
+
+Metric default_metric(Descriptor descriptor) {
+  switch (descriptor) {
+    case Descriptor::joint_histogram: return Metric::chi2;
+    case Descriptor::patch: return Metric::sad;
+    case Descriptor::npy: return Metric::cosine;
+  }
+  return Metric::chi2;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+unsigned thread_count(unsigned requested) {
+  return requested > 0 ? requested : std::max(1U, std::thread::hardware_concurrency());
+}
+
+// One sequence, resolved: what it is and how many items it has (known before any descriptor is computed,
+// so that an impossible request is refused early).
+struct Source {
+  SequenceInput input;
+  InputKind kind = InputKind::automatic;
+  std::vector<fs::path> images;             // kind images
+  std::optional<std::size_t> count;         // items, when known in advance
+  std::optional<std::size_t> dimension;     // descriptor length, when known in advance
+};
+
+Source resolve(const SequenceInput& input) {
+  if (input.every == 0) throw std::invalid_argument("every must be at least 1");
+  Source s;
+  s.input = input;
+  s.kind = resolve_input_kind(input);
+  switch (s.kind) {
+    case InputKind::images:
+      s.images = list_images(input.path);
+      s.count = s.images.size();
+      break;
+    case InputKind::video:
+      if (const auto frames = video_frame_count(input.path)) s.count = (*frames + input.every - 1) / input.every;
+      break;
+    case InputKind::descriptors:
+    case InputKind::similarity: {
+      const io::NpyHeader header = io::read_npy_header(input.path);
+      if (header.shape.size() != 2) throw io::InputError(input.path.string(), "expected a 2-D array");
+      s.count = header.shape[0];
+      s.dimension = header.shape[1];
+      break;
+    }
+    case InputKind::automatic: break;
+  }
+  return s;
+}
+
+Descriptor effective_descriptor(const Source& s, const SimilarityConfig& c) {
+  if (s.kind == InputKind::descriptors) return Descriptor::npy;
+  if (c.descriptor == Descriptor::npy) {
+    throw io::InputError(s.input.path.string(), "descriptor npy needs a descriptors .npy file as input");
+  }
+  return c.descriptor;
+}
+
+// Bytes of one item's descriptor, for the estimate. A joint histogram stores at most one bin per pixel; the
+// first image of a folder tells the pixel count (videos: every bin).
+std::size_t descriptor_bytes(Descriptor d, const Source& s, const SimilarityConfig& c) {
+  switch (d) {
+    case Descriptor::joint_histogram: {
+      std::size_t bins = JointHistogramConfig::bins;
+      if (!s.images.empty()) {
+        const RgbImage first = load_image(s.images.front());
+        bins = std::min(bins, static_cast<std::size_t>(first.width) * static_cast<std::size_t>(first.height));
+      }
+      return sizeof(similarity::SparseHistogram) + bins * (sizeof(std::uint32_t) + sizeof(float));
+    }
+    case Descriptor::patch:
+      return static_cast<std::size_t>(std::max(0, c.patch.width)) * static_cast<std::size_t>(std::max(0, c.patch.height)) *
+             sizeof(float);
+    case Descriptor::npy: return s.dimension.value_or(0) * sizeof(float);
+  }
+  return 0;
+}
+
+// Estimates the memory of the whole computation, reports it when large, refuses it when it cannot fit.
+void check_memory(const Source& a, const Source* b, Descriptor d, const SimilarityConfig& c) {
+  if (!a.count || (b && !b->count)) return;  // a video without a frame count: the matrix step checks again
+  const std::size_t rows = *a.count, cols = b ? *b->count : *a.count;
+  std::size_t total = similarity::matrix_bytes(rows, cols);
+  const std::size_t per_item = descriptor_bytes(d, a, c);
+  const std::size_t max = std::numeric_limits<std::size_t>::max();
+  const std::size_t items = rows + (b ? cols : 0);
+  const std::size_t desc = per_item != 0 && items > max / per_item ? max : items * per_item;
+  total = total > max - desc ? max : total + desc;
+  const auto available = similarity::available_memory_bytes();
+  const std::string what =
+      "the " + std::to_string(rows) + " x " + std::to_string(cols) + " similarity matrix with its descriptors";
+  if (c.note && total >= c.note_memory_above) {
+    c.note("memory estimate: " + what + " needs up to " + similarity::format_bytes(total) +
+           (available ? " (" + similarity::format_bytes(*available) + " available)" : std::string()));
+  }
+  try {
+    similarity::check_fits(total, available, what);
+  } catch (const similarity::MemoryError& e) {
+    throw io::InputError(a.input.path.string(), e.what());
+  }
+}
+
+struct Described {
+  similarity::DescriptorSet set;
+  std::vector<std::string> names;
+};
+
+// Descriptor of one image into slot i of `out`.
+void describe_image(const RgbImage& image, Descriptor d, const SimilarityConfig& c, std::size_t i, Described& out) {
+  if (d == Descriptor::joint_histogram) {
+    out.set.sparse[i] = joint_histogram(image, c.joint_histogram);
+  } else {
+    const std::vector<float> v = patch_thumbnail(image, c.patch);
+    std::copy(v.begin(), v.end(), out.set.dense.row(i).begin());
+  }
+}
+
+void prepare_slots(Described& out, Descriptor d, std::size_t n, const SimilarityConfig& c) {
+  if (d == Descriptor::joint_histogram) {
+    out.set.sparse.resize(n);
+  } else {
+    out.set.dense = DenseMatrix<float>(n, static_cast<std::size_t>(c.patch.width) * static_cast<std::size_t>(c.patch.height));
+  }
+}
+
+// Runs describe(i) for i in [0, n) on the configured threads; the error of the lowest failing index is
+// rethrown, so the message does not depend on the thread count.
+template <typename F>
+void parallel_items(std::size_t n, unsigned threads, F&& describe) {
+  std::vector<std::exception_ptr> errors(n);
+  std::atomic<bool> failed{false};
+  const auto count = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(static_cast<int>(threads))
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    if (failed.load(std::memory_order_relaxed)) continue;
+    try {
+      describe(static_cast<std::size_t>(k));
+    } catch (...) {
+      errors[static_cast<std::size_t>(k)] = std::current_exception();
+      failed = true;
+    }
+  }
+  for (const auto& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+}
+
+Described describe_images(const Source& s, Descriptor d, const SimilarityConfig& c) {
+  Described out;
+  const std::size_t n = s.images.size();
+  prepare_slots(out, d, n, c);
+  out.names.reserve(n);
+  for (const auto& p : s.images) out.names.push_back(p.filename().string());
+  std::atomic<std::size_t> done{0};
+  std::mutex report;
+  parallel_items(n, thread_count(c.threads), [&](std::size_t i) {
+    const fs::path& path = s.images[i];
+    const RgbImage image = load_image(path);
+    try {
+      describe_image(image, d, c, i, out);
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError(path.string(), e.what());
+    }
+    const std::size_t now = ++done;
+    if (c.progress) {
+      const std::lock_guard lock(report);
+      c.progress("descriptors", now, n);
+    }
+  });
+  return out;
+}
+
+Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& c) {
+  // Frames are decoded in order and described in batches, so a long video never sits in memory whole.
+  Described out;
+  std::vector<RgbImage> batch;
+  std::vector<std::size_t> indices;
+  const unsigned threads = thread_count(c.threads);
+  const std::size_t batch_size = 8 * static_cast<std::size_t>(threads);
+  std::vector<similarity::SparseHistogram> histograms;
+  std::vector<std::vector<float>> rows;
+  auto flush = [&] {
+    const std::size_t first = d == Descriptor::joint_histogram ? histograms.size() : rows.size();
+    if (d == Descriptor::joint_histogram) {
+      histograms.resize(first + batch.size());
+    } else {
+      rows.resize(first + batch.size());
+    }
+    parallel_items(batch.size(), threads, [&](std::size_t k) {
+      try {
+        if (d == Descriptor::joint_histogram) {
+          histograms[first + k] = joint_histogram(batch[k], c.joint_histogram);
+        } else {
+          rows[first + k] = patch_thumbnail(batch[k], c.patch);
+        }
+      } catch (const std::invalid_argument& e) {
+        throw io::InputError(s.input.path.string(), "frame " + std::to_string(indices[k]) + ": " + e.what());
+      }
+    });
+    for (std::size_t index : indices) out.names.push_back("frame " + std::to_string(index));
+    batch.clear();
+    indices.clear();
+    if (c.progress) c.progress("descriptors", out.names.size(), s.count.value_or(out.names.size()));
+  };
+  for_each_video_frame(s.input.path, s.input.every, [&](std::size_t index, const RgbImage& frame) {
+    batch.push_back(frame);
+    indices.push_back(index);
+    if (batch.size() >= batch_size) flush();
+  });
+  if (!batch.empty()) flush();
+  if (d == Descriptor::joint_histogram) {
+    out.set.sparse = std::move(histograms);
+  } else {
+    const std::size_t dim = static_cast<std::size_t>(c.patch.width) * static_cast<std::size_t>(c.patch.height);
+    out.set.dense = DenseMatrix<float>(rows.size(), dim);
+    for (std::size_t i = 0; i < rows.size(); ++i) std::copy(rows[i].begin(), rows[i].end(), out.set.dense.row(i).begin());
+  }
+  return out;
+}
+
+std::vector<std::string> row_names(std::size_t n, const char* word) {
+  std::vector<std::string> names;
+  names.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) names.push_back(std::string(word) + " " + std::to_string(i));
+  return names;
+}
+
+Described describe(const Source& s, Descriptor d, const SimilarityConfig& c) {
+  switch (s.kind) {
+    case InputKind::images: return describe_images(s, d, c);
+    case InputKind::video: return describe_video(s, d, c);
+    case InputKind::descriptors: {
+      Described out;
+      out.set = similarity::DescriptorSet::from_dense(io::read_npy_matrix<float>(s.input.path));
+      if (out.set.dense.empty()) throw io::InputError(s.input.path.string(), "no descriptors (empty array)");
+      out.names = row_names(out.set.dense.rows, "row");
+      return out;
+    }
+    default: break;
+  }
+  throw std::invalid_argument("internal: no descriptors for this input kind");
+}
+
+SimilarityResult from_similarity_file(const Source& s, bool square) {
+  SimilarityResult r;
+  r.similarity = io::read_npy_matrix<float>(s.input.path);
+  if (r.similarity.empty()) throw io::InputError(s.input.path.string(), "empty similarity matrix");
+  if (square && !r.similarity.square()) {
+    throw io::InputError(s.input.path.string(), "similarity matrix of one sequence must be square, got " +
+                                                    std::to_string(r.similarity.rows) + " x " +
+                                                    std::to_string(r.similarity.cols));
+  }
+  r.kappa = std::numeric_limits<float>::quiet_NaN();
+  r.frame_names = row_names(r.similarity.rows, "row");
+  r.column_names = row_names(r.similarity.cols, "column");
+  return r;
+}
+
+SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b, const SimilarityConfig& c) {
+  if (c.kappa && (!(*c.kappa > 0) || !std::isfinite(*c.kappa))) throw std::invalid_argument("kappa must be positive");
+  const Source a = resolve(input_a);
+  if (a.kind == InputKind::similarity) return from_similarity_file(a, input_b == nullptr);
+  std::optional<Source> b;
+  if (input_b) {
+    b = resolve(*input_b);
+    if (b->kind == InputKind::similarity) {
+      throw io::InputError(b->input.path.string(), "a similarity matrix can only be the first input");
+    }
+  }
+  const Descriptor d = effective_descriptor(a, c);
+  if (b && effective_descriptor(*b, c) != d) {
+    throw io::InputError(b->input.path.string(), "both sequences must have the same kind of descriptor");
+  }
+  const Metric metric = c.metric.value_or(default_metric(d));
+  check_memory(a, b ? &*b : nullptr, d, c);
+
+  SimilarityResult r;
+  const auto t0 = Clock::now();
+  Described da = describe(a, d, c);
+  std::optional<Described> db;
+  if (b) db = describe(*b, d, c);
+  r.seconds_descriptors = seconds_since(t0);
+
+  similarity::MatrixConfig mc;
+  mc.threads = c.threads;
+  mc.tile = c.tile;
+  if (c.progress) mc.progress = [&c](std::size_t done, std::size_t total) { c.progress("matrix", done, total); };
+  const auto t1 = Clock::now();
+  DenseMatrix<float> distances;
+  try {
+    distances = db ? similarity::distance_matrix(da.set, db->set, metric, mc) : similarity::distance_matrix(da.set, metric, mc);
+  } catch (const similarity::MemoryError& e) {
+    throw io::InputError(a.input.path.string(), e.what());
+  } catch (const std::invalid_argument& e) {
+    if (d == Descriptor::npy) throw io::InputError(a.input.path.string(), e.what());
+    throw;
+  }
+
+  if (c.kappa) {
+    r.kappa = *c.kappa;
+  } else {
+    const auto choice = similarity::choose_kappa(distances, !db, c.kappa_rule);
+    r.kappa = choice.kappa;
+    r.kappa_auto = true;
+    r.kappa_fraction = choice.fraction;
+  }
+  r.similarity = similarity::similarity_from_distance(std::move(distances), r.kappa);
+  r.seconds_matrix = seconds_since(t1);
+  r.metric = metric;
+  r.frame_names = std::move(da.names);
+  r.column_names = db ? std::move(db->names) : r.frame_names;
+  return r;
+}
+
+}  // namespace
+
+SimilarityResult compute_similarity(const SequenceInput& input, const SimilarityConfig& config) {
+  return run(input, nullptr, config);
+}
+
+SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b, const SimilarityConfig& config) {
+  return run(a, &b, config);
+}
+
+}  // namespace seqtopo::image

@@ -1,0 +1,119 @@
+#include "seqtopo/io/odometry_csv.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <string_view>
+
+#include "seqtopo/io/input_error.hpp"
+
+namespace seqtopo::io {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> split(std::string_view line) {
+  std::vector<std::string_view> fields;
+  for (;;) {
+    const auto comma = line.find(',');
+    fields.push_back(trim(line.substr(0, comma)));
+    if (comma == std::string_view::npos) return fields;
+    line.remove_prefix(comma + 1);
+  }
+}
+
+// Every row of a pose file, checked: fields.size() numbers per row, the first one the row's index.
+struct PoseTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;  // without the index
+};
+
+PoseTable read_table(const std::filesystem::path& path, const std::vector<std::vector<std::string>>& headers) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string(), "cannot open file");
+  auto where = [&](std::size_t line_no) { return path.string() + ":" + std::to_string(line_no); };
+  auto expected = [&] {
+    std::string text;
+    for (const auto& h : headers) {
+      std::string joined;
+      for (const auto& name : h) joined += (joined.empty() ? "" : ",") + name;
+      text += (text.empty() ? "`" : " or `") + joined + "`";
+    }
+    return text;
+  };
+
+  PoseTable table;
+  std::string line;
+  std::size_t line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (trim(line).empty()) continue;
+    const auto fields = split(line);
+    if (table.header.empty()) {
+      for (const auto& h : headers) {
+        if (h.size() == fields.size() && std::equal(h.begin(), h.end(), fields.begin())) table.header = h;
+      }
+      if (table.header.empty()) throw InputError(where(line_no), "header must be " + expected());
+      continue;
+    }
+    if (fields.size() != table.header.size()) {
+      throw InputError(where(line_no), "expected " + std::to_string(table.header.size()) +
+                                           " comma-separated fields, found " + std::to_string(fields.size()));
+    }
+    std::vector<double> values;
+    for (std::size_t f = 0; f < fields.size(); ++f) {
+      double v = 0;
+      std::string_view text = fields[f];
+      if (text.size() > 1 && text.front() == '+') text.remove_prefix(1);  // from_chars takes no '+'
+      const char* end = text.data() + text.size();
+      const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+      if (text.empty() || ec != std::errc() || ptr != end) {
+        throw InputError(where(line_no),
+                         "field '" + table.header[f] + "' is not a number: '" + std::string(fields[f]) + "'");
+      }
+      if (!std::isfinite(v)) throw InputError(where(line_no), "field '" + table.header[f] + "' is not finite");
+      values.push_back(v);
+    }
+    const auto expected_index = static_cast<double>(table.rows.size());
+    if (values[0] != expected_index) {
+      throw InputError(where(line_no), "index " + std::string(fields[0]) + " out of order: expected " +
+                                           std::to_string(table.rows.size()) + " (rows are images 0..N-1 in order)");
+    }
+    values.erase(values.begin());
+    table.rows.push_back(std::move(values));
+  }
+  if (table.header.empty()) throw InputError(path.string(), "empty file; header must be " + expected());
+  if (table.rows.empty()) throw InputError(path.string(), "no rows after the header");
+  return table;
+}
+
+}  // namespace
+
+std::vector<metric::Pose2> read_odometry_csv(const std::filesystem::path& path) {
+  const PoseTable table = read_table(path, {{"index", "x", "y", "theta"}, {"index", "dx", "dy", "dtheta"}});
+  std::vector<metric::Pose2> poses;
+  poses.reserve(table.rows.size());
+  const bool increments = table.header[1] == "dx";
+  metric::Pose2 pose;  // the origin
+  for (const auto& r : table.rows) {
+    pose = increments ? metric::compose(pose, {r[0], r[1], r[2]}) : metric::Pose2{r[0], r[1], metric::wrap_angle(r[2])};
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
+std::vector<metric::Pose2> read_poses_csv(const std::filesystem::path& path) {
+  const PoseTable table = read_table(path, {{"index", "x", "y"}, {"index", "x", "y", "theta"}});
+  std::vector<metric::Pose2> poses;
+  poses.reserve(table.rows.size());
+  for (const auto& r : table.rows) poses.push_back({r[0], r[1], r.size() > 2 ? metric::wrap_angle(r[2]) : 0.0});
+  return poses;
+}
+
+}  // namespace seqtopo::io

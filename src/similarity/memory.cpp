@@ -1,0 +1,78 @@
+#include "seqtopo/similarity/memory.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace seqtopo::similarity {
+namespace {
+
+std::optional<std::size_t> read_number(const char* path) {
+  std::ifstream in(path);
+  std::string word;
+  if (!(in >> word) || word == "max") return std::nullopt;
+  try {
+    return static_cast<std::size_t>(std::stoull(word));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+std::optional<std::size_t> mem_available() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  std::size_t kib = 0;
+  std::string unit;
+  while (in >> key >> kib) {
+    std::getline(in, unit);
+    if (key == "MemAvailable:") return kib * 1024;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::size_t matrix_bytes(std::size_t rows, std::size_t cols) {
+  constexpr std::size_t max = std::numeric_limits<std::size_t>::max();
+  if (rows != 0 && cols > max / rows) return max;
+  const std::size_t cells = rows * cols;
+  return cells > max / sizeof(float) ? max : cells * sizeof(float);
+}
+
+std::optional<std::size_t> available_memory_bytes() {
+  std::optional<std::size_t> available = mem_available();
+  // A container's limit is often far below the machine's free memory (cgroup v2 files).
+  const auto limit = read_number("/sys/fs/cgroup/memory.max");
+  if (limit) {
+    const std::size_t used = read_number("/sys/fs/cgroup/memory.current").value_or(0);
+    const std::size_t left = *limit > used ? *limit - used : 0;
+    available = available ? std::min(*available, left) : left;
+  }
+  return available;
+}
+
+std::string format_bytes(std::size_t bytes) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  double value = static_cast<double>(bytes);
+  int unit = 0;
+  while (value >= 1024.0 && unit < 6) {
+    value /= 1024.0;
+    ++unit;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", value, units[unit]);
+  return text;
+}
+
+void check_fits(std::size_t bytes, std::optional<std::size_t> available, const std::string& what) {
+  if (bytes == std::numeric_limits<std::size_t>::max()) {
+    throw MemoryError(what + " is too large to be addressed");
+  }
+  if (available && bytes > *available) {
+    throw MemoryError(what + " needs " + format_bytes(bytes) + ", only " + format_bytes(*available) +
+                      " of memory available");
+  }
+}
+
+}  // namespace seqtopo::similarity

@@ -1,0 +1,151 @@
+// `seqtopo localize` end to end on a small similarity.npy: outputs, the "not in the map" rows, online mode,
+// and bad input rejected with one error line and no output left behind.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = 0;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class LocalizeCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("seqtopo-localize-cli-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                        "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+
+  Result run(const std::string& args) {
+    const auto out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string command = std::string(SEQTOPO_CLI) + " localize " + args + " >" + out.string() + " 2>" + err.string();
+    const int raw = std::system(command.c_str());
+    return {WEXITSTATUS(raw), slurp(out), slurp(err)};
+  }
+
+  // A float32 .npy of rows x cols (format 1.0), written by hand so the test needs no library.
+  fs::path write_npy(const std::string& name, std::size_t rows, std::size_t cols, const std::vector<float>& values) {
+    std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
+                         std::to_string(cols) + "), }";
+    while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+    header += '\n';
+    std::string bytes = "\x93NUMPY";
+    bytes += '\x01';
+    bytes += '\x00';
+    bytes += static_cast<char>(header.size() & 0xFF);
+    bytes += static_cast<char>(header.size() >> 8);
+    bytes += header;
+    bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float));
+    const auto path = dir_ / name;
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+  }
+
+  // 50 query frames x 80 map frames: query 0-29 follow map 20-49, query 30-49 are somewhere new.
+  fs::path planted() {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.0F, 0.5F);
+    std::vector<float> v(50 * 80);
+    for (auto& x : v) x = u(rng);
+    for (std::size_t q = 0; q < 30; ++q) v[q * 80 + q + 20] = 1.0F;
+    return write_npy("query_x_map_similarity.npy", 50, 80, v);
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(LocalizeCli, WritesMatchesMetricsAndReport) {
+  const auto s = planted();
+  const auto out = dir_ / "out";
+  const auto r = run("--map " + s.string() + " --gt same-index --tolerance 0 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* name : {"matches.csv", "metrics.json", "pr_curve.png", "report.html", "similarity.png"}) {
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  }
+  std::istringstream csv(slurp(out / "matches.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "query,map,score");
+  std::size_t rows = 0, empty = 0;
+  while (std::getline(csv, line)) {
+    const std::size_t q = std::stoul(line.substr(0, line.find(',')));
+    const std::string rest = line.substr(line.find(',') + 1);
+    if (rest == ",") {
+      ++empty;
+      EXPECT_GE(q, 28U) << "frames on the planted path are in the map";
+    } else if (q >= 2 && q < 28) {
+      EXPECT_EQ(std::stoul(rest.substr(0, rest.find(','))), q + 20) << line;
+    }
+    ++rows;
+  }
+  EXPECT_EQ(rows, 50U);
+  EXPECT_GE(empty, 15U) << "the 20 frames off the map are reported as not in the map";
+  EXPECT_NE(slurp(out / "metrics.json").find("\"recall_at_100_precision\""), std::string::npos);
+}
+
+TEST_F(LocalizeCli, OnlinePrintsOneEstimatePerFrame) {
+  const auto s = planted();
+  const auto r = run("--map " + s.string() + " --online --out " + (dir_ / "out").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "query,map,confidence,latency_ms");
+  std::size_t n = 0;
+  while (std::getline(lines, line)) ++n;
+  EXPECT_EQ(n, 50U);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "latency.csv"));
+}
+
+TEST_F(LocalizeCli, RejectsBadInputWithoutLeavingOutput) {
+  const auto s = planted();
+  const auto out = dir_ / "out";
+  const std::vector<std::string> bad{
+      "--map " + s.string() + " --gap -1 --out " + out.string(),
+      "--map " + s.string() + " --cap 0 --out " + out.string(),
+      "--map " + (dir_ / "missing.npy").string() + " --out " + out.string(),
+      "--map " + s.string() + " --query " + dir_.string() + " --out " + out.string(),
+      "--map " + s.string() + " --gt " + (dir_ / "missing.csv").string() + " --out " + out.string(),
+      "--query - --map " + dir_.string() + " --out " + out.string(),
+      "--out " + out.string(),
+  };
+  std::ofstream(dir_ / "far.csv") << "query,map\n0,500\n";
+  std::ofstream(dir_ / "garbled.csv") << "query,map\n0;1\n";
+  std::vector<std::string> all = bad;
+  all.push_back("--map " + s.string() + " --gt " + (dir_ / "far.csv").string() + " --out " + out.string());
+  all.push_back("--map " + s.string() + " --gt " + (dir_ / "garbled.csv").string() + " --out " + out.string());
+  for (const auto& args : all) {
+    const auto r = run(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(r.err.rfind("seqtopo: error: ", 0), 0U) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out / "matches.csv")) << args;
+  }
+}
+
+}  // namespace

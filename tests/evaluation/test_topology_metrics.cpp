@@ -1,0 +1,62 @@
+// Topology scores against hand counts and a brute-force Rand index.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "seqtopo/evaluation/topology_metrics.hpp"
+
+namespace seqtopo::evaluation {
+namespace {
+
+// Brute-force adjusted Rand index over all pairs (Hubert & Arabie): (RI - E[RI]) / (max - E[RI]) in
+// pair-count form.
+double brute_ari(const std::vector<int>& a, const std::vector<int>& b) {
+  double both = 0, in_a = 0, in_b = 0, pairs = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t j = i + 1; j < a.size(); ++j) {
+      pairs += 1;
+      const bool sa = a[i] == a[j], sb = b[i] == b[j];
+      both += sa && sb;
+      in_a += sa;
+      in_b += sb;
+    }
+  }
+  const double expected = in_a * in_b / pairs;
+  const double max_index = (in_a + in_b) / 2;
+  if (max_index == expected) return 1.0;
+  return (both - expected) / (max_index - expected);
+}
+
+TEST(TopologyMetrics, AriAgreesWithBruteForceAndIsOneForRelabeling) {
+  std::mt19937 rng(8);
+  for (int round = 0; round < 100; ++round) {
+    const std::size_t n = 2 + rng() % 30;
+    std::vector<int> a(n), b(n);
+    for (auto& x : a) x = static_cast<int>(rng() % 5);
+    for (auto& x : b) x = static_cast<int>(rng() % 4);
+    EXPECT_NEAR(adjusted_rand_index(a, b), brute_ari(a, b), 1e-12);
+    std::vector<int> relabeled(n);
+    for (std::size_t k = 0; k < n; ++k) relabeled[k] = 100 - 7 * a[k];
+    EXPECT_DOUBLE_EQ(adjusted_rand_index(a, relabeled), 1.0);
+  }
+}
+
+TEST(TopologyMetrics, HandCountedMergesAndJunctions) {
+  // 8 images; truth: 0..3 are places 10..13, 4..7 revisit them (4=10, 5=11, 6=12, 7=13).
+  const std::vector<int> truth{10, 11, 12, 13, 10, 11, 12, 13};
+  // map: merges 4 with 0 (right), 5 with 2 (wrong), misses 6-2 and 7-3
+  const std::vector<int> labels{0, 1, 2, 3, 0, 2, 6, 7};
+  const auto m = evaluate_topology(labels, {0}, truth, {10, 13}, 3);
+  EXPECT_EQ(m.false_merges, 1U);   // (5, 2)
+  EXPECT_EQ(m.missed_merges, 3U);  // (5, 1), (6, 2), (7, 3)
+  EXPECT_EQ(m.junctions_true, 2U);
+  EXPECT_EQ(m.junctions_found, 1U);
+  // junction place 0 holds images 0 and 4; within 2 frames of image 4 lie images 2..6, true places
+  // 12, 13, 10, 11, 12: both true junctions 10 and 13 are matched
+  EXPECT_EQ(m.junctions_matched, 2U);
+  EXPECT_EQ(evaluate_topology(labels, {0}, truth, {10, 13}, 3, 0).junctions_matched, 1U);
+  EXPECT_THROW(evaluate_topology({0}, {}, {0, 1}, {}, 1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace seqtopo::evaluation

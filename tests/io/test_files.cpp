@@ -1,0 +1,111 @@
+// FASTA reading and atomic outputs.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/io/fasta.hpp"
+#include "seqtopo/io/input_error.hpp"
+
+namespace seqtopo::io {
+namespace {
+namespace fs = std::filesystem;
+
+class Files : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("seqtopo-files-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  fs::path dir_;
+};
+
+TEST_F(Files, FastaRecordsAndErrors) {
+  const auto records = read_fasta(write("ok.fa", ">one first\nACGT\nAC GT\r\n\n>two\nTT\n"));
+  ASSERT_EQ(records.size(), 2U);
+  EXPECT_EQ(records[0].name, "one first");
+  EXPECT_EQ(records[0].sequence, "ACGTACGT");
+  EXPECT_EQ(records[1].sequence, "TT");
+  EXPECT_THROW(read_fasta(dir_ / "missing.fa"), InputError);
+  EXPECT_THROW(read_fasta(write("empty.fa", "")), InputError);
+  EXPECT_THROW(read_fasta(write("nohead.fa", "ACGT\n")), InputError);
+  EXPECT_THROW(read_fasta(write("emptyrec.fa", ">a\n>b\nAC\n")), InputError);
+  try {
+    read_fasta(write("line.fa", "\nACGT\n"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.subject(), (dir_ / "line.fa").string() + ":2");
+  }
+}
+
+TEST_F(Files, AtomicFileReplacesWhole) {
+  write_file_atomic(dir_ / "a.txt", "first");
+  write_file_atomic(dir_ / "a.txt", "second");
+  std::ifstream in(dir_ / "a.txt");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(text, "second");
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++files;
+  EXPECT_EQ(files, 1U) << "no temporary file may be left behind";
+  EXPECT_THROW(write_file_atomic(dir_ / "no" / "such" / "dir.txt", "x"), InputError);
+}
+
+TEST_F(Files, OutputDirectoryIsAllOrNothing) {
+  const fs::path out = dir_ / "out";
+  {
+    OutputDirectory staged(out);
+    staged.write("one.txt", "1");
+    staged.write("sub/two.txt", "2");
+    // destroyed without commit: as if a later stage had failed
+  }
+  ASSERT_TRUE(fs::exists(out));
+  EXPECT_TRUE(fs::is_empty(out)) << "an uncommitted output directory must leave nothing behind";
+  {
+    OutputDirectory staged(out);
+    staged.write("one.txt", "1");
+    staged.write("sub/two.txt", "2");
+    const auto written = staged.commit();
+    EXPECT_EQ(written.size(), 2U);
+  }
+  EXPECT_TRUE(fs::exists(out / "one.txt"));
+  EXPECT_TRUE(fs::exists(out / "sub" / "two.txt"));
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++entries;
+  EXPECT_EQ(entries, 2U) << "the staging folder must be gone";
+}
+
+}  // namespace
+}  // namespace seqtopo::io
+
+#include "seqtopo/io/places_csv.hpp"
+
+namespace seqtopo::io {
+namespace {
+
+TEST_F(Files, PlacesAndJunctionsCsv) {
+  EXPECT_EQ(read_places_csv(write("p.csv", "index,place\n0,3\n1,3\r\n2,7\n")), (std::vector<int>{3, 3, 7}));
+  EXPECT_EQ(read_junctions_csv(write("j.csv", "place\n3\n9\n")), (std::vector<int>{3, 9}));
+  for (const auto& [name, text, subject] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"hdr.csv", "idx,place\n0,1\n", ":1"},
+           {"order.csv", "index,place\n1,1\n", ":2"},
+           {"text.csv", "index,place\n0,x\n", ":2"},
+           {"cols.csv", "index,place\n0,1,2\n", ":2"}}) {
+    try {
+      read_places_csv(write(name, text));
+      FAIL() << name;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.subject(), (dir_ / name).string() + subject) << e.what();
+    }
+  }
+  EXPECT_THROW(read_places_csv(write("empty.csv", "index,place\n")), InputError);
+}
+
+}  // namespace
+}  // namespace seqtopo::io

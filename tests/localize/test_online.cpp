@@ -1,0 +1,163 @@
+// The online localizer against a naive full-table Smith-Waterman on the frames seen so far, against the
+// alignment engine itself, and on planted paths.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/localize/online_localizer.hpp"
+
+namespace seqtopo::localize {
+namespace {
+
+// The whole forward (or reverse) table of the first `rows` query frames, textbook recurrence.
+std::vector<std::vector<float>> naive_table(const SimilarityMatrix& scores, std::size_t rows, bool reverse,
+                                            float gap, std::optional<float> cap) {
+  const std::size_t m = scores.cols;
+  std::vector<std::vector<float>> h(rows + 1, std::vector<float>(m + 2, 0.0F));  // map j at index j + 1
+  for (std::size_t i = 1; i <= rows; ++i) {
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t j = reverse ? m - 1 - k : k;
+      const std::size_t col = j + 1;
+      const float diag = reverse ? h[i - 1][col + 1] : h[i - 1][col - 1];
+      const float side = reverse ? h[i][col + 1] : h[i][col - 1];
+      float v = std::max({0.0F, diag + scores(i - 1, j), h[i - 1][col] - gap, side - gap});
+      if (cap) v = std::min(v, *cap);
+      h[i][col] = v;
+    }
+  }
+  return h;
+}
+
+SimilarityMatrix random_matrix(std::size_t rows, std::size_t cols, std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-1.0F, 1.0F);
+  SimilarityMatrix s(rows, cols);
+  for (auto& v : s.values) v = u(rng);
+  return s;
+}
+
+TEST(Online, EqualsNaiveTablesOnTheFramesSeenSoFar) {
+  std::mt19937 rng(11);
+  for (int round = 0; round < 30; ++round) {
+    const auto s = random_matrix(5 + rng() % 25, 3 + rng() % 30, rng);
+    LocalizeConfig c;
+    c.enhance = round % 2 == 0;
+    c.offset = c.enhance ? 0.8F : -0.1F;
+    c.gap = 0.3F + 0.1F * static_cast<float>(rng() % 10);
+    if (round % 3 == 0) c.cap = 2.5F;
+    c.threshold = 1.0F;
+    const auto scores = score_matrix(s, c);
+    const auto fwd = naive_table(scores, s.rows, false, c.gap, c.cap);
+    const auto rev = naive_table(scores, s.rows, true, c.gap, c.cap);
+    OnlineLocalizer online(s.cols, c);
+    for (std::size_t i = 0; i < s.rows; ++i) {
+      const auto e = online.feed(s.row(i));
+      EXPECT_EQ(e.query, i);
+      float best = -1;
+      std::size_t best_j = 0;
+      align::Direction best_d = align::Direction::forward;
+      for (int pass = 0; pass < 2; ++pass) {
+        for (std::size_t j = 0; j < s.cols; ++j) {
+          const float v = pass == 0 ? fwd[i + 1][j + 1] : rev[i + 1][j + 1];
+          ASSERT_FLOAT_EQ(pass == 0 ? online.forward_row()[j] : online.reverse_row()[j], v) << i << " " << j;
+          if (v > best || (v == best && scores(i, j) > scores(i, best_j))) {
+            best = v;
+            best_j = j;
+            best_d = pass == 0 ? align::Direction::forward : align::Direction::reverse;
+          }
+        }
+      }
+      EXPECT_FLOAT_EQ(e.confidence, best);
+      EXPECT_EQ(e.map, best_j) << i;
+      EXPECT_EQ(e.direction, best_d) << i;
+      EXPECT_EQ(e.in_map, best >= c.threshold && best > 0);
+    }
+  }
+}
+
+TEST(Online, EstimatesNeverDependOnLaterFrames) {
+  std::mt19937 rng(12);
+  const auto s = random_matrix(40, 25, rng);
+  LocalizeConfig c;
+  const auto all = online_estimates(s, c);
+  for (std::size_t t = 1; t <= s.rows; t += 7) {
+    SimilarityMatrix prefix(t, s.cols, std::vector<float>(s.values.begin(), s.values.begin() + static_cast<std::ptrdiff_t>(t * s.cols)));
+    const auto part = online_estimates(prefix, c);
+    for (std::size_t i = 0; i < t; ++i) {
+      EXPECT_EQ(part[i].map, all[i].map);
+      EXPECT_EQ(part[i].confidence, all[i].confidence);
+      EXPECT_EQ(part[i].direction, all[i].direction);
+    }
+  }
+}
+
+TEST(Online, BestConfidenceSoFarIsTheEnginesBestAlignmentScore) {
+  // The engine's first alignment ends at the highest cell of its table; the online rows are that table's
+  // rows, so on every prefix the highest confidence seen equals the engine's best score.
+  std::mt19937 rng(13);
+  for (int round = 0; round < 20; ++round) {
+    const auto s = random_matrix(4 + rng() % 20, 4 + rng() % 20, rng);
+    LocalizeConfig c;
+    c.enhance = false;
+    c.offset = -0.15F;
+    c.gap = 0.6F;
+    c.reverse = round % 2 == 0;
+    if (round % 4 == 1) c.cap = 1.5F;
+    const auto scores = score_matrix(s, c);
+    OnlineLocalizer online(s.cols, c);
+    float best_so_far = 0;
+    for (std::size_t i = 0; i < s.rows; ++i) {
+      best_so_far = std::max(best_so_far, online.feed(s.row(i)).confidence);
+      align::AlignConfig ac;
+      ac.gap_a = ac.gap_b = c.gap;
+      ac.cap = c.cap;
+      ac.max_alignments = 1;
+      const auto source = align::ScoreSource::dense(std::span<const float>(scores.values.data(), (i + 1) * s.cols), i + 1, s.cols);
+      const auto engine = c.reverse ? align::local_alignments_both(source, ac, 1) : align::local_alignments(source, ac);
+      const float expected = engine.empty() ? 0.0F : engine.front().score;
+      EXPECT_FLOAT_EQ(best_so_far, expected) << "round " << round << " frame " << i;
+    }
+  }
+}
+
+TEST(Online, FollowsPlantedPathsInBothDirections) {
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<float> u(0.0F, 0.5F);
+  SimilarityMatrix s(80, 120);
+  for (auto& v : s.values) v = u(rng);
+  for (std::size_t q = 0; q < 40; ++q) s(q, 20 + q) = 1.0F;   // forward along map 20..59
+  for (std::size_t q = 40; q < 80; ++q) s(q, 159 - q) = 1.0F; // then backwards along map 119..80
+  LocalizeConfig c;
+  c.enhance = false;
+  c.offset = 0.6F;
+  c.gap = 0.5F;
+  c.threshold = 2.0F;
+  c.cap = 5.0F;  // the cap lets the forward evidence fade quickly after the turn
+  OnlineLocalizer online(s.cols, c);
+  for (std::size_t q = 0; q < s.rows; ++q) {
+    const auto e = online.feed(s.row(q));
+    if (q < 5 || (q >= 40 && q < 52)) continue;  // warm-up after the start and after the turn
+    ASSERT_TRUE(e.in_map) << q;
+    EXPECT_EQ(e.map, q < 40 ? 20 + q : 159 - q) << q;
+    EXPECT_EQ(e.direction, q < 40 ? align::Direction::forward : align::Direction::reverse) << q;
+  }
+}
+
+TEST(Online, RejectsBadInput) {
+  EXPECT_THROW(OnlineLocalizer(0), std::invalid_argument);
+  LocalizeConfig bad;
+  bad.gap = std::nanf("");
+  EXPECT_THROW(OnlineLocalizer(3, bad), std::invalid_argument);
+  OnlineLocalizer online(3);
+  const std::vector<float> short_row{1.0F, 2.0F};
+  EXPECT_THROW(online.feed(short_row), std::invalid_argument);
+  const std::vector<float> nan_row{1.0F, std::nanf(""), 0.0F};
+  EXPECT_THROW(online.feed(nan_row), std::invalid_argument);
+  EXPECT_EQ(online.frames_seen(), 0U);
+  EXPECT_THROW(online_estimates(SimilarityMatrix{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace seqtopo::localize
