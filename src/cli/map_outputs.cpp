@@ -78,7 +78,9 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
 
 // Runs Graphviz on a staged .dot file to make the .svg beside it.
 void render_svg(const std::filesystem::path& dot_file, const std::filesystem::path& svg_file) {
-  const std::string command = "dot -Kneato -Tsvg '" + dot_file.string() + "' -o '" + svg_file.string() + "' 2>/dev/null";
+  // The layout is bounded in time: a map is never held up by its picture.
+  const std::string command =
+      "timeout 120 dot -Kneato -Tsvg '" + dot_file.string() + "' -o '" + svg_file.string() + "' 2>/dev/null";
   if (std::system(command.c_str()) != 0) {
     throw io::InputError("topology.svg", "Graphviz 'dot' failed or is missing (scripts/setup.sh installs graphviz)");
   }

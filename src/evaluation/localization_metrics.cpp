@@ -127,24 +127,17 @@ LocalizationMetrics evaluate_localization(const std::vector<LocalizationPredicti
   m.precision = m.predicted == 0 ? 1.0 : static_cast<double>(m.correct) / static_cast<double>(m.predicted);
   m.recall = ratio(m.correct);
 
-  std::vector<std::size_t> order;
+  std::vector<float> scores;
+  std::vector<bool> accepted_correct;
   for (std::size_t q = 0; q < predictions.size(); ++q) {
-    if (predictions[q].map) order.push_back(q);
+    if (!predictions[q].map) continue;
+    scores.push_back(predictions[q].score);
+    accepted_correct.push_back(correct[q] != 0);
   }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return predictions[a].score > predictions[b].score; });
-  std::size_t tp = 0, fp = 0;
-  double previous_recall = 0;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    (correct[order[k]] != 0 ? tp : fp) += 1;
-    const bool last_of_score = k + 1 == order.size() || predictions[order[k + 1]].score != predictions[order[k]].score;
-    if (!last_of_score) continue;
-    PrPoint point{predictions[order[k]].score, static_cast<double>(tp) / static_cast<double>(tp + fp), ratio(tp)};
-    m.auc += (point.recall - previous_recall) * point.precision;
-    previous_recall = point.recall;
-    if (fp == 0) m.recall_at_100_precision = point.recall;
-    m.curve.push_back(point);
-  }
+  auto sweep = sweep_precision_recall(scores, accepted_correct, m.queries_with_match);
+  m.curve = std::move(sweep.curve);
+  m.auc = sweep.auc;
+  m.recall_at_100_precision = sweep.recall_at_100_precision;
   return m;
 }
 

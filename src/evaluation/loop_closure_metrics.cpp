@@ -7,6 +7,27 @@
 
 namespace seqtopo::evaluation {
 
+PrSweep sweep_precision_recall(const std::vector<float>& scores, const std::vector<bool>& correct, std::size_t positives) {
+  if (scores.size() != correct.size()) throw std::invalid_argument("one correctness flag per score needed");
+  std::vector<std::size_t> order(scores.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return scores[a] > scores[b]; });
+  PrSweep sweep;
+  std::size_t tp = 0, fp = 0;
+  double previous_recall = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    (correct[order[k]] ? tp : fp) += 1;
+    if (k + 1 < order.size() && scores[order[k + 1]] == scores[order[k]]) continue;  // not the last of this score
+    PrPoint point{scores[order[k]], static_cast<double>(tp) / static_cast<double>(tp + fp),
+                  positives == 0 ? 0.0 : static_cast<double>(tp) / static_cast<double>(positives)};
+    sweep.auc += (point.recall - previous_recall) * point.precision;
+    previous_recall = point.recall;
+    if (fp == 0) sweep.recall_at_100_precision = point.recall;
+    sweep.curve.push_back(point);
+  }
+  return sweep;
+}
+
 std::vector<ScoredPair> best_pair_per_image(const std::vector<ScoredPair>& pairs) {
   std::map<std::size_t, ScoredPair> best;
   for (const auto& p : pairs) {
@@ -55,25 +76,12 @@ LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, 
   finish(m.tp, m.fp, m.precision, m.recall);
   m.f1 = m.precision + m.recall == 0 ? 0.0 : 2 * m.precision * m.recall / (m.precision + m.recall);
 
-  // Sweep: detections by decreasing score; a threshold admits every detection scoring >= it.
-  std::vector<std::size_t> order(detections.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return detections[a].score > detections[b].score;
-  });
-  std::size_t tp = 0, fp = 0;
-  double previous_recall = 0;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    (correct[order[k]] ? tp : fp) += 1;
-    const bool last_of_score = k + 1 == order.size() || detections[order[k + 1]].score != detections[order[k]].score;
-    if (!last_of_score) continue;
-    PrPoint point{detections[order[k]].score, 0, 0};
-    finish(tp, fp, point.precision, point.recall);
-    m.auc += (point.recall - previous_recall) * point.precision;
-    previous_recall = point.recall;
-    if (fp == 0) m.recall_at_100_precision = point.recall;
-    m.curve.push_back(point);
-  }
+  std::vector<float> scores;
+  for (const auto& d : detections) scores.push_back(d.score);
+  auto sweep = sweep_precision_recall(scores, correct, m.images_with_partner);
+  m.curve = std::move(sweep.curve);
+  m.auc = sweep.auc;
+  m.recall_at_100_precision = sweep.recall_at_100_precision;
   return m;
 }
 

@@ -19,8 +19,14 @@ PruningResult prune_per_column(const std::vector<align::LocalAlignment>& alignme
   auto better = [&](std::size_t x, std::size_t y) {  // is alignment x better than y?
     const auto& ax = alignments[x];
     const auto& ay = alignments[y];
-    if (ax.pairs.size() != ay.pairs.size()) return ax.pairs.size() > ay.pairs.size();
-    if (ax.score != ay.score) return ax.score > ay.score;
+    const bool longer = ax.pairs.size() > ay.pairs.size(), same_length = ax.pairs.size() == ay.pairs.size();
+    if (config.rank == PruningConfig::Rank::score_then_length) {
+      if (ax.score != ay.score) return ax.score > ay.score;
+      if (!same_length) return longer;
+    } else {
+      if (!same_length) return longer;
+      if (ax.score != ay.score) return ax.score > ay.score;
+    }
     return x < y;
   };
   for (std::size_t k = 0; k < alignments.size(); ++k) {

@@ -65,10 +65,12 @@ TEST(PaperExample, PruningRemovesTheInconsistentAlignment) {
   EXPECT_NE(labels[26], labels[5]);
 }
 
-TEST(Pruning, LongestAlignmentWinsEachColumnAndPartialCoverage) {
+TEST(Pruning, PaperRuleLongestAlignmentWinsEachColumnAndPartialCoverage) {
   // A long alignment over columns 0..9 and a short one over columns 8..11 (overlap 8..9).
   const std::vector<LocalAlignment> alignments = {diagonal(30, 8, 4, 9), diagonal(20, 0, 10, 6)};
-  const auto pruned = prune_per_column(alignments);
+  PruningConfig paper;
+  paper.rank = PruningConfig::Rank::length_then_score;
+  const auto pruned = prune_per_column(alignments, paper);
   // Columns 8, 9 go to the longer alignment (index 1) despite its lower score; the short one keeps
   // columns 10, 11 = half of its pairs, which meets the default 0.5 fraction.
   EXPECT_EQ(pruned.kept, (std::vector<bool>{true, true}));
@@ -79,11 +81,22 @@ TEST(Pruning, LongestAlignmentWinsEachColumnAndPartialCoverage) {
   EXPECT_FALSE(pairs.count({30, 8}));
   EXPECT_TRUE(pairs.count({28, 8}));
 
-  PruningConfig strict;
-  strict.min_retained_fraction = 0.75;
-  const auto strict_pruned = prune_per_column(alignments, strict);
+  paper.min_retained_fraction = 0.75;
+  const auto strict_pruned = prune_per_column(alignments, paper);
   EXPECT_EQ(strict_pruned.kept, (std::vector<bool>{false, true}));
   for (const auto& p : strict_pruned.pairs) EXPECT_EQ(p.alignment, 1U);
+}
+
+TEST(Pruning, DefaultRuleScoreFirstThenLength) {
+  // The same pair of alignments: by default the higher score (index 0) takes the shared columns 8, 9,
+  // and the long one keeps 8 of its 10 pairs.
+  const std::vector<LocalAlignment> alignments = {diagonal(30, 8, 4, 9), diagonal(20, 0, 10, 6)};
+  const auto pruned = prune_per_column(alignments);
+  EXPECT_EQ(pruned.kept, (std::vector<bool>{true, true}));
+  EXPECT_EQ(pruned.retained_count, (std::vector<std::size_t>{4, 8}));
+  // Equal (capped) scores: the longest wins, as in the paper.
+  const std::vector<LocalAlignment> capped = {diagonal(30, 8, 4, 40), diagonal(20, 0, 10, 40)};
+  EXPECT_EQ(prune_per_column(capped).retained_count, (std::vector<std::size_t>{2, 10}));
 }
 
 TEST(Pruning, GapColumnStillClaimed) {

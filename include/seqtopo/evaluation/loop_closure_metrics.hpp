@@ -31,6 +31,16 @@ struct LoopClosureMetrics {
   std::vector<PrPoint> curve;           // by decreasing threshold
 };
 
+// The precision-recall sweep shared by loop closures and localization: detections sorted by
+// decreasing score, one curve point per distinct score (a threshold admits every score >= it),
+// AUC as average precision, and the highest recall with no false positive.
+struct PrSweep {
+  std::vector<PrPoint> curve;  // by decreasing threshold
+  double auc = 0, recall_at_100_precision = 0;
+};
+// scores[k] and correct[k] describe detection k; `positives` is the recall denominator.
+PrSweep sweep_precision_recall(const std::vector<float>& scores, const std::vector<bool>& correct, std::size_t positives);
+
 // Same-place relation of the ground truth (symmetric).
 using SamePlace = std::function<bool(std::size_t, std::size_t)>;
 

@@ -8,8 +8,13 @@
 //  * An alignment covers column j when b_begin <= j < b_end, whether or not it has a pair in that
 //    column (a gap over j still claims it: the longer alignment says j was skipped, so a shorter
 //    alignment pairing j is not trusted there).
-//  * In each column the winner is the covering alignment with the most pairs; ties go to the higher
-//    score, then to the earlier alignment in the input order (the engine's best-first order).
+//  * In each column one covering alignment wins. The paper keeps "the longest matching subsequence"
+//    (Rank::length_then_score: most pairs, then higher score). The default ranks by score first and
+//    uses length to break ties (Rank::score_then_length): with the score cap, every confident
+//    alignment saturates at the cap, so among those the longest still wins as in the paper, but a
+//    long, weak alignment through aliased stretches can no longer take the columns of a confident
+//    one (measured on the simulator's figure-eight, where that happens). Remaining ties go to the
+//    earlier alignment in the input order (the engine's best-first order).
 //  * Every pair (i, j) of a non-winning alignment in column j is dropped. An alignment may thus lose
 //    only some of its pairs; it counts as kept when at least min_retained_fraction of its pairs
 //    survive (and at least one does). Pairs of alignments that are not kept are dropped as well, so
@@ -22,6 +27,8 @@
 namespace seqtopo::mapping {
 
 struct PruningConfig {
+  enum class Rank { score_then_length, length_then_score };
+  Rank rank = Rank::score_then_length;
   double min_retained_fraction = 0.5;
 };
 

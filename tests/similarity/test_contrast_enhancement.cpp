@@ -1,0 +1,70 @@
+// Local contrast enhancement against its definition computed directly, and its invariants.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "seqtopo/similarity/contrast_enhancement.hpp"
+
+namespace seqtopo::similarity {
+namespace {
+
+SimilarityMatrix random_matrix(std::size_t rows, std::size_t cols, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-2.0F, 3.0F);
+  SimilarityMatrix m(rows, cols);
+  for (auto& v : m.values) v = u(rng);
+  return m;
+}
+
+TEST(ContrastEnhancement, EqualsDirectDefinition) {
+  for (unsigned seed = 0; seed < 20; ++seed) {
+    const std::size_t rows = 3 + seed % 7, cols = 5 + seed % 11, window = 1 + seed % 4;
+    const auto s = random_matrix(rows, cols, seed);
+    const auto e = enhance_contrast(s, window);
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (std::size_t c = 0; c < cols; ++c) {
+        double sum = 0, count = 0;
+        for (std::size_t k = 0; k < cols; ++k) {
+          if (k + window >= c && k <= c + window) {
+            sum += s(r, k);
+            count += 1;
+          }
+        }
+        const double mean = sum / count;
+        double var = 0;
+        for (std::size_t k = 0; k < cols; ++k) {
+          if (k + window >= c && k <= c + window) var += (s(r, k) - mean) * (s(r, k) - mean);
+        }
+        const double expected = (s(r, c) - mean) / std::sqrt(var / count);
+        EXPECT_NEAR(e(r, c), expected, 1e-4 * (1 + std::abs(expected))) << r << "," << c;
+      }
+    }
+  }
+}
+
+TEST(ContrastEnhancement, SymmetricFormIsSymmetricAndOffset) {
+  const auto s = random_matrix(12, 12, 3);
+  const auto e = enhance_contrast(s, 3);
+  const auto sym = enhance_contrast_symmetric(s, 3, 0.75F);
+  for (std::size_t i = 0; i < 12; ++i) {
+    for (std::size_t j = 0; j < 12; ++j) {
+      EXPECT_EQ(sym(i, j), sym(j, i));
+      EXPECT_FLOAT_EQ(sym(i, j), 0.5F * (e(i, j) + e(j, i)) - 0.75F);
+    }
+  }
+  EXPECT_THROW(enhance_contrast_symmetric(random_matrix(3, 4, 1), 2, 0.0F), std::invalid_argument);
+}
+
+TEST(ContrastEnhancement, InvariantToAffineChangesOfARow) {
+  // A row scaled and shifted (a frame that is uniformly brighter) enhances to the same values.
+  auto s = random_matrix(4, 20, 9);
+  const auto before = enhance_contrast(s, 5);
+  for (auto& v : s.row(2)) v = 3.0F * v + 7.0F;
+  const auto after = enhance_contrast(s, 5);
+  for (std::size_t c = 0; c < 20; ++c) EXPECT_NEAR(after(2, c), before(2, c), 1e-4);
+  EXPECT_EQ(enhance_contrast(s, 0), s) << "window 0 leaves the matrix as it is";
+}
+
+}  // namespace
+}  // namespace seqtopo::similarity
