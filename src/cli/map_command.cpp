@@ -202,7 +202,7 @@ void run(MapOptions o) {
   if (kind == image::InputKind::descriptors || kind == image::InputKind::similarity) descriptors.resize(1);
   progress("[1/4] similarity matrix");
   auto t = std::chrono::steady_clock::now();
-  std::vector<SimilarityMatrix> matrices;
+  auto& matrices = run.matrices;
   for (auto descriptor : descriptors) {
     auto config = settings.similarity;
     config.descriptor = descriptor;
@@ -210,7 +210,7 @@ void run(MapOptions o) {
     run.descriptor_names.emplace_back(kind == image::InputKind::similarity ? "similarity.npy"
                                       : kind == image::InputKind::descriptors ? "descriptors.npy"
                                                                               : image::descriptor_name(descriptor));
-    matrices.push_back(run.similarities.back().similarity);
+    matrices.push_back(std::move(run.similarities.back().similarity));  // kept once, in run.matrices
     progress(fmt::format("      {}: {} images, kappa {:.4g}", run.descriptor_names.back(), matrices.back().rows,
                          run.similarities.back().kappa));
   }

@@ -141,7 +141,7 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
   for (const auto& p : result.pruning.pairs) csv += fmt::format("{},{},{}\n", p.i, p.j, p.score);
   out.write("loop_closures.csv", csv);
 
-  out.write("similarity.npy", io::encode_npy(run.similarities.front().similarity));
+  out.write("similarity.npy", io::encode_npy(run.matrices.front()));
   out.write("scores.npy", io::encode_npy(result.scores));
   // The picture shows what was aligned: S itself, or its contrast-enhanced form (see the report).
   out.write("similarity.png", plot::encode_png(plot::matrix_image(result.scores, alignment_overlays(run))));

@@ -22,7 +22,8 @@ struct MapRun {
   std::string input, preset;
   mapping::MapConfig map_config;
   bool paper_metric = false;
-  std::vector<image::SimilarityResult> similarities;  // one per descriptor
+  std::vector<image::SimilarityResult> similarities;  // one per descriptor (kappa, names, timings)
+  std::vector<SimilarityMatrix> matrices;             // their matrices, moved out of `similarities`
   std::vector<std::string> descriptor_names;
   mapping::MapResult result;
   std::vector<metric::Pose2> odometry, ekf, pose_graph;
