@@ -8,6 +8,7 @@
 #include <random>
 
 #include "seqtopo/image/image_io.hpp"
+#include "common/temp_dir.hpp"
 #include "seqtopo/io/input_error.hpp"
 
 namespace seqtopo::image {
@@ -15,14 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("seqtopo-io-test-" + std::to_string(std::random_device{}()));
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+using seqtopo::testing::TempDir;
 
 template <typename F>
 void expect_error_naming(const fs::path& file, F&& f) {

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "seqtopo/image/sequence_input.hpp"
+#include "common/temp_dir.hpp"
 #include "seqtopo/io/input_error.hpp"
 
 namespace seqtopo::image {
@@ -14,15 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("seqtopo-image-test-" + std::to_string(std::random_device{}()));
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  void touch(const std::string& name) const { std::ofstream(path / name) << "x"; }
-};
+using seqtopo::testing::TempDir;
 
 TEST(NaturalSort, NumbersByValue) {
   std::vector<std::string> names{"10.jpg", "2.jpg", "1.jpg", "img-010.png", "img-9.png", "B.png", "a.png", "1.jpg.bak"};

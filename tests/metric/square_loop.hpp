@@ -8,9 +8,22 @@
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "seqtopo/metric/pose2.hpp"
 
 namespace seqtopo::metric::testing {
+
+// Two trajectories equal pose by pose within tol [m, rad].
+inline void expect_same_poses(const std::vector<Pose2>& a, const std::vector<Pose2>& b, double tol) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i].x, b[i].x, tol) << "pose " << i;
+    EXPECT_NEAR(a[i].y, b[i].y, tol) << "pose " << i;
+    EXPECT_NEAR(wrap_angle(a[i].theta - b[i].theta), 0.0, tol) << "pose " << i;
+  }
+}
+
 
 struct SquareLoop {
   std::vector<Pose2> truth;

@@ -10,27 +10,18 @@
 namespace seqtopo::metric {
 namespace {
 
-void expect_same_poses(const std::vector<Pose2>& a, const std::vector<Pose2>& b, double tol) {
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_NEAR(a[i].x, b[i].x, tol) << "pose " << i;
-    EXPECT_NEAR(a[i].y, b[i].y, tol) << "pose " << i;
-    EXPECT_NEAR(wrap_angle(a[i].theta - b[i].theta), 0.0, tol) << "pose " << i;
-  }
-}
-
 TEST(EkfMap, WithoutRevisitsTheMapIsTheOdometry) {
   const auto w = testing::square_loop();
   std::vector<int> unique(w.odometry.size());
   for (std::size_t i = 0; i < unique.size(); ++i) unique[i] = static_cast<int>(i);
   const EkfResult r = ekf_map(w.odometry, unique);
-  expect_same_poses(r.robot, w.odometry, 1e-9);
-  expect_same_poses(r.images, w.odometry, 1e-9);
+  testing::expect_same_poses(r.robot, w.odometry, 1e-9);
+  testing::expect_same_poses(r.images, w.odometry, 1e-9);
   EXPECT_EQ(r.landmarks.size(), w.odometry.size());
 
   // Negative labels are "no place": nothing is observed either.
   const EkfResult none = ekf_map(w.odometry, std::vector<int>(w.odometry.size(), -1));
-  expect_same_poses(none.robot, w.odometry, 1e-9);
+  testing::expect_same_poses(none.robot, w.odometry, 1e-9);
   EXPECT_TRUE(none.landmarks.empty());
 }
 
@@ -62,7 +53,7 @@ TEST(EkfMap, Deterministic) {
   const auto w = testing::square_loop(11);
   const EkfResult a = ekf_map(w.odometry, w.labels);
   const EkfResult b = ekf_map(w.odometry, w.labels);
-  expect_same_poses(a.robot, b.robot, 0.0);
+  testing::expect_same_poses(a.robot, b.robot, 0.0);
 }
 
 TEST(EkfMap, EmptyInputAndMisuse) {

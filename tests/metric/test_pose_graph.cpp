@@ -11,18 +11,9 @@
 namespace seqtopo::metric {
 namespace {
 
-void expect_same_poses(const std::vector<Pose2>& a, const std::vector<Pose2>& b, double tol) {
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_NEAR(a[i].x, b[i].x, tol) << "pose " << i;
-    EXPECT_NEAR(a[i].y, b[i].y, tol) << "pose " << i;
-    EXPECT_NEAR(wrap_angle(a[i].theta - b[i].theta), 0.0, tol) << "pose " << i;
-  }
-}
-
 TEST(PoseGraph, WithoutLoopPairsTheGraphIsTheOdometry) {
   const auto w = testing::square_loop();
-  expect_same_poses(pose_graph(w.odometry, {}), w.odometry, 1e-9);
+  testing::expect_same_poses(pose_graph(w.odometry, {}), w.odometry, 1e-9);
 }
 
 TEST(PoseGraph, SquareLoopTwiceCorrectsTheDrift) {
@@ -63,7 +54,7 @@ TEST(PoseGraph, RobustLossSurvivesAWrongPair) {
 
 TEST(PoseGraph, DeterministicAndLossesSelectable) {
   const auto w = testing::square_loop(11);
-  expect_same_poses(pose_graph(w.odometry, w.pairs), pose_graph(w.odometry, w.pairs), 0.0);
+  testing::expect_same_poses(pose_graph(w.odometry, w.pairs), pose_graph(w.odometry, w.pairs), 0.0);
   for (const char* loss : {"none", "huber", "cauchy"}) {
     PoseGraphConfig c;
     c.loss = loss;
@@ -83,7 +74,7 @@ TEST(PoseGraph, Misuse) {
   c.loop_sigma_xy = -1;
   EXPECT_THROW(pose_graph(odo, {}, c), std::invalid_argument);
   EXPECT_TRUE(pose_graph({}, {}).empty());
-  expect_same_poses(pose_graph({{1, 2, 3}}, {{0, 0}}), {{1, 2, 3}}, 0.0);
+  testing::expect_same_poses(pose_graph({{1, 2, 3}}, {{0, 0}}), {{1, 2, 3}}, 0.0);
 }
 
 }  // namespace

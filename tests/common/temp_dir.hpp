@@ -1,0 +1,22 @@
+#pragma once
+// A scratch folder for one test, removed with everything in it when the test ends.
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+namespace seqtopo::testing {
+
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    path = std::filesystem::temp_directory_path() / ("seqtopo-test-" + std::to_string(std::random_device{}()));
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  void touch(const std::string& name) const { std::ofstream(path / name) << "x"; }
+};
+
+}  // namespace seqtopo::testing
