@@ -1,0 +1,77 @@
+// The simulator feeding the other commands, as a user chains them: the localization paper's rooms
+// test (simulate -> fingerprint -> match-strings) and a mapping run with odometry on a figure-eight.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/temp_dir.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+
+int run(const std::string& args) {
+  const int raw = std::system((std::string(SEQTOPO_CLI) + " " + args + " >/dev/null 2>&1 </dev/null").c_str());
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+std::size_t data_lines(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(in, line)) n += !line.empty() && line[0] != '#';
+  return n;
+}
+
+TEST(SimulatedWorlds, RoomsThroughFingerprintsAndStringMatching) {
+  seqtopo::testing::TempDir dir;
+  const std::string world = (dir.path / "rooms").string();
+  ASSERT_EQ(run("simulate --scenario rooms --no-images --out " + world), 0);
+  ASSERT_EQ(run("fingerprint " + world + "/panoramas --positions " + world + "/points.csv --role map --out " + world + "/map.tsv"), 0);
+  ASSERT_EQ(run("fingerprint " + world + "/panoramas --positions " + world + "/points.csv --role test --out " + world + "/test.tsv"), 0);
+  EXPECT_EQ(data_lines(world + "/map.tsv"), 10U);   // ten rooms, one map point each
+  EXPECT_EQ(data_lines(world + "/test.tsv"), 30U);  // three test points per room
+  for (const char* algorithm : {"A", "B", "C"}) {
+    const std::string out = world + "/out-" + algorithm;
+    ASSERT_EQ(run("match-strings --db " + world + "/map.tsv --queries " + world + "/test.tsv --algorithm " + algorithm +
+                  " --adjacency " + world + "/adjacency.csv --out " + out),
+              0)
+        << algorithm;
+    std::ifstream in(out + "/metrics.json");
+    const auto metrics = nlohmann::json::parse(in);
+    EXPECT_EQ(metrics.at("queries").get<int>(), 30);
+    // The paper reports 90-97 % topologically correct on its rooms; separate rooms must be easy.
+    EXPECT_GE(metrics.at("topological").at("correct_percent").get<double>(), 80.0) << algorithm;
+    EXPECT_GE(data_lines(out + "/matches.tsv"), 30U);
+  }
+}
+
+TEST(SimulatedWorlds, FigureEightMapsWithOdometry) {
+  seqtopo::testing::TempDir dir;
+  const std::string world = (dir.path / "eight").string();
+  ASSERT_EQ(run("simulate --scenario figure-eight --no-images --interval 0.5 --panorama-width 120 --panorama-height 24 --supersample 1 "
+                "--out " + world),
+            0);
+  const std::size_t frames = data_lines(world + "/odometry.csv") - 1;  // minus the header
+  ASSERT_GT(frames, 80U);
+  EXPECT_EQ(data_lines(world + "/poses.csv") - 1, frames);
+  EXPECT_EQ(data_lines(world + "/places.csv") - 1, frames);
+  std::size_t panoramas = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(world + "/panoramas")) ++panoramas;
+  EXPECT_EQ(panoramas, frames);
+
+  const std::string out = (dir.path / "map").string();
+  ASSERT_EQ(run("map " + world + "/panoramas --odometry " + world + "/odometry.csv --ground-truth " + world +
+                "/ground_truth.png --gt-places " + world + "/places.csv --gt-poses " + world + "/poses.csv --out " + out),
+            0);
+  EXPECT_TRUE(fs::exists(out + "/metric_map.png"));
+  std::ifstream in(out + "/metrics.json");
+  const auto metrics = nlohmann::json::parse(in);
+  for (const char* key : {"ate_odometry", "ate_ekf", "ate_pose_graph"}) EXPECT_GE(metrics.at("metric").at(key).get<double>(), 0.0);
+  EXPECT_EQ(metrics.at("topology").at("junctions_true").get<int>(), 2);  // the figure-eight's merge and branch
+}
+
+}  // namespace
