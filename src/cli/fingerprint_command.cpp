@@ -12,6 +12,7 @@
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/image/sequence_input.hpp"
 #include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/io/csv.hpp"
 #include "seqtopo/io/input_error.hpp"
 #include "seqtopo/strings/strings_file.hpp"
 
@@ -31,26 +32,9 @@ struct PointRow {
 
 // points.csv as the simulator writes it: header id,role,x,y,place.
 std::map<std::string, PointRow> read_points(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw io::InputError(path, "cannot open file");
   std::map<std::string, PointRow> rows;
-  std::string line;
-  std::size_t line_no = 0;
-  bool header = true;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line.front() == '#') continue;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    for (std::string field; std::getline(ss, field, ',');) f.push_back(field);
-    const std::string where = fmt::format("{}:{}", path, line_no);
-    if (header) {
-      header = false;
-      if (f != std::vector<std::string>{"id", "role", "x", "y", "place"}) throw io::InputError(where, "expected the header id,role,x,y,place");
-      continue;
-    }
-    if (f.size() != 5) throw io::InputError(where, "expected 5 comma-separated fields (id,role,x,y,place)");
+  for (const auto& r : io::read_csv(path, {"id", "role", "x", "y", "place"})) {
+    const auto& f = r.fields;
     PointRow row{f[1], f[4]};
     try {
       std::size_t used_x = 0, used_y = 0;
@@ -58,12 +42,11 @@ std::map<std::string, PointRow> read_points(const std::string& path) {
       row.y = std::stod(f[3], &used_y);
       if (used_x != f[2].size() || used_y != f[3].size()) throw std::invalid_argument("trailing characters");
     } catch (const std::exception&) {
-      throw io::InputError(where, "x and y must be numbers");
+      throw io::InputError(r.where, "x and y must be numbers");
     }
-    if (f[0].empty() || row.place.empty()) throw io::InputError(where, "empty id or place");
-    if (!rows.emplace(f[0], row).second) throw io::InputError(where, "repeated id '" + f[0] + "'");
+    if (f[0].empty() || row.place.empty()) throw io::InputError(r.where, "empty id or place");
+    if (!rows.emplace(f[0], row).second) throw io::InputError(r.where, "repeated id '" + f[0] + "'");
   }
-  if (header) throw io::InputError(path, "empty file (expected the header id,role,x,y,place)");
   return rows;
 }
 

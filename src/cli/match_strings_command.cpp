@@ -9,6 +9,7 @@
 
 #include "command_registry.hpp"
 #include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/io/csv.hpp"
 #include "seqtopo/io/input_error.hpp"
 #include "seqtopo/strings/localization.hpp"
 #include "seqtopo/strings/strings_file.hpp"
@@ -47,32 +48,13 @@ std::vector<strings::StringRecord> read_strings(const std::string& path) {
 std::vector<std::vector<bool>> read_adjacency(const std::string& path, const std::map<std::string, std::size_t>& queries,
                                               const std::map<std::string, std::size_t>& db) {
   std::vector<std::vector<bool>> adjacent(queries.size(), std::vector<bool>(db.size(), false));
-  std::istringstream in(read_text(path));
-  std::string line;
-  std::size_t line_no = 0;
-  bool header = true;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line.front() == '#') continue;
-    const auto comma = line.find(',');
-    const std::string where = fmt::format("{}:{}", path, line_no);
-    if (comma == std::string::npos || line.find(',', comma + 1) != std::string::npos) {
-      throw io::InputError(where, "expected test_id,map_id");
-    }
-    const std::string test = line.substr(0, comma), map = line.substr(comma + 1);
-    if (header) {
-      header = false;
-      if (test != "test_id" || map != "map_id") throw io::InputError(where, "expected the header test_id,map_id");
-      continue;
-    }
-    const auto q = queries.find(test);
-    const auto d = db.find(map);
+  for (const auto& row : io::read_csv(path, {"test_id", "map_id"})) {
+    const auto q = queries.find(row.fields[0]);
+    const auto d = db.find(row.fields[1]);
     // Pairs naming points of another data set (e.g. a map point absent from this database) are skipped.
     if (q == queries.end() || d == db.end()) continue;
     adjacent[q->second][d->second] = true;
   }
-  if (header) throw io::InputError(path, "empty file (expected the header test_id,map_id)");
   return adjacent;
 }
 

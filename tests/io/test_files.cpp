@@ -109,3 +109,32 @@ TEST_F(Files, PlacesAndJunctionsCsv) {
 
 }  // namespace
 }  // namespace seqtopo::io
+
+#include "seqtopo/io/csv.hpp"
+
+namespace seqtopo::io {
+namespace {
+
+TEST_F(Files, CsvRowsUnderAnExactHeader) {
+  const auto path = write("c.csv", "# made by hand\na,b\r\n1,2\n\n# comment\nx,\n");
+  const auto rows = read_csv(path, {"a", "b"});
+  ASSERT_EQ(rows.size(), 2U);
+  EXPECT_EQ(rows[0].fields, (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(rows[0].where, path.string() + ":3");
+  EXPECT_EQ(rows[1].fields, (std::vector<std::string>{"x", ""})) << "a trailing empty field is a field";
+  const std::vector<std::tuple<std::string, std::string, std::string>> bad = {
+      {"hdr.csv", "a,c\n1,2\n", ":1"}, {"few.csv", "a,b\n1\n", ":2"}, {"many.csv", "a,b\n1,2,3\n", ":2"}};
+  for (const auto& [name, text, subject] : bad) {
+    try {
+      read_csv(write(name, text), {"a", "b"});
+      FAIL() << name;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.subject(), (dir_ / name).string() + subject) << e.what();
+    }
+  }
+  EXPECT_THROW(read_csv(write("empty.csv", "# nothing\n"), {"a", "b"}), InputError);
+  EXPECT_THROW(read_csv(dir_ / "missing.csv", {"a", "b"}), InputError);
+}
+
+}  // namespace
+}  // namespace seqtopo::io
