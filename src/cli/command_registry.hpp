@@ -2,9 +2,12 @@
 // Subcommands register themselves here (one source file each under src/cli/), so adding a command
 // touches only its own file.
 #include <CLI/CLI.hpp>
+#include <stdexcept>
 #include <functional>
 #include <string>
 #include <vector>
+
+#include "seqtopo/io/input_error.hpp"
 
 namespace seqtopo::cli {
 
@@ -20,6 +23,16 @@ std::vector<CommandSpec>& command_registry();
 struct RegisterCommand {
   explicit RegisterCommand(CommandSpec spec) { command_registry().push_back(std::move(spec)); }
 };
+
+// Runs parse(); a std::invalid_argument from it becomes an InputError naming the option.
+template <typename F>
+auto option_value(const char* option, F&& parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(option, e.what());
+  }
+}
 
 // Number of worker threads to use: `requested`, or every core when 0.
 unsigned resolve_threads(unsigned requested);

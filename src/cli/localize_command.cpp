@@ -47,15 +47,6 @@ struct LocalizeOptions {
   unsigned threads = 0;
 };
 
-template <typename F>
-auto option_value(const char* option, F&& parse) {
-  try {
-    return parse();
-  } catch (const std::invalid_argument& e) {
-    throw io::InputError(option, e.what());
-  }
-}
-
 // One query frame's answer, whichever mode produced it.
 struct Answer {
   std::optional<std::size_t> map;

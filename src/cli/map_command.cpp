@@ -73,21 +73,16 @@ Settings resolve_settings(const MapOptions& o) {
   } else if (o.preset != "default") {
     throw io::InputError("--preset", "unknown preset '" + o.preset + "' (paper or default)");
   }
-  try {
-    if (o.descriptor) {
-      s.descriptors.clear();
-      std::stringstream list(*o.descriptor);
-      for (std::string name; std::getline(list, name, ',');) s.descriptors.push_back(image::parse_descriptor(name));
-      if (s.descriptors.empty()) throw std::invalid_argument("no descriptor given");
-    }
-  } catch (const std::invalid_argument& e) {
-    throw io::InputError("--descriptor", e.what());
+  if (o.descriptor) {
+    s.descriptors = option_value("--descriptor", [&] {
+      std::vector<image::Descriptor> list;
+      std::stringstream names(*o.descriptor);
+      for (std::string name; std::getline(names, name, ',');) list.push_back(image::parse_descriptor(name));
+      if (list.empty()) throw std::invalid_argument("no descriptor given");
+      return list;
+    });
   }
-  try {
-    if (o.metric_name) s.similarity.metric = similarity::parse_metric(*o.metric_name);
-  } catch (const std::invalid_argument& e) {
-    throw io::InputError("--metric", e.what());
-  }
+  if (o.metric_name) s.similarity.metric = option_value("--metric", [&] { return similarity::parse_metric(*o.metric_name); });
   if (o.kappa && *o.kappa != "auto") {
     try {
       s.similarity.kappa = std::stof(*o.kappa);

@@ -25,15 +25,6 @@ struct SimilarityOptions {
   bool descriptor_given = false;
 };
 
-template <typename F>
-auto option_value(const char* option, F&& parse) {
-  try {
-    return parse();
-  } catch (const std::invalid_argument& e) {
-    throw io::InputError(option, e.what());
-  }
-}
-
 void run(const SimilarityOptions& o) {
   image::SimilarityConfig config;
   const auto kind = option_value("--input-kind", [&] { return image::parse_input_kind(o.input_kind); });
