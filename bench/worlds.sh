@@ -5,6 +5,8 @@
 #   bench/worlds.sh [OUT_DIR]            # default build/worlds
 #   SEQTOPO=path/to/seqtopo SEED=3 SCENARIOS="figure-eight zigzag" MAP_ARGS="--preset paper" \
 #     SIM_ARGS="--lighting-change 0" bench/worlds.sh
+# The default MAP_ARGS fuse the joint histogram with the heading-invariant panorama signature: the robot
+# records 360-degree panoramas, and several scenarios revisit paths in the opposite direction.
 set -euo pipefail
 
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -12,7 +14,7 @@ out="${1:-$here/build/worlds}"
 seqtopo="${SEQTOPO:-$(ls -t "$here"/build/*/src/seqtopo 2>/dev/null | head -1)}"
 seed="${SEED:-1}"
 scenarios="${SCENARIOS:-figure-eight corridor-reverse nested-loops zigzag aliasing}"
-map_args="${MAP_ARGS:-}"
+map_args="${MAP_ARGS:---descriptor joint-histogram,panorama}"
 sim_args="${SIM_ARGS:-}"
 [[ -x "$seqtopo" ]] || { echo "worlds.sh: no seqtopo binary (set SEQTOPO)" >&2; exit 1; }
 mkdir -p "$out"
@@ -36,8 +38,8 @@ done
 python3 - "$out" $scenarios <<'PY'
 import json, sys, os
 out, names = sys.argv[1], sys.argv[2:]
-head = ["scenario", "frames", "gt pairs", "tp", "fp", "fn", "precision", "recall", "F1", "AUC", "R@100P",
-        "ARI", "junctions t/f/m", "ATE odo", "ATE ekf", "ATE pg", "map s"]
+head = ["scenario", "frames", "tp/fp/fn", "precision", "recall", "F1", "AUC", "R@100P", "SeqSLAM F1",
+        "ARI", "false/missed merges", "junctions t/f/m", "vetoed", "ATE odo", "ATE ekf", "ATE pg", "map s"]
 rows = []
 def f(v, d=3):
     return "-" if v is None else (f"{v:.{d}f}" if isinstance(v, float) else str(v))
@@ -45,13 +47,15 @@ for s in names:
     sim = json.load(open(os.path.join(out, s, "sim", "simulation.json")))
     path = os.path.join(out, s, "map", "metrics.json")
     m = json.load(open(path)) if os.path.exists(path) else {}
-    lc, topo, met = m.get("loop_closure", {}), m.get("topology", {}), m.get("metric", {})
+    lc, topo, met, base = m.get("loop_closure", {}), m.get("topology", {}), m.get("metric", {}), m.get("baseline", {})
+    apath = os.path.join(out, s, "map", "alignments.json")
+    vetoed = len(json.load(open(apath)).get("rejected_by_odometry", [])) if os.path.exists(apath) else None
     secs = open(os.path.join(out, s, "map", "seconds.txt")).read().strip() if os.path.exists(os.path.join(out, s, "map", "seconds.txt")) else "-"
-    rows.append([s, sim["frames"], sim["gt_pairs"], lc.get("tp"), lc.get("fp"), lc.get("fn"), lc.get("precision"),
-                 lc.get("recall"), lc.get("f1"), lc.get("auc"), lc.get("recall_at_100_precision"),
-                 topo.get("adjusted_rand_index"),
+    rows.append([s, sim["frames"], "/".join(f(lc.get(k)) for k in ("tp", "fp", "fn")), lc.get("precision"), lc.get("recall"), lc.get("f1"), lc.get("auc"),
+                 lc.get("recall_at_100_precision"), base.get("f1"), topo.get("adjusted_rand_index"),
+                 "/".join(f(topo.get(k)) for k in ("false_merges", "missed_merges")),
                  "/".join(f(topo.get(k)) for k in ("junctions_true", "junctions_found", "junctions_matched")),
-                 met.get("ate_odometry"), met.get("ate_ekf"), met.get("ate_pose_graph"), secs])
+                 vetoed, met.get("ate_odometry"), met.get("ate_ekf"), met.get("ate_pose_graph"), secs])
 cells = [head] + [[f(v) for v in r] for r in rows]
 widths = [max(len(c[i]) for c in cells) for i in range(len(head))]
 print("| " + " | ".join(h.ljust(w) for h, w in zip(head, widths)) + " |")

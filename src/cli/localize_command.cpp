@@ -166,7 +166,7 @@ struct Describer {
   image::SimilarityConfig config;
   FrameDescriptor operator()(const RgbImage& image) const {
     if (descriptor == image::Descriptor::joint_histogram) return image::joint_histogram(image, config.joint_histogram);
-    return image::patch_thumbnail(image, config.patch);
+    return image::dense_descriptor(image, descriptor, config);
   }
 };
 
@@ -505,7 +505,7 @@ const RegisterCommand registered{{
       app.add_option("--out", o->out_dir, "output folder")->capture_default_str();
       app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
       app.add_option("--every", o->every, "video: keep every K-th frame")->capture_default_str();
-      app.add_option("--descriptor", o->descriptor, "patch|joint-histogram|npy (descriptors.npy inputs use their rows)")
+      app.add_option("--descriptor", o->descriptor, "patch|joint-histogram|panorama|npy (descriptors.npy inputs use their rows)")
           ->capture_default_str();
       app.add_option("--metric", o->metric, "chi2|l1|cosine|sad (default: by descriptor)");
       app.add_option("--kappa", o->kappa, "K > 0 in S = 1 - K * D, or auto (rows are contrast-enhanced, so it rarely matters)");

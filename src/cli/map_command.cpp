@@ -38,7 +38,7 @@ struct MapOptions {
   std::string preset = "default";
   std::optional<std::string> descriptor, metric_name, kappa;
   std::optional<float> gap, threshold;
-  std::optional<std::string> cap;
+  std::optional<std::string> cap, odometry_gate;
   std::optional<std::size_t> min_separation, contrast_window;
   std::optional<float> contrast_offset;
   bool no_reverse = false;
@@ -112,6 +112,19 @@ Settings resolve_settings(const MapOptions& o) {
       }
       if (!(*s.map.cap > 0)) throw io::InputError("--cap", "must be > 0");
     }
+  }
+  if (o.odometry_gate) {
+    s.map.odometry_gate = option_value("--odometry-gate", [&]() -> std::optional<mapping::OdometryGate> {
+      if (*o.odometry_gate == "none") return std::nullopt;
+      mapping::OdometryGate gate;
+      char comma = 0;
+      std::istringstream in(*o.odometry_gate);
+      if (!(in >> gate.base >> comma >> gate.drift) || comma != ',' || !in.eof() || !(gate.base >= 0) || !(gate.drift >= 0)) {
+        throw std::invalid_argument("expected BASE,DRIFT (metres, metres per metre travelled, both >= 0) or none, got '" +
+                                    *o.odometry_gate + "'");
+      }
+      return gate;
+    });
   }
   if (o.min_separation) {
     if (*o.min_separation == 0) throw io::InputError("--min-separation", "must be >= 1");
@@ -215,19 +228,20 @@ void run(MapOptions o) {
 
   progress("[2/4] alignments, pruning, labels, topology");
   t = std::chrono::steady_clock::now();
-  run.result = mapping::build_map(matrices, settings.map);
+  if (!o.odometry.empty() && run.odometry.size() != n) {
+    throw io::InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
+  }
+  run.result = mapping::build_map(matrices, settings.map, run.odometry);
   run.timings.emplace_back("alignment", run.result.seconds_align);
   run.timings.emplace_back("pruning + labels + topology", run.result.seconds_prune_label);
-  progress(fmt::format("      {} alignments, {} kept, {} places, {} junctions", run.result.alignments.size(),
+  progress(fmt::format("      {} alignments ({} contradicted by odometry), {} kept, {} places, {} junctions",
+                       run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),
                        std::count(run.result.pruning.kept.begin(), run.result.pruning.kept.end(), true),
                        run.result.map.places.size(), run.result.map.junctions.size()));
 
   if (!o.odometry.empty()) {
     progress("[3/4] metric picture (EKF and pose graph)");
     t = std::chrono::steady_clock::now();
-    if (run.odometry.size() != n) {
-      throw io::InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
-    }
     run.ekf = metric::ekf_map(run.odometry, run.result.map.labels).images;
     std::vector<std::pair<std::size_t, std::size_t>> loops;
     for (const auto& p : run.result.pruning.pairs) loops.emplace_back(p.i, p.j);
@@ -286,8 +300,11 @@ void run(MapOptions o) {
     if (places.size() != n) throw io::InputError(o.gt_places, fmt::format("has {} rows, the sequence has {} images", places.size(), n));
     const fs::path junctions_file = fs::path(o.gt_places).parent_path() / "junctions.csv";
     const auto true_junctions = fs::exists(junctions_file) ? io::read_junctions_csv(junctions_file) : std::vector<int>{};
+    // Merges of neighbouring true places that the loop-closure ground truth calls the same place are tolerated.
+    const evaluation::Tolerated tolerated =
+        o.ground_truth.empty() ? evaluation::Tolerated{} : load_ground_truth(o, o.ground_truth, n);
     run.topology = evaluation::evaluate_topology(run.result.map.labels, run.result.map.junctions, places, true_junctions,
-                                                 settings.map.min_separation);
+                                                 settings.map.min_separation, 2, tolerated);
   }
   if (!o.gt_poses.empty() && !run.odometry.empty()) {
     const auto truth = io::read_poses_csv(o.gt_poses);
@@ -321,11 +338,15 @@ const RegisterCommand registered{{
       app.add_option("--every", o->every, "video: use every K-th frame")->capture_default_str();
       app.add_option("--preset", o->preset, "paper (joint histogram, chi2, EKF) or default")->capture_default_str();
       app.add_option("--descriptor", o->descriptor,
-                     "joint-histogram|patch, or several separated by commas to fuse them "
+                     "joint-histogram|patch|panorama, or several separated by commas to fuse them "
                      "(default joint-histogram,patch; paper preset joint-histogram)");
       app.add_option("--metric", o->metric_name, "chi2|l1|cosine|sad (default: by descriptor)");
       app.add_option("--kappa", o->kappa, "S = 1 - kappa * D: a number, or auto (from the sequence's own distances)");
       app.add_option("--gap", o->gap, fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
+      app.add_option("--odometry-gate", o->odometry_gate,
+                     fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
+                                 "(metres travelled between them) apart, as BASE,DRIFT, or none (default {},{})",
+                                 mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift));
       app.add_option("--cap", o->cap, fmt::format("cap on the cumulative score, or none (default {})", *mapping::MapConfig{}.cap));
       app.add_option("--threshold", o->threshold,
                      fmt::format("minimum alignment score of a revisit (default {})", mapping::MapConfig{}.threshold));

@@ -44,7 +44,7 @@ constexpr std::size_t kMaxDrawnPlaces = 300;
 
 std::string topology_dot(const mapping::TopologicalMap& map) {
   std::ostringstream dot;
-  dot << "graph topology {\n  graph [overlap=false, splines=true];\n  node [shape=circle, width=0.25, fixedsize=true, "
+  dot << "graph topology {\n  graph [overlap=false, splines=false];\n  node [shape=circle, width=0.25, fixedsize=true, "
          "fontsize=8, style=filled, fillcolor=\"#dddddd\"];\n";
   std::vector<bool> junction(map.places.size(), false);
   for (auto j : map.junctions) junction[j] = true;
@@ -76,14 +76,15 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
   return dot.str();
 }
 
-// Runs Graphviz on a staged .dot file to make the .svg beside it.
+// Runs Graphviz on a staged .dot file to make the .svg beside it. Edges are straight: neato's spline
+// routing takes minutes on a few hundred tangled places. The layout is bounded in time, so a map is never
+// held up by its picture: neato, else sfdp, which is fast at any size.
 void render_svg(const std::filesystem::path& dot_file, const std::filesystem::path& svg_file) {
-  // The layout is bounded in time: a map is never held up by its picture.
-  const std::string command =
-      "timeout 120 dot -Kneato -Tsvg '" + dot_file.string() + "' -o '" + svg_file.string() + "' 2>/dev/null";
-  if (std::system(command.c_str()) != 0) {
-    throw io::InputError("topology.svg", "Graphviz 'dot' failed or is missing (scripts/setup.sh installs graphviz)");
+  const std::string files = " -Tsvg '" + dot_file.string() + "' -o '" + svg_file.string() + "' 2>/dev/null";
+  for (const char* layout : {"timeout 60 dot -Kneato", "timeout 120 dot -Ksfdp"}) {
+    if (std::system((std::string(layout) + files).c_str()) == 0) return;
   }
+  throw io::InputError("topology.svg", "Graphviz 'dot' failed or is missing (scripts/setup.sh installs graphviz)");
 }
 
 std::vector<plot::Polyline> alignment_overlays(const MapRun& run) {
@@ -135,7 +136,9 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
                                    {"edges", edges},       {"junctions", map.junctions}, {"segments", segments},
                                    {"alignments", alignments}};
   out.write("map.json", map_json.dump(1) + "\n");
-  out.write("alignments.json", nlohmann::json{{"alignments", alignments}}.dump(1) + "\n");
+  out.write("alignments.json", nlohmann::json{{"alignments", alignments},
+                                              {"rejected_by_odometry", io::alignments_to_json(result.rejected)["alignments"]}}
+                                      .dump(1) + "\n");
 
   std::string csv = "i,j,score\n";
   for (const auto& p : result.pruning.pairs) csv += fmt::format("{},{},{}\n", p.i, p.j, p.score);
@@ -182,7 +185,8 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
     }
     if (run.topology) {
       const auto& t = *run.topology;
-      metrics["topology"] = {{"adjusted_rand_index", t.adjusted_rand_index}, {"false_merges", t.false_merges},
+      metrics["topology"] = {{"adjusted_rand_index", t.adjusted_rand_index},
+                             {"adjusted_rand_index_frames", t.adjusted_rand_index_frames}, {"false_merges", t.false_merges},
                              {"missed_merges", t.missed_merges}, {"junctions_true", t.junctions_true},
                              {"junctions_found", t.junctions_found}, {"junctions_matched", t.junctions_matched}};
     }
@@ -200,6 +204,7 @@ void write_report(const MapRun& run, io::OutputDirectory& out) {
   html.heading("Summary");
   html.key_values({{"images", std::to_string(result.map.labels.size())},
                    {"alignments (kept / found)", fmt::format("{} / {}", kept, result.alignments.size())},
+                   {"alignments contradicted by odometry", std::to_string(result.rejected.size())},
                    {"loop-closure pairs retained", std::to_string(result.pruning.pairs.size())},
                    {"places", std::to_string(result.map.places.size())},
                    {"junctions", std::to_string(result.map.junctions.size())},
@@ -222,8 +227,8 @@ void write_report(const MapRun& run, io::OutputDirectory& out) {
   if (run.topology) {
     const auto& t = *run.topology;
     html.heading("Topological correctness");
-    html.table({"adjusted Rand index", "false merges", "missed merges", "junctions true / found / matched"},
-               {{fmt::format("{:.3f}", t.adjusted_rand_index), std::to_string(t.false_merges), std::to_string(t.missed_merges),
+    html.table({"adjusted Rand index (places / images)", "false merges", "missed merges", "junctions true / found / matched"},
+               {{fmt::format("{:.3f} / {:.3f}", t.adjusted_rand_index, t.adjusted_rand_index_frames), std::to_string(t.false_merges), std::to_string(t.missed_merges),
                  fmt::format("{} / {} / {}", t.junctions_true, t.junctions_found, t.junctions_matched)}});
   }
   if (run.ate) {

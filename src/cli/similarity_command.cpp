@@ -95,10 +95,10 @@ const RegisterCommand registered{{
       app.add_option("--out", o->out_dir, "output folder for similarity.npy and similarity.png")->capture_default_str();
       app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
       app.add_option("--every", o->every, "video: keep every K-th frame")->capture_default_str();
-      app.add_option("--descriptor", o->descriptor, "joint-histogram|patch|npy (a descriptors.npy input uses its rows)")
+      app.add_option("--descriptor", o->descriptor, "joint-histogram|patch|panorama|npy (a descriptors.npy input uses its rows)")
           ->capture_default_str();
       app.add_option("--metric", o->metric,
-                     "chi2|l1|cosine|sad (default: chi2 for joint-histogram, sad for patch, cosine for npy)");
+                     "chi2|l1|cosine|sad (default: chi2 for joint-histogram, sad for patch and panorama, cosine for npy)");
       app.add_option("--kappa", o->kappa, "K > 0 in S = 1 - K * D, or auto (see docs/similarity.md)")->capture_default_str();
       app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
       app.callback([o] { run(*o); });

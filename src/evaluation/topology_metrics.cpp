@@ -1,6 +1,8 @@
 #include "seqtopo/evaluation/topology_metrics.hpp"
 
+#include <iterator>
 #include <map>
+#include <numeric>
 #include <set>
 #include <stdexcept>
 
@@ -30,19 +32,66 @@ double adjusted_rand_index(const std::vector<int>& a, const std::vector<int>& b)
   return (index - expected) / (max_index - expected);
 }
 
+std::vector<int> coarsen_along_true_places(const std::vector<int>& map_labels, const std::vector<int>& true_places,
+                                           const Tolerated& tolerated) {
+  if (map_labels.size() != true_places.size()) throw std::invalid_argument("partitions of different sizes");
+  const std::size_t n = map_labels.size();
+  std::vector<std::size_t> parent(n);
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  auto unite = [&](std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  // Images of each map place, grouped by true place.
+  std::map<int, std::map<int, std::vector<std::size_t>>> groups;
+  for (std::size_t i = 0; i < n; ++i) {
+    groups[map_labels[i]][true_places[i]].push_back(i);
+    if (i + 1 < n && true_places[i] == true_places[i + 1]) unite(i, i + 1);
+  }
+  for (const auto& [label, by_place] : groups) {
+    for (const auto& [place, images] : by_place) {
+      for (std::size_t k = 1; k < images.size(); ++k) unite(images.front(), images[k]);
+    }
+    // Two true places in one map place: joined unless every pair of their images is tolerated.
+    for (auto a = by_place.begin(); a != by_place.end(); ++a) {
+      for (auto b = std::next(a); b != by_place.end(); ++b) {
+        bool all_tolerated = static_cast<bool>(tolerated);
+        for (std::size_t i : a->second) {
+          for (std::size_t j : b->second) all_tolerated = all_tolerated && tolerated(i, j);
+        }
+        if (!all_tolerated) unite(a->second.front(), b->second.front());
+      }
+    }
+  }
+  std::vector<int> out(n);
+  std::map<std::size_t, int> renumber;
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = renumber.emplace(find(i), static_cast<int>(renumber.size())).first->second;
+  }
+  return out;
+}
+
 TopologyMetrics evaluate_topology(const std::vector<int>& map_labels, const std::vector<int>& map_junctions,
                                   const std::vector<int>& true_places, const std::vector<int>& true_junctions,
-                                  std::size_t min_separation, std::size_t junction_tolerance) {
+                                  std::size_t min_separation, std::size_t junction_tolerance,
+                                  const Tolerated& tolerated) {
   if (map_labels.size() != true_places.size()) {
     throw std::invalid_argument("the map has " + std::to_string(map_labels.size()) + " images, the ground truth " +
                                 std::to_string(true_places.size()));
   }
   const std::size_t n = map_labels.size();
   TopologyMetrics m;
-  m.adjusted_rand_index = adjusted_rand_index(map_labels, true_places);
+  const std::vector<int> coarse = coarsen_along_true_places(map_labels, true_places, tolerated);
+  m.adjusted_rand_index = adjusted_rand_index(coarse, true_places);
+  m.adjusted_rand_index_frames = adjusted_rand_index(map_labels, true_places);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j + min_separation <= i; ++j) {
-      const bool same_map = map_labels[i] == map_labels[j];
+      const bool same_map = coarse[i] == coarse[j];
       const bool same_true = true_places[i] == true_places[j];
       m.false_merges += same_map && !same_true;
       m.missed_merges += !same_map && same_true;

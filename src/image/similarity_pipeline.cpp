@@ -22,14 +22,17 @@ namespace seqtopo::image {
 Descriptor parse_descriptor(std::string_view name) {
   if (name == "joint-histogram" || name == "joint_histogram") return Descriptor::joint_histogram;
   if (name == "patch") return Descriptor::patch;
+  if (name == "panorama") return Descriptor::panorama;
   if (name == "npy") return Descriptor::npy;
-  throw std::invalid_argument("unknown descriptor '" + std::string(name) + "' (expected joint-histogram, patch or npy)");
+  throw std::invalid_argument("unknown descriptor '" + std::string(name) +
+                              "' (expected joint-histogram, patch, panorama or npy)");
 }
 
 std::string_view descriptor_name(Descriptor descriptor) {
   switch (descriptor) {
     case Descriptor::joint_histogram: return "joint-histogram";
     case Descriptor::patch: return "patch";
+    case Descriptor::panorama: return "panorama";
     case Descriptor::npy: return "npy";
   }
   return "?";
@@ -39,9 +42,27 @@ Metric default_metric(Descriptor descriptor) {
   switch (descriptor) {
     case Descriptor::joint_histogram: return Metric::chi2;
     case Descriptor::patch: return Metric::sad;
+    case Descriptor::panorama: return Metric::sad;
     case Descriptor::npy: return Metric::cosine;
   }
   return Metric::chi2;
+}
+
+std::vector<float> dense_descriptor(const RgbImage& image, Descriptor descriptor, const SimilarityConfig& config) {
+  switch (descriptor) {
+    case Descriptor::patch: return patch_thumbnail(image, config.patch);
+    case Descriptor::panorama: return panorama_signature(image, config.panorama);
+    default: throw std::invalid_argument("descriptor '" + std::string(descriptor_name(descriptor)) + "' is not dense");
+  }
+}
+
+std::size_t dense_dimension(Descriptor descriptor, const SimilarityConfig& config) {
+  switch (descriptor) {
+    case Descriptor::patch:
+      return static_cast<std::size_t>(std::max(0, config.patch.width)) * static_cast<std::size_t>(std::max(0, config.patch.height));
+    case Descriptor::panorama: return config.panorama.dimension();
+    default: throw std::invalid_argument("descriptor '" + std::string(descriptor_name(descriptor)) + "' is not dense");
+  }
 }
 
 namespace {
@@ -112,8 +133,7 @@ std::size_t descriptor_bytes(Descriptor d, const Source& s, const SimilarityConf
       return sizeof(similarity::SparseHistogram) + bins * (sizeof(std::uint32_t) + sizeof(float));
     }
     case Descriptor::patch:
-      return static_cast<std::size_t>(std::max(0, c.patch.width)) * static_cast<std::size_t>(std::max(0, c.patch.height)) *
-             sizeof(float);
+    case Descriptor::panorama: return dense_dimension(d, c) * sizeof(float);
     case Descriptor::npy: return s.dimension.value_or(0) * sizeof(float);
   }
   return 0;
@@ -153,7 +173,7 @@ void describe_image(const RgbImage& image, Descriptor d, const SimilarityConfig&
   if (d == Descriptor::joint_histogram) {
     out.set.sparse[i] = joint_histogram(image, c.joint_histogram);
   } else {
-    const std::vector<float> v = patch_thumbnail(image, c.patch);
+    const std::vector<float> v = dense_descriptor(image, d, c);
     std::copy(v.begin(), v.end(), out.set.dense.row(i).begin());
   }
 }
@@ -162,7 +182,7 @@ void prepare_slots(Described& out, Descriptor d, std::size_t n, const Similarity
   if (d == Descriptor::joint_histogram) {
     out.set.sparse.resize(n);
   } else {
-    out.set.dense = DenseMatrix<float>(n, static_cast<std::size_t>(c.patch.width) * static_cast<std::size_t>(c.patch.height));
+    out.set.dense = DenseMatrix<float>(n, dense_dimension(d, c));
   }
 }
 
@@ -234,7 +254,7 @@ Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& 
         if (d == Descriptor::joint_histogram) {
           histograms[first + k] = joint_histogram(batch[k], c.joint_histogram);
         } else {
-          rows[first + k] = patch_thumbnail(batch[k], c.patch);
+          rows[first + k] = dense_descriptor(batch[k], d, c);
         }
       } catch (const std::invalid_argument& e) {
         throw io::InputError(s.input.path.string(), "frame " + std::to_string(indices[k]) + ": " + e.what());
@@ -254,7 +274,7 @@ Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& 
   if (d == Descriptor::joint_histogram) {
     out.set.sparse = std::move(histograms);
   } else {
-    const std::size_t dim = static_cast<std::size_t>(c.patch.width) * static_cast<std::size_t>(c.patch.height);
+    const std::size_t dim = dense_dimension(d, c);
     out.set.dense = DenseMatrix<float>(rows.size(), dim);
     for (std::size_t i = 0; i < rows.size(); ++i) std::copy(rows[i].begin(), rows[i].end(), out.set.dense.row(i).begin());
   }

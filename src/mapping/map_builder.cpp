@@ -40,14 +40,19 @@ SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarit
   return sum;
 }
 
-MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config) {
-  return build_map(std::vector<SimilarityMatrix>{similarity}, config);
+MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config, std::span<const metric::Pose2> odometry) {
+  return build_map(std::vector<SimilarityMatrix>{similarity}, config, odometry);
 }
 
-MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config) {
+MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
+                    std::span<const metric::Pose2> odometry) {
   MapResult result;
   auto start = std::chrono::steady_clock::now();
   result.scores = alignment_scores(similarities, config);
+  if (!odometry.empty() && odometry.size() != result.scores.rows) {
+    throw std::invalid_argument("odometry has " + std::to_string(odometry.size()) + " poses, the sequence " +
+                                std::to_string(result.scores.rows) + " images");
+  }
   align::AlignConfig align_config;
   align_config.gap_a = align_config.gap_b = config.gap;
   align_config.cap = config.cap;
@@ -60,6 +65,12 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
     result.alignments = align::local_alignments_both(source, align_config, config.threads);
   } else {
     result.alignments = align::local_alignments(source, align_config);
+  }
+  if (!odometry.empty() && config.odometry_gate) {
+    const std::vector<bool> keep = consistent_with_odometry(result.alignments, odometry, *config.odometry_gate);
+    std::vector<align::LocalAlignment> kept;
+    for (std::size_t k = 0; k < keep.size(); ++k) (keep[k] ? kept : result.rejected).push_back(std::move(result.alignments[k]));
+    result.alignments = std::move(kept);
   }
   result.seconds_align = seconds_since(start);
 

@@ -115,6 +115,10 @@ TEST_F(MapCommand, BadInputsGiveOneLineAndNoOutput) {
   EXPECT_NE(run("map --gap -1 --out " + out.string(), &err), 0);
   EXPECT_EQ(err.rfind("seqtopo: error: --gap", 0), 0U) << err;
   EXPECT_NE(run("map --preset nope --out " + out.string(), &err), 0);
+  EXPECT_NE(run("map --odometry-gate 2 --out " + out.string(), &err), 0);
+  EXPECT_EQ(err.rfind("seqtopo: error: --odometry-gate: expected BASE,DRIFT", 0), 0U) << err;
+  EXPECT_NE(run("map --odometry-gate 2,-1 --out " + out.string(), &err), 0);
+  EXPECT_EQ(err.rfind("seqtopo: error: --odometry-gate", 0), 0U) << err;
 
   // nothing was left behind: the output folder is absent or empty
   EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out));

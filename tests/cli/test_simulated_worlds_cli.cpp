@@ -74,4 +74,33 @@ TEST(SimulatedWorlds, FigureEightMapsWithOdometry) {
   EXPECT_EQ(metrics.at("topology").at("junctions_true").get<int>(), 2);  // the figure-eight's merge and branch
 }
 
+// Experiment 1 of the mapping paper: the corridor walked back in the opposite direction. Panoramas taken
+// facing the other way are found by the heading-invariant panorama descriptor; the map's places match the
+// true ones and the pose graph undoes most of the odometry's drift.
+TEST(SimulatedWorlds, CorridorWalkedBackIsFoundWithThePanoramaDescriptor) {
+  seqtopo::testing::TempDir dir;
+  const std::string world = (dir.path / "corridor").string();
+  ASSERT_EQ(run("simulate --scenario corridor-reverse --no-images --interval 0.5 --panorama-width 120 "
+                "--panorama-height 24 --supersample 1 --out " + world),
+            0);
+  const std::string out = (dir.path / "map").string();
+  ASSERT_EQ(run("map " + world + "/panoramas --descriptor joint-histogram,panorama --min-separation 10 --odometry " +
+                world + "/odometry.csv --ground-truth " + world + "/ground_truth.png --gt-places " + world +
+                "/places.csv --gt-poses " + world + "/poses.csv --out " + out),
+            0);
+  std::ifstream in(out + "/metrics.json");
+  const auto metrics = nlohmann::json::parse(in);
+  EXPECT_GE(metrics.at("loop_closure").at("f1").get<double>(), 0.9);
+  EXPECT_GE(metrics.at("topology").at("adjusted_rand_index").get<double>(), 0.9);
+  EXPECT_LT(metrics.at("metric").at("ate_pose_graph").get<double>(), 0.5 * metrics.at("metric").at("ate_odometry").get<double>());
+  // The revisit is a reverse alignment.
+  std::ifstream alignments_file(out + "/alignments.json");
+  const auto alignments = nlohmann::json::parse(alignments_file);
+  bool reverse_kept = false;
+  for (const auto& a : alignments.at("alignments")) {
+    reverse_kept = reverse_kept || (a.at("kept").get<bool>() && a.at("direction") == "reverse");
+  }
+  EXPECT_TRUE(reverse_kept);
+}
+
 }  // namespace

@@ -58,5 +58,43 @@ TEST(TopologyMetrics, HandCountedMergesAndJunctions) {
   EXPECT_THROW(evaluate_topology({0}, {}, {0, 1}, {}, 1), std::invalid_argument);
 }
 
+TEST(TopologyMetrics, CoarsensTheMapAlongRunsOfOneTruePlace) {
+  // Two traversals of places 10, 11 (three images each) and a third place seen once.
+  const std::vector<int> truth{10, 10, 10, 11, 11, 11, 12, 10, 10, 10, 11, 11, 11};
+  // A perfect map merges one image of every revisited place with the first traversal, nothing else.
+  const std::vector<int> perfect{0, 1, 2, 3, 4, 5, 6, 1, 7, 8, 9, 4, 10};
+  EXPECT_EQ(coarsen_along_true_places(perfect, truth), (std::vector<int>{0, 0, 0, 1, 1, 1, 2, 0, 0, 0, 1, 1, 1}));
+  const auto good = evaluate_topology(perfect, {}, truth, {}, 4);
+  EXPECT_DOUBLE_EQ(good.adjusted_rand_index, 1.0);
+  EXPECT_LT(good.adjusted_rand_index_frames, 0.5);  // per image, the same map looks poor
+  EXPECT_EQ(good.false_merges, 0U);
+  EXPECT_EQ(good.missed_merges, 0U);
+  // Merging nothing leaves each place split by traversal: every cross-traversal pair of 10 and of 11 is missed.
+  std::vector<int> none(truth.size());
+  for (std::size_t k = 0; k < none.size(); ++k) none[k] = static_cast<int>(k);
+  const auto empty = evaluate_topology(none, {}, truth, {}, 4);
+  EXPECT_LT(empty.adjusted_rand_index, 1.0);
+  EXPECT_EQ(empty.false_merges, 0U);
+  std::size_t cross_pairs = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    for (std::size_t j = 0; j + 4 <= i; ++j) cross_pairs += truth[i] == truth[j];
+  }
+  EXPECT_EQ(empty.missed_merges, cross_pairs);
+  // One wrong merge (image 12, place 11, with image 6, place 12) joins two true places.
+  std::vector<int> wrong = perfect;
+  wrong[12] = 6;
+  const auto bad = evaluate_topology(wrong, {}, truth, {}, 4);
+  EXPECT_LT(bad.adjusted_rand_index, good.adjusted_rand_index);
+  EXPECT_EQ(bad.false_merges, 3U);  // image 6 (place 12) now shares a place with images 10..12 (place 11)
+  // The same merge, tolerated by the loop-closure ground truth (image 12 is near image 6): no place joined.
+  const auto near = [](std::size_t i, std::size_t j) { return (i == 12 && j == 6) || (i == 6 && j == 12); };
+  const auto tolerated = evaluate_topology(wrong, {}, truth, {}, 4, 2, near);
+  EXPECT_EQ(tolerated.false_merges, 0U);
+  EXPECT_DOUBLE_EQ(tolerated.adjusted_rand_index, 1.0);  // image 12 still joins place 11 along its run
+  // A tolerance that does not cover the pair changes nothing.
+  const auto far = [](std::size_t, std::size_t) { return false; };
+  EXPECT_EQ(evaluate_topology(wrong, {}, truth, {}, 4, 2, far).false_merges, 3U);
+}
+
 }  // namespace
 }  // namespace seqtopo::evaluation

@@ -14,6 +14,7 @@
 
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/image/joint_histogram.hpp"
+#include "seqtopo/image/panorama_signature.hpp"
 #include "seqtopo/image/patch_thumbnail.hpp"
 #include "seqtopo/image/sequence_input.hpp"
 #include "seqtopo/similarity/distance.hpp"
@@ -21,13 +22,14 @@
 
 namespace seqtopo::image {
 
-enum class Descriptor { joint_histogram, patch, npy };  // npy = rows of descriptors.npy
+// npy = rows of descriptors.npy; panorama = heading-invariant signature of 360-degree images
+enum class Descriptor { joint_histogram, patch, panorama, npy };
 using Metric = similarity::Metric;
 
-// "joint-histogram", "patch", "npy"; throws std::invalid_argument otherwise.
+// "joint-histogram", "patch", "panorama", "npy"; throws std::invalid_argument otherwise.
 Descriptor parse_descriptor(std::string_view name);
 std::string_view descriptor_name(Descriptor descriptor);
-// chi2 for histograms, sad for thumbnails, cosine for external descriptors.
+// chi2 for histograms, sad for thumbnails and panorama signatures, cosine for external descriptors.
 Metric default_metric(Descriptor descriptor);
 
 struct SimilarityConfig {
@@ -37,6 +39,7 @@ struct SimilarityConfig {
   unsigned threads = 0;                    // 0 = all cores
   JointHistogramConfig joint_histogram;
   PatchConfig patch;
+  PanoramaConfig panorama;
   similarity::KappaRule kappa_rule;
   std::size_t tile = 64;                   // matrix tile side [cells]
 
@@ -64,5 +67,10 @@ SimilarityResult compute_similarity(const SequenceInput& input, const Similarity
 // N x M between two sequences: rows = a, cols = b. For InputKind::similarity on `a`, `b` is ignored and the
 // N x M matrix is returned as is.
 SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b, const SimilarityConfig& config = {});
+
+// The dense descriptors (patch, panorama) of one image, and their length. Throws std::invalid_argument for
+// joint_histogram and npy.
+std::vector<float> dense_descriptor(const RgbImage& image, Descriptor descriptor, const SimilarityConfig& config);
+std::size_t dense_dimension(Descriptor descriptor, const SimilarityConfig& config);
 
 }  // namespace seqtopo::image

@@ -2,10 +2,12 @@
 // The mapping paper end to end, from a similarity matrix: forward and reverse self alignments with
 // the score cap -> per-column pruning -> transitive labels -> topological map. One call, pure.
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
+#include "seqtopo/mapping/odometry_gate.hpp"
 #include "seqtopo/mapping/pruning.hpp"
 #include "seqtopo/mapping/topological_map.hpp"
 
@@ -21,9 +23,14 @@ struct MapConfig {
   float contrast_offset = 0.5F;      // [standard deviations]
   float gap = 1.5F;                  // penalty per skipped image, both sequences [score units]
   std::optional<float> cap = 40.0F;  // cap on the cumulative score (paper IV-B)
-  float threshold = 8.0F;            // minimum alignment score for a revisit
+  // Minimum alignment score for a revisit. The real sequences give the same result anywhere in 8..20;
+  // the simulated worlds (bench/worlds.sh) need 20 to drop short chance alignments.
+  float threshold = 20.0F;
   std::size_t min_separation = 10;   // [frames] pairs closer than this in time never count
   bool reverse = true;              // also look for paths revisited in the opposite direction
+  // Applied when odometry is given to build_map: alignments it contradicts are dropped before pruning.
+  // Chosen on the simulated worlds (bench/worlds.sh); the real sequences in the README have no odometry.
+  std::optional<OdometryGate> odometry_gate = OdometryGate{};
   PruningConfig pruning;
   TopologyConfig topology;
   unsigned threads = 2;
@@ -32,18 +39,22 @@ struct MapConfig {
 struct MapResult {
   SimilarityMatrix scores;                        // what was aligned (S, or its contrast-enhanced form)
   std::vector<align::LocalAlignment> alignments;  // best first, forward and reverse merged
+  std::vector<align::LocalAlignment> rejected;    // found, but contradicted by the odometry (not in `alignments`)
   PruningResult pruning;
   TopologicalMap map;
   double seconds_align = 0, seconds_prune_label = 0;
 };
 
-// Throws std::invalid_argument for a non-square or empty matrix.
-MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config = {});
+// Throws std::invalid_argument for a non-square or empty matrix, or odometry of another length.
+// `odometry` (one pose per image, or empty) feeds config.odometry_gate.
+MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config = {},
+                    std::span<const metric::Pose2> odometry = {});
 
 // Several sensors or descriptors of the same sequence, fused: each matrix is contrast-enhanced on its
 // own (so their scales need not agree) and the enhanced scores are averaged before the offset is
 // applied; without contrast enhancement the raw matrices are averaged. All must be N x N.
-MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config = {});
+MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config = {},
+                    std::span<const metric::Pose2> odometry = {});
 
 // The fused score matrix that build_map aligns.
 SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config);

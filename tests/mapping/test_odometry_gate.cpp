@@ -1,0 +1,100 @@
+// The odometry gate: alignments that odometry contradicts are dropped, revisits are kept.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/mapping/odometry_gate.hpp"
+
+namespace seqtopo::mapping {
+namespace {
+
+// A 20 m corridor walked east and back west at 0.5 m per image (81 images, 0..40 out, 40..80 back),
+// with odometry that drifts sideways by 2 cm per metre.
+std::vector<metric::Pose2> out_and_back() {
+  std::vector<metric::Pose2> poses;
+  for (int k = 0; k <= 80; ++k) {
+    const double along = k <= 40 ? 0.5 * k : 0.5 * (80 - k);
+    poses.push_back({along, 0.02 * 0.5 * k, k <= 40 ? 0.0 : 3.14159});
+  }
+  return poses;
+}
+
+align::LocalAlignment pairs_of(std::vector<std::pair<std::size_t, std::size_t>> pairs) {
+  align::LocalAlignment a;
+  a.pairs = std::move(pairs);
+  return a;
+}
+
+TEST(OdometryGate, KeepsTheRevisitAndDropsTheShiftedCopy) {
+  const auto odometry = out_and_back();
+  // True reverse revisit: image 40 + d is at the same spot as 40 - d.
+  std::vector<std::pair<std::size_t, std::size_t>> revisit, shifted;
+  for (std::size_t d = 5; d < 30; ++d) revisit.emplace_back(40 + d, 40 - d);
+  // The same corridor 10 m further on (a self-similar corridor): image i paired with i - 20 on the way out.
+  for (std::size_t i = 20; i < 40; ++i) shifted.emplace_back(i, i - 20);
+  const auto keep = consistent_with_odometry({pairs_of(revisit), pairs_of(shifted)}, odometry);
+  EXPECT_TRUE(keep[0]);
+  EXPECT_FALSE(keep[1]);
+  // A loose enough gate lets the shifted copy through: 10 m apart after 10 m of travel.
+  EXPECT_TRUE(consistent_with_odometry({pairs_of(shifted)}, odometry, {.base = 0.1, .drift = 1.0})[0]);
+}
+
+TEST(OdometryGate, CountsConsistentPairsAgainstTheFraction) {
+  const auto odometry = out_and_back();
+  // Half the pairs are true revisits, half are 10 m off.
+  std::vector<std::pair<std::size_t, std::size_t>> mixed;
+  for (std::size_t d = 10; d < 20; ++d) mixed.emplace_back(40 + d, 40 - d);
+  for (std::size_t i = 20; i < 30; ++i) mixed.emplace_back(i, i - 20);
+  // Brute force: the consistent fraction, from the rule in the header.
+  std::size_t consistent = 0;
+  for (auto [i, j] : mixed) {
+    double travelled = 0;
+    for (std::size_t k = std::min(i, j) + 1; k <= std::max(i, j); ++k) {
+      travelled += std::hypot(odometry[k].x - odometry[k - 1].x, odometry[k].y - odometry[k - 1].y);
+    }
+    consistent += std::hypot(odometry[i].x - odometry[j].x, odometry[i].y - odometry[j].y) <= 2.0 + 0.1 * travelled;
+  }
+  const double fraction = static_cast<double>(consistent) / static_cast<double>(mixed.size());
+  EXPECT_DOUBLE_EQ(fraction, 0.5);
+  EXPECT_TRUE(consistent_with_odometry({pairs_of(mixed)}, odometry, {.min_consistent = 0.5})[0]);
+  EXPECT_FALSE(consistent_with_odometry({pairs_of(mixed)}, odometry, {.min_consistent = 0.6})[0]);
+}
+
+TEST(OdometryGate, RejectsBadInput) {
+  const auto odometry = out_and_back();
+  EXPECT_THROW(consistent_with_odometry({pairs_of({{90, 1}})}, odometry), std::invalid_argument);
+  EXPECT_THROW(consistent_with_odometry({}, odometry, {.base = -1}), std::invalid_argument);
+  EXPECT_THROW(consistent_with_odometry({}, odometry, {.min_consistent = 1.5}), std::invalid_argument);
+  EXPECT_FALSE(consistent_with_odometry({pairs_of({})}, odometry)[0]);
+}
+
+TEST(OdometryGate, BuildMapDropsContradictedAlignmentsBeforePruning) {
+  // Similarity with two bright stripes: the true reverse revisit and a forward copy 20 images apart.
+  const auto odometry = out_and_back();
+  const std::size_t n = odometry.size();
+  SimilarityMatrix s(n, n, 0.0F);
+  for (std::size_t d = 5; d < 30; ++d) s(40 + d, 40 - d) = s(40 - d, 40 + d) = 1.0F;
+  for (std::size_t i = 20; i < 40; ++i) s(i, i - 20) = s(i - 20, i) = 1.0F;
+  MapConfig config;
+  config.contrast_window = 0;
+  config.cap.reset();
+  config.threshold = 5;
+  for (auto& v : s.values) v -= 0.3F;
+  const MapResult without = build_map(s, config);
+  const MapResult with = build_map(s, config, odometry);
+  EXPECT_EQ(without.alignments.size(), with.alignments.size() + with.rejected.size());
+  ASSERT_EQ(with.rejected.size(), 1U);
+  EXPECT_EQ(with.rejected.front().direction, align::Direction::forward);
+  for (const auto& a : with.alignments) EXPECT_EQ(a.direction, align::Direction::reverse);
+  // Without the gate the copy merges images 20 apart; with it, no image shares a place with one 20 away.
+  EXPECT_EQ(without.map.labels[30], without.map.labels[10]);
+  EXPECT_NE(with.map.labels[30], with.map.labels[10]);
+  config.odometry_gate.reset();
+  EXPECT_TRUE(build_map(s, config, odometry).rejected.empty());
+  EXPECT_THROW(build_map(s, config, std::span(odometry).first(10)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace seqtopo::mapping
