@@ -24,6 +24,13 @@ struct RegisterCommand {
   explicit RegisterCommand(CommandSpec spec) { command_registry().push_back(std::move(spec)); }
 };
 
+// Subcommands of `seqtopo bench` (bench_command.cpp), registered the same way: one file each.
+std::vector<CommandSpec>& bench_registry();
+
+struct RegisterBenchCommand {
+  explicit RegisterBenchCommand(CommandSpec spec) { bench_registry().push_back(std::move(spec)); }
+};
+
 // Runs parse(); a std::invalid_argument from it becomes an InputError naming the option.
 template <typename F>
 auto option_value(const char* option, F&& parse) {
