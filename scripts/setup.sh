@@ -9,6 +9,9 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   emboss libedlib-dev libparasail-dev graphviz
+  libfaiss-dev libopenmpi-dev openmpi-bin
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-pip python3-venv python3-pil
+  chromium chromium-driver python3-selenium ccache
 )
 
 missing=()

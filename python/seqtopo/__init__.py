@@ -1,0 +1,459 @@
+"""seqtopo: topological mapping and localization with the algorithms of DNA sequence alignment.
+
+The Python face of the C++ library (the same code the ``seqtopo`` command runs)::
+
+    import numpy as np
+    import seqtopo
+
+    descriptors = np.load("descriptors.npy")          # N x D, one row per image
+    s = seqtopo.similarity(descriptors).similarity     # N x N, S = 1 - kappa * D (cosine, kappa auto)
+    result = seqtopo.build_map(s)                      # alignments -> pruning -> places -> topology
+    result.labels, result.loop_closures, result.junctions
+
+Functions: :func:`similarity`, :func:`align`, :func:`build_map`, :func:`build_map_from_images`,
+:func:`localize`, :func:`match_strings`. Settings: :class:`MapConfig`, :class:`LocalizeConfig`,
+:class:`MatchConfig` (with :class:`EditCosts`, :func:`preset_costs`), :class:`AlignConfig`,
+:class:`PruningConfig`, :class:`TopologyConfig`, :class:`KappaRule`: the C++ config structs themselves,
+so their defaults are the library's. Indices are 0-based, ranges half-open ``[begin, end)``.
+
+Arrays: inputs are read as float32 in C order. :func:`align` reads a float32 C-contiguous array in
+place (no copy); other dtypes or layouts are converted once. :func:`build_map`, :func:`localize` and
+:func:`similarity` copy their input once into a matrix the library owns. Result arrays are handed over
+from the library without a copy and own their memory.
+
+Errors: misuse raises ``ValueError`` with the library's message; a problem with a file (or another
+user-given input named by the library) raises :class:`InputError` (a ``ValueError``) whose text is the
+command line's ``<file or option>: <message>``. Every long computation releases the GIL, so other Python
+threads run meanwhile.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from typing import List, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _core
+from ._core import (
+    AlignConfig,
+    EditCosts,
+    InputError,
+    KappaRule,
+    LocalizeConfig,
+    MapConfig,
+    MatchConfig,
+    PruningConfig,
+    TopologyConfig,
+    preset_costs,
+    preset_names,
+)
+
+__version__ = _core.__version__
+InputError.__module__ = __name__
+InputError.__doc__ = (
+    "A problem with a file or other input the user gave (a ValueError). str() is the command line's\n"
+    "'<subject>: <message>'; .subject names the file or option and .message says what is wrong."
+)
+
+__all__ = [
+    "AlignConfig",
+    "Alignment",
+    "EditCosts",
+    "InputError",
+    "KappaRule",
+    "LocalizeConfig",
+    "LocalizeResult",
+    "MapConfig",
+    "MapResult",
+    "MatchConfig",
+    "PruningConfig",
+    "SimilarityResult",
+    "StringMatches",
+    "TopologyConfig",
+    "align",
+    "build_map",
+    "build_map_from_images",
+    "localize",
+    "match_strings",
+    "preset_costs",
+    "preset_names",
+    "similarity",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Alignment:
+    """One local alignment, as in ``alignments.json``.
+
+    ``score``: the (capped) cumulative score at its last cell; ``direction``: ``"forward"`` (i and j grow
+    together) or ``"reverse"`` (j shrinks while i grows); ``a_begin, a_end, b_begin, b_end``: half-open
+    ranges spanning the aligned pairs; ``pairs``: the aligned pairs ``(i, j)`` as an ``(n, 2)`` int64
+    array in increasing i (elements skipped by a gap are in the ranges but not in the pairs).
+    """
+
+    score: float
+    direction: str
+    a_begin: int
+    a_end: int
+    b_begin: int
+    b_end: int
+    pairs: np.ndarray
+
+    def to_dict(self) -> dict:
+        """The ``alignments.json`` record (without ``kept``)."""
+        return {
+            "score": self.score,
+            "direction": self.direction,
+            "a_begin": self.a_begin,
+            "a_end": self.a_end,
+            "b_begin": self.b_begin,
+            "b_end": self.b_end,
+            "pairs": self.pairs.tolist(),
+        }
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Alignment):
+            return NotImplemented
+        return (self.score, self.direction, self.a_begin, self.a_end, self.b_begin, self.b_end) == (
+            other.score, other.direction, other.a_begin, other.a_end, other.b_begin, other.b_end
+        ) and np.array_equal(self.pairs, other.pairs)
+
+
+def _alignments(raw) -> List[Alignment]:
+    return [Alignment(*fields) for fields in raw]
+
+
+@dataclasses.dataclass(frozen=True)
+class SimilarityResult:
+    """The similarity matrix and how it was made.
+
+    ``similarity``: float32 N x N (or N x M with ``against``: rows = the first input);
+    ``kappa``: the kappa of ``S = 1 - kappa * D`` (NaN when the input already was a similarity matrix);
+    ``kappa_auto``/``kappa_fraction``: chosen automatically, giving this fraction of candidate pairs
+    ``S > 0``; ``metric``: ``"chi2"``, ``"l1"``, ``"cosine"`` or ``"sad"`` (None for a similarity input);
+    ``frame_names``/``column_names``: file names, ``"frame 17"`` or ``"row 17"``.
+    """
+
+    similarity: np.ndarray
+    kappa: float
+    kappa_auto: bool
+    kappa_fraction: float
+    metric: Optional[str]
+    frame_names: List[str]
+    column_names: List[str]
+
+
+def _input_error(subject: str, message: str) -> InputError:
+    error = InputError(f"{subject}: {message}")
+    error.subject = subject
+    error.message = message
+    return error
+
+
+def _is_path(x) -> bool:
+    return isinstance(x, (str, os.PathLike))
+
+
+def similarity(
+    descriptors,
+    against=None,
+    *,
+    metric: Optional[str] = None,
+    kappa: Optional[float] = None,
+    threads: int = 0,
+    kappa_rule: Optional[KappaRule] = None,
+    descriptor: str = "joint-histogram",
+    input_kind: str = "auto",
+    every: int = 1,
+) -> SimilarityResult:
+    """Similarity matrix ``S = 1 - kappa * D`` of a sequence, as ``seqtopo similarity`` computes it.
+
+    ``descriptors``: an N x D array, one row per image (what ``seqtopo similarity descriptors.npy``
+    reads), or a path to an image folder, a video, a ``descriptors.npy`` or a ``similarity.npy``.
+    ``against``: a second sequence of the same kind for an N x M matrix (rows = ``descriptors``).
+    ``metric``: ``"chi2"``, ``"l1"``, ``"cosine"`` or ``"sad"``; default cosine for descriptor rows (chi2
+    for joint histograms, sad for patches). ``kappa``: a number > 0, or None to choose it from the
+    sequence's own distances (``kappa_rule``). ``threads``: 0 = every core; the matrix does not depend
+    on it. ``descriptor`` (``"joint-histogram"``, ``"patch"``, ...), ``input_kind``, ``every``: for a
+    path, as the command line's options.
+
+    Raises ValueError (unknown metric, chi2 on negative values, non-finite or empty input,
+    ``kappa <= 0``), :class:`InputError` for an unreadable path, MemoryError when the matrix cannot fit.
+    """
+    rule = kappa_rule if kappa_rule is not None else KappaRule()
+    if _is_path(descriptors):
+        if against is not None and not _is_path(against):
+            raise ValueError("against: give a path when the first input is a path")
+        raw = _core.similarity_of_path(
+            os.fspath(descriptors), None if against is None else os.fspath(against), descriptor, metric, kappa,
+            input_kind, every, threads, rule,
+        )
+    else:
+        raw = _core.similarity_of_descriptors(descriptors, against, metric, kappa, threads, rule)
+    return SimilarityResult(**raw)
+
+
+def align(
+    scores,
+    *,
+    gap: Optional[float] = None,
+    gap_a: Optional[float] = None,
+    gap_b: Optional[float] = None,
+    cap: Optional[float] = AlignConfig().cap,
+    threshold: float = AlignConfig().threshold,
+    reverse: bool = True,
+    self: bool = AlignConfig().self,
+    min_separation: int = AlignConfig().min_separation,
+    max_alignments: Optional[int] = AlignConfig().max_alignments,
+    threads: int = 2,
+) -> List[Alignment]:
+    """All non-intersecting local alignments of a score matrix, best first (``seqtopo align --scores``).
+
+    ``scores``: rows = elements of A, columns = elements of B, higher = better match; a float32
+    C-contiguous array is read in place. ``gap``: penalty per skipped element of either sequence
+    (``gap_a``/``gap_b`` set them apart; default :class:`AlignConfig`'s). ``cap``: upper bound on the
+    cumulative score (None: classical Smith-Waterman). ``threshold``: minimum score reported.
+    ``reverse``: also search alignments with B read backwards (a path revisited in the opposite
+    direction); note that ``seqtopo align`` searches them only with ``--reverse``. ``self``: A and B are
+    one sequence (square matrix): only pairs with ``i - j >= min_separation`` are searched.
+    ``max_alignments``: stop after this many (None: all). ``threads``: forward and reverse passes in
+    parallel when > 1; the result does not depend on it.
+
+    Returns a list of :class:`Alignment`; an empty list when nothing scores above the threshold.
+    """
+    default = AlignConfig()
+    config = AlignConfig(
+        gap_a=gap_a if gap_a is not None else (gap if gap is not None else default.gap_a),
+        gap_b=gap_b if gap_b is not None else (gap if gap is not None else default.gap_b),
+        cap=cap,
+        threshold=threshold,
+        max_alignments=max_alignments,
+        self=self,
+        min_separation=min_separation,
+    )
+    return _alignments(_core.align(scores, config, reverse, threads))
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class MapResult:
+    """A topological map and the alignments it came from (``map.json``, ``loop_closures.csv``).
+
+    ``labels``: int32 place id per image; ``places``: per place id, the int64 array of its images;
+    ``edges``: ``(E, 2)`` place pairs ``(p, q)``, ``p < q``, of consecutive images; ``junctions``: place
+    ids where the path branches or merges; ``segments``: chains of place ids between junctions;
+    ``alignments``: every :class:`Alignment` found, best first; ``kept``: per alignment, whether it
+    survived pruning; ``retained_count``: its surviving pairs; ``loop_closures``: ``(K, 2)`` retained
+    image pairs ``(i, j)``, ``i > j`` (the rows of ``loop_closures.csv``), with
+    ``loop_closure_scores`` (the score of their alignment) and ``loop_closure_alignments`` (its index);
+    ``scores``: the matrix that was aligned (S or its contrast-enhanced form); ``similarities``: for
+    :func:`build_map_from_images`, the similarity matrix of each descriptor, else empty.
+    """
+
+    labels: np.ndarray
+    places: List[np.ndarray]
+    edges: np.ndarray
+    junctions: np.ndarray
+    segments: List[np.ndarray]
+    alignments: List[Alignment]
+    kept: np.ndarray
+    retained_count: np.ndarray
+    loop_closures: np.ndarray
+    loop_closure_scores: np.ndarray
+    loop_closure_alignments: np.ndarray
+    scores: np.ndarray
+    seconds_align: float
+    seconds_prune_label: float
+    similarities: List[SimilarityResult] = dataclasses.field(default_factory=list)
+
+    @property
+    def images(self) -> int:
+        """Number of images in the sequence."""
+        return len(self.labels)
+
+    def to_json(self) -> dict:
+        """The content of ``map.json`` as ``seqtopo map`` writes it."""
+        alignments = []
+        for a, kept in zip(self.alignments, self.kept):
+            record = a.to_dict()
+            record["kept"] = bool(kept)
+            alignments.append(record)
+        return {
+            "images": self.images,
+            "labels": self.labels.tolist(),
+            "places": [{"id": k, "images": p.tolist()} for k, p in enumerate(self.places)],
+            "edges": self.edges.tolist(),
+            "junctions": self.junctions.tolist(),
+            "segments": [s.tolist() for s in self.segments],
+            "alignments": alignments,
+        }
+
+
+def _config(config, cls, overrides):
+    """A copy of `config` (default: cls()) with the keyword overrides applied."""
+    if config is None:
+        config = cls()
+    elif not isinstance(config, cls):
+        raise TypeError(f"config must be a {cls.__name__}, got {type(config).__name__}")
+    if not overrides:
+        return config
+    fields = {name: getattr(config, name) for name in _fields(cls)}
+    unknown = set(overrides) - set(fields)
+    if unknown:
+        raise TypeError(f"{cls.__name__} has no field {', '.join(sorted(unknown))}")
+    fields.update(overrides)
+    return cls(**fields)
+
+
+def _fields(cls) -> List[str]:
+    return [name for name in dir(cls) if not name.startswith("_") and isinstance(getattr(cls, name), property)]
+
+
+def _map_result(raw: dict, similarities=()) -> MapResult:
+    raw["alignments"] = _alignments(raw["alignments"])
+    return MapResult(similarities=list(similarities), **raw)
+
+
+def build_map(similarity, config: Optional[MapConfig] = None, **overrides) -> MapResult:
+    """The mapping paper end to end from a similarity matrix (what ``seqtopo map`` does after step 1).
+
+    ``similarity``: an N x N matrix (higher = more similar), or a list of them for the same sequence
+    (several descriptors or sensors, fused: each contrast-enhanced on its own, then averaged), or a
+    path, which goes to :func:`build_map_from_images`. ``config``: a :class:`MapConfig`; keyword
+    arguments override its fields, e.g. ``build_map(s, gap=2.0, cap=None)``.
+
+    Forward and reverse self alignments with the score cap, per-column pruning, transitive labels,
+    topology. Raises ValueError for an empty, non-square or non-finite matrix or a bad setting.
+    """
+    if _is_path(similarity):
+        return build_map_from_images(similarity, config, **overrides)
+    config = _config(config, MapConfig, overrides)
+    if isinstance(similarity, (list, tuple)) and similarity and all(np.ndim(s) == 2 for s in similarity):
+        matrices = list(similarity)
+    else:
+        matrices = [similarity]
+    return _map_result(_core.build_map(matrices, config))
+
+
+def build_map_from_images(
+    path: PathLike,
+    config: Optional[MapConfig] = None,
+    *,
+    descriptors: Sequence[str] = ("joint-histogram", "patch"),
+    metric: Optional[str] = None,
+    kappa: Optional[float] = None,
+    input_kind: str = "auto",
+    every: int = 1,
+    threads: int = 0,
+    **overrides,
+) -> MapResult:
+    """``seqtopo map INPUT`` without the files: an image folder, video, ``descriptors.npy`` or
+    ``similarity.npy`` in, a :class:`MapResult` out.
+
+    ``descriptors``: one similarity matrix per descriptor (the names ``seqtopo map --descriptor`` takes:
+    ``"joint-histogram"``, ``"patch"``, ...), fused as in :func:`build_map`; the default is the
+    command's default preset. A ``.npy`` input is one matrix
+    whatever is asked for. ``metric``, ``kappa``, ``input_kind``, ``every``, ``threads``: as the
+    command's options. Keyword arguments override fields of ``config``. The similarity matrices are in
+    ``result.similarities``.
+    """
+    config = _config(config, MapConfig, overrides)
+    if isinstance(descriptors, str):
+        descriptors = descriptors.split(",")
+    if not descriptors:
+        raise ValueError("no descriptor given")
+    results = []
+    for descriptor in descriptors:
+        results.append(similarity(path, metric=metric, kappa=kappa, threads=threads, descriptor=descriptor,
+                                  input_kind=input_kind, every=every))
+        if results[-1].frame_names[:1] == ["row 0"]:
+            break  # a descriptors.npy or similarity.npy input is one matrix, whatever was asked for
+    if results[0].similarity.shape[0] < 2:
+        raise _input_error(os.fspath(path), "needs at least 2 images")
+    return _map_result(_core.build_map([r.similarity for r in results], config), results)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class LocalizeResult:
+    """Where each query frame is in the map (``matches.csv`` and more).
+
+    Per query frame (row of the query x map matrix): ``map`` (int64 best map frame, -1 when the frame is
+    not covered by any alignment: "not in the map"), ``score`` (float32 local alignment score, higher =
+    more confident), ``covered`` (bool), ``direction`` (``"forward"``/``"reverse"``), ``candidates``
+    (``(Q, LocalizeConfig.candidates)`` int64, best first, padded with -1). ``alignments``: every
+    :class:`Alignment` found (a = query, b = map), best first.
+    """
+
+    map: np.ndarray
+    score: np.ndarray
+    covered: np.ndarray
+    direction: np.ndarray
+    candidates: np.ndarray
+    alignments: List[Alignment]
+
+
+def localize(similarity, config: Optional[LocalizeConfig] = None, **overrides) -> LocalizeResult:
+    """Sequence-based localization of a query traverse in a mapped one (``seqtopo localize``).
+
+    ``similarity``: the query x map matrix (rows = query frames, columns = map frames, higher = more
+    similar), e.g. ``seqtopo.similarity(query_descriptors, map_descriptors).similarity``.
+    ``config``: a :class:`LocalizeConfig`; keyword arguments override its fields.
+    Raises ValueError for an empty or non-finite matrix or a bad setting.
+    """
+    config = _config(config, LocalizeConfig, overrides)
+    raw = _core.localize(similarity, config)
+    reverse = raw.pop("reverse")
+    return LocalizeResult(
+        direction=np.where(reverse, "reverse", "forward"),
+        alignments=_alignments(raw.pop("alignments")),
+        **raw,
+    )
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class StringMatches:
+    """The ranked candidates of one query string (rows of ``matches.tsv``).
+
+    ``db_index``: database strings that matched, best first (ties in database order); ``score``: their
+    cost (lower is better); ``rank``: 1 = among the best matchings, ties share a rank (1, 1, 3, ...);
+    ``rotation``: with ``cyclic``, the best rotation of the database string.
+    """
+
+    db_index: np.ndarray
+    score: np.ndarray
+    rank: np.ndarray
+    rotation: np.ndarray
+
+    @property
+    def best(self) -> np.ndarray:
+        """Database indices of rank 1 (the set of best matchings)."""
+        return self.db_index[self.rank == 1]
+
+
+def match_strings(
+    db: Sequence[str],
+    queries: Sequence[str],
+    config: Optional[MatchConfig] = None,
+    *,
+    window: int = 1,
+    preset: Optional[str] = None,
+    **overrides,
+) -> List[StringMatches]:
+    """String-matching localization of the second paper (``seqtopo match-strings``).
+
+    Every query string (a test point's fingerprint: ``v`` = vertical edge, ``A``..``P`` = colour patch) is
+    compared with every database string by algorithm A (weighted global alignment with at most k
+    differences), B (k-differences inexact matching) or C (indel distance through the LCS).
+    ``config``: a :class:`MatchConfig`; keyword arguments override its fields (``algorithm="B"``,
+    ``k=2``, ``cyclic=True``...). ``preset``: a cost table name for A (:func:`preset_names`), applied
+    before ``costs`` overrides. ``window``: localize each query with the ``window`` queries ending at it
+    (both lists in travel order). Returns one :class:`StringMatches` per query.
+    """
+    if preset is not None:
+        overrides.setdefault("costs", preset_costs(preset))
+    config = _config(config, MatchConfig, overrides)
+    raw = _core.match_strings(list(db), list(queries), config, window)
+    return [StringMatches(*fields) for fields in raw]

@@ -1,0 +1,292 @@
+// The config classes: the C++ structs themselves, so their defaults are the library's by construction.
+#include <pybind11/stl.h>
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/localize/localize.hpp"
+#include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/similarity/similarity_from_distance.hpp"
+#include "seqtopo/strings/localization.hpp"
+
+namespace seqtopo::python {
+namespace {
+
+// "Name(a=1, b=2)" from the object's own attributes.
+std::string field_repr(const py::object& self, const char* type, const std::vector<const char*>& fields) {
+  std::string text = std::string(type) + "(";
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    if (k > 0) text += ", ";
+    text += std::string(fields[k]) + "=" + py::repr(self.attr(fields[k])).cast<std::string>();
+  }
+  return text + ")";
+}
+
+template <typename Class>
+void add_repr(Class& c, const char* type, std::vector<const char*> fields) {
+  c.def("__repr__", [type, fields](const py::object& self) { return field_repr(self, type, fields); });
+}
+
+// "no limit" is None in Python and SIZE_MAX in C++.
+std::optional<std::size_t> limit_to_python(std::size_t value) {
+  if (value == std::numeric_limits<std::size_t>::max()) return std::nullopt;
+  return value;
+}
+std::size_t limit_from_python(std::optional<std::size_t> value) {
+  return value.value_or(std::numeric_limits<std::size_t>::max());
+}
+
+void bind_align(py::module_& m) {
+  const align::AlignConfig d{};
+  py::class_<align::AlignConfig> c(m, "AlignConfig",
+                                   "Settings of the local-alignment engine (C++ seqtopo::align::AlignConfig).\n\n"
+                                   "gap_a / gap_b: penalty per element of A / B skipped by a gap; cap: upper bound on the\n"
+                                   "cumulative score (None: classical Smith-Waterman); threshold: minimum reported score;\n"
+                                   "max_alignments: stop after this many (None: all); self: A and B are one sequence, only\n"
+                                   "pairs with i - j >= min_separation are searched.");
+  c.def(py::init([](float gap_a, float gap_b, std::optional<float> cap, float threshold,
+                    std::optional<std::size_t> max_alignments, bool self, std::size_t min_separation) {
+          align::AlignConfig config;
+          config.gap_a = gap_a;
+          config.gap_b = gap_b;
+          config.cap = cap;
+          config.threshold = threshold;
+          config.max_alignments = limit_from_python(max_alignments);
+          config.self = self;
+          config.min_separation = min_separation;
+          return config;
+        }),
+        py::kw_only(), py::arg("gap_a") = d.gap_a, py::arg("gap_b") = d.gap_b, py::arg("cap") = d.cap,
+        py::arg("threshold") = d.threshold, py::arg("max_alignments") = limit_to_python(d.max_alignments),
+        py::arg("self") = d.self, py::arg("min_separation") = d.min_separation)
+      .def_readwrite("gap_a", &align::AlignConfig::gap_a)
+      .def_readwrite("gap_b", &align::AlignConfig::gap_b)
+      .def_readwrite("cap", &align::AlignConfig::cap)
+      .def_readwrite("threshold", &align::AlignConfig::threshold)
+      .def_property(
+          "max_alignments", [](const align::AlignConfig& a) { return limit_to_python(a.max_alignments); },
+          [](align::AlignConfig& a, std::optional<std::size_t> v) { a.max_alignments = limit_from_python(v); })
+      .def_readwrite("self", &align::AlignConfig::self)
+      .def_readwrite("min_separation", &align::AlignConfig::min_separation);
+  add_repr(c, "AlignConfig", {"gap_a", "gap_b", "cap", "threshold", "max_alignments", "self", "min_separation"});
+}
+
+void bind_map(py::module_& m) {
+  using mapping::PruningConfig;
+  using mapping::TopologyConfig;
+  using mapping::MapConfig;
+
+  py::class_<PruningConfig> pruning(m, "PruningConfig",
+                                    "Per-column pruning (C++ seqtopo::mapping::PruningConfig). rank: 'score_then_length'\n"
+                                    "(default) or 'length_then_score' (the paper's longest matching subsequence);\n"
+                                    "min_retained_fraction: an alignment is kept when at least this share of its pairs survive.");
+  auto rank_name = [](PruningConfig::Rank r) {
+    return std::string(r == PruningConfig::Rank::score_then_length ? "score_then_length" : "length_then_score");
+  };
+  auto rank_value = [](const std::string& name) {
+    if (name == "score_then_length") return PruningConfig::Rank::score_then_length;
+    if (name == "length_then_score") return PruningConfig::Rank::length_then_score;
+    throw std::invalid_argument("unknown rank '" + name + "' (expected score_then_length or length_then_score)");
+  };
+  const PruningConfig dp{};
+  pruning
+      .def(py::init([rank_value](const std::string& rank, double min_retained_fraction) {
+             PruningConfig config;
+             config.rank = rank_value(rank);
+             config.min_retained_fraction = min_retained_fraction;
+             return config;
+           }),
+           py::kw_only(), py::arg("rank") = rank_name(dp.rank), py::arg("min_retained_fraction") = dp.min_retained_fraction)
+      .def_property(
+          "rank", [rank_name](const PruningConfig& p) { return rank_name(p.rank); },
+          [rank_value](PruningConfig& p, const std::string& name) { p.rank = rank_value(name); })
+      .def_readwrite("min_retained_fraction", &PruningConfig::min_retained_fraction);
+  add_repr(pruning, "PruningConfig", {"rank", "min_retained_fraction"});
+
+  const TopologyConfig dt{};
+  py::class_<TopologyConfig> topology(m, "TopologyConfig",
+                                      "Topology (C++ seqtopo::mapping::TopologyConfig). u_turn_separation [frames]: a reverse\n"
+                                      "alignment meeting itself closer than this is a U-turn, not a junction.");
+  topology
+      .def(py::init([](std::size_t u_turn_separation) { return TopologyConfig{u_turn_separation}; }), py::kw_only(),
+           py::arg("u_turn_separation") = dt.u_turn_separation)
+      .def_readwrite("u_turn_separation", &TopologyConfig::u_turn_separation);
+  add_repr(topology, "TopologyConfig", {"u_turn_separation"});
+
+  const MapConfig d{};
+  py::class_<MapConfig> c(m, "MapConfig",
+                          "Settings of build_map (C++ seqtopo::mapping::MapConfig), same names and defaults.\n\n"
+                          "contrast_window [frames] (0: align the raw S, as the paper), contrast_offset [standard\n"
+                          "deviations], gap (penalty per skipped image), cap (None: no cap), threshold (minimum\n"
+                          "alignment score of a revisit), min_separation [frames], reverse (also search paths revisited\n"
+                          "backwards), pruning (PruningConfig), topology (TopologyConfig), threads (forward and reverse\n"
+                          "passes in parallel when > 1; the result does not depend on it).");
+  c.def(py::init([](std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap, float threshold,
+                    std::size_t min_separation, bool reverse, PruningConfig pruning, TopologyConfig topology, unsigned threads) {
+          MapConfig config;
+          config.contrast_window = contrast_window;
+          config.contrast_offset = contrast_offset;
+          config.gap = gap;
+          config.cap = cap;
+          config.threshold = threshold;
+          config.min_separation = min_separation;
+          config.reverse = reverse;
+          config.pruning = pruning;
+          config.topology = topology;
+          config.threads = threads;
+          return config;
+        }),
+        py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
+        py::arg("gap") = d.gap, py::arg("cap") = d.cap, py::arg("threshold") = d.threshold,
+        py::arg("min_separation") = d.min_separation, py::arg("reverse") = d.reverse, py::arg("pruning") = d.pruning,
+        py::arg("topology") = d.topology, py::arg("threads") = d.threads)
+      .def_readwrite("contrast_window", &MapConfig::contrast_window)
+      .def_readwrite("contrast_offset", &MapConfig::contrast_offset)
+      .def_readwrite("gap", &MapConfig::gap)
+      .def_readwrite("cap", &MapConfig::cap)
+      .def_readwrite("threshold", &MapConfig::threshold)
+      .def_readwrite("min_separation", &MapConfig::min_separation)
+      .def_readwrite("reverse", &MapConfig::reverse)
+      .def_readwrite("pruning", &MapConfig::pruning)
+      .def_readwrite("topology", &MapConfig::topology)
+      .def_readwrite("threads", &MapConfig::threads);
+  add_repr(c, "MapConfig", {"contrast_window", "contrast_offset", "gap", "cap", "threshold", "min_separation", "reverse",
+                            "pruning", "topology", "threads"});
+}
+
+void bind_localize(py::module_& m) {
+  using localize::LocalizeConfig;
+  const LocalizeConfig d{};
+  py::class_<LocalizeConfig> c(m, "LocalizeConfig",
+                               "Settings of localize (C++ seqtopo::localize::LocalizeConfig), same names and defaults.\n\n"
+                               "enhancement_window [map frames] (0: whole row), enhance, offset [standard deviations], gap,\n"
+                               "cap (None: none), threshold (minimum alignment score that covers frames), reverse,\n"
+                               "max_alignments, score_window [query frames], candidates (kept per frame), threads.");
+  c.def(py::init([](std::size_t enhancement_window, bool enhance, float offset, float gap, std::optional<float> cap,
+                    float threshold, bool reverse, std::size_t max_alignments, std::size_t score_window,
+                    std::size_t candidates, unsigned threads) {
+          LocalizeConfig config;
+          config.enhancement_window = enhancement_window;
+          config.enhance = enhance;
+          config.offset = offset;
+          config.gap = gap;
+          config.cap = cap;
+          config.threshold = threshold;
+          config.reverse = reverse;
+          config.max_alignments = max_alignments;
+          config.score_window = score_window;
+          config.candidates = candidates;
+          config.threads = threads;
+          return config;
+        }),
+        py::kw_only(), py::arg("enhancement_window") = d.enhancement_window, py::arg("enhance") = d.enhance,
+        py::arg("offset") = d.offset, py::arg("gap") = d.gap, py::arg("cap") = d.cap, py::arg("threshold") = d.threshold,
+        py::arg("reverse") = d.reverse, py::arg("max_alignments") = d.max_alignments,
+        py::arg("score_window") = d.score_window, py::arg("candidates") = d.candidates, py::arg("threads") = d.threads)
+      .def_readwrite("enhancement_window", &LocalizeConfig::enhancement_window)
+      .def_readwrite("enhance", &LocalizeConfig::enhance)
+      .def_readwrite("offset", &LocalizeConfig::offset)
+      .def_readwrite("gap", &LocalizeConfig::gap)
+      .def_readwrite("cap", &LocalizeConfig::cap)
+      .def_readwrite("threshold", &LocalizeConfig::threshold)
+      .def_readwrite("reverse", &LocalizeConfig::reverse)
+      .def_readwrite("max_alignments", &LocalizeConfig::max_alignments)
+      .def_readwrite("score_window", &LocalizeConfig::score_window)
+      .def_readwrite("candidates", &LocalizeConfig::candidates)
+      .def_readwrite("threads", &LocalizeConfig::threads);
+  add_repr(c, "LocalizeConfig", {"enhancement_window", "enhance", "offset", "gap", "cap", "threshold", "reverse",
+                                 "max_alignments", "score_window", "candidates", "threads"});
+}
+
+void bind_strings(py::module_& m) {
+  using strings::EditCosts;
+  using strings::MatchConfig;
+  const EditCosts dc{};
+  py::class_<EditCosts> costs(m, "EditCosts",
+                              "Edit costs of algorithm A (C++ seqtopo::strings::EditCosts); the defaults are the unit costs\n"
+                              "of Table III ('A1'). colour_distance: None or a 16 x 16 table in [0, 1] scaling\n"
+                              "colour_difference.");
+  costs
+      .def(py::init([](double deletion, double insertion, double colour_difference, double coincidence, double discordance,
+                       std::optional<strings::ColourDistanceTable> colour_distance) {
+             return EditCosts{deletion, insertion, colour_difference, coincidence, discordance, colour_distance};
+           }),
+           py::kw_only(), py::arg("deletion") = dc.deletion, py::arg("insertion") = dc.insertion,
+           py::arg("colour_difference") = dc.colour_difference, py::arg("coincidence") = dc.coincidence,
+           py::arg("discordance") = dc.discordance, py::arg("colour_distance") = dc.colour_distance)
+      .def_readwrite("deletion", &EditCosts::deletion)
+      .def_readwrite("insertion", &EditCosts::insertion)
+      .def_readwrite("colour_difference", &EditCosts::colour_difference)
+      .def_readwrite("coincidence", &EditCosts::coincidence)
+      .def_readwrite("discordance", &EditCosts::discordance)
+      .def_readwrite("colour_distance", &EditCosts::colour_distance);
+  add_repr(costs, "EditCosts", {"deletion", "insertion", "colour_difference", "coincidence", "discordance"});
+
+  const MatchConfig d{};
+  py::class_<MatchConfig> c(m, "MatchConfig",
+                            "Settings of match_strings (C++ seqtopo::strings::MatchConfig). algorithm: 'A', 'B' or 'C';\n"
+                            "k: maximum differences for A and B (None: no limit); costs: EditCosts (A only); cyclic:\n"
+                            "compare with every rotation of each database string; tie_tolerance: scores closer than\n"
+                            "this share a rank.");
+  c.def(py::init([](const std::string& algorithm, std::optional<std::size_t> k, EditCosts costs, bool cyclic,
+                    double tie_tolerance) {
+          MatchConfig config;
+          config.algorithm = strings::parse_algorithm(algorithm);
+          config.k = limit_from_python(k);
+          config.costs = std::move(costs);
+          config.cyclic = cyclic;
+          config.tie_tolerance = tie_tolerance;
+          return config;
+        }),
+        py::kw_only(), py::arg("algorithm") = std::string(strings::algorithm_name(d.algorithm)),
+        py::arg("k") = limit_to_python(d.k), py::arg("costs") = d.costs, py::arg("cyclic") = d.cyclic,
+        py::arg("tie_tolerance") = d.tie_tolerance)
+      .def_property(
+          "algorithm", [](const MatchConfig& x) { return std::string(strings::algorithm_name(x.algorithm)); },
+          [](MatchConfig& x, const std::string& name) { x.algorithm = strings::parse_algorithm(name); })
+      .def_property(
+          "k", [](const MatchConfig& x) { return limit_to_python(x.k); },
+          [](MatchConfig& x, std::optional<std::size_t> k) { x.k = limit_from_python(k); })
+      .def_readwrite("costs", &MatchConfig::costs)
+      .def_readwrite("cyclic", &MatchConfig::cyclic)
+      .def_readwrite("tie_tolerance", &MatchConfig::tie_tolerance);
+  add_repr(c, "MatchConfig", {"algorithm", "k", "costs", "cyclic", "tie_tolerance"});
+
+  m.def("preset_costs", &strings::preset_costs, py::arg("name"),
+        "The paper's named cost tables: 'A1' (Table III), 'A2-rooms', 'A2-ground-floor', 'A2-white-hall', 'A2-global'.");
+  m.def("preset_names", &strings::preset_names, "Names accepted by preset_costs.");
+}
+
+void bind_kappa(py::module_& m) {
+  using similarity::KappaRule;
+  const KappaRule d{};
+  py::class_<KappaRule> c(m, "KappaRule",
+                          "The automatic kappa of S = 1 - kappa * D (C++ seqtopo::similarity::KappaRule): about\n"
+                          "matches_per_image partners per image get S > 0, among pairs at least min_separation apart.");
+  c.def(py::init([](double matches_per_image, std::size_t min_separation, double max_fraction, std::size_t max_samples) {
+          return KappaRule{matches_per_image, min_separation, max_fraction, max_samples};
+        }),
+        py::kw_only(), py::arg("matches_per_image") = d.matches_per_image, py::arg("min_separation") = d.min_separation,
+        py::arg("max_fraction") = d.max_fraction, py::arg("max_samples") = d.max_samples)
+      .def_readwrite("matches_per_image", &KappaRule::matches_per_image)
+      .def_readwrite("min_separation", &KappaRule::min_separation)
+      .def_readwrite("max_fraction", &KappaRule::max_fraction)
+      .def_readwrite("max_samples", &KappaRule::max_samples);
+  add_repr(c, "KappaRule", {"matches_per_image", "min_separation", "max_fraction", "max_samples"});
+}
+
+}  // namespace
+
+void bind_configs(py::module_& m) {
+  bind_align(m);
+  bind_map(m);
+  bind_localize(m);
+  bind_strings(m);
+  bind_kappa(m);
+}
+
+}  // namespace seqtopo::python

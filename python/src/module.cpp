@@ -1,0 +1,336 @@
+// seqtopo._core: the compiled half of the Python package (python/seqtopo/__init__.py wraps it).
+//
+// Every long computation runs with the GIL released; the NumPy arrays it reads are held by the call's own
+// references, so they stay alive meanwhile (a caller that writes to an input array from another thread during
+// a call gets undefined results, as with any buffer shared across threads).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/image/similarity_pipeline.hpp"
+#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/localize/localize.hpp"
+#include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/similarity/distance_matrix.hpp"
+#include "seqtopo/similarity/memory.hpp"
+#include "seqtopo/similarity/similarity_from_distance.hpp"
+#include "seqtopo/strings/localization.hpp"
+
+namespace seqtopo::python {
+namespace {
+
+using Index = std::int64_t;
+
+Index index(std::size_t i) { return static_cast<Index>(i); }
+
+// (score, direction, a_begin, a_end, b_begin, b_end, pairs) per alignment; __init__.py makes them Alignment objects.
+py::list alignments_list(const std::vector<align::LocalAlignment>& alignments) {
+  py::list out;
+  for (const auto& a : alignments) {
+    out.append(py::make_tuple(a.score, std::string(align::to_string(a.direction)), index(a.a_begin), index(a.a_end),
+                              index(a.b_begin), index(a.b_end), pairs_array(a.pairs)));
+  }
+  return out;
+}
+
+template <typename T>
+py::array_t<Index> index_array(const std::vector<T>& values) {
+  std::vector<Index> out(values.begin(), values.end());
+  return to_array(std::move(out));
+}
+
+py::array_t<bool> bool_array(const std::vector<bool>& values) {
+  py::array_t<bool> out(static_cast<py::ssize_t>(values.size()));
+  auto view = out.mutable_unchecked<1>();
+  for (std::size_t k = 0; k < values.size(); ++k) view(static_cast<py::ssize_t>(k)) = values[k];
+  return out;
+}
+
+// ---- align -------------------------------------------------------------------------------------------
+
+py::list align_scores(const py::handle& scores, align::AlignConfig config, bool reverse, unsigned threads) {
+  const MatrixView view = matrix_view(scores, "scores");
+  std::vector<align::LocalAlignment> alignments;
+  {
+    const py::gil_scoped_release release;
+    require_finite(view, "scores");
+    // The engine reads the array's own buffer (no copy for a float32 C-contiguous array).
+    const auto source = align::ScoreSource::dense(std::span<const float>(view.data, view.size()), view.rows, view.cols);
+    config.direction = align::Direction::forward;
+    alignments = reverse ? align::local_alignments_both(source, config, threads) : align::local_alignments(source, config);
+  }
+  return alignments_list(alignments);
+}
+
+// ---- build_map ---------------------------------------------------------------------------------------
+
+py::dict map_result(mapping::MapResult&& r) {
+  py::dict out;
+  auto& map = r.map;
+  out["alignments"] = alignments_list(r.alignments);
+  out["kept"] = bool_array(r.pruning.kept);
+  out["retained_count"] = index_array(r.pruning.retained_count);
+  std::vector<Index> closures, alignment_of;
+  std::vector<float> closure_scores;
+  for (const auto& p : r.pruning.pairs) {
+    closures.push_back(index(p.i));
+    closures.push_back(index(p.j));
+    alignment_of.push_back(index(p.alignment));
+    closure_scores.push_back(p.score);
+  }
+  const auto pairs = static_cast<py::ssize_t>(alignment_of.size());
+  out["loop_closures"] = to_array(std::move(closures), {pairs, 2});
+  out["loop_closure_scores"] = to_array(std::move(closure_scores));
+  out["loop_closure_alignments"] = to_array(std::move(alignment_of));
+  out["labels"] = to_array(std::move(map.labels));
+  py::list places;
+  for (const auto& p : map.places) places.append(index_array(p.images));
+  out["places"] = places;
+  std::vector<Index> edges;
+  for (const auto& [p, q] : map.edges) {
+    edges.push_back(p);
+    edges.push_back(q);
+  }
+  out["edges"] = to_array(std::move(edges), {static_cast<py::ssize_t>(map.edges.size()), 2});
+  out["junctions"] = index_array(map.junctions);
+  py::list segments;
+  for (const auto& s : map.segments) segments.append(index_array(s.places));
+  out["segments"] = segments;
+  out["scores"] = to_array(std::move(r.scores));
+  out["seconds_align"] = r.seconds_align;
+  out["seconds_prune_label"] = r.seconds_prune_label;
+  return out;
+}
+
+py::dict build_map(const py::sequence& similarities, const mapping::MapConfig& config) {
+  std::vector<MatrixView> views;
+  for (std::size_t k = 0; k < similarities.size(); ++k) {
+    views.push_back(matrix_view(similarities[k], similarities.size() == 1 ? "similarity" : "similarities"));
+  }
+  mapping::MapResult result;
+  {
+    const py::gil_scoped_release release;
+    std::vector<SimilarityMatrix> matrices;
+    for (const auto& view : views) {
+      require_finite(view, similarities.size() == 1 ? "similarity" : "similarities");
+      matrices.push_back(to_matrix(view));  // build_map works on matrices it owns: one copy
+    }
+    result = mapping::build_map(matrices, config);
+  }
+  return map_result(std::move(result));
+}
+
+// ---- localize ----------------------------------------------------------------------------------------
+
+py::dict localize(const py::handle& query_x_map, const localize::LocalizeConfig& config) {
+  const MatrixView view = matrix_view(query_x_map, "similarity");
+  localize::LocalizeResult result;
+  {
+    const py::gil_scoped_release release;
+    result = localize::localize_sequence(to_matrix(view), config);
+  }
+  const std::size_t frames = result.frames.size();
+  const std::size_t width = config.candidates;
+  std::vector<Index> map(frames, -1), candidates(frames * width, -1);
+  std::vector<float> score(frames);
+  std::vector<bool> covered(frames), reverse(frames);
+  for (std::size_t q = 0; q < frames; ++q) {
+    const auto& f = result.frames[q];
+    if (f.covered) map[q] = index(f.map);
+    score[q] = f.score;
+    covered[q] = f.covered;
+    reverse[q] = f.direction == align::Direction::reverse;
+    for (std::size_t k = 0; k < f.candidates.size() && k < width; ++k) candidates[q * width + k] = index(f.candidates[k]);
+  }
+  py::dict out;
+  out["map"] = to_array(std::move(map));
+  out["score"] = to_array(std::move(score));
+  out["covered"] = bool_array(covered);
+  out["reverse"] = bool_array(reverse);
+  out["candidates"] = to_array(std::move(candidates), {static_cast<py::ssize_t>(frames), static_cast<py::ssize_t>(width)});
+  out["alignments"] = alignments_list(result.alignments);
+  return out;
+}
+
+// ---- similarity --------------------------------------------------------------------------------------
+
+py::dict similarity_result(image::SimilarityResult&& r) {
+  py::dict out;
+  out["similarity"] = to_array(std::move(r.similarity));
+  out["kappa"] = r.kappa;
+  out["kappa_auto"] = r.kappa_auto;
+  out["kappa_fraction"] = r.kappa_fraction;
+  out["metric"] = r.metric ? py::object(py::str(std::string(similarity::metric_name(*r.metric)))) : py::object(py::none());
+  out["frame_names"] = r.frame_names;
+  out["column_names"] = r.column_names;
+  return out;
+}
+
+void check_kappa(const std::optional<float>& kappa) {
+  if (kappa && (!(*kappa > 0) || !std::isfinite(*kappa))) throw std::invalid_argument("kappa must be positive");
+}
+
+// What `seqtopo similarity descriptors.npy` computes, from arrays: rows are items; S = 1 - kappa * D.
+py::dict similarity_of_descriptors(const py::handle& descriptors, const py::handle& against,
+                                   const std::optional<std::string>& metric_name, std::optional<float> kappa,
+                                   unsigned threads, const similarity::KappaRule& rule) {
+  check_kappa(kappa);
+  const similarity::Metric metric =
+      metric_name ? similarity::parse_metric(*metric_name) : image::default_metric(image::Descriptor::npy);
+  const MatrixView a = matrix_view(descriptors, "descriptors");
+  std::optional<MatrixView> b;
+  if (!against.is_none()) b = matrix_view(against, "against");
+  image::SimilarityResult r;
+  {
+    const py::gil_scoped_release release;
+    const MatrixView* inputs[] = {&a, b ? &*b : nullptr};
+    for (const MatrixView* v : inputs) {
+      if (v == nullptr) continue;
+      const char* name = v == &a ? "descriptors" : "against";
+      if (v->size() == 0) throw std::invalid_argument(std::string(name) + ": no descriptors (empty array)");
+      require_finite(*v, name);
+    }
+    const std::size_t cols = b ? b->rows : a.rows;
+    const std::size_t bytes = similarity::matrix_bytes(a.rows, cols) + (a.size() + (b ? b->size() : 0)) * sizeof(float);
+    similarity::check_fits(bytes, similarity::available_memory_bytes(),
+                           "the " + std::to_string(a.rows) + " x " + std::to_string(cols) +
+                               " similarity matrix with its descriptors");
+    const auto set_a = similarity::DescriptorSet::from_dense(to_matrix(a));
+    similarity::MatrixConfig mc;
+    mc.threads = threads;
+    mc.tile = image::SimilarityConfig{}.tile;
+    DenseMatrix<float> distances;
+    if (b) {
+      distances = similarity::distance_matrix(set_a, similarity::DescriptorSet::from_dense(to_matrix(*b)), metric, mc);
+    } else {
+      distances = similarity::distance_matrix(set_a, metric, mc);
+    }
+    if (kappa) {
+      r.kappa = *kappa;
+    } else {
+      const auto choice = similarity::choose_kappa(distances, !b, rule);
+      r.kappa = choice.kappa;
+      r.kappa_auto = true;
+      r.kappa_fraction = choice.fraction;
+    }
+    r.similarity = similarity::similarity_from_distance(std::move(distances), r.kappa);
+    r.metric = metric;
+  }
+  for (std::size_t i = 0; i < a.rows; ++i) r.frame_names.push_back("row " + std::to_string(i));
+  if (b) {
+    for (std::size_t i = 0; i < b->rows; ++i) r.column_names.push_back("row " + std::to_string(i));
+  } else {
+    r.column_names = r.frame_names;
+  }
+  return similarity_result(std::move(r));
+}
+
+// The image pipeline on a folder, video, descriptors.npy or similarity.npy (image/similarity_pipeline.hpp).
+py::dict similarity_of_path(const std::filesystem::path& path, const std::optional<std::filesystem::path>& against,
+                            const std::string& descriptor, const std::optional<std::string>& metric_name,
+                            std::optional<float> kappa, const std::string& input_kind, std::size_t every, unsigned threads,
+                            const similarity::KappaRule& rule) {
+  image::SimilarityConfig config;
+  config.descriptor = image::parse_descriptor(descriptor);
+  if (metric_name) config.metric = similarity::parse_metric(*metric_name);
+  check_kappa(kappa);
+  config.kappa = kappa;
+  config.threads = threads;
+  config.kappa_rule = rule;
+  const auto kind = image::parse_input_kind(input_kind);
+  image::SimilarityResult r;
+  {
+    const py::gil_scoped_release release;
+    const image::SequenceInput a{path, kind, every};
+    r = against ? image::compute_similarity(a, image::SequenceInput{*against, kind, every}, config)
+                : image::compute_similarity(a, config);
+  }
+  return similarity_result(std::move(r));
+}
+
+// ---- match_strings -----------------------------------------------------------------------------------
+
+py::list match_strings(const std::vector<std::string>& db, const std::vector<std::string>& queries,
+                       const strings::MatchConfig& config, std::size_t window) {
+  strings::validate(config.costs);
+  std::vector<strings::QueryMatches> matches;
+  {
+    const py::gil_scoped_release release;
+    matches = strings::match_all_windowed(db, queries, config, window);
+  }
+  py::list out;
+  for (const auto& m : matches) {
+    std::vector<Index> db_index, rank, rotation;
+    std::vector<double> score;
+    for (const auto& c : m.ranked) {
+      db_index.push_back(index(c.db_index));
+      score.push_back(c.score);
+      rank.push_back(index(c.rank));
+      rotation.push_back(index(c.rotation));
+    }
+    out.append(py::make_tuple(to_array(std::move(db_index)), to_array(std::move(score)), to_array(std::move(rank)),
+                              to_array(std::move(rotation))));
+  }
+  return out;
+}
+
+void register_exceptions(py::module_& m) {
+  // seqtopo.InputError: a problem with a file or option the user gave; str() is the CLI's
+  // "<subject>: <message>", and .subject / .message hold the two parts.
+  static PyObject* input_error = nullptr;
+  const py::exception<io::InputError> type(m, "InputError", PyExc_ValueError);
+  input_error = type.ptr();
+  Py_INCREF(input_error);  // lives as long as the interpreter: the translator may run until then
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const io::InputError& e) {
+      const py::object cls = py::reinterpret_borrow<py::object>(input_error);
+      py::object error = cls(e.subject() + ": " + e.what());
+      error.attr("subject") = e.subject();
+      error.attr("message") = std::string(e.what());
+      PyErr_SetObject(input_error, error.ptr());
+    } catch (const similarity::MemoryError& e) {
+      PyErr_SetString(PyExc_MemoryError, e.what());
+    }
+  });
+}
+
+}  // namespace
+}  // namespace seqtopo::python
+
+PYBIND11_MODULE(_core, m) {
+  namespace py = pybind11;
+  using namespace seqtopo::python;
+  m.doc() = "Compiled core of seqtopo; use the seqtopo package, which documents and wraps these functions.";
+  m.attr("__version__") = SEQTOPO_VERSION;
+  register_exceptions(m);
+  bind_configs(m);
+
+  m.def("align", &align_scores, py::arg("scores"), py::arg("config"), py::arg("reverse"), py::arg("threads"));
+  m.def("build_map", &build_map, py::arg("similarities"), py::arg("config"));
+  m.def("localize", &localize, py::arg("similarity"), py::arg("config"));
+  m.def("similarity_of_descriptors", &similarity_of_descriptors, py::arg("descriptors"), py::arg("against"),
+        py::arg("metric"), py::arg("kappa"), py::arg("threads"), py::arg("kappa_rule"));
+  m.def("similarity_of_path", &similarity_of_path, py::arg("path"), py::arg("against"), py::arg("descriptor"),
+        py::arg("metric"), py::arg("kappa"), py::arg("input_kind"), py::arg("every"), py::arg("threads"),
+        py::arg("kappa_rule"));
+  m.def("match_strings", &match_strings, py::arg("db"), py::arg("queries"), py::arg("config"), py::arg("window"));
+  m.def(
+      "engine_input", [](const py::handle& array) { return matrix_view(array, "array").array; }, py::arg("array"),
+      "The float32 C-order array the functions read for `array`: the array itself when it already is one "
+      "(no copy), else a converted copy.");
+}

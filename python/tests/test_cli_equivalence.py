@@ -1,0 +1,232 @@
+"""The Python functions give exactly what the command line writes for the same input."""
+
+import csv
+import json
+
+import numpy as np
+import pytest
+
+import seqtopo
+from conftest import SOURCE_DIR, localization_pair, route_descriptors, run_cli
+
+
+def read_loop_closures(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    pairs = np.array([[int(r["i"]), int(r["j"])] for r in rows], dtype=np.int64).reshape(-1, 2)
+    scores = np.array([float(r["score"]) for r in rows], dtype=np.float32)
+    return pairs, scores
+
+
+def assert_alignments_equal(python, from_json):
+    assert len(python) == len(from_json)
+    for a, j in zip(python, from_json):
+        # JSON holds the float32 score widened to double: narrowing it back is exact.
+        assert np.float32(j["score"]) == np.float32(a.score)
+        assert (a.direction, a.a_begin, a.a_end, a.b_begin, a.b_end) == (
+            j["direction"], j["a_begin"], j["a_end"], j["b_begin"], j["b_end"])
+        assert np.array_equal(a.pairs, np.array(j["pairs"], dtype=np.int64).reshape(-1, 2))
+
+
+def assert_map_equal(result, out_dir):
+    with open(out_dir / "map.json") as f:
+        written = json.load(f)
+    mine = result.to_json()
+    for key in ("images", "labels", "places", "edges", "junctions", "segments"):
+        assert mine[key] == written[key], key
+    assert_alignments_equal(result.alignments, written["alignments"])
+    assert [a["kept"] for a in written["alignments"]] == result.kept.tolist()
+    pairs, scores = read_loop_closures(out_dir / "loop_closures.csv")
+    assert np.array_equal(result.loop_closures, pairs)
+    assert np.array_equal(result.loop_closure_scores, scores)
+    assert np.array_equal(np.load(out_dir / "scores.npy"), result.scores)
+
+
+@pytest.mark.parametrize("metric,kappa", [(None, None), ("l1", None), ("cosine", 2.5), ("chi2", None)])
+def test_similarity_equals_cli(cli, tmp_path, metric, kappa):
+    d = route_descriptors()
+    np.save(tmp_path / "descriptors.npy", d)
+    args = ["similarity", tmp_path / "descriptors.npy", "--out", tmp_path / "out"]
+    if metric:
+        args += ["--metric", metric]
+    if kappa:
+        args += ["--kappa", kappa]
+    run_cli(cli, *args)
+    expected = np.load(tmp_path / "out" / "similarity.npy")
+    result = seqtopo.similarity(d, metric=metric, kappa=kappa)
+    assert result.similarity.dtype == np.float32
+    assert np.array_equal(result.similarity, expected)
+    assert result.metric == (metric or "cosine")
+    assert result.kappa_auto == (kappa is None)
+    # The same through the path form, and from float64 input (converted to float32 as the .npy reader does).
+    assert np.array_equal(seqtopo.similarity(tmp_path / "descriptors.npy", metric=metric, kappa=kappa).similarity, expected)
+    assert np.array_equal(seqtopo.similarity(d.astype(np.float64), metric=metric, kappa=kappa).similarity, expected)
+
+
+def test_similarity_against_equals_cli(cli, tmp_path):
+    map_d, query = localization_pair()
+    np.save(tmp_path / "query.npy", query)
+    np.save(tmp_path / "map.npy", map_d)
+    run_cli(cli, "similarity", tmp_path / "query.npy", "--against", tmp_path / "map.npy", "--out", tmp_path / "out")
+    result = seqtopo.similarity(query, map_d)
+    assert result.similarity.shape == (40, 80)
+    assert np.array_equal(result.similarity, np.load(tmp_path / "out" / "similarity.npy"))
+
+
+def test_build_map_equals_cli_on_similarity_npy(cli, tmp_path):
+    s = seqtopo.similarity(route_descriptors()).similarity
+    np.save(tmp_path / "route_similarity.npy", s)
+    run_cli(cli, "map", tmp_path / "route_similarity.npy", "--out", tmp_path / "out")
+    result = seqtopo.build_map(s)
+    # The walk revisits places forward and backwards: both kinds of loop closure must be there.
+    assert {a.direction for a, kept in zip(result.alignments, result.kept) if kept} == {"forward", "reverse"}
+    assert len(result.places) < result.images
+    assert_map_equal(result, tmp_path / "out")
+    # A path goes through the same pipeline as the command.
+    assert_map_equal(seqtopo.build_map(tmp_path / "route_similarity.npy"), tmp_path / "out")
+
+
+def test_build_map_with_options_equals_cli(cli, tmp_path):
+    s = seqtopo.similarity(route_descriptors(seed=3)).similarity
+    np.save(tmp_path / "route_similarity.npy", s)
+    run_cli(cli, "map", tmp_path / "route_similarity.npy", "--out", tmp_path / "out", "--gap", 1, "--cap", "none",
+            "--threshold", 5, "--min-separation", 6, "--contrast-window", 8, "--contrast-offset", 0.25, "--no-reverse")
+    result = seqtopo.build_map(s, gap=1.0, cap=None, threshold=5.0, min_separation=6, contrast_window=8,
+                               contrast_offset=0.25, reverse=False)
+    assert result.alignments and all(a.direction == "forward" for a in result.alignments)
+    assert_map_equal(result, tmp_path / "out")
+
+
+def test_build_map_from_descriptors_npy_equals_cli(cli, tmp_path):
+    np.save(tmp_path / "descriptors.npy", route_descriptors(seed=5))
+    run_cli(cli, "map", tmp_path / "descriptors.npy", "--out", tmp_path / "out")
+    result = seqtopo.build_map_from_images(tmp_path / "descriptors.npy")
+    assert len(result.similarities) == 1
+    assert_map_equal(result, tmp_path / "out")
+    assert np.array_equal(result.similarities[0].similarity, np.load(tmp_path / "out" / "similarity.npy"))
+
+
+def test_build_map_from_image_folder_equals_cli(cli, tmp_path):
+    """The bundled corridor walk (84 images): two descriptors fused, as `seqtopo map` does by default."""
+    folder = SOURCE_DIR / "data" / "rtabmap-corridor"
+    run_cli(cli, "map", folder, "--out", tmp_path / "out")
+    result = seqtopo.build_map_from_images(folder)
+    assert [r.metric for r in result.similarities] == ["chi2", "sad"]
+    assert result.images == 84 and result.kept.any()
+    assert_map_equal(result, tmp_path / "out")
+
+
+def test_localize_equals_cli(cli, tmp_path):
+    map_d, query = localization_pair()
+    s = seqtopo.similarity(query, map_d).similarity
+    np.save(tmp_path / "qm_similarity.npy", s)
+    run_cli(cli, "localize", "--map", tmp_path / "qm_similarity.npy", "--out", tmp_path / "out")
+    result = seqtopo.localize(s)
+    with open(tmp_path / "out" / "matches.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == len(result.map) == 40
+    for q, row in enumerate(rows):
+        assert int(row["query"]) == q
+        if result.covered[q]:
+            assert int(row["map"]) == result.map[q]
+            assert row["score"] == format(float(result.score[q]), ".6g")
+        else:
+            assert row["map"] == "" and row["score"] == "" and result.map[q] == -1
+    # The query drove through map frames 20..49, then somewhere new.
+    assert np.all(np.abs(result.map[2:28] - np.arange(22, 48)) <= 1)
+    assert result.candidates.shape == (40, seqtopo.LocalizeConfig().candidates)
+    assert np.all(result.candidates[result.covered, 0] == result.map[result.covered])
+
+
+def test_localize_with_options_equals_cli(cli, tmp_path):
+    map_d, query = localization_pair(seed=4)
+    s = seqtopo.similarity(query, map_d[::-1].copy()).similarity  # the map driven the other way
+    np.save(tmp_path / "qm_similarity.npy", s)
+    run_cli(cli, "localize", "--map", tmp_path / "qm_similarity.npy", "--out", tmp_path / "out", "--gap", 1.5,
+            "--threshold", 6, "--offset", 0.5, "--window", 6, "--score-window", 4, "--cap", 30)
+    result = seqtopo.localize(s, seqtopo.LocalizeConfig(gap=1.5, threshold=6.0, offset=0.5, enhancement_window=6,
+                                                         score_window=4, cap=30.0, threads=2))
+    assert "reverse" in set(result.direction[result.covered])
+    with open(tmp_path / "out" / "matches.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    for q, row in enumerate(rows):
+        assert row["map"] == (str(result.map[q]) if result.covered[q] else "")
+        assert row["score"] == (format(float(result.score[q]), ".6g") if result.covered[q] else "")
+
+
+@pytest.mark.parametrize("options", [
+    {"gap": 1.0, "reverse": True},
+    {"gap": 0.5, "cap": 6.0, "threshold": 2.0, "reverse": True},
+    {"gap_a": 0.5, "gap_b": 2.0, "reverse": False, "max_alignments": 3},
+    {"self": True, "min_separation": 5, "reverse": True, "gap": 1.0, "threshold": 1.0},
+])
+def test_align_equals_cli(cli, tmp_path, options):
+    s = seqtopo.similarity(route_descriptors(seed=9)).similarity
+    np.save(tmp_path / "scores.npy", s)
+    args = ["align", "--scores", tmp_path / "scores.npy", "--json", tmp_path / "alignments.json",
+            "--max-alignments", options.get("max_alignments", 0)]
+    flags = {"gap": "--gap", "gap_a": "--gap-a", "gap_b": "--gap-b", "cap": "--cap", "threshold": "--threshold",
+             "min_separation": "--min-separation"}
+    for key, flag in flags.items():
+        if key in options:
+            args += [flag, options[key]]
+    if options.get("reverse"):
+        args.append("--reverse")
+    if options.get("self"):
+        args.append("--self")
+    run_cli(cli, *args)
+    with open(tmp_path / "alignments.json") as f:
+        written = json.load(f)["alignments"]
+    result = seqtopo.align(s, **options)
+    assert result
+    assert_alignments_equal(result, written)
+
+
+def read_matches_tsv(path):
+    rows = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#") or line.startswith("query_id"):
+                continue
+            rows.append(line.rstrip("\n").split("\t"))
+    return rows
+
+
+@pytest.mark.parametrize("algorithm,extra", [("A", {}), ("A", {"preset": "A2-rooms", "k": 4}), ("B", {"k": 2}),
+                                              ("C", {}), ("A", {"cyclic": True}), ("C", {"window": 3})])
+def test_match_strings_equals_cli(cli, tmp_path, algorithm, extra):
+    rng = np.random.default_rng(1)
+    alphabet = list("vABCDEFGHIJKLMNOP")
+    db = ["".join(rng.choice(alphabet, size=rng.integers(6, 14))) for _ in range(25)]
+    queries = []
+    for k in range(12):
+        s = list(db[(2 * k) % 25])
+        for _ in range(2):  # two random edits
+            pos = int(rng.integers(0, len(s)))
+            s[pos] = str(rng.choice(alphabet))
+        queries.append("".join(s))
+    (tmp_path / "db.tsv").write_text("".join(f"m{k}\t{s}\n" for k, s in enumerate(db)))
+    (tmp_path / "q.tsv").write_text("".join(f"t{k}\t{s}\n" for k, s in enumerate(queries)))
+    args = ["match-strings", "--db", tmp_path / "db.tsv", "--queries", tmp_path / "q.tsv", "--algorithm", algorithm,
+            "--out", tmp_path / "out"]
+    if "preset" in extra:
+        args += ["--preset", extra["preset"]]
+    if "k" in extra:
+        args += ["--k", extra["k"]]
+    if extra.get("cyclic"):
+        args.append("--cyclic")
+    if "window" in extra:
+        args += ["--window", extra["window"]]
+    run_cli(cli, *args)
+    expected = read_matches_tsv(tmp_path / "out" / "matches.tsv")
+    config = seqtopo.MatchConfig(algorithm=algorithm, k=extra.get("k"), cyclic=extra.get("cyclic", False))
+    result = seqtopo.match_strings(db, queries, config, window=extra.get("window", 1), preset=extra.get("preset"))
+    mine = []
+    for q, m in enumerate(result):
+        for d, score, rank, rotation in zip(m.db_index, m.score, m.rank, m.rotation):
+            row = [f"t{q}", str(rank), f"m{d}", format(float(score), ".6g")]
+            if extra.get("cyclic"):
+                row.append(str(rotation))
+            mine.append(row)
+    assert mine == expected
+    assert len(mine) > 0

@@ -1,0 +1,100 @@
+"""Errors: ValueError / seqtopo.InputError with the messages the command line prints."""
+
+import numpy as np
+import pytest
+
+import seqtopo
+from conftest import cli_error, localization_pair, route_descriptors
+
+
+def test_unknown_metric_message_equals_cli(cli, tmp_path):
+    np.save(tmp_path / "descriptors.npy", route_descriptors())
+    expected = cli_error(cli, "similarity", tmp_path / "descriptors.npy", "--metric", "hamming", "--out", tmp_path / "o")
+    with pytest.raises(ValueError) as error:
+        seqtopo.similarity(route_descriptors(), metric="hamming")
+    assert expected == "--metric: " + str(error.value)
+
+
+def test_chi2_on_negative_values_message_equals_cli(cli, tmp_path):
+    d = route_descriptors() - 0.5
+    np.save(tmp_path / "descriptors.npy", d)
+    expected = cli_error(cli, "similarity", tmp_path / "descriptors.npy", "--metric", "chi2", "--out", tmp_path / "o")
+    with pytest.raises(ValueError) as error:
+        seqtopo.similarity(d, metric="chi2")
+    assert expected == f"{tmp_path / 'descriptors.npy'}: {error.value}"
+
+
+def test_bad_file_is_an_input_error_with_the_cli_text(cli, tmp_path):
+    d = route_descriptors()
+    d[3, 5] = np.nan
+    np.save(tmp_path / "descriptors.npy", d)
+    expected = cli_error(cli, "map", tmp_path / "descriptors.npy", "--out", tmp_path / "o")
+    with pytest.raises(seqtopo.InputError) as error:
+        seqtopo.build_map_from_images(tmp_path / "descriptors.npy")
+    assert str(error.value) == expected
+    assert error.value.subject == str(tmp_path / "descriptors.npy")
+    assert error.value.message == "non-finite value at row 3, column 5"
+    assert isinstance(error.value, ValueError)
+    # The same values given as an array name the argument instead of the file.
+    with pytest.raises(ValueError, match="^descriptors: non-finite value at row 3, column 5$"):
+        seqtopo.similarity(d)
+
+
+def test_missing_folder_is_an_input_error():
+    with pytest.raises(seqtopo.InputError) as error:
+        seqtopo.build_map_from_images("/nonexistent/folder")
+    assert error.value.subject == "/nonexistent/folder"
+
+
+def test_non_finite_scores_message_equals_cli(cli, tmp_path):
+    s = np.zeros((4, 5), dtype=np.float32)
+    s[0, 1] = np.inf
+    np.save(tmp_path / "scores.npy", s)
+    expected = cli_error(cli, "align", "--scores", tmp_path / "scores.npy")
+    with pytest.raises(ValueError) as error:
+        seqtopo.align(s)
+    assert str(error.value) == "scores: non-finite value at row 0, column 1"
+    assert expected.split(": ", 1)[1] == str(error.value).split(": ", 1)[1]
+
+
+def test_localize_setting_message_equals_cli(cli, tmp_path):
+    map_d, query = localization_pair()
+    s = seqtopo.similarity(query, map_d).similarity
+    np.save(tmp_path / "qm_similarity.npy", s)
+    expected = cli_error(cli, "localize", "--map", tmp_path / "qm_similarity.npy", "--gap", -1, "--out", tmp_path / "o")
+    with pytest.raises(ValueError) as error:
+        seqtopo.localize(s, gap=-1.0)
+    assert expected == "--gap: " + str(error.value)
+
+
+def test_unknown_algorithm_message_equals_cli(cli, tmp_path):
+    (tmp_path / "db.tsv").write_text("m0\tvAB\n")
+    expected = cli_error(cli, "match-strings", "--db", tmp_path / "db.tsv", "--queries", tmp_path / "db.tsv",
+                         "--algorithm", "D", "--out", tmp_path / "o")
+    with pytest.raises(ValueError) as error:
+        seqtopo.match_strings(["vAB"], ["vAB"], algorithm="D")
+    assert expected == "--algorithm: " + str(error.value)
+
+
+def test_unknown_preset_message_equals_cli(cli, tmp_path):
+    (tmp_path / "db.tsv").write_text("m0\tvAB\n")
+    expected = cli_error(cli, "match-strings", "--db", tmp_path / "db.tsv", "--queries", tmp_path / "db.tsv",
+                         "--preset", "A9", "--out", tmp_path / "o")
+    with pytest.raises(ValueError) as error:
+        seqtopo.match_strings(["vAB"], ["vAB"], preset="A9")
+    assert expected == "--preset: " + str(error.value)
+
+
+def test_misuse_raises_value_error():
+    with pytest.raises(ValueError, match="square"):
+        seqtopo.build_map(np.zeros((3, 4), dtype=np.float32))
+    with pytest.raises(ValueError, match="2-D"):
+        seqtopo.align(np.zeros(5, dtype=np.float32))
+    with pytest.raises(ValueError, match="kappa must be positive"):
+        seqtopo.similarity(route_descriptors(), kappa=-1.0)
+    with pytest.raises(ValueError, match="empty"):
+        seqtopo.localize(np.zeros((0, 3), dtype=np.float32))
+    with pytest.raises(ValueError):
+        seqtopo.align(np.ones((4, 4), dtype=np.float32), gap=-1.0)
+    with pytest.raises(ValueError, match="descriptors differ in length|dimension"):
+        seqtopo.similarity(np.ones((3, 4), np.float32), np.ones((3, 5), np.float32))

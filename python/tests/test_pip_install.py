@@ -1,0 +1,42 @@
+"""pip installs the package from the source tree, offline, into a venv that sees Debian's packages.
+
+Slow (a CMake build of the module), so it runs only when SEQTOPO_TEST_PIP=1 (its own ctest entry).
+SEQTOPO_CMAKE_BUILD_DIR, when set, keeps the CMake build folder between runs."""
+
+import os
+import subprocess
+import venv
+
+import pytest
+
+from conftest import SOURCE_DIR
+
+pytestmark = pytest.mark.skipif(os.environ.get("SEQTOPO_TEST_PIP") != "1", reason="set SEQTOPO_TEST_PIP=1")
+
+
+def test_pip_install_from_source_tree(tmp_path):
+    env_dir = tmp_path / "venv"
+    venv.EnvBuilder(system_site_packages=True, with_pip=False).create(env_dir)
+    python = env_dir / "bin" / "python"
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "SEQTOPO_CLI")}
+    env.setdefault("SEQTOPO_BUILD_JOBS", "2")
+    env["PIP_NO_INDEX"] = "1"  # offline: nothing may come from a package index
+    install = subprocess.run(
+        [str(python), "-m", "pip", "install", "--no-build-isolation", "--no-deps", str(SOURCE_DIR)],
+        capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert install.returncode == 0, install.stdout[-4000:] + install.stderr[-4000:]
+
+    check = (
+        "import numpy as np, seqtopo, os\n"
+        "print(os.path.dirname(seqtopo.__file__))\n"
+        "s = np.eye(12, dtype=np.float32) * 2 - 1\n"
+        "a = seqtopo.align(s, gap=1.0, reverse=False)\n"
+        "assert a[0].score == 12 and a[0].pairs.shape == (12, 2), a\n"
+        "print(seqtopo.__version__)\n"
+    )
+    run = subprocess.run([str(python), "-c", check], capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    location = run.stdout.splitlines()[0]
+    assert location.startswith(str(env_dir)), location  # the installed copy, not the source tree
+    # The venv sees Debian's numpy but the installed package is its own.
+    assert str(SOURCE_DIR) not in location

@@ -1,0 +1,88 @@
+"""pip install . : builds the Python module seqtopo._core with CMake and packages it with python/seqtopo.
+
+CMake configures the whole project with SEQTOPO_BUILD_PYTHON=ON (tests and benchmarks off) for the
+interpreter running this script and builds the one target seqtopo_python. Environment:
+  SEQTOPO_CMAKE_BUILD_DIR  CMake build folder (default: build/pip-<python version> in the source tree),
+                           kept between installs so that a rebuild only recompiles what changed;
+  SEQTOPO_BUILD_JOBS       parallel compile jobs (default: every core);
+  CMAKE_ARGS               extra arguments for the CMake configure step.
+"""
+
+import os
+import shlex
+import shutil
+import subprocess
+import sys
+import sysconfig
+
+from setuptools import Extension, setup
+from setuptools.command.build_ext import build_ext
+from setuptools.command.egg_info import egg_info
+
+ROOT = os.path.dirname(os.path.abspath(__file__))
+
+
+def project_version() -> str:
+    with open(os.path.join(ROOT, "CMakeLists.txt"), encoding="utf-8") as cmake:
+        for line in cmake:
+            if line.startswith("project(seqtopo VERSION "):
+                return line.split()[2]
+    raise RuntimeError("no project version in CMakeLists.txt")
+
+
+def build_folder() -> str:
+    tag = f"pip-py{sys.version_info.major}{sys.version_info.minor}"
+    return os.environ.get("SEQTOPO_CMAKE_BUILD_DIR") or os.path.join(ROOT, "build", tag)
+
+
+class CMakeExtension(Extension):
+    def __init__(self, name: str):
+        super().__init__(name, sources=[])
+
+
+class CMakeBuild(build_ext):
+    def build_extension(self, ext: Extension) -> None:
+        build_dir = build_folder()
+        os.makedirs(build_dir, exist_ok=True)
+        configure = [
+            "cmake", "-S", ROOT, "-B", build_dir,
+            "-DCMAKE_BUILD_TYPE=Release",
+            "-DSEQTOPO_BUILD_PYTHON=ON", "-DSEQTOPO_BUILD_TESTS=OFF", "-DSEQTOPO_BUILD_BENCH=OFF",
+            f"-DSEQTOPO_PYTHON={sys.executable}",
+        ]
+        if shutil.which("ninja") and not os.path.exists(os.path.join(build_dir, "CMakeCache.txt")):
+            configure += ["-G", "Ninja"]
+        configure += shlex.split(os.environ.get("CMAKE_ARGS", ""))
+        subprocess.run(configure, check=True)
+        jobs = os.environ.get("SEQTOPO_BUILD_JOBS") or str(os.cpu_count() or 1)
+        subprocess.run(["cmake", "--build", build_dir, "--target", "seqtopo_python", "-j", jobs], check=True)
+
+        suffix = sysconfig.get_config_var("EXT_SUFFIX")
+        built = os.path.join(build_dir, "python", "seqtopo", "_core" + suffix)
+        target = self.get_ext_fullpath(ext.name)
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        shutil.copyfile(built, target)
+
+
+class OutOfTreeEggInfo(egg_info):
+    """Writes the .egg-info metadata under build/ instead of beside the package sources."""
+
+    def initialize_options(self) -> None:
+        super().initialize_options()
+        self.egg_base = os.path.relpath(os.path.join(ROOT, "build"), os.getcwd())
+        os.makedirs(os.path.join(ROOT, "build"), exist_ok=True)
+
+
+setup(
+    name="seqtopo",
+    version=project_version(),
+    description="Topological mapping and localization with the algorithms of DNA sequence alignment",
+    long_description="Python bindings of the seqtopo C++ library; see docs/python.md.",
+    python_requires=">=3.9",
+    install_requires=["numpy"],
+    packages=["seqtopo"],
+    package_dir={"": "python"},
+    ext_modules=[CMakeExtension("seqtopo._core")],
+    cmdclass={"build_ext": CMakeBuild, "egg_info": OutOfTreeEggInfo},
+    zip_safe=False,
+)
