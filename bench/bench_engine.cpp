@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "seqtopo/align/fast_alignment.hpp"
+#include "seqtopo/align/letter_problem.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 
 namespace {
@@ -26,8 +27,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace seqtopo;
 
-constexpr char kAlphabet[] = "ARNDCQEGHILKMFPSTWYV";
-constexpr std::size_t kLetters = 20;
+constexpr const char* kAlphabet = align::LetterProblem::alphabet;
+constexpr std::size_t kLetters = align::LetterProblem::letters;
 constexpr int kGap = 4;
 
 // CPU seconds of this process and of the children it waited for: on a shared machine wall time
@@ -86,24 +87,14 @@ int main(int argc, char** argv) {
   if (threads == 0) threads = std::max(1U, std::thread::hardware_concurrency());
   const unsigned seed = argc > 3 ? static_cast<unsigned>(std::stoul(argv[3])) : 1;
 
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> letter(0, kLetters - 1), mismatch(-4, -1);
-  std::vector<std::uint8_t> a(n), b(n);
-  for (auto& x : a) x = static_cast<std::uint8_t>(letter(rng));
-  for (auto& x : b) x = static_cast<std::uint8_t>(letter(rng));
-  std::vector<float> matrix(kLetters * kLetters);
+  const align::LetterProblem problem = align::random_letter_problem(n, seed);
+  const auto& [a, b, a_text, b_text, matrix] = problem;
   parasail_matrix_t* pmatrix = parasail_matrix_create(kAlphabet, 5, -1);
   for (std::size_t x = 0; x < kLetters; ++x) {
-    for (std::size_t y = 0; y <= x; ++y) {
-      const int v = x == y ? 5 : mismatch(rng);
-      matrix[x * kLetters + y] = matrix[y * kLetters + x] = static_cast<float>(v);
-      parasail_matrix_set_value(pmatrix, static_cast<int>(x), static_cast<int>(y), v);
-      parasail_matrix_set_value(pmatrix, static_cast<int>(y), static_cast<int>(x), v);
+    for (std::size_t y = 0; y < kLetters; ++y) {
+      parasail_matrix_set_value(pmatrix, static_cast<int>(x), static_cast<int>(y), problem.score(x, y));
     }
   }
-  std::string a_text, b_text;
-  for (auto x : a) a_text.push_back(kAlphabet[x]);
-  for (auto x : b) b_text.push_back(kAlphabet[x]);
   const double cells = static_cast<double>(n) * static_cast<double>(n);
 
   align::AlignConfig config;

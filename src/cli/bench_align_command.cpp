@@ -13,13 +13,14 @@
 
 #include "command_registry.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
+#include "seqtopo/align/letter_problem.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 
 namespace seqtopo::cli {
 namespace {
 
-constexpr char kAlphabet[] = "ARNDCQEGHILKMFPSTWYV";
-constexpr std::size_t kLetters = 20;
+constexpr const char* kAlphabet = align::LetterProblem::alphabet;
+constexpr std::size_t kLetters = align::LetterProblem::letters;
 constexpr int kGap = 2;  // linear gap [score units]
 
 struct BenchAlignOptions {
@@ -52,25 +53,14 @@ double seconds(F&& f, int repeats = 1, bool wall = false) {
 void run(const BenchAlignOptions& o) {
   if (o.size == 0) throw io::InputError("--size", "must be > 0");
   const unsigned threads = resolve_threads(o.threads);
-  std::mt19937 rng(o.seed);
-  std::uniform_int_distribution<int> letter(0, kLetters - 1), mismatch(-4, -1);
-  std::vector<std::uint8_t> a(o.size), b(o.size);
-  for (auto& x : a) x = static_cast<std::uint8_t>(letter(rng));
-  for (auto& x : b) x = static_cast<std::uint8_t>(letter(rng));
-  // Substitution matrix: +5 on the diagonal, a symmetric random -4 .. -1 elsewhere.
-  std::vector<float> matrix(kLetters * kLetters);
+  const align::LetterProblem problem = align::random_letter_problem(o.size, o.seed);
+  const auto& [a, b, a_text, b_text, matrix] = problem;
   parasail_matrix_t* pmatrix = parasail_matrix_create(kAlphabet, 5, -1);
   for (std::size_t x = 0; x < kLetters; ++x) {
-    for (std::size_t y = 0; y <= x; ++y) {
-      const int v = x == y ? 5 : mismatch(rng);
-      matrix[x * kLetters + y] = matrix[y * kLetters + x] = static_cast<float>(v);
-      parasail_matrix_set_value(pmatrix, static_cast<int>(x), static_cast<int>(y), v);
-      parasail_matrix_set_value(pmatrix, static_cast<int>(y), static_cast<int>(x), v);
+    for (std::size_t y = 0; y < kLetters; ++y) {
+      parasail_matrix_set_value(pmatrix, static_cast<int>(x), static_cast<int>(y), problem.score(x, y));
     }
   }
-  std::string a_text, b_text;
-  for (auto x : a) a_text.push_back(kAlphabet[x]);
-  for (auto x : b) b_text.push_back(kAlphabet[x]);
 
   align::AlignConfig config;
   config.gap_a = config.gap_b = kGap;
