@@ -24,6 +24,7 @@
 #include <tuple>
 
 #include "fast_kernels.hpp"
+#include "step_box.hpp"
 
 namespace seqtopo::align {
 
@@ -264,7 +265,6 @@ class FastPass {
     return {t_lo + 1, n_};
   }
 
-  std::size_t original_col(std::size_t j) const { return config_.direction == Direction::forward ? j - 1 : n_ - j; }
 
   // Scores of row i over [lo, hi] with the used pairs forbidden.
   const Step* row_scores(std::size_t i, std::size_t lo, std::size_t hi, Scratch& scratch) const {
@@ -548,19 +548,6 @@ class FastPass {
 
   // Step bits of the rectangle between start and end, as in the scalar engine: 1 diagonal, 2 down,
   // 4 right; row r keeps only columns lo[r] .. hi[r] (box coordinates), everything else reads 0.
-  struct Box {
-    std::vector<std::size_t> lo, hi, offset;
-    std::vector<std::uint8_t> steps, fwd, bwd;
-    bool inside(std::size_t r, std::size_t c) const { return c >= lo[r] && c <= hi[r]; }
-    std::size_t index(std::size_t r, std::size_t c) const { return offset[r] + (c - lo[r]); }
-    std::uint8_t at(std::size_t r, std::size_t c) const { return inside(r, c) ? steps[index(r, c)] : 0; }
-    bool diag(std::size_t r, std::size_t c) const { return (at(r, c) & 1U) != 0; }
-    bool down(std::size_t r, std::size_t c) const { return (at(r, c) & 2U) != 0; }
-    bool right(std::size_t r, std::size_t c) const { return (at(r, c) & 4U) != 0; }
-    bool f(std::size_t r, std::size_t c) const { return inside(r, c) && fwd[index(r, c)] != 0; }
-    bool b(std::size_t r, std::size_t c) const { return inside(r, c) && bwd[index(r, c)] != 0; }
-  };
-
   LocalAlignment recover(Cell end) const {
     std::vector<std::pair<std::size_t, std::size_t>> spans;
     std::size_t reach = kCheckpointRows;
@@ -572,22 +559,9 @@ class FastPass {
       if (!w.outside) break;
       reach *= 2;  // the start lies above or left of the window: widen it
     }
-    const std::size_t rows = end.first - start.first + 1;
-    Box box;
-    box.lo.assign(rows, 0);
-    box.hi.assign(rows, 0);
-    box.offset.assign(rows, 0);
-    std::size_t size = 1;
-    for (std::size_t r = 1; r < rows; ++r) {
-      const auto [lo, hi] = spans[rows - 1 - r];
-      box.lo[r] = std::max(lo, start.second + 1) - start.second;
-      box.hi[r] = hi - start.second;
-      box.offset[r] = size;
-      size += box.hi[r] - box.lo[r] + 1;
-    }
-    box.steps.assign(size, 0);
-    box.fwd.assign(size, 0);
-    box.bwd.assign(size, 0);
+    detail::StepBox box;
+    box.layout(start, spans, end.first - start.first + 1);
+    const std::size_t rows = box.lo.size();
     for (std::size_t r = 1; r < rows; ++r) {
       const std::size_t i = start.first + r;
       for (std::size_t c = box.lo[r]; c <= box.hi[r]; ++c) {
@@ -600,79 +574,8 @@ class FastPass {
         box.steps[box.index(r, c)] = bits;
       }
     }
-    LocalAlignment a;
-    a.direction = config_.direction;
-    a.score = static_cast<Score>(w.value(end.first, end.second)) / st_.scale;
-    bisect(box, {0, 0}, {rows - 1, end.second - start.second}, a.pairs);
-    if (a.pairs.empty()) throw std::logic_error("alignment has no pair");
-    for (auto& [r, c] : a.pairs) {
-      const std::size_t i = start.first + r, j = start.second + c;
-      r = i - 1;
-      c = original_col(j);
-    }
-    a.a_begin = a.pairs.front().first;
-    a.a_end = a.pairs.back().first + 1;
-    auto [b_min, b_max] = std::minmax_element(a.pairs.begin(), a.pairs.end(),
-                                              [](const auto& x, const auto& y) { return x.second < y.second; });
-    a.b_begin = b_min->second;
-    a.b_end = b_max->second + 1;
-    return a;
-  }
-
-  // The scalar engine's bisection (smith_waterman.cpp) on the box: same rules, same pairs.
-  static void bisect(Box& box, Cell p, Cell q, std::vector<std::pair<std::size_t, std::size_t>>& pairs) {
-    const std::size_t rows = q.first - p.first, cols = q.second - p.second;
-    if (rows == 0 || cols == 0) return;
-    if (rows == 1) {
-      std::vector<std::uint8_t> suffix(cols + 1, 1);
-      for (std::size_t k = cols; k-- > 0;) suffix[k] = suffix[k + 1] && box.right(q.first, p.second + k + 1);
-      bool prefix = true;
-      for (std::size_t k = 0; k <= cols && prefix; ++k) {
-        if (k > 0) prefix = box.right(p.first, p.second + k);
-        if (prefix && box.down(q.first, p.second + k) && suffix[k]) return;
-      }
-      prefix = true;
-      for (std::size_t k = 1; k <= cols && prefix; ++k) {
-        if (box.diag(q.first, p.second + k) && suffix[k]) {
-          pairs.emplace_back(q.first, p.second + k);
-          return;
-        }
-        prefix = box.right(p.first, p.second + k);
-      }
-      throw std::logic_error("alignment bisection found no route");
-    }
-    const std::size_t mid = p.first + rows / 2;
-    for (std::size_t r = p.first; r <= mid; ++r) {
-      for (std::size_t c = std::max(p.second, box.lo[r]); c <= std::min(q.second, box.hi[r]); ++c) {
-        const bool up = r > p.first, left = c > p.second;
-        box.fwd[box.index(r, c)] = (r == p.first && c == p.second) ||
-                                   (up && left && box.diag(r, c) && box.f(r - 1, c - 1)) ||
-                                   (up && box.down(r, c) && box.f(r - 1, c)) ||
-                                   (left && box.right(r, c) && box.f(r, c - 1));
-      }
-    }
-    for (std::size_t r = q.first + 1; r-- > mid;) {
-      const std::size_t c_lo = std::max(p.second, box.lo[r]), c_hi = std::min(q.second, box.hi[r]);
-      for (std::size_t c = c_hi + 1; c-- > c_lo;) {
-        const bool below = r < q.first, right = c < q.second;
-        box.bwd[box.index(r, c)] = (r == q.first && c == q.second) ||
-                                   (below && right && box.diag(r + 1, c + 1) && box.b(r + 1, c + 1)) ||
-                                   (below && box.down(r + 1, c) && box.b(r + 1, c)) ||
-                                   (right && box.right(r, c + 1) && box.b(r, c + 1));
-      }
-    }
-    std::size_t cross = 0;
-    bool found = false;
-    for (std::size_t c = std::max(p.second, box.lo[mid]); c <= std::min(q.second, box.hi[mid]); ++c) {
-      if (!box.f(mid, c) || !box.b(mid, c)) continue;
-      const bool enters_down = box.down(mid, c) && box.f(mid - 1, c);
-      const bool leaves_down = box.down(mid + 1, c) && box.b(mid + 1, c);
-      if (!found || (!enters_down && leaves_down)) cross = c;
-      found = true;
-    }
-    if (!found) throw std::logic_error("alignment bisection found no crossing");
-    bisect(box, p, {mid, cross}, pairs);
-    bisect(box, {mid, cross}, q, pairs);
+    return detail::alignment_through(box, end, config_.direction, n_,
+                                     static_cast<Score>(w.value(end.first, end.second)) / st_.scale);
   }
 
   // Forbids the alignment's pairs, then recomputes rows from the checkpoint above its first pair until

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "step_box.hpp"
+
 namespace seqtopo::align {
 
 std::string_view to_string(Direction direction) { return direction == Direction::forward ? "forward" : "reverse"; }
@@ -214,41 +216,12 @@ class Pass {
   // an optimal start-to-end path matter, and all of those reach the end: row r keeps just the columns
   // lo[r] .. hi[r] that start_of found reaching it (relative to the start; everything else reads 0).
   // Step bits: 1 diagonal step into the cell, 2 step down into it, 4 step right into it.
-  struct Box {
-    std::size_t r0 = 0, c0 = 0;
-    std::vector<std::size_t> lo, hi, offset;
-    std::vector<std::uint8_t> steps, fwd, bwd;  // fwd, bwd: scratch flags of the bisection
-    bool inside(std::size_t r, std::size_t c) const { return c >= lo[r] && c <= hi[r]; }
-    std::size_t index(std::size_t r, std::size_t c) const { return offset[r] + (c - lo[r]); }
-    std::uint8_t at(std::size_t r, std::size_t c) const { return inside(r, c) ? steps[index(r, c)] : 0; }
-    bool diag(std::size_t r, std::size_t c) const { return (at(r, c) & 1U) != 0; }
-    bool down(std::size_t r, std::size_t c) const { return (at(r, c) & 2U) != 0; }
-    bool right(std::size_t r, std::size_t c) const { return (at(r, c) & 4U) != 0; }
-    bool f(std::size_t r, std::size_t c) const { return inside(r, c) && fwd[index(r, c)] != 0; }
-    bool b(std::size_t r, std::size_t c) const { return inside(r, c) && bwd[index(r, c)] != 0; }
-  };
-
   LocalAlignment recover(Cell end) {
     std::vector<std::pair<std::size_t, std::size_t>> spans;
     const Cell start = start_of(end, spans);
-    Box box;
-    box.r0 = start.first;
-    box.c0 = start.second;
-    const std::size_t rows = end.first - start.first + 1;
-    box.lo.assign(rows, 0);
-    box.hi.assign(rows, 0);
-    box.offset.assign(rows, 0);
-    std::size_t size = 1;  // row 0: the start alone
-    for (std::size_t r = 1; r < rows; ++r) {
-      const auto [lo, hi] = spans[rows - 1 - r];  // every row between start and end has such a cell
-      box.lo[r] = std::max(lo, box.c0 + 1) - box.c0;
-      box.hi[r] = hi - box.c0;
-      box.offset[r] = size;
-      size += box.hi[r] - box.lo[r] + 1;
-    }
-    box.steps.assign(size, 0);
-    box.fwd.assign(size, 0);
-    box.bwd.assign(size, 0);
+    detail::StepBox box;
+    box.layout(start, spans, end.first - start.first + 1);
+    const std::size_t rows = box.lo.size();
     for (std::size_t r = 1; r < rows; ++r) {
       const std::size_t i = box.r0 + r;
       fetch(i, box.c0 + box.lo[r], box.c0 + box.hi[r]);
@@ -263,88 +236,7 @@ class Pass {
         box.steps[box.index(r, c)] = bits;
       }
     }
-    LocalAlignment a;
-    a.direction = config_.direction;
-    a.score = h(end);
-    bisect(box, {0, 0}, {rows - 1, end.second - box.c0}, a.pairs);
-    if (a.pairs.empty()) throw std::logic_error("alignment has no pair");
-    for (auto& [r, c] : a.pairs) {
-      const std::size_t i = box.r0 + r, j = box.c0 + c;
-      r = i - 1;
-      c = original_col(j);
-    }
-    a.a_begin = a.pairs.front().first;
-    a.a_end = a.pairs.back().first + 1;
-    auto [b_min, b_max] = std::minmax_element(a.pairs.begin(), a.pairs.end(),
-                                              [](const auto& x, const auto& y) { return x.second < y.second; });
-    a.b_begin = b_min->second;
-    a.b_end = b_max->second + 1;
-    return a;
-  }
-
-  // The path between two cells p and q of an optimal alignment (box coordinates), by recursive
-  // bisection (Myers-Miller, as in SIM): the path crosses the middle row at the leftmost possible
-  // column, unless it can cross further right at a cell it enters by a diagonal or rightward step
-  // only and leaves downwards, in which case at the rightmost such cell. A single row takes no pair if
-  // a gap-only route is optimal, else its leftmost possible pair. Appends the pairs (box cells of the
-  // diagonal steps) in order.
-  static void bisect(Box& box, Cell p, Cell q, std::vector<std::pair<std::size_t, std::size_t>>& pairs) {
-    const std::size_t rows = q.first - p.first, cols = q.second - p.second;
-    if (rows == 0 || cols == 0) return;
-    if (rows == 1) {
-      // suffix[k]: the rightward steps along row q.first after column p.second + k are all tight
-      std::vector<std::uint8_t> suffix(cols + 1, 1);
-      for (std::size_t k = cols; k-- > 0;) suffix[k] = suffix[k + 1] && box.right(q.first, p.second + k + 1);
-      // A gap-only route (right along row p.first, down, right along row q.first) wins ties.
-      bool prefix = true;  // the rightward steps along row p.first up to column p.second + k are tight
-      for (std::size_t k = 0; k <= cols && prefix; ++k) {
-        if (k > 0) prefix = box.right(p.first, p.second + k);
-        if (prefix && box.down(q.first, p.second + k) && suffix[k]) return;
-      }
-      prefix = true;
-      for (std::size_t k = 1; k <= cols && prefix; ++k) {
-        if (box.diag(q.first, p.second + k) && suffix[k]) {
-          pairs.emplace_back(q.first, p.second + k);
-          return;
-        }
-        prefix = box.right(p.first, p.second + k);
-      }
-      throw std::logic_error("alignment bisection found no route");
-    }
-    const std::size_t mid = p.first + rows / 2;
-    // fwd: reachable from p by tight steps (rows p.first .. mid); bwd: reaches q (rows mid .. q.first).
-    // Each cell read below was written in this call or lies outside the band (reads 0).
-    for (std::size_t r = p.first; r <= mid; ++r) {
-      for (std::size_t c = std::max(p.second, box.lo[r]); c <= std::min(q.second, box.hi[r]); ++c) {
-        const bool up = r > p.first, left = c > p.second;
-        box.fwd[box.index(r, c)] = (r == p.first && c == p.second) ||
-                                   (up && left && box.diag(r, c) && box.f(r - 1, c - 1)) ||
-                                   (up && box.down(r, c) && box.f(r - 1, c)) ||
-                                   (left && box.right(r, c) && box.f(r, c - 1));
-      }
-    }
-    for (std::size_t r = q.first + 1; r-- > mid;) {
-      const std::size_t c_lo = std::max(p.second, box.lo[r]), c_hi = std::min(q.second, box.hi[r]);
-      for (std::size_t c = c_hi + 1; c-- > c_lo;) {
-        const bool below = r < q.first, right = c < q.second;
-        box.bwd[box.index(r, c)] = (r == q.first && c == q.second) ||
-                                   (below && right && box.diag(r + 1, c + 1) && box.b(r + 1, c + 1)) ||
-                                   (below && box.down(r + 1, c) && box.b(r + 1, c)) ||
-                                   (right && box.right(r, c + 1) && box.b(r, c + 1));
-      }
-    }
-    std::size_t cross = 0;
-    bool found = false;
-    for (std::size_t c = std::max(p.second, box.lo[mid]); c <= std::min(q.second, box.hi[mid]); ++c) {
-      if (!box.f(mid, c) || !box.b(mid, c)) continue;
-      const bool enters_down = box.down(mid, c) && box.f(mid - 1, c);
-      const bool leaves_down = box.down(mid + 1, c) && box.b(mid + 1, c);
-      if (!found || (!enters_down && leaves_down)) cross = c;
-      found = true;
-    }
-    if (!found) throw std::logic_error("alignment bisection found no crossing");
-    bisect(box, p, {mid, cross}, pairs);
-    bisect(box, {mid, cross}, q, pairs);
+    return detail::alignment_through(box, end, config_.direction, n_, h(end));
   }
 
   // Forbids the alignment's pairs and recomputes, row by row, only the cells whose value can change:
