@@ -24,6 +24,7 @@
 #include <tuple>
 
 #include "fast_kernels.hpp"
+#include "seqtopo/align/smith_waterman.hpp"
 #include "step_box.hpp"
 
 namespace seqtopo::align {
@@ -730,18 +731,7 @@ std::vector<LocalAlignment> fast_local_alignments_both(const ScoreSource& scores
     fwd = fast_local_alignments(scores, forward, options);
     rev = fast_local_alignments(scores, reverse, options);
   }
-  std::vector<LocalAlignment> all;
-  all.reserve(fwd.size() + rev.size());
-  std::move(fwd.begin(), fwd.end(), std::back_inserter(all));
-  std::move(rev.begin(), rev.end(), std::back_inserter(all));
-  std::stable_sort(all.begin(), all.end(), [](const LocalAlignment& x, const LocalAlignment& y) {
-    if (x.score != y.score) return x.score > y.score;
-    if (x.direction != y.direction) return x.direction == Direction::forward;
-    if (x.a_begin != y.a_begin) return x.a_begin < y.a_begin;
-    return x.b_begin < y.b_begin;
-  });
-  if (all.size() > config.max_alignments) all.resize(config.max_alignments);
-  return all;
+  return merge_directions(std::move(fwd), std::move(rev), config.max_alignments);
 }
 
 }  // namespace seqtopo::align

@@ -320,6 +320,21 @@ std::vector<LocalAlignment> local_alignments(const ScoreSource& scores, const Al
   return Pass(scores, config).run();
 }
 
+std::vector<LocalAlignment> merge_directions(std::vector<LocalAlignment> forward, std::vector<LocalAlignment> reverse,
+                                             std::size_t max_alignments) {
+  std::vector<LocalAlignment> all = std::move(forward);
+  all.reserve(all.size() + reverse.size());
+  std::move(reverse.begin(), reverse.end(), std::back_inserter(all));
+  std::stable_sort(all.begin(), all.end(), [](const LocalAlignment& x, const LocalAlignment& y) {
+    if (x.score != y.score) return x.score > y.score;
+    if (x.direction != y.direction) return x.direction == Direction::forward;
+    if (x.a_begin != y.a_begin) return x.a_begin < y.a_begin;
+    return x.b_begin < y.b_begin;
+  });
+  if (all.size() > max_alignments) all.resize(max_alignments);
+  return all;
+}
+
 std::vector<LocalAlignment> local_alignments_both(const ScoreSource& scores, AlignConfig config, unsigned threads) {
   AlignConfig forward = config, reverse = config;
   forward.direction = Direction::forward;
@@ -333,18 +348,7 @@ std::vector<LocalAlignment> local_alignments_both(const ScoreSource& scores, Ali
     fwd = local_alignments(scores, forward);
     rev = local_alignments(scores, reverse);
   }
-  std::vector<LocalAlignment> all;
-  all.reserve(fwd.size() + rev.size());
-  std::move(fwd.begin(), fwd.end(), std::back_inserter(all));
-  std::move(rev.begin(), rev.end(), std::back_inserter(all));
-  std::stable_sort(all.begin(), all.end(), [](const LocalAlignment& x, const LocalAlignment& y) {
-    if (x.score != y.score) return x.score > y.score;
-    if (x.direction != y.direction) return x.direction == Direction::forward;
-    if (x.a_begin != y.a_begin) return x.a_begin < y.a_begin;
-    return x.b_begin < y.b_begin;
-  });
-  if (all.size() > config.max_alignments) all.resize(config.max_alignments);
-  return all;
+  return merge_directions(std::move(fwd), std::move(rev), config.max_alignments);
 }
 
 }  // namespace seqtopo::align

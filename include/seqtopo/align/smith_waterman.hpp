@@ -49,4 +49,9 @@ std::vector<LocalAlignment> local_alignments(const ScoreSource& scores, const Al
 std::vector<LocalAlignment> local_alignments_both(const ScoreSource& scores, AlignConfig config = {},
                                                   unsigned threads = 2);
 
+// The merge of local_alignments_both (every engine's two passes use it): best first by score, then
+// forward before reverse, then by a_begin, b_begin; at most max_alignments.
+std::vector<LocalAlignment> merge_directions(std::vector<LocalAlignment> forward, std::vector<LocalAlignment> reverse,
+                                             std::size_t max_alignments);
+
 }  // namespace seqtopo::align
