@@ -39,6 +39,7 @@ struct MapOptions {
   std::optional<std::string> descriptor, metric_name, kappa;
   std::optional<float> gap, threshold;
   std::optional<std::string> cap, odometry_gate;
+  std::string engine = "exact";
   std::optional<std::size_t> min_separation, contrast_window;
   std::optional<float> contrast_offset;
   bool no_reverse = false;
@@ -112,6 +113,11 @@ Settings resolve_settings(const MapOptions& o) {
       }
       if (!(*s.map.cap > 0)) throw io::InputError("--cap", "must be > 0");
     }
+  }
+  if (o.engine == "fast") {
+    s.map.engine = mapping::MapConfig::Engine::fast;
+  } else if (o.engine != "exact") {
+    throw io::InputError("--engine", "expected exact or fast, got '" + o.engine + "'");
   }
   if (o.odometry_gate) {
     s.map.odometry_gate = option_value("--odometry-gate", [&]() -> std::optional<mapping::OdometryGate> {
@@ -343,6 +349,10 @@ const RegisterCommand registered{{
       app.add_option("--metric", o->metric_name, "chi2|l1|cosine|sad (default: by descriptor)");
       app.add_option("--kappa", o->kappa, "S = 1 - kappa * D: a number, or auto (from the sequence's own distances)");
       app.add_option("--gap", o->gap, fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
+      app.add_option("--engine", o->engine,
+                     "exact (scalar reference, N x N table) or fast (vectorized, linear memory, scores quantized "
+                     "to 1/512)")
+          ->capture_default_str();
       app.add_option("--odometry-gate", o->odometry_gate,
                      fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
                                  "(metres travelled between them) apart, as BASE,DRIFT, or none (default {},{})",

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
@@ -61,7 +62,11 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
   align_config.min_separation = config.min_separation;
 
   const auto source = align::ScoreSource::dense(result.scores.values, result.scores.rows, result.scores.cols);
-  if (config.reverse) {
+  if (config.engine == MapConfig::Engine::fast) {
+    const align::FastOptions options{.threads = config.threads};
+    result.alignments = config.reverse ? align::fast_local_alignments_both(source, align_config, options)
+                                       : align::fast_local_alignments(source, align_config, options);
+  } else if (config.reverse) {
     result.alignments = align::local_alignments_both(source, align_config, config.threads);
   } else {
     result.alignments = align::local_alignments(source, align_config);

@@ -28,6 +28,11 @@ struct MapConfig {
   float threshold = 20.0F;
   std::size_t min_separation = 10;   // [frames] pairs closer than this in time never count
   bool reverse = true;              // also look for paths revisited in the opposite direction
+  // exact: the scalar reference engine (align/smith_waterman.hpp, a float table of N x N cells);
+  // fast: the vectorized linear-memory engine (align/fast_alignment.hpp) on scores quantized to
+  // 1/512 of a unit with the default cap: the same alignments as the exact engine on those scores.
+  enum class Engine { exact, fast };
+  Engine engine = Engine::exact;
   // Applied when odometry is given to build_map: alignments it contradicts are dropped before pruning.
   // Chosen on the simulated worlds (bench/worlds.sh); the real sequences in the README have no odometry.
   std::optional<OdometryGate> odometry_gate = OdometryGate{};
