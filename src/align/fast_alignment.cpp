@@ -25,6 +25,7 @@
 
 #include "fast_kernels.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
+#include "search_region.hpp"
 #include "step_box.hpp"
 
 namespace seqtopo::align {
@@ -251,20 +252,8 @@ class FastPass {
   }
 
  private:
-  // Columns [lo, hi] (1-based, inclusive) that row i may use (lo > hi: none); as in the scalar engine.
-  std::pair<std::size_t, std::size_t> region(std::size_t i) const {
-    if (!config_.self) return {1, n_};
-    const std::size_t sep = config_.min_separation;
-    const std::size_t r = i - 1;
-    if (config_.direction == Direction::forward) {
-      if (r < sep) return {1, 0};
-      return {1, std::min(n_, r - sep + 1)};
-    }
-    // reverse: pass column t (0-based) is original c = n-1-t; r - c >= sep  <=>  t >= n-1-r+sep
-    const std::size_t t_lo = n_ - 1 - r + sep;
-    if (t_lo >= n_) return {1, 0};
-    return {t_lo + 1, n_};
-  }
+  // Columns [lo, hi] (1-based, inclusive) that row i may use (lo > hi: none).
+  std::pair<std::size_t, std::size_t> region(std::size_t i) const { return detail::search_region(config_, n_, i); }
 
 
   // Scores of row i over [lo, hi] with the used pairs forbidden.

@@ -232,16 +232,7 @@ struct Options {
 };
 
 // The alignment settings of `seqtopo map`'s defaults.
-align::AlignConfig map_align_config() {
-  const mapping::MapConfig map;
-  align::AlignConfig c;
-  c.gap_a = c.gap_b = map.gap;
-  c.cap = map.cap;
-  c.threshold = map.threshold;
-  c.self = true;
-  c.min_separation = map.min_separation;
-  return c;
-}
+align::AlignConfig map_align_config() { return mapping::align_config(mapping::MapConfig{}); }
 
 Row run_dense(std::size_t n, const Options& opt) {
   Row row{"dense", n, {}, 0, 0, 0, 0, 0};

@@ -41,6 +41,16 @@ SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarit
   return sum;
 }
 
+align::AlignConfig align_config(const MapConfig& config) {
+  align::AlignConfig c;
+  c.gap_a = c.gap_b = config.gap;
+  c.cap = config.cap;
+  c.threshold = config.threshold;
+  c.self = true;
+  c.min_separation = config.min_separation;
+  return c;
+}
+
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config, std::span<const metric::Pose2> odometry) {
   return build_map(std::vector<SimilarityMatrix>{similarity}, config, odometry);
 }
@@ -54,22 +64,17 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
     throw std::invalid_argument("odometry has " + std::to_string(odometry.size()) + " poses, the sequence " +
                                 std::to_string(result.scores.rows) + " images");
   }
-  align::AlignConfig align_config;
-  align_config.gap_a = align_config.gap_b = config.gap;
-  align_config.cap = config.cap;
-  align_config.threshold = config.threshold;
-  align_config.self = true;
-  align_config.min_separation = config.min_separation;
+  const align::AlignConfig engine_config = align_config(config);
 
   const auto source = align::ScoreSource::dense(result.scores.values, result.scores.rows, result.scores.cols);
   if (config.engine == MapConfig::Engine::fast) {
     const align::FastOptions options{.threads = config.threads};
-    result.alignments = config.reverse ? align::fast_local_alignments_both(source, align_config, options)
-                                       : align::fast_local_alignments(source, align_config, options);
+    result.alignments = config.reverse ? align::fast_local_alignments_both(source, engine_config, options)
+                                       : align::fast_local_alignments(source, engine_config, options);
   } else if (config.reverse) {
-    result.alignments = align::local_alignments_both(source, align_config, config.threads);
+    result.alignments = align::local_alignments_both(source, engine_config, config.threads);
   } else {
-    result.alignments = align::local_alignments(source, align_config);
+    result.alignments = align::local_alignments(source, engine_config);
   }
   if (!odometry.empty() && config.odometry_gate) {
     const std::vector<bool> keep = consistent_with_odometry(result.alignments, odometry, *config.odometry_gate);

@@ -61,6 +61,9 @@ MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config 
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config = {},
                     std::span<const metric::Pose2> odometry = {});
 
+// The engine settings build_map aligns with: the config's gap, cap, threshold and min_separation, self.
+align::AlignConfig align_config(const MapConfig& config);
+
 // The fused score matrix that build_map aligns.
 SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config);
 
