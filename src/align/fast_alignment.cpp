@@ -25,6 +25,7 @@
 
 #include "fast_kernels.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
+#include "plateau.hpp"
 #include "search_region.hpp"
 #include "step_box.hpp"
 
@@ -415,30 +416,18 @@ class FastPass {
 
   // The last maximal cell (row-major) reachable from `first` by tight steps, rows streamed downwards.
   Cell far_end(Cursor& c, Cell first) const {
-    const Step top = c.h[first.second];
-    Cell end = first;
-    std::vector<std::size_t> seeds{first.second}, closed;
-    for (std::size_t i = first.first; !seeds.empty(); ++i) {
-      std::sort(seeds.begin(), seeds.end());
-      seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
-      closed.clear();
-      for (std::size_t j : seeds) {
-        if (!closed.empty() && j <= closed.back()) continue;
-        closed.push_back(j);
-        while (j < n_ && tight_right(c.h, j + 1)) closed.push_back(++j);
-      }
-      seeds.clear();
-      for (std::size_t j : closed) {
-        if (c.h[j] == top) end = {i, j};
-      }
-      if (i == m_) break;
-      c.advance();
-      for (std::size_t j : closed) {
-        if (tight_down(c.above, c.h, j)) seeds.push_back(j);
-        if (j < n_ && tight_diag(c.above, c.h, c.s, j + 1)) seeds.push_back(j + 1);
-      }
-    }
-    return end;
+    // Rows are streamed: c holds row i (h) and, after next_row, row i+1 with the row above it.
+    struct Grid {
+      const FastPass& p;
+      Cursor& c;
+      Step top_value;
+      bool top(std::size_t, std::size_t j) const { return c.h[j] == top_value; }
+      bool right(std::size_t, std::size_t j) const { return p.tight_right(c.h, j); }
+      void next_row() const { c.advance(); }
+      bool down(std::size_t, std::size_t j) const { return p.tight_down(c.above, c.h, j); }
+      bool diag(std::size_t, std::size_t j) const { return p.tight_diag(c.above, c.h, c.s, j); }
+    };
+    return detail::plateau_far_end(first, m_, n_, Grid{*this, c, c.h[first.second]});
   }
 
   // Rows r0 .. r1 and columns c0 .. c1 of the table (and the scores from r0 + 1, c0 + 1), recomputed.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "plateau.hpp"
 #include "search_region.hpp"
 #include "step_box.hpp"
 
@@ -142,27 +143,16 @@ class Pass {
   // The last maximal cell (row-major) reachable from `first` by tight steps: for a maximum at the cap,
   // the far end of its plateau.
   Cell far_end(Cell first) const {
-    const Score top = h(first);
-    Cell end = first;
-    std::vector<std::size_t> seeds{first.second}, closed;
-    for (std::size_t i = first.first; !seeds.empty(); ++i) {
-      std::sort(seeds.begin(), seeds.end());
-      seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
-      closed.clear();
-      for (std::size_t j : seeds) {  // close the row under rightward tight steps
-        if (!closed.empty() && j <= closed.back()) continue;
-        closed.push_back(j);
-        while (j < n_ && tight_right(i, j + 1)) closed.push_back(++j);
-      }
-      seeds.clear();
-      for (std::size_t j : closed) {
-        if (h(i, j) == top) end = {i, j};
-        if (i == m_) continue;
-        if (tight_down(i + 1, j)) seeds.push_back(j);
-        if (j < n_ && tight_diag(i + 1, j + 1)) seeds.push_back(j + 1);
-      }
-    }
-    return end;
+    struct Grid {
+      const Pass& p;
+      Score top_value;
+      bool top(std::size_t i, std::size_t j) const { return p.h(i, j) == top_value; }
+      bool right(std::size_t i, std::size_t j) const { return p.tight_right(i, j); }
+      void next_row() const {}
+      bool down(std::size_t i, std::size_t j) const { return p.tight_down(i, j); }
+      bool diag(std::size_t i, std::size_t j) const { return p.tight_diag(i, j); }
+    };
+    return detail::plateau_far_end(first, m_, n_, Grid{*this, h(first)});
   }
 
   // The latest start (largest i, then largest j) of an optimal alignment ending at `end`: the zero cell
