@@ -1,16 +1,18 @@
 // The fast engine (fast_alignment.hpp, docs/engine.md): the scalar engine's algorithm and choice rules
-// (smith_waterman.cpp) on int16 rows, in memory linear in the input.
+// (smith_waterman.cpp) on int16 rows, in memory linear in the input's boundary (not its area).
 //
-// State of a pass: H rows every kCheckpointRows rows (checkpoints), each row's maximum, and the used
-// pairs as per-row column lists (a used pair's score is replaced by kForbidden when its row is
-// computed). Every other row is recomputed from the checkpoint above it when needed:
-//  * the next end: the first row holding the largest row maximum, recomputed to find its first column;
-//  * a capped plateau's far end: rows streamed downwards from the end while tight steps continue;
+// State of a pass: H at the boundaries of kTile x kTile tiles (every kTile-th row and column), each
+// tile's maximum, and the used pairs as per-row column lists (a used pair's score is replaced by
+// kForbidden when its row is computed). Any piece of H is recomputed exactly from the boundaries
+// around it, so every question costs the size of its answer, not the width of the table:
+//  * the next end: the first band of tiles holding the largest maximum; its tiles at that maximum are
+//    recomputed to find the first cell;
+//  * a capped plateau's far end: rows streamed downwards from the end, over columns from the end's tile
+//    to a width doubled while the plateau reaches it;
 //  * the traceback: a window of rows above the end and columns left of it, recomputed and kept, widened
 //    (doubled) until the alignment's start lies inside, then the scalar engine's rules on it;
-//  * after an alignment: rows recomputed from the checkpoint above its first pair, updating the row
-//    maxima and checkpoints, until a checkpoint below its last pair comes out unchanged (every later
-//    row is then unchanged too).
+//  * after an alignment: the tiles holding its pairs are recomputed, then every tile one of whose inputs
+//    (top row, left column, corner) came out changed, band by band.
 #include "seqtopo/align/fast_alignment.hpp"
 
 #include <algorithm>
@@ -18,6 +20,9 @@
 #include <cmath>
 #include <cstring>
 #include <future>
+#include <map>
+#include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -59,8 +64,9 @@ Isa best_isa() {
 
 namespace {
 
-// Rows between checkpoints: 2 / 32 bytes per cell of memory; every recomputation starts at most this far above.
-constexpr std::size_t kCheckpointRows = 32;
+// Side of the tiles whose boundaries the engine keeps: every 32nd row and every 32nd column of H, 2 x 2 / 32
+// bytes per cell of memory; every recomputation starts at most this far above and left.
+constexpr std::size_t kTile = 32;
 
 struct Kernels {
   detail::RowKernel row;
@@ -210,6 +216,12 @@ void validate_letters(const LetterScores& s) {
   check(s.b, "b");
 }
 
+// into[k] = max(into[k], from[k]) for k < count (the fill's per-column maxima of a band of rows).
+[[gnu::target_clones("avx2", "default")]] void accumulate_max(Step* __restrict into, const Step* __restrict from,
+                                                              std::size_t count) {
+  for (std::size_t k = 0; k < count; ++k) into[k] = std::max(into[k], from[k]);
+}
+
 using Cell = std::pair<std::size_t, std::size_t>;  // (i, j) in pass coordinates, 1-based
 
 // Buffers of one worker: a row of steps (scores) and a row of source floats.
@@ -225,27 +237,21 @@ class FastPass {
   FastPass(const RowScores& scores, std::size_t m, std::size_t n, const AlignConfig& config, const Steps& steps,
            const Kernels& kernels, unsigned threads)
       : scores_(scores), config_(config), st_(steps), kernel_(kernels.row), m_(m), n_(n), stride_(n + 1 + kRowPadding),
-        threads_(std::max(1U, threads)) {}
+        bands_((m + kTile - 1) / kTile), tiles_((n + kTile - 1) / kTile), column_stride_(n / kTile + 1), threads_(std::max(1U, threads)) {}
 
   // The score-only fill: the largest cell value.
   Step best_value() { return fill(false); }
 
   std::vector<LocalAlignment> run() {
     fill(true);
+    buffers_ = std::make_unique<Buffers>(n_, stride_);
     std::vector<LocalAlignment> out;
     while (out.size() < config_.max_alignments) {
-      std::size_t bi = 0;
-      for (std::size_t i = 1; i <= m_; ++i) {
-        if (row_max_[i] > 0 && (bi == 0 || row_max_[i] > row_max_[bi])) bi = i;  // first maximal row
-      }
-      if (bi == 0 || row_max_[bi] < st_.floor) break;
-      Cursor cursor(*this);
-      cursor.seek(bi);
-      const Step top = row_max_[bi];
-      std::size_t bj = 1;
-      while (cursor.h[bj] != top) ++bj;
+      const auto top = std::max_element(band_max_.begin(), band_max_.end());  // the first maximal band
+      if (top == band_max_.end() || *top < st_.floor) break;
+      const Cell first = first_cell(static_cast<std::size_t>(top - band_max_.begin()), *top);
       // A maximum at the cap is a plateau: take it whole. Otherwise the first maximum, as SIM does.
-      const Cell end = st_.capped && top == st_.cap ? far_end(cursor, {bi, bj}) : Cell{bi, bj};
+      const Cell end = st_.capped && *top == st_.cap ? far_end(first) : first;
       out.push_back(recover(end));
       forbid_and_update(out.back());
     }
@@ -255,7 +261,6 @@ class FastPass {
  private:
   // Columns [lo, hi] (1-based, inclusive) that row i may use (lo > hi: none).
   std::pair<std::size_t, std::size_t> region(std::size_t i) const { return detail::search_region(config_, n_, i); }
-
 
   // Scores of row i over [lo, hi] with the used pairs forbidden.
   const Step* row_scores(std::size_t i, std::size_t lo, std::size_t hi, Scratch& scratch) const {
@@ -270,8 +275,8 @@ class FastPass {
     return out;
   }
 
-  // Computes row i's columns [lo, hi] ∩ region into cur; zeroes the rest of [lo, hi]. Returns
-  // (row max over those columns, score row pointer).
+  // Computes row i's columns [lo, hi] ∩ region into cur (cur[lo - 1] holds H(i, lo - 1)); zeroes the
+  // rest of [lo, hi]. Returns (row max over those columns, score row pointer).
   std::pair<Step, const Step*> compute(std::size_t i, const Step* prev, Step* cur, std::size_t lo, std::size_t hi,
                                        Scratch& scratch) const {
     const auto [rlo, rhi] = region(i);
@@ -292,19 +297,19 @@ class FastPass {
     return {best, s};
   }
 
-  // Fills every row, by column strips on threads_ threads in a wavefront (a strip's row i needs the
-  // strip on its left to have finished row i). Keeps row maxima and checkpoints if asked.
+  // Fills every row, by column strips (whole tiles) on threads_ threads in a wavefront (a strip's row i
+  // needs the strip on its left to have finished row i). Keeps the tiles' boundaries and maxima if asked.
   Step fill(bool keep) {
     if (keep) {
-      row_max_.assign(m_ + 1, 0);
-      checkpoints_.assign((m_ / kCheckpointRows + 1) * stride_, 0);
+      checkpoints_.assign((m_ / kTile + 1) * stride_, 0);
+      columns_.assign((m_ + 1) * column_stride_, 0);
+      tile_max_.assign(bands_ * tiles_, 0);
     }
     // Strips of at least 512 columns, so a strip's row costs far more than its synchronisation.
     const std::size_t strips = std::max<std::size_t>(1, std::min<std::size_t>(threads_, n_ / 512));
     constexpr std::size_t kRing = 64;  // rows kept; a strip may run this far ahead of the next one
     const std::size_t ring = strips == 1 ? 2 : kRing;
     std::vector<Step> rows(ring * stride_, 0);
-    std::vector<std::vector<Step>> strip_max(strips, std::vector<Step>(keep ? m_ + 1 : 0, 0));
     std::vector<Step> best(strips, 0);
     std::vector<std::atomic<std::size_t>> done(strips);
     for (auto& d : done) d.store(0);
@@ -313,8 +318,10 @@ class FastPass {
 
     auto work = [&](std::size_t k) {
       try {
-        const std::size_t lo = 1 + n_ * k / strips, hi = n_ * (k + 1) / strips;
+        const std::size_t t0 = tiles_ * k / strips, t1 = tiles_ * (k + 1) / strips;
+        const std::size_t lo = t0 * kTile + 1, hi = std::min(n_, t1 * kTile);
         Scratch scratch(n_);
+        std::vector<Step> band(keep ? stride_ : 0, 0);  // column maxima of the current band
         for (std::size_t i = 1; i <= m_; ++i) {
           if (k > 0) wait_for(done[k - 1], i, failed);
           if (k + 1 < strips && i > ring - 1) wait_for(done[k + 1], i - (ring - 1), failed);
@@ -323,12 +330,7 @@ class FastPass {
           Step* cur = rows.data() + (i % ring) * stride_;
           const Step v = compute(i, prev, cur, lo, hi, scratch).first;
           best[k] = std::max(best[k], v);
-          if (keep) {
-            strip_max[k][i] = v;
-            if (i % kCheckpointRows == 0) {
-              std::copy(cur + lo, cur + hi + 1, checkpoints_.data() + (i / kCheckpointRows) * stride_ + lo);
-            }
-          }
+          if (keep) keep_row(i, cur, t0, t1, band.data());
           if (strips > 1) {  // nobody waits on a single strip
             done[k].store(i, std::memory_order_release);
             done[k].notify_all();
@@ -351,11 +353,33 @@ class FastPass {
       if (e) std::rethrow_exception(e);
     }
     if (keep) {
-      for (std::size_t i = 1; i <= m_; ++i) {
-        for (std::size_t k = 0; k < strips; ++k) row_max_[i] = std::max(row_max_[i], strip_max[k][i]);
-      }
+      band_max_.assign(bands_, 0);
+      for (std::size_t b = 0; b < bands_; ++b) update_band_max(b);
     }
     return *std::max_element(best.begin(), best.end());
+  }
+
+  // What the alignment phase keeps of row i, tiles t0 .. t1 - 1: the right column of every tile, the
+  // row itself on a checkpoint row, and the tiles' maxima at the end of the band (`band` collects the
+  // band's column maxima meanwhile).
+  void keep_row(std::size_t i, const Step* cur, std::size_t t0, std::size_t t1, Step* band) {
+    const std::size_t lo = t0 * kTile + 1, hi = std::min(n_, t1 * kTile);
+    accumulate_max(band + lo, cur + lo, hi - lo + 1);
+    for (std::size_t q = t0 + 1; q <= t1 && q * kTile <= n_; ++q) columns_[i * column_stride_ + q] = cur[q * kTile];
+    if (i % kTile == 0) std::copy(cur + lo, cur + hi + 1, checkpoints_.data() + (i / kTile) * stride_ + lo);
+    if (i % kTile == 0 || i == m_) {
+      Step* maxima = tile_max_.data() + ((i - 1) / kTile) * tiles_;
+      for (std::size_t t = t0; t < t1; ++t) {
+        const std::size_t c0 = t * kTile + 1, c1 = std::min(n_, c0 + kTile - 1);
+        maxima[t] = *std::max_element(band + c0, band + c1 + 1);
+      }
+      std::fill(band + lo, band + hi + 1, Step{0});
+    }
+  }
+
+  void update_band_max(std::size_t b) {
+    const auto first = tile_max_.begin() + static_cast<std::ptrdiff_t>(b * tiles_);
+    band_max_[b] = *std::max_element(first, first + static_cast<std::ptrdiff_t>(tiles_));
   }
 
   static void wait_for(const std::atomic<std::size_t>& counter, std::size_t value, const std::atomic<bool>& failed) {
@@ -368,38 +392,70 @@ class FastPass {
     }
   }
 
-  // Rows recomputed one after another from a checkpoint: h is the current row, above the one before,
-  // s the current row's scores (with used pairs forbidden).
+  // Row buffers of the alignment phase, which recomputes one piece of the table at a time.
+  struct Buffers {
+    std::vector<Step> a, b;
+    Scratch scratch;
+    Buffers(std::size_t n, std::size_t stride) : a(stride, 0), b(stride, 0), scratch(n) {}
+  };
+
+  // The first column of a cursor that covers column j: lo - 1 <= j is 0 or a column checkpoint.
+  static std::size_t covering_lo(std::size_t j) { return j / kTile * kTile + 1; }
+
+  // Rows recomputed one after another over columns [lo, hi], from the checkpoint row above and the
+  // column checkpoint lo - 1 (a multiple of kTile): h is the current row, above the one before, s the
+  // current row's scores (with used pairs forbidden). Uses the pass's buffers: one cursor at a time.
   struct Cursor {
     const FastPass& pass;
-    std::vector<Step> a, b;
+    std::size_t lo, hi;
     Step* above;
     Step* h;
     const Step* s = nullptr;
     std::size_t row = 0;
     Step max = 0;
-    Scratch scratch;
-    explicit Cursor(const FastPass& p)
-        : pass(p), a(p.stride_, 0), b(p.stride_, 0), above(a.data()), h(b.data()), scratch(p.n_), last_col(p.n_) {}
-    // Positions on checkpoint k (row k * kCheckpointRows).
+    Cursor(const FastPass& p, std::size_t first, std::size_t last)
+        : pass(p), lo(first), hi(last), above(p.buffers_->a.data()), h(p.buffers_->b.data()) {}
+    // Positions on checkpoint row k * kTile.
     void start(std::size_t k) {
       const Step* c = pass.checkpoints_.data() + k * pass.stride_;
-      std::copy(c, c + pass.stride_, h);
-      row = k * kCheckpointRows;
+      std::copy(c + lo - 1, c + hi + 1, h + lo - 1);
+      row = k * kTile;
       s = nullptr;
     }
-    std::size_t last_col;  // columns computed: 1 .. last_col
     void advance() {
       std::swap(above, h);
       ++row;
-      std::tie(max, s) = pass.compute(row, above, h, 1, last_col, scratch);
+      h[lo - 1] = pass.columns_[row * pass.column_stride_ + (lo - 1) / kTile];
+      std::tie(max, s) = pass.compute(row, above, h, lo, hi, pass.buffers_->scratch);
     }
     // Row i (>= 1), from the checkpoint strictly above it.
     void seek(std::size_t i) {
-      start((i - 1) / kCheckpointRows);
+      start((i - 1) / kTile);
       while (row < i) advance();
     }
   };
+
+  // The first cell (row-major) of band b holding `top`, recomputing the band's tiles whose maximum it is.
+  Cell first_cell(std::size_t b, Step top) const {
+    Cell found{0, 0};
+    const std::size_t last = std::min(m_, (b + 1) * kTile);
+    for (std::size_t t = 0; t < tiles_; ++t) {
+      if (tile_max_[b * tiles_ + t] != top) continue;
+      Cursor c(*this, t * kTile + 1, std::min(n_, (t + 1) * kTile));
+      c.start(b);
+      // a later tile wins only with an earlier row
+      while (c.row < last && (found.first == 0 || c.row + 1 < found.first)) {
+        c.advance();
+        const Step* hit = std::find(c.h + c.lo, c.h + c.hi + 1, top);
+        if (hit != c.h + c.hi + 1) {
+          found = {c.row, static_cast<std::size_t>(hit - c.h)};
+          break;
+        }
+      }
+    }
+    if (found.first == 0) throw std::logic_error("tile maximum not found");
+    return found;
+  }
 
   // Tight steps (those attaining the cell's positive value) on rows held in memory: the scalar engine's
   // expressions in saturating int16, which equal them on these integer-valued inputs.
@@ -414,20 +470,34 @@ class FastPass {
     return h[j] > 0 && clamp(detail::saturate(h[j - 1] - st_.gap_b)) == h[j];
   }
 
-  // The last maximal cell (row-major) reachable from `first` by tight steps, rows streamed downwards.
-  Cell far_end(Cursor& c, Cell first) const {
-    // Rows are streamed: c holds row i (h) and, after next_row, row i+1 with the row above it.
-    struct Grid {
-      const FastPass& p;
-      Cursor& c;
-      Step top_value;
-      bool top(std::size_t, std::size_t j) const { return c.h[j] == top_value; }
-      bool right(std::size_t, std::size_t j) const { return p.tight_right(c.h, j); }
-      void next_row() const { c.advance(); }
-      bool down(std::size_t, std::size_t j) const { return p.tight_down(c.above, c.h, j); }
-      bool diag(std::size_t, std::size_t j) const { return p.tight_diag(c.above, c.h, c.s, j); }
-    };
-    return detail::plateau_far_end(first, m_, n_, Grid{*this, c, c.h[first.second]});
+  // The last maximal cell (row-major) reachable from `first` by tight steps, rows streamed downwards
+  // over a column range that is doubled while the plateau reaches its right end.
+  Cell far_end(Cell first) const {
+    for (std::size_t width = 8 * kTile;; width *= 2) {
+      const std::size_t lo = covering_lo(first.second - 1);
+      Cursor c(*this, lo, std::min(n_, lo - 1 + width));
+      c.seek(first.first);
+      bool outside = false;
+      // Rows are streamed: c holds row i (h) and, after next_row, row i+1 with the row above it.
+      struct Grid {
+        const FastPass& p;
+        Cursor& c;
+        Step top_value;
+        bool& outside;
+        bool in(std::size_t j) const {
+          if (j <= c.hi) return true;
+          outside = true;
+          return false;
+        }
+        bool top(std::size_t, std::size_t j) const { return in(j) && c.h[j] == top_value; }
+        bool right(std::size_t, std::size_t j) const { return in(j) && p.tight_right(c.h, j); }
+        void next_row() const { c.advance(); }
+        bool down(std::size_t, std::size_t j) const { return in(j) && p.tight_down(c.above, c.h, j); }
+        bool diag(std::size_t, std::size_t j) const { return in(j) && p.tight_diag(c.above, c.h, c.s, j); }
+      };
+      const Cell end = detail::plateau_far_end(first, m_, n_, Grid{*this, c, c.h[first.second], outside});
+      if (!outside || c.hi == n_) return end;
+    }
   }
 
   // Rows r0 .. r1 and columns c0 .. c1 of the table (and the scores from r0 + 1, c0 + 1), recomputed.
@@ -468,25 +538,24 @@ class FastPass {
     w.gap_a = st_.gap_a;
     w.gap_b = st_.gap_b;
     const std::size_t top = end.first > rows_above ? end.first - rows_above : 0;
-    const std::size_t k = top / kCheckpointRows;
-    w.r0 = k * kCheckpointRows;
+    const std::size_t k = top / kTile;
+    w.r0 = k * kTile;
     w.r1 = end.first;
     w.c0 = end.second > cols_left ? end.second - cols_left : 0;
     w.c1 = end.second;
     w.width = w.c1 - w.c0 + 1;
     w.h.assign((w.r1 - w.r0 + 1) * w.width, 0);
     w.s.assign(w.h.size(), 0);
-    Cursor c(*this);
-    c.last_col = w.c1;  // nothing right of the end can be on its path
+    Cursor c(*this, covering_lo(w.c0), w.c1);  // nothing right of the end can be on its path
     c.start(k);
     std::copy(c.h + w.c0, c.h + w.c1 + 1, w.h.begin());
     while (c.row < w.r1) {
       c.advance();
       const std::size_t r = c.row - w.r0;
       std::copy(c.h + w.c0, c.h + w.c1 + 1, w.h.begin() + static_cast<std::ptrdiff_t>(r * w.width));
-      // scores are meaningful only where the region is (elsewhere h = 0 and they are never asked)
+      // scores are asked only right of c0 and where the region is (elsewhere h = 0)
       const auto [lo, hi] = region(c.row);
-      for (std::size_t j = std::max(w.c0, lo); j <= std::min(w.c1, hi); ++j) w.s[r * w.width + (j - w.c0)] = c.s[j];
+      for (std::size_t j = std::max(w.c0 + 1, lo); j <= std::min(w.c1, hi); ++j) w.s[r * w.width + (j - w.c0)] = c.s[j];
     }
     return w;
   }
@@ -529,7 +598,7 @@ class FastPass {
   // 4 right; row r keeps only columns lo[r] .. hi[r] (box coordinates), everything else reads 0.
   LocalAlignment recover(Cell end) const {
     std::vector<std::pair<std::size_t, std::size_t>> spans;
-    std::size_t reach = kCheckpointRows;
+    std::size_t reach = kTile;
     Window w;
     Cell start;
     for (;;) {
@@ -557,26 +626,65 @@ class FastPass {
                                      static_cast<Score>(w.value(end.first, end.second)) / st_.scale);
   }
 
-  // Forbids the alignment's pairs, then recomputes rows from the checkpoint above its first pair until
-  // a checkpoint at or below its last pair is unchanged.
+  // Forbids the alignment's pairs, then recomputes the tiles holding them and, tile by tile, every tile
+  // whose top row, left column or corner came out changed (a tile whose inputs are unchanged is unchanged).
   void forbid_and_update(const LocalAlignment& a) {
     if (forbidden_.empty()) forbidden_.resize(m_ + 1);
+    std::map<std::size_t, std::set<std::size_t>> dirty;  // band -> its tiles to recompute
     for (auto [r, c] : a.pairs) {
       const std::size_t i = r + 1, j = config_.direction == Direction::forward ? c + 1 : n_ - c;
       auto& cols = forbidden_[i];
       cols.insert(std::lower_bound(cols.begin(), cols.end(), j), j);
+      dirty[(i - 1) / kTile].insert((j - 1) / kTile);
     }
-    const std::size_t first_row = a.pairs.front().first + 1, last_row = a.pairs.back().first + 1;
-    Cursor c(*this);
-    c.start((first_row - 1) / kCheckpointRows);
-    while (c.row < m_) {
+    while (!dirty.empty()) {  // bands top to bottom, tiles left to right: every input is final when read
+      auto node = dirty.extract(dirty.begin());
+      const std::size_t b = node.key();
+      std::set<std::size_t>& tiles = node.mapped();
+      while (!tiles.empty()) {
+        const std::size_t t = *tiles.begin();
+        tiles.erase(tiles.begin());
+        const TileChange change = recompute_tile(b, t);
+        if (change.right && t + 1 < tiles_) tiles.insert(t + 1);
+        if (change.bottom && b + 1 < bands_) dirty[b + 1].insert(t);
+        if (change.corner && b + 1 < bands_ && t + 1 < tiles_) dirty[b + 1].insert(t + 1);
+      }
+      update_band_max(b);
+    }
+  }
+
+  struct TileChange {
+    bool right = false, bottom = false, corner = false;  // which stored boundaries changed
+  };
+
+  // Recomputes tile (b, t) from its stored top row and left column; stores its right column, bottom row
+  // and maximum, and says which boundaries changed.
+  TileChange recompute_tile(std::size_t b, std::size_t t) {
+    const std::size_t lo = t * kTile + 1, hi = std::min(n_, lo + kTile - 1), last = std::min(m_, (b + 1) * kTile);
+    const bool right_stored = hi % kTile == 0, bottom_stored = last % kTile == 0;
+    TileChange change;
+    Step max = 0;
+    Cursor c(*this, lo, hi);
+    c.start(b);
+    while (c.row < last) {
       c.advance();
-      row_max_[c.row] = c.max;
-      if (c.row % kCheckpointRows != 0) continue;
-      Step* stored = checkpoints_.data() + (c.row / kCheckpointRows) * stride_;
-      if (c.row >= last_row && std::equal(c.h, c.h + n_ + 1, stored)) break;
-      std::copy(c.h, c.h + n_ + 1, stored);
+      max = std::max(max, c.max);
+      if (!right_stored) continue;
+      Step& stored = columns_[c.row * column_stride_ + hi / kTile];
+      if (stored == c.h[hi]) continue;
+      stored = c.h[hi];
+      change.right = true;
+      change.corner = c.row == last && bottom_stored;
     }
+    if (bottom_stored) {
+      Step* stored = checkpoints_.data() + last / kTile * stride_;
+      if (!std::equal(c.h + lo, c.h + hi + 1, stored + lo)) {
+        std::copy(c.h + lo, c.h + hi + 1, stored + lo);
+        change.bottom = true;
+      }
+    }
+    tile_max_[b * tiles_ + t] = max;
+    return change;
   }
 
   const RowScores& scores_;
@@ -584,10 +692,16 @@ class FastPass {
   Steps st_;
   detail::RowKernel kernel_;
   std::size_t m_, n_, stride_;
+  std::size_t bands_, tiles_;  // tile rows and columns (kTile x kTile cells, the last ones may be smaller)
+  std::size_t column_stride_;  // column checkpoints per row
   unsigned threads_;
-  std::vector<Step> checkpoints_;   // row k * kCheckpointRows at k * stride_
-  std::vector<Step> row_max_;       // each row's maximum
+  // The table is kept only at tile boundaries: from them any tile, or any window, is recomputed exactly.
+  std::vector<Step> checkpoints_;  // H row k * kTile, at k * stride_
+  std::vector<Step> columns_;      // H(i, q * kTile) at i * column_stride_ + q
+  std::vector<Step> tile_max_;     // maximum of tile (b, t) at b * tiles_ + t
+  std::vector<Step> band_max_;     // maximum of each band of tiles
   std::vector<std::vector<std::size_t>> forbidden_;  // per row, sorted pass columns of used pairs
+  std::unique_ptr<Buffers> buffers_;
 };
 
 unsigned resolve(unsigned threads) {

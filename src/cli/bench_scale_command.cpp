@@ -9,6 +9,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <numeric>
 #include <thread>
 #include <cmath>
 #include <fstream>
@@ -241,15 +242,23 @@ Row run_dense(std::size_t n, const Options& opt) {
     return std::make_unique<scale::StreamingSimilarity>(route.descriptors, n, opt.dim);
   });
   if (opt.similarity_pass) {
-    // Every score of the lower triangle the self alignment reads, once, discarded.
+    // Every score of the lower triangle the self alignment reads, once, discarded. The threads take
+    // alternate rows, so they share the tiles of one band.
     timed(row, "similarity", [&] {
-      std::vector<float> buffer(n);
-      double sink = 0;
-      for (std::size_t i = 0; i < n; ++i) {
-        sim->read_row(i, 0, i + 1, buffer.data());
-        sink += buffer[i / 2];
+      const unsigned workers = std::max(1U, opt.threads != 0 ? opt.threads : std::thread::hardware_concurrency());
+      std::vector<double> sinks(workers, 0.0);
+      std::vector<std::thread> pool;
+      for (unsigned k = 0; k < workers; ++k) {
+        pool.emplace_back([&, k] {
+          std::vector<float> buffer(n);
+          for (std::size_t i = k; i < n; i += workers) {
+            sim->read_row(i, 0, i + 1, buffer.data());
+            sinks[k] += buffer[i / 2];
+          }
+        });
       }
-      return sink;
+      for (auto& t : pool) t.join();
+      return std::accumulate(sinks.begin(), sinks.end(), 0.0);
     });
   }
   align::FastOptions fast;

@@ -8,6 +8,10 @@
 #include <string>
 #include <unordered_map>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 namespace seqtopo::scale {
 namespace {
 
@@ -34,21 +38,106 @@ float dot(const float* x, const float* y, std::size_t dim) {
 // does not depend on the machine.
 namespace kernels {
 
-// out[b] += x[t] * xt[t * stride + b] for t = 0 .. dim-1 in order: dot products of x with `count` columns.
-[[gnu::target_clones("avx2", "default")]] void dot_row(float* out, const float* x, const float* xt,
-                                                        std::size_t stride, std::size_t dim, std::size_t count) {
-  for (std::size_t t = 0; t < dim; ++t) {
-    const float xa = x[t];
-    const float* col = xt + t * stride;
-    for (std::size_t b = 0; b < count; ++b) out[b] += xa * col[b];
+// out[r * out_stride + b] = sum over t = 0 .. dim-1, in order, of x[r * dim + t] * xt[t * stride + b]
+// (no fused multiply-add): the dot products of `rows` rows with `count` columns.
+void dot_block_portable(float* out, std::size_t out_stride, const float* x, std::size_t rows, const float* xt,
+                        std::size_t stride, std::size_t dim, std::size_t count) {
+  for (std::size_t r = 0; r < rows; ++r) {
+    float* o = out + r * out_stride;
+    std::fill(o, o + count, 0.0F);
+    for (std::size_t t = 0; t < dim; ++t) {
+      const float xa = x[r * dim + t];
+      const float* col = xt + t * stride;
+      for (std::size_t b = 0; b < count; ++b) o[b] += xa * col[b];
+    }
   }
 }
 
-[[gnu::target_clones("avx2", "default")]] void accumulate(double* sum, double* sum2, const float* v, std::size_t count) {
-  for (std::size_t b = 0; b < count; ++b) {
-    sum[b] += v[b];
-    sum2[b] += static_cast<double>(v[b]) * v[b];
+#if defined(__x86_64__)
+// Four rows by sixteen columns at a time, the 8 sums in registers across the dimensions.
+[[gnu::target("avx2")]] void dot_block_avx2(float* out, std::size_t out_stride, const float* x, std::size_t rows,
+                                            const float* xt, std::size_t stride, std::size_t dim, std::size_t count) {
+  std::size_t r = 0;
+  for (; r + 4 <= rows; r += 4) {
+    std::size_t b = 0;
+    for (; b + 16 <= count; b += 16) {
+      __m256 acc[4][2];
+      for (auto& row : acc) row[0] = row[1] = _mm256_setzero_ps();
+      for (std::size_t t = 0; t < dim; ++t) {
+        const __m256 c0 = _mm256_loadu_ps(xt + t * stride + b), c1 = _mm256_loadu_ps(xt + t * stride + b + 8);
+        for (std::size_t u = 0; u < 4; ++u) {
+          const __m256 xa = _mm256_broadcast_ss(x + (r + u) * dim + t);
+          acc[u][0] = _mm256_add_ps(acc[u][0], _mm256_mul_ps(xa, c0));
+          acc[u][1] = _mm256_add_ps(acc[u][1], _mm256_mul_ps(xa, c1));
+        }
+      }
+      for (std::size_t u = 0; u < 4; ++u) {
+        _mm256_storeu_ps(out + (r + u) * out_stride + b, acc[u][0]);
+        _mm256_storeu_ps(out + (r + u) * out_stride + b + 8, acc[u][1]);
+      }
+    }
+    if (b < count) dot_block_portable(out + r * out_stride + b, out_stride, x + r * dim, 4, xt + b, stride, dim, count - b);
   }
+  if (r < rows) dot_block_portable(out + r * out_stride, out_stride, x + r * dim, rows - r, xt, stride, dim, count);
+}
+#endif
+
+void dot_block(float* out, std::size_t out_stride, const float* x, std::size_t rows, const float* xt,
+               std::size_t stride, std::size_t dim, std::size_t count) {
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return dot_block_avx2(out, out_stride, x, rows, xt, stride, dim, count);
+#endif
+  dot_block_portable(out, out_stride, x, rows, xt, stride, dim, count);
+}
+
+// sum[b] and sum2[b] over first[t * stride + b] for t = 0 .. terms - 1, in that order, in double: the
+// window sums of `count` cells (the dense path's operations per cell; no fused multiply-add).
+void window_sums_portable(double* sum, double* sum2, const float* first, std::size_t stride, std::size_t terms,
+                          std::size_t count) {
+  for (std::size_t b = 0; b < count; ++b) {
+    double s = 0, s2 = 0;
+    for (std::size_t t = 0; t < terms; ++t) {
+      const float v = first[t * stride + b];
+      s += v;
+      s2 += static_cast<double>(v) * v;
+    }
+    sum[b] = s;
+    sum2[b] = s2;
+  }
+}
+
+#if defined(__x86_64__)
+// Eight cells at a time with their sums in registers across the terms.
+[[gnu::target("avx2")]] void window_sums_avx2(double* sum, double* sum2, const float* first, std::size_t stride,
+                                              std::size_t terms, std::size_t count) {
+  std::size_t b = 0;
+  for (; b + 8 <= count; b += 8) {
+    __m256d s_lo = _mm256_setzero_pd(), s_hi = s_lo, q_lo = s_lo, q_hi = s_lo;
+    for (std::size_t t = 0; t < terms; ++t) {
+      const __m256 v = _mm256_loadu_ps(first + t * stride + b);
+      const __m256d lo = _mm256_cvtps_pd(_mm256_castps256_ps128(v)), hi = _mm256_cvtps_pd(_mm256_extractf128_ps(v, 1));
+      s_lo = _mm256_add_pd(s_lo, lo);
+      s_hi = _mm256_add_pd(s_hi, hi);
+      q_lo = _mm256_add_pd(q_lo, _mm256_mul_pd(lo, lo));
+      q_hi = _mm256_add_pd(q_hi, _mm256_mul_pd(hi, hi));
+    }
+    _mm256_storeu_pd(sum + b, s_lo);
+    _mm256_storeu_pd(sum + b + 4, s_hi);
+    _mm256_storeu_pd(sum2 + b, q_lo);
+    _mm256_storeu_pd(sum2 + b + 4, q_hi);
+  }
+  window_sums_portable(sum + b, sum2 + b, first + b, stride, terms, count - b);
+}
+#endif
+
+void window_sums(double* sum, double* sum2, const float* first, std::size_t stride, std::size_t terms,
+                 std::size_t count) {
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return window_sums_avx2(sum, sum2, first, stride, terms, count);
+#endif
+  window_sums_portable(sum, sum2, first, stride, terms, count);
 }
 
 [[gnu::target_clones("avx2", "default")]] void finish(float* out, const float* v, const double* rs, const double* rs2,
@@ -141,10 +230,8 @@ std::vector<float> StreamingSimilarity::compute_tile(std::size_t tile_row, std::
   const std::size_t ew = ec1 - ec0, tw = c1 - c0;
 
   // Raw cosine on the widened tile; each cell summed in dimension order (vectorised across columns).
-  std::vector<float> raw((er1 - er0) * ew, 0.0F);
-  for (std::size_t a = er0; a < er1; ++a) {
-    kernels::dot_row(raw.data() + (a - er0) * ew, normalized_.data() + a * dim_, transposed_.data() + ec0, n_, dim_, ew);
-  }
+  std::vector<float> raw((er1 - er0) * ew);
+  kernels::dot_block(raw.data(), ew, normalized_.data() + er0 * dim_, er1 - er0, transposed_.data() + ec0, n_, dim_, ew);
 
   std::vector<float> tile((r1 - r0) * tw);
   std::vector<double> rs(tw), rs2(tw), cs(tw), cs2(tw), row_count(tw);
@@ -152,8 +239,6 @@ std::vector<float> StreamingSimilarity::compute_tile(std::size_t tile_row, std::
     const std::size_t lo = j > w ? j - w : 0, hi = std::min(n_, j + w + 1);
     row_count[j - c0] = static_cast<double>(hi - lo);
   }
-  const auto wi = static_cast<std::ptrdiff_t>(w);
-  const auto n = static_cast<std::ptrdiff_t>(n_);
   for (std::size_t i = r0; i < r1; ++i) {
     const float* row = raw.data() + (i - er0) * ew;
     float* out = tile.data() + (i - r0) * tw;
@@ -164,31 +249,28 @@ std::vector<float> StreamingSimilarity::compute_tile(std::size_t tile_row, std::
       }
       continue;
     }
-    std::fill(rs.begin(), rs.end(), 0.0);
-    std::fill(rs2.begin(), rs2.end(), 0.0);
-    std::fill(cs.begin(), cs.end(), 0.0);
-    std::fill(cs2.begin(), cs2.end(), 0.0);
-    // Row i around column j: columns j + o for o = -w .. w (index order), where inside the matrix.
-    for (std::ptrdiff_t o = -wi; o <= wi; ++o) {
-      const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(c0), -o);
-      const std::ptrdiff_t hi = std::min<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(c1), n - o);
-      if (hi <= lo) continue;
-      const auto jlo = static_cast<std::size_t>(lo);
-      kernels::accumulate(rs.data() + (jlo - c0), rs2.data() + (jlo - c0),
-                          row + static_cast<std::size_t>(lo + o) - ec0, static_cast<std::size_t>(hi - lo));
+    // Row i around column j: columns j - w .. j + w, clipped to the matrix. Where no clipping happens
+    // (j in [w, n - w)) the window of cell j starts at row[j - w - ec0], one further for each cell.
+    const std::size_t in_lo = std::clamp(w, c0, c1), in_hi = std::clamp(n_ - std::min(n_, w), in_lo, c1);
+    if (in_hi > in_lo) {
+      kernels::window_sums(rs.data() + (in_lo - c0), rs2.data() + (in_lo - c0), row + (in_lo - w - ec0), 1, 2 * w + 1,
+                           in_hi - in_lo);
     }
-    // Column j around row i (= row j around column i): rows i + o, where inside the matrix.
+    for (std::size_t j = c0; j < c1; ++j) {
+      if (j >= in_lo && j < in_hi) continue;
+      const std::size_t lo = j > w ? j - w : 0, hi = std::min(n_, j + w + 1);
+      kernels::window_sums(rs.data() + (j - c0), rs2.data() + (j - c0), row + (lo - ec0), 1, hi - lo, 1);
+    }
+    // Column j around row i (= row j around column i): rows i - w .. i + w, clipped.
     const std::size_t klo = i > w ? i - w : 0, khi = std::min(n_, i + w + 1);
-    for (std::size_t k = klo; k < khi; ++k) {
-      kernels::accumulate(cs.data(), cs2.data(), raw.data() + (k - er0) * ew + (c0 - ec0), tw);
-    }
+    kernels::window_sums(cs.data(), cs2.data(), raw.data() + (klo - er0) * ew + (c0 - ec0), ew, khi - klo, tw);
     kernels::finish(out, row + (c0 - ec0), rs.data(), rs2.data(), row_count.data(), cs.data(), cs2.data(),
                     static_cast<double>(khi - klo), config_.contrast_offset, tw);
   }
   return tile;
 }
 
-TilePtr StreamingSimilarity::tile(std::size_t tile_row, std::size_t tile_col) const {
+TilePtr StreamingSimilarity::tile(std::size_t tile_row, std::size_t tile_col, bool wait) const {
   const std::size_t tiles_per_band = (n_ + config_.tile - 1) / config_.tile;
   const std::uint64_t key = static_cast<std::uint64_t>(tile_row) * tiles_per_band + tile_col;
   std::promise<TilePtr> promise;
@@ -198,6 +280,7 @@ TilePtr StreamingSimilarity::tile(std::size_t tile_row, std::size_t tile_col) co
     auto it = cache_->entries.find(key);
     if (it != cache_->entries.end()) {
       it->second.last_use = ++cache_->clock;
+      if (!wait) return nullptr;
       future = it->second.tile;
     } else {
       if (cache_->entries.size() >= cache_->capacity) {
@@ -229,6 +312,11 @@ void StreamingSimilarity::read_row(std::size_t i, std::size_t j_begin, std::size
   if (i >= n_ || j_end > n_ || j_begin > j_end) throw std::out_of_range("streaming similarity: row segment out of range");
   const std::size_t T = config_.tile;
   const std::size_t tr = i / T;
+  // First compute the segment's missing tiles, skipping those another reader is computing: concurrent
+  // readers of one band (the forward and the reverse pass) then share the work instead of waiting.
+  if (j_end > j_begin) {
+    for (std::size_t tc = j_begin / T; tc <= (j_end - 1) / T; ++tc) tile(tr, tc, false);
+  }
   std::size_t j = j_begin;
   while (j < j_end) {
     const std::size_t tc = j / T;

@@ -173,6 +173,58 @@ TEST(FastAlignment, ColumnStripsOnManyThreadsGiveIdenticalResults) {
   }
 }
 
+TEST(FastAlignment, LongPlateausAndFarReachingUpdatesAcrossTiles) {
+  // The engine keeps H only at tile boundaries (every 32nd row and column) and recomputes pieces of
+  // it: plateaus far wider than its first plateau window (256 columns), overlapping revisits whose
+  // removal changes tiles far below and right of them, sizes that are not multiples of the tile.
+  std::mt19937 rng(33);
+  std::normal_distribution<float> noise(-0.8F, 0.4F);
+  for (int case_id = 0; case_id < 4; ++case_id) {
+    const std::size_t m = 1201 + static_cast<std::size_t>(case_id) * 37, n = case_id < 2 ? 1337 : m;
+    const bool self = case_id >= 2;
+    std::vector<float> s(m * n);
+    for (auto& v : s) v = noise(rng);
+    // one 700-long revisit, one crossing it, one parallel to it (anti-diagonal ones for the reverse pass)
+    const Direction direction = case_id % 2 == 0 ? Direction::forward : Direction::reverse;
+    auto plant = [&](std::size_t i0, std::size_t j0, std::size_t len, bool crossing) {
+      const bool anti = crossing != (direction == Direction::reverse);
+      for (std::size_t k = 0; k < len; ++k) {
+        const std::size_t i = i0 + k, j = anti ? j0 + len - 1 - k : j0 + k;
+        if (i < m && j < n) s[i * n + j] = self && i < j ? s[i * n + j] : 1.0F;
+      }
+    };
+    plant(400, 20, 700, false);
+    plant(500, 100, 400, true);
+    plant(430, 23, 300, false);
+    if (self) {
+      for (std::size_t i = 0; i < m; ++i) {
+        for (std::size_t j = 0; j < i; ++j) s[j * n + i] = s[i * n + j];
+      }
+    }
+    const auto source = ScoreSource::dense(s, m, n);
+    AlignConfig c;
+    c.gap_a = 1.0F;
+    c.gap_b = 1.5F;
+    c.cap = 6.0F;
+    c.threshold = 2.0F;
+    c.self = self;
+    c.min_separation = 10;
+    c.direction = direction;
+    const float scale = align::fast_scale(c);
+    const auto want = scalar_on_quantized(source, c, scale, self);
+    ASSERT_GE(want.size(), 2U) << "case " << case_id;
+    std::size_t longest = 0;
+    for (const auto& a : want) longest = std::max(longest, a.pairs.size());
+    ASSERT_GT(longest, 500U) << "case " << case_id;  // a plateau twice the first window
+    for (unsigned threads : {1U, 2U}) {
+      const FastOptions options{0.0F, threads, Isa::best};
+      expect_same(self ? align::fast_local_alignments_both(source, c, options)
+                       : align::fast_local_alignments(source, c, options),
+                  want, describe(case_id, c, scale, Isa::best, threads));
+    }
+  }
+}
+
 TEST(FastAlignment, LetterScoresEqualTheirScoreSource) {
   std::mt19937 rng(9);
   for (int case_id = 0; case_id < 24; ++case_id) {

@@ -68,7 +68,8 @@ TEST(StreamingSimilarity, EqualsDenseContrastEnhancementBitForBit) {
     float offset;
   };
   const Case cases[] = {{1, 3, 10, 4, 0.5F},   {17, 5, 3, 4, 0.0F},    {120, 16, 10, 32, 0.5F},
-                        {203, 9, 4, 7, 0.25F}, {150, 32, 0, 64, 0.5F}, {90, 12, 60, 256, 1.0F}};
+                        {203, 9, 4, 7, 0.25F}, {150, 32, 0, 64, 0.5F}, {90, 12, 60, 256, 1.0F},
+                        {700, 64, 10, 256, 0.5F}};  // the defaults, with interior tiles
   for (const Case& c : cases) {
     const auto x = walk_descriptors(c.n, c.dim, static_cast<unsigned>(c.n + c.tile));
     const StreamingSimilarity s(x, c.n, c.dim, {c.window, c.offset, c.tile, 3});

@@ -69,7 +69,9 @@ class StreamingSimilarity {
 
  private:
   struct Cache;
-  std::shared_ptr<const std::vector<float>> tile(std::size_t tile_row, std::size_t tile_col) const;
+  // The tile, from the cache or computed by this thread. Without `wait`, a tile already in the cache or
+  // being computed by another thread is not waited for (nullptr is returned).
+  std::shared_ptr<const std::vector<float>> tile(std::size_t tile_row, std::size_t tile_col, bool wait = true) const;
   std::vector<float> compute_tile(std::size_t tile_row, std::size_t tile_col) const;
 
   std::size_t n_, dim_;
