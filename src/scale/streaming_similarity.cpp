@@ -76,7 +76,9 @@ void dot_block_portable(float* out, std::size_t out_stride, const float* x, std:
         _mm256_storeu_ps(out + (r + u) * out_stride + b + 8, acc[u][1]);
       }
     }
-    if (b < count) dot_block_portable(out + r * out_stride + b, out_stride, x + r * dim, 4, xt + b, stride, dim, count - b);
+    if (b < count) {
+      dot_block_portable(out + r * out_stride + b, out_stride, x + r * dim, 4, xt + b, stride, dim, count - b);
+    }
   }
   if (r < rows) dot_block_portable(out + r * out_stride, out_stride, x + r * dim, rows - r, xt, stride, dim, count);
 }
@@ -231,7 +233,8 @@ std::vector<float> StreamingSimilarity::compute_tile(std::size_t tile_row, std::
 
   // Raw cosine on the widened tile; each cell summed in dimension order (vectorised across columns).
   std::vector<float> raw((er1 - er0) * ew);
-  kernels::dot_block(raw.data(), ew, normalized_.data() + er0 * dim_, er1 - er0, transposed_.data() + ec0, n_, dim_, ew);
+  kernels::dot_block(raw.data(), ew, normalized_.data() + er0 * dim_, er1 - er0, transposed_.data() + ec0, n_, dim_,
+                     ew);
 
   std::vector<float> tile((r1 - r0) * tw);
   std::vector<double> rs(tw), rs2(tw), cs(tw), cs2(tw), row_count(tw);
