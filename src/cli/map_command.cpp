@@ -25,6 +25,8 @@
 #include "seqtopo/metric/ekf_map.hpp"
 #include "seqtopo/metric/pose_graph.hpp"
 #include "seqtopo/metric/trajectory_error.hpp"
+#include "seqtopo/plot/matrix_overview.hpp"
+#include "seqtopo/scale/streaming_similarity.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -39,10 +41,11 @@ struct MapOptions {
   std::optional<std::string> descriptor, metric_name, kappa;
   std::optional<float> gap, threshold;
   std::optional<std::string> cap, odometry_gate;
-  std::string engine = "exact";
+  std::optional<std::string> engine;  // default exact, fast with --streaming
   std::optional<std::size_t> min_separation, contrast_window;
   std::optional<float> contrast_offset;
   bool no_reverse = false;
+  bool streaming = false;
   std::string odometry, ground_truth, gt_places, gt_poses;
   std::optional<double> gt_radius;
   unsigned threads = 0;
@@ -114,10 +117,11 @@ Settings resolve_settings(const MapOptions& o) {
       if (!(*s.map.cap > 0)) throw io::InputError("--cap", "must be > 0");
     }
   }
-  if (o.engine == "fast") {
+  const std::string engine = o.engine.value_or(o.streaming ? "fast" : "exact");
+  if (engine == "fast") {
     s.map.engine = mapping::MapConfig::Engine::fast;
-  } else if (o.engine != "exact") {
-    throw io::InputError("--engine", "expected exact or fast, got '" + o.engine + "'");
+  } else if (engine != "exact") {
+    throw io::InputError("--engine", "expected exact or fast, got '" + engine + "'");
   }
   if (o.odometry_gate) {
     s.map.odometry_gate = option_value("--odometry-gate", [&]() -> std::optional<mapping::OdometryGate> {
@@ -170,47 +174,110 @@ evaluation::SamePlace load_ground_truth(const MapOptions& o, const std::string& 
   return [m](std::size_t i, std::size_t j) { return (*m)(i, j) != 0 || (*m)(j, i) != 0; };
 }
 
-void run(MapOptions o) {
-  const auto total_start = std::chrono::steady_clock::now();
-  MapRun run;
-  // Everything the user gave is checked before the long computation starts (and before any progress
-  // output), so a mistake costs one line and no time.
-  const Settings settings = resolve_settings(o);
-  const bool bundled_default = o.input.empty();
-  if (bundled_default) {
-    const fs::path bundled = fs::path(SEQTOPO_DATA_DIR) / "rtabmap-corridor";
-    o.input = fs::exists(bundled) ? bundled.string() : "data/rtabmap-corridor";
-    if (o.ground_truth.empty()) o.ground_truth = (fs::path(o.input) / "ground_truth.bmp").string();
+// --streaming aligns contrast-enhanced cosine scores of one vector descriptor per image, computed on the
+// fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
+void check_streaming(const MapOptions& o, const Settings& s, image::InputKind kind) {
+  if (o.preset == "paper") {
+    throw io::InputError("--preset", "paper aligns the raw S = 1 - kappa D, whose kappa needs the whole distance matrix; "
+                                     "--streaming never holds it (use the default preset)");
   }
-  if (!fs::exists(o.input)) throw io::InputError(o.input, "no such file or folder");
-  for (const auto* path : {&o.odometry, &o.ground_truth, &o.gt_poses, &o.gt_places}) {
-    if (!path->empty() && !fs::exists(*path)) throw io::InputError(*path, "no such file");
+  if (s.map.engine != mapping::MapConfig::Engine::fast) {
+    throw io::InputError("--engine", "exact fills an N x N table; --streaming needs the fast engine (its default)");
   }
-  image::SequenceInput input{o.input, image::parse_input_kind(o.input_kind), o.every};
-  const auto kind = image::resolve_input_kind(input);
-  // The number of images, where it is known without decoding anything (not for a video).
-  std::optional<std::size_t> expected;
-  if (kind == image::InputKind::images) expected = image::list_images(o.input).size();
-  if (kind == image::InputKind::descriptors || kind == image::InputKind::similarity) {
-    const auto header = io::read_npy_header(o.input);
-    if (!header.shape.empty()) expected = header.shape[0];
-    if (kind == image::InputKind::similarity && (header.shape.size() != 2 || header.shape[0] != header.shape[1])) {
-      throw io::InputError(o.input, "a similarity matrix for map must be square (N x N)");
+  if (kind == image::InputKind::similarity) {
+    throw io::InputError("--streaming", "needs descriptors (descriptors.npy, or images with one vector descriptor), "
+                                        "not a similarity matrix");
+  }
+  if (s.map.contrast_window == 0) {
+    throw io::InputError("--contrast-window", "0 aligns the raw S = 1 - kappa D, whose kappa needs the whole distance "
+                                              "matrix; --streaming aligns contrast-enhanced scores (window >= 1)");
+  }
+  if (o.kappa) throw io::InputError("--kappa", "has no effect with --streaming: the contrast enhancement removes kappa");
+  if (o.metric_name && s.similarity.metric != image::Metric::cosine) {
+    throw io::InputError("--metric", "--streaming scores by cosine similarity only, got '" + *o.metric_name + "'");
+  }
+  if (o.descriptor && s.descriptors.size() != 1) {
+    throw io::InputError("--descriptor", fmt::format("--streaming takes one descriptor, got {} (fusing needs one N x N "
+                                                     "matrix per descriptor)", s.descriptors.size()));
+  }
+  if (kind != image::InputKind::descriptors) {  // images or a video: the descriptor is computed
+    if (!o.descriptor) {
+      throw io::InputError("--descriptor", "--streaming needs one vector descriptor for images (patch or panorama, with "
+                                           "--metric cosine); the default fuses joint-histogram and patch");
+    }
+    if (s.descriptors.front() == image::Descriptor::npy) {
+      throw io::InputError("--descriptor", "npy needs a descriptors.npy input");
+    }
+    if (s.descriptors.front() == image::Descriptor::joint_histogram) {
+      throw io::InputError("--descriptor", "joint-histogram is a sparse histogram without a vector form; --streaming "
+                                           "needs patch or panorama (with --metric cosine)");
+    }
+    if (!o.metric_name) {
+      throw io::InputError("--metric", "--streaming scores by cosine similarity: give --metric cosine (" +
+                                           std::string(image::descriptor_name(s.descriptors.front())) +
+                                           " defaults to sad)");
     }
   }
-  if (!o.odometry.empty()) {
-    run.odometry = io::read_odometry_csv(o.odometry);
-    if (expected && run.odometry.size() != *expected) {
-      throw io::InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), *expected));
+  if (!o.ground_truth.empty()) {
+    if (fs::path(o.ground_truth).extension() != ".csv") {
+      throw io::InputError("--ground-truth", "an N x N image (N^2 bytes, 10 GB at 10^5 images) is refused with "
+                                             "--streaming; give poses.csv with --gt-radius");
     }
+    if (!o.gt_radius || !(*o.gt_radius > 0)) throw io::InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
   }
-  run.preset = o.preset;
-  run.input = o.input;
-  run.map_config = settings.map;
-  run.paper_metric = settings.paper_metric;
-  io::OutputDirectory out(o.out);
-  if (bundled_default) progress("no input given: mapping the bundled corridor data " + o.input);
+}
 
+// The streamed replacement of stages 1 and 2: descriptors, then the map on scores computed when the engine
+// reads them. Leaves run.result.scores empty and fills run.overview for similarity.png.
+void map_streamed(const MapOptions& o, const Settings& settings, const image::SequenceInput& input, MapRun& run) {
+  progress("[1/4] descriptors (--streaming: the similarity is computed on the fly, never N x N)");
+  auto t = std::chrono::steady_clock::now();
+  auto config = settings.similarity;
+  config.descriptor = settings.descriptors.front();
+  image::DescriptorResult described = image::compute_descriptors(input, config);
+  const std::size_t n = described.descriptors.rows, dim = described.descriptors.cols;
+  run.descriptor_names.emplace_back(described.descriptor == image::Descriptor::npy
+                                        ? "descriptors.npy"
+                                        : std::string(image::descriptor_name(described.descriptor)));
+  progress(fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
+  if (n < 2) throw io::InputError(o.input, "needs at least 2 images");
+  if (!run.odometry.empty() && run.odometry.size() != n) {
+    throw io::InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
+  }
+  std::optional<scale::StreamingSimilarity> streamed;
+  try {
+    streamed.emplace(described.descriptors.values, n, dim,
+                     scale::StreamingConfig{.contrast_window = settings.map.contrast_window,
+                                            .contrast_offset = settings.map.contrast_offset});
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(o.input, e.what());  // e.g. an all-zero descriptor has no direction
+  }
+  described.descriptors = {};  // the streamed similarity keeps its own normalised copy
+  run.timings.emplace_back("descriptors", seconds_since(t));
+
+  progress("[2/4] alignments (fast engine on streamed scores), pruning, labels, topology");
+  run.result = mapping::build_map_from_scores(streamed->source(), settings.map, run.odometry);
+  run.timings.emplace_back("alignment (similarity streamed)", run.result.seconds_align);
+  run.timings.emplace_back("pruning + labels + topology", run.result.seconds_prune_label);
+  progress(fmt::format("      {} alignments ({} contradicted by odometry), {} kept, {} places, {} junctions",
+                       run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),
+                       std::count(run.result.pruning.kept.begin(), run.result.pruning.kept.end(), true),
+                       run.result.map.places.size(), run.result.map.junctions.size()));
+
+  const auto stats = streamed->stats();
+  run.streamed_cells = stats.cells_computed;
+  run.streamed_cache_bytes = stats.cache_bytes;
+
+  progress("      similarity overview for similarity.png (one more streamed pass over the lower triangle)");
+  t = std::chrono::steady_clock::now();
+  // The streamed scores are 0.5 (E + E^T) - offset, symmetric bit for bit: half the reads suffice.
+  run.overview = plot::matrix_overview(streamed->source(), {.max_side = 2048, .symmetric = true});
+  run.timings.emplace_back("similarity overview (streamed)", seconds_since(t));
+}
+
+// Stages 1 and 2 with the N x N matrices: one similarity matrix per descriptor, fused and aligned.
+void map_dense(const MapOptions& o, const Settings& settings, const image::SequenceInput& input, image::InputKind kind,
+               MapRun& run) {
   auto descriptors = settings.descriptors;
   // A descriptors.npy or similarity.npy input is one matrix, whatever descriptors were asked for.
   if (kind == image::InputKind::descriptors || kind == image::InputKind::similarity) descriptors.resize(1);
@@ -233,7 +300,6 @@ void run(MapOptions o) {
   if (n < 2) throw io::InputError(o.input, "needs at least 2 images");
 
   progress("[2/4] alignments, pruning, labels, topology");
-  t = std::chrono::steady_clock::now();
   if (!o.odometry.empty() && run.odometry.size() != n) {
     throw io::InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
   }
@@ -244,10 +310,63 @@ void run(MapOptions o) {
                        run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),
                        std::count(run.result.pruning.kept.begin(), run.result.pruning.kept.end(), true),
                        run.result.map.places.size(), run.result.map.junctions.size()));
+}
 
+void run(MapOptions o) {
+  const auto total_start = std::chrono::steady_clock::now();
+  MapRun run;
+  // Everything the user gave is checked before the long computation starts (and before any progress
+  // output), so a mistake costs one line and no time.
+  const Settings settings = resolve_settings(o);
+  const bool bundled_default = o.input.empty();
+  if (bundled_default) {
+    const fs::path bundled = fs::path(SEQTOPO_DATA_DIR) / "rtabmap-corridor";
+    o.input = fs::exists(bundled) ? bundled.string() : "data/rtabmap-corridor";
+    // Its ground truth is an N x N image, which --streaming refuses.
+    if (o.ground_truth.empty() && !o.streaming) o.ground_truth = (fs::path(o.input) / "ground_truth.bmp").string();
+  }
+  if (!fs::exists(o.input)) throw io::InputError(o.input, "no such file or folder");
+  for (const auto* path : {&o.odometry, &o.ground_truth, &o.gt_poses, &o.gt_places}) {
+    if (!path->empty() && !fs::exists(*path)) throw io::InputError(*path, "no such file");
+  }
+  image::SequenceInput input{o.input, image::parse_input_kind(o.input_kind), o.every};
+  const auto kind = image::resolve_input_kind(input);
+  if (o.streaming) check_streaming(o, settings, kind);
+  // The number of images, where it is known without decoding anything (not for a video).
+  std::optional<std::size_t> expected;
+  if (kind == image::InputKind::images) expected = image::list_images(o.input).size();
+  if (kind == image::InputKind::descriptors || kind == image::InputKind::similarity) {
+    const auto header = io::read_npy_header(o.input);
+    if (!header.shape.empty()) expected = header.shape[0];
+    if (kind == image::InputKind::similarity && (header.shape.size() != 2 || header.shape[0] != header.shape[1])) {
+      throw io::InputError(o.input, "a similarity matrix for map must be square (N x N)");
+    }
+  }
+  if (!o.odometry.empty()) {
+    run.odometry = io::read_odometry_csv(o.odometry);
+    if (expected && run.odometry.size() != *expected) {
+      throw io::InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), *expected));
+    }
+  }
+  run.preset = o.preset;
+  run.input = o.input;
+  run.map_config = settings.map;
+  run.paper_metric = settings.paper_metric;
+  run.streaming = o.streaming;
+  io::OutputDirectory out(o.out);
+  if (bundled_default) progress("no input given: mapping the bundled corridor data " + o.input);
+  if (bundled_default && o.streaming) progress("its ground truth is an N x N image, which --streaming does not read");
+  if (o.streaming) {
+    map_streamed(o, settings, input, run);
+  } else {
+    map_dense(o, settings, input, kind, run);
+  }
+  const std::size_t n = run.result.map.labels.size();
+  const auto& matrices = run.matrices;
+
+  auto t = std::chrono::steady_clock::now();
   if (!o.odometry.empty()) {
     progress("[3/4] metric picture (EKF and pose graph)");
-    t = std::chrono::steady_clock::now();
     run.ekf = metric::ekf_map(run.odometry, run.result.map.labels).images;
     std::vector<std::pair<std::size_t, std::size_t>> loops;
     for (const auto& p : run.result.pruning.pairs) loops.emplace_back(p.i, p.j);
@@ -261,6 +380,8 @@ void run(MapOptions o) {
     std::vector<evaluation::ScoredPair> pairs;
     for (const auto& p : run.result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
     run.metrics = evaluation::evaluate_loop_closures(pairs, n, same_place, settings.map.min_separation);
+    if (o.streaming) run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
+    // With --streaming no matrix was kept, so the list below is empty and the baseline does not run.
 
     // The baseline runs on every matrix seqtopo saw (each descriptor's S and the fused, enhanced
     // scores) and the one with the best AUC is reported, at its best-F1 threshold: the most generous
@@ -271,7 +392,9 @@ void run(MapOptions o) {
     seqslam.threads = o.threads;
     std::vector<std::pair<std::string, const SimilarityMatrix*>> sources;
     for (std::size_t k = 0; k < matrices.size(); ++k) sources.emplace_back(run.descriptor_names[k], &matrices[k]);
-    if (matrices.size() > 1 || settings.map.contrast_window > 0) sources.emplace_back("seqtopo's fused scores", &run.result.scores);
+    if (!o.streaming && (matrices.size() > 1 || settings.map.contrast_window > 0)) {
+      sources.emplace_back("seqtopo's fused scores", &run.result.scores);
+    }
     for (const auto& [name, matrix] : sources) {
       std::vector<evaluation::ScoredPair> pairs;
       for (const auto& m : baseline::seqslam_matches(*matrix, seqslam)) {
@@ -350,9 +473,12 @@ const RegisterCommand registered{{
       app.add_option("--kappa", o->kappa, "S = 1 - kappa * D: a number, or auto (from the sequence's own distances)");
       app.add_option("--gap", o->gap, fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
       app.add_option("--engine", o->engine,
-                     "exact (scalar reference, N x N table) or fast (vectorized, linear memory, scores quantized "
-                     "to 1/512)")
-          ->capture_default_str();
+                     "exact (scalar reference, N x N table) or fast (vectorized, no N x N table, scores quantized "
+                     "to 1/512); default exact, fast with --streaming");
+      app.add_flag("--streaming", o->streaming,
+                   "never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor "
+                   "(descriptors.npy, or patch/panorama with --metric cosine) computed on the fly, fast engine; "
+                   "no scores.npy, similarity.npy nor SeqSLAM baseline, similarity.png a block-max overview");
       app.add_option("--odometry-gate", o->odometry_gate,
                      fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
                                  "(metres travelled between them) apart, as BASE,DRIFT, or none (default {},{})",

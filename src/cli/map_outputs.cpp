@@ -87,7 +87,13 @@ void render_svg(const std::filesystem::path& dot_file, const std::filesystem::pa
   throw io::InputError("topology.svg", "Graphviz 'dot' failed or is missing (scripts/setup.sh installs graphviz)");
 }
 
-std::vector<plot::Polyline> alignment_overlays(const MapRun& run) {
+// Alignments in the coordinates of the drawn matrix: the scores themselves (block 1) or an overview of
+// block x block cells per pixel (--streaming).
+std::vector<plot::Polyline> alignment_overlays(const MapRun& run, std::size_t block) {
+  const auto at = [block](std::size_t i, std::size_t j) {
+    return std::pair{plot::overview_coordinate(static_cast<double>(i), block),
+                     plot::overview_coordinate(static_cast<double>(j), block)};
+  };
   std::vector<plot::Polyline> lines;
   const auto& alignments = run.result.alignments;
   const auto& pruning = run.result.pruning;
@@ -96,7 +102,7 @@ std::vector<plot::Polyline> alignment_overlays(const MapRun& run) {
     plot::Polyline line;
     line.rgb = {40, 110, 255};
     line.thickness = 2;
-    for (auto [i, j] : a.pairs) line.points.emplace_back(static_cast<double>(i), static_cast<double>(j));
+    for (auto [i, j] : a.pairs) line.points.push_back(at(i, j));
     lines.push_back(std::move(line));
   }
   plot::Polyline current;
@@ -111,7 +117,7 @@ std::vector<plot::Polyline> alignment_overlays(const MapRun& run) {
       current.thickness = 2;
       current_alignment = p.alignment;
     }
-    current.points.emplace_back(static_cast<double>(p.i), static_cast<double>(p.j));
+    current.points.push_back(at(p.i, p.j));
     previous_i = p.i;
   }
   if (!current.points.empty()) lines.push_back(current);
@@ -144,10 +150,15 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
   for (const auto& p : result.pruning.pairs) csv += fmt::format("{},{},{}\n", p.i, p.j, p.score);
   out.write("loop_closures.csv", csv);
 
-  out.write("similarity.npy", io::encode_npy(run.matrices.front()));
-  out.write("scores.npy", io::encode_npy(result.scores));
-  // The picture shows what was aligned: S itself, or its contrast-enhanced form (see the report).
-  out.write("similarity.png", plot::encode_png(plot::matrix_image(result.scores, alignment_overlays(run))));
+  if (run.streaming) {
+    out.write("similarity.png",
+              plot::encode_png(plot::matrix_image(run.overview.cells, alignment_overlays(run, run.overview.block))));
+  } else {
+    out.write("similarity.npy", io::encode_npy(run.matrices.front()));
+    out.write("scores.npy", io::encode_npy(result.scores));
+    // The picture shows what was aligned: S itself, or its contrast-enhanced form (see the report).
+    out.write("similarity.png", plot::encode_png(plot::matrix_image(result.scores, alignment_overlays(run, 1))));
+  }
 
   out.write("topology.dot", topology_dot(map));
   render_svg(out.staged("topology.dot"), out.staged("topology.svg"));
@@ -166,21 +177,28 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
 
   if (run.metrics || run.ate || run.topology) {
     nlohmann::json metrics = nlohmann::json::object();
+    if (run.streaming) metrics["streaming"] = true;
     if (run.metrics) {
       metrics["loop_closure"] = metrics_json(*run.metrics);
-      metrics["baseline"] = metrics_json(*run.baseline_metrics);
-      metrics["baseline"]["method"] = run.baseline_name;
+      if (run.baseline_metrics) {
+        metrics["baseline"] = metrics_json(*run.baseline_metrics);
+        metrics["baseline"]["method"] = run.baseline_name;
+      } else {
+        metrics["baseline_skipped"] = run.baseline_skipped;
+      }
       nlohmann::json curve = nlohmann::json::array();
       for (const auto& p : run.metrics->curve) curve.push_back({{"threshold", p.threshold}, {"precision", p.precision}, {"recall", p.recall}});
       metrics["loop_closure"]["pr_curve"] = curve;
 
-      std::vector<plot::Curve> curves(2);
+      std::vector<plot::Curve> curves(run.baseline_metrics ? 2 : 1);
       curves[0].label = "seqtopo alignment";
       curves[0].rgb = {220, 30, 30};
       for (const auto& p : run.metrics->curve) curves[0].recall_precision.emplace_back(p.recall, p.precision);
-      curves[1].label = "SeqSLAM-style baseline";
-      curves[1].rgb = {40, 90, 220};
-      for (const auto& p : run.baseline_metrics->curve) curves[1].recall_precision.emplace_back(p.recall, p.precision);
+      if (run.baseline_metrics) {
+        curves[1].label = "SeqSLAM-style baseline";
+        curves[1].rgb = {40, 90, 220};
+        for (const auto& p : run.baseline_metrics->curve) curves[1].recall_precision.emplace_back(p.recall, p.precision);
+      }
       out.write("pr_curve.png", plot::encode_png(plot::pr_curve_image(curves)));
     }
     if (run.topology) {
@@ -220,8 +238,10 @@ void write_report(const MapRun& run, io::OutputDirectory& out) {
                                       fmt::format("{:.3f}", m.recall_at_100_precision),
                                       fmt::format("{} / {} / {}", m.tp, m.fp, m.fn)};
     };
-    html.table({"method", "precision", "recall", "F1", "AUC", "R@100P", "TP / FP / FN"},
-               {row("seqtopo alignment", *run.metrics), row(run.baseline_name, *run.baseline_metrics)});
+    std::vector<std::vector<std::string>> rows{row("seqtopo alignment", *run.metrics)};
+    if (run.baseline_metrics) rows.push_back(row(run.baseline_name, *run.baseline_metrics));
+    html.table({"method", "precision", "recall", "F1", "AUC", "R@100P", "TP / FP / FN"}, rows);
+    if (!run.baseline_metrics && !run.baseline_skipped.empty()) html.paragraph("Not compared: " + run.baseline_skipped + ".");
     html.png("Precision-recall, sweeping the score threshold", read_file(out.staged("pr_curve.png")), "pr_curve.png");
   }
   if (run.topology) {
@@ -237,9 +257,16 @@ void write_report(const MapRun& run, io::OutputDirectory& out) {
                {{fmt::format("{:.3f}", run.ate->odometry), fmt::format("{:.3f}", run.ate->ekf), fmt::format("{:.3f}", run.ate->pose_graph)}});
   }
   html.heading("Similarity matrix and alignments");
-  html.png(std::string(run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity" : "Similarity matrix") +
-               " (bright = similar) with the alignments: kept pairs red, pruned blue",
-           read_file(out.staged("similarity.png")), "similarity.png");
+  if (run.streaming) {
+    html.png(fmt::format("Contrast-enhanced similarity, streamed: each pixel the maximum of a block of {0} x {0} scores "
+                         "(bright = similar), with the alignments: kept pairs red, pruned blue",
+                         run.overview.block),
+             read_file(out.staged("similarity.png")), "similarity.png");
+  } else {
+    html.png(std::string(run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity" : "Similarity matrix") +
+                 " (bright = similar) with the alignments: kept pairs red, pruned blue",
+             read_file(out.staged("similarity.png")), "similarity.png");
+  }
   html.heading("Topological map");
   html.svg(run.result.map.places.size() <= kMaxDrawnPlaces
                ? "Places (red: junctions, blue: revisited places) and their connections"
@@ -253,22 +280,32 @@ void write_report(const MapRun& run, io::OutputDirectory& out) {
   }
   html.heading("Parameters");
   const auto& c = run.map_config;
-  html.key_values({{"input", run.input},
-                   {"preset", run.preset},
-                   {"descriptors", [&] {
-                      std::string names;
-                      for (std::size_t k = 0; k < run.descriptor_names.size(); ++k) {
-                        names += (k ? ", " : "") + run.descriptor_names[k] + fmt::format(" (kappa {:.4g})", run.similarities[k].kappa);
-                      }
-                      return names;
-                    }()},
-                   {"contrast enhancement", c.contrast_window > 0 ? fmt::format("window {} frames, offset {} sd", c.contrast_window, c.contrast_offset) : "off"},
-                   {"gap", fmt::format("{}", c.gap)},
-                   {"cap", c.cap ? fmt::format("{}", *c.cap) : "none"},
-                   {"threshold", fmt::format("{}", c.threshold)},
-                   {"min separation [frames]", std::to_string(c.min_separation)},
-                   {"reverse pass", c.reverse ? "yes" : "no"},
-                   {"pruning: min retained fraction", fmt::format("{}", c.pruning.min_retained_fraction)}});
+  std::vector<std::pair<std::string, std::string>> parameters{{"input", run.input}, {"preset", run.preset}};
+  if (run.streaming) {
+    const double n = static_cast<double>(result.map.labels.size());
+    parameters.emplace_back("streaming", "true: cosine similarity of the descriptors, contrast-enhanced on the fly "
+                                         "(scale/streaming_similarity.hpp), fast engine; no N x N matrix held");
+    parameters.emplace_back("similarity cells computed during the alignment",
+                            fmt::format("{} ({:.2f} x N^2, recomputations included)", run.streamed_cells,
+                                        static_cast<double>(run.streamed_cells) / (n * n)));
+    parameters.emplace_back("tile cache [MB]", fmt::format("{:.1f}", static_cast<double>(run.streamed_cache_bytes) / 1e6));
+  }
+  std::string names;
+  for (std::size_t k = 0; k < run.descriptor_names.size(); ++k) {
+    names += (k ? ", " : "") + run.descriptor_names[k] +
+             (k < run.similarities.size() ? fmt::format(" (kappa {:.4g})", run.similarities[k].kappa) : std::string(" (cosine)"));
+  }
+  parameters.emplace_back("descriptors", names);
+  parameters.insert(
+      parameters.end(),
+      {{"contrast enhancement", c.contrast_window > 0 ? fmt::format("window {} frames, offset {} sd", c.contrast_window, c.contrast_offset) : "off"},
+       {"gap", fmt::format("{}", c.gap)},
+       {"cap", c.cap ? fmt::format("{}", *c.cap) : "none"},
+       {"threshold", fmt::format("{}", c.threshold)},
+       {"min separation [frames]", std::to_string(c.min_separation)},
+       {"reverse pass", c.reverse ? "yes" : "no"},
+       {"pruning: min retained fraction", fmt::format("{}", c.pruning.min_retained_fraction)}});
+  html.key_values(parameters);
   html.heading("Timings");
   std::vector<std::vector<std::string>> rows;
   for (const auto& [stage, seconds] : run.timings) rows.push_back({stage, fmt::format("{:.3f}", seconds)});

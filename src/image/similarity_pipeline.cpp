@@ -377,6 +377,26 @@ SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b,
 
 }  // namespace
 
+DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config) {
+  const Source s = resolve(input);
+  if (s.kind == InputKind::similarity) {
+    throw io::InputError(s.input.path.string(), "a similarity matrix has no descriptors");
+  }
+  const Descriptor d = effective_descriptor(s, config);
+  if (d == Descriptor::joint_histogram) {
+    throw io::InputError(s.input.path.string(), "the joint histogram is sparse and has no vector form");
+  }
+  DescriptorResult r;
+  const auto t0 = Clock::now();
+  Described described = describe(s, d, config);
+  r.descriptors = std::move(described.set.dense);
+  if (r.descriptors.empty()) throw io::InputError(s.input.path.string(), "no images");
+  r.descriptor = d;
+  r.frame_names = std::move(described.names);
+  r.seconds_descriptors = seconds_since(t0);
+  return r;
+}
+
 SimilarityResult compute_similarity(const SequenceInput& input, const SimilarityConfig& config) {
   return run(input, nullptr, config);
 }

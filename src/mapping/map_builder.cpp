@@ -57,24 +57,38 @@ MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config,
 
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
                     std::span<const metric::Pose2> odometry) {
+  const auto start = std::chrono::steady_clock::now();
+  SimilarityMatrix scores = alignment_scores(similarities, config);
+  const double seconds_scores = seconds_since(start);
+  MapResult result =
+      build_map_from_scores(align::ScoreSource::dense(scores.values, scores.rows, scores.cols), config, odometry);
+  result.scores = std::move(scores);
+  result.seconds_align += seconds_scores;
+  return result;
+}
+
+MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config,
+                                std::span<const metric::Pose2> odometry) {
+  const std::size_t n = scores.rows();
+  if (n == 0 || scores.cols() != n) {
+    throw std::invalid_argument("score source must be square and non-empty, got " + std::to_string(n) + " x " +
+                                std::to_string(scores.cols()));
+  }
+  if (!odometry.empty() && odometry.size() != n) {
+    throw std::invalid_argument("odometry has " + std::to_string(odometry.size()) + " poses, the sequence " +
+                                std::to_string(n) + " images");
+  }
   MapResult result;
   auto start = std::chrono::steady_clock::now();
-  result.scores = alignment_scores(similarities, config);
-  if (!odometry.empty() && odometry.size() != result.scores.rows) {
-    throw std::invalid_argument("odometry has " + std::to_string(odometry.size()) + " poses, the sequence " +
-                                std::to_string(result.scores.rows) + " images");
-  }
   const align::AlignConfig engine_config = align_config(config);
-
-  const auto source = align::ScoreSource::dense(result.scores.values, result.scores.rows, result.scores.cols);
   if (config.engine == MapConfig::Engine::fast) {
     const align::FastOptions options{.threads = config.threads};
-    result.alignments = config.reverse ? align::fast_local_alignments_both(source, engine_config, options)
-                                       : align::fast_local_alignments(source, engine_config, options);
+    result.alignments = config.reverse ? align::fast_local_alignments_both(scores, engine_config, options)
+                                       : align::fast_local_alignments(scores, engine_config, options);
   } else if (config.reverse) {
-    result.alignments = align::local_alignments_both(source, engine_config, config.threads);
+    result.alignments = align::local_alignments_both(scores, engine_config, config.threads);
   } else {
-    result.alignments = align::local_alignments(source, engine_config);
+    result.alignments = align::local_alignments(scores, engine_config);
   }
   if (!odometry.empty() && config.odometry_gate) {
     const std::vector<bool> keep = consistent_with_odometry(result.alignments, odometry, *config.odometry_gate);
@@ -89,7 +103,7 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
   std::vector<std::pair<std::size_t, std::size_t>> same_place;
   same_place.reserve(result.pruning.pairs.size());
   for (const auto& p : result.pruning.pairs) same_place.emplace_back(p.i, p.j);
-  const auto labels = label_places(result.scores.rows, same_place);
+  const auto labels = label_places(n, same_place);
   result.map = build_topology(labels, result.alignments, result.pruning, config.topology);
   result.seconds_prune_label = seconds_since(start);
   return result;

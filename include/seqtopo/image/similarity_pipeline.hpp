@@ -68,6 +68,18 @@ SimilarityResult compute_similarity(const SequenceInput& input, const Similarity
 // N x M matrix is returned as is.
 SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b, const SimilarityConfig& config = {});
 
+// The per-image vectors of one sequence, without any N x N matrix (for scores streamed from them,
+// scale/streaming_similarity.hpp): the rows of a descriptors.npy, or the patch / panorama descriptor of
+// every image or frame. A joint histogram has no vector form and a similarity.npy no descriptors: both
+// throw io::InputError naming the input, as bad input does; misuse throws std::invalid_argument.
+struct DescriptorResult {
+  DenseMatrix<float> descriptors;          // N x dim, one row per image
+  Descriptor descriptor = Descriptor::npy; // the one used (npy for a descriptors.npy input)
+  std::vector<std::string> frame_names;    // as in SimilarityResult
+  double seconds_descriptors = 0;
+};
+DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config = {});
+
 // The dense descriptors (patch, panorama) of one image, and their length. Throws std::invalid_argument for
 // joint_histogram and npy.
 std::vector<float> dense_descriptor(const RgbImage& image, Descriptor descriptor, const SimilarityConfig& config);

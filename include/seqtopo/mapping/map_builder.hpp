@@ -1,11 +1,14 @@
 #pragma once
 // The mapping paper end to end, from a similarity matrix: forward and reverse self alignments with
 // the score cap -> per-column pruning -> transitive labels -> topological map. One call, pure.
+// build_map_from_scores is the same pipeline after the scores, on any score source (scores streamed from
+// descriptors, scale/streaming_similarity.hpp), for sequences whose N x N matrix would not fit.
 #include <optional>
 #include <span>
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/align/score_source.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/mapping/odometry_gate.hpp"
 #include "seqtopo/mapping/pruning.hpp"
@@ -42,7 +45,8 @@ struct MapConfig {
 };
 
 struct MapResult {
-  SimilarityMatrix scores;                        // what was aligned (S, or its contrast-enhanced form)
+  SimilarityMatrix scores;                        // what was aligned (S, or its contrast-enhanced form); empty
+                                                  // from build_map_from_scores
   std::vector<align::LocalAlignment> alignments;  // best first, forward and reverse merged
   std::vector<align::LocalAlignment> rejected;    // found, but contradicted by the odometry (not in `alignments`)
   PruningResult pruning;
@@ -60,6 +64,13 @@ MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config 
 // applied; without contrast enhancement the raw matrices are averaged. All must be N x N.
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config = {},
                     std::span<const metric::Pose2> odometry = {});
+
+// The pipeline after the scores: `scores` is what is aligned as it is (contrast_window and contrast_offset
+// are not applied again). Throws std::invalid_argument for an empty or non-square source, or odometry of
+// another length. The exact engine fills an N x N table whatever the source; a source that is not held
+// in memory wants Engine::fast (1/8 byte per cell, docs/engine.md). seconds_align includes the reads of `scores`.
+MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config = {},
+                                std::span<const metric::Pose2> odometry = {});
 
 // The engine settings build_map aligns with: the config's gap, cap, threshold and min_separation, self.
 align::AlignConfig align_config(const MapConfig& config);

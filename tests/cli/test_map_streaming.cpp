@@ -1,0 +1,216 @@
+// `seqtopo map --streaming` as a user runs it: on descriptors.npy it gives the same map, alignments and
+// loop closures as the dense command aligning the same scores; it refuses, in one line and without
+// output, whatever needs the N x N matrix.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "common/temp_dir.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/scale/streaming_similarity.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+using seqtopo::DenseMatrix;
+
+// A walk through descriptor space that comes back over an earlier part forward (frames n/2 .. n/2 + n/5
+// repeat 0 .. n/5) and another backward (the next n/5 frames repeat 3n/10 .. n/10 in reverse).
+DenseMatrix<float> walk_descriptors(std::size_t n, std::size_t dim, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> noise(0.0F, 1.0F);
+  DenseMatrix<float> x(n, dim);
+  for (std::size_t t = 0; t < dim; ++t) x(0, t) = noise(rng);
+  for (std::size_t i = 1; i < n; ++i) {
+    for (std::size_t t = 0; t < dim; ++t) {
+      float base = x(i - 1, t);
+      if (i >= n / 2 && i < n / 2 + n / 5) base = x(i - n / 2, t);
+      if (i >= n / 2 + n / 5 && i < n / 2 + 2 * (n / 5)) base = x(n - i, t);
+      x(i, t) = base + 0.4F * noise(rng);
+    }
+  }
+  return x;
+}
+
+// The true place of frame i in the walk above: the frame it repeats, else itself.
+std::size_t true_place(std::size_t i, std::size_t n) {
+  if (i >= n / 2 && i < n / 2 + n / 5) return i - n / 2;
+  if (i >= n / 2 + n / 5 && i < n / 2 + 2 * (n / 5)) return n - i;
+  return i;
+}
+
+class MapStreaming : public ::testing::Test {
+ protected:
+  int run(const std::string& args, std::string* err = nullptr) {
+    const std::string err_file = (dir_.path / "stderr.txt").string();
+    const int raw =
+        std::system((std::string(SEQTOPO_CLI) + " " + args + " >/dev/null 2>" + err_file + " </dev/null").c_str());
+    if (err) *err = read(err_file);
+    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  }
+  static std::string read(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  // descriptors.npy of the walk, and the cosine matrix the streamed score starts from (float dot products
+  // of the normalised rows, StreamingSimilarity::cosine) as a similarity.npy: the dense command on it
+  // aligns enhance_contrast_symmetric(cosine), which the streamed score equals bit for bit.
+  void write_walk(std::size_t n, std::size_t dim) {
+    const auto x = walk_descriptors(n, dim, 11);
+    seqtopo::io::write_npy(path("walk.npy"), x);
+    const seqtopo::scale::StreamingSimilarity streamed(x.values, n, dim);
+    DenseMatrix<float> cosine(n, n);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) cosine(i, j) = streamed.cosine(i, j);
+    }
+    seqtopo::io::write_npy(path("cosine.npy"), cosine);
+    std::ofstream poses(path("poses.csv")), places(path("places.csv")), odometry(path("odometry.csv"));
+    poses << "index,x,y\n";
+    places << "index,place\n";
+    odometry << "index,dx,dy,dtheta\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      poses << i << "," << true_place(i, n) << ",0\n";
+      places << i << "," << true_place(i, n) << "\n";
+      odometry << i << "," << (i == 0 ? 0 : 1) << ",0,0\n";
+    }
+  }
+  std::string path(const std::string& name) const { return (dir_.path / name).string(); }
+
+  seqtopo::testing::TempDir dir_;
+};
+
+TEST_F(MapStreaming, SameMapAsTheDenseCommandOnTheSameScores) {
+  const std::size_t n = 360;
+  write_walk(n, 24);
+  std::string err;
+  ASSERT_EQ(run("map " + path("walk.npy") + " --streaming --out " + path("streamed"), &err), 0) << err;
+  ASSERT_EQ(run("map " + path("cosine.npy") + " --input-kind similarity --engine fast --out " + path("dense"), &err), 0)
+      << err;
+  const fs::path streamed = path("streamed"), dense = path("dense");
+  // None of these files holds a timing: byte for byte. similarity.png too: below 2048 images the overview
+  // is the score matrix itself.
+  for (const char* name : {"map.json", "alignments.json", "loop_closures.csv", "topology.dot", "similarity.png"}) {
+    ASSERT_TRUE(fs::exists(streamed / name)) << name;
+    EXPECT_EQ(read(streamed / name), read(dense / name)) << name;
+  }
+  const auto map = nlohmann::json::parse(read(streamed / "map.json"));
+  EXPECT_EQ(map.at("images").get<std::size_t>(), n);
+  EXPECT_GE(map.at("alignments").size(), 2U) << "the walk has a forward and a reverse revisit";
+  EXPECT_FALSE(fs::exists(streamed / "scores.npy"));
+  EXPECT_FALSE(fs::exists(streamed / "similarity.npy"));
+  EXPECT_TRUE(fs::exists(streamed / "report.html"));
+
+  // What the dense command aligned is what the streamed similarity computes, cell for cell.
+  const auto scores = seqtopo::io::read_npy_matrix<float>(dense / "scores.npy");
+  const auto x = seqtopo::io::read_npy_matrix<float>(path("walk.npy"));
+  const seqtopo::scale::StreamingSimilarity similarity(x.values, n, x.cols);
+  std::vector<float> row(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    similarity.read_row(i, 0, n, row.data());
+    for (std::size_t j = 0; j < n; ++j) ASSERT_EQ(row[j], scores(i, j)) << i << ", " << j;
+  }
+
+  // and the result does not depend on the thread count
+  ASSERT_EQ(run("map " + path("walk.npy") + " --streaming --threads 1 --out " + path("one"), &err), 0) << err;
+  for (const char* name : {"map.json", "alignments.json", "loop_closures.csv", "similarity.png"}) {
+    EXPECT_EQ(read(fs::path(path("one")) / name), read(streamed / name)) << name;
+  }
+}
+
+TEST_F(MapStreaming, GroundTruthOdometryAndReport) {
+  const std::size_t n = 300;
+  write_walk(n, 16);
+  const std::string truth = " --ground-truth " + path("poses.csv") + " --gt-radius 2 --gt-places " + path("places.csv") +
+                            " --odometry " + path("odometry.csv") + " --odometry-gate none";
+  std::string err;
+  ASSERT_EQ(run("map " + path("walk.npy") + " --streaming" + truth + " --out " + path("streamed"), &err), 0) << err;
+  ASSERT_EQ(run("map " + path("cosine.npy") + " --input-kind similarity --engine fast" + truth + " --out " + path("dense"),
+                &err),
+            0)
+      << err;
+  const fs::path streamed = path("streamed");
+  for (const char* name : {"metric_map.png", "pr_curve.png", "metrics.json", "report.html"}) {
+    EXPECT_TRUE(fs::exists(streamed / name)) << name;
+  }
+  const auto metrics = nlohmann::json::parse(read(streamed / "metrics.json"));
+  const auto dense_metrics = nlohmann::json::parse(read(fs::path(path("dense")) / "metrics.json"));
+  EXPECT_TRUE(metrics.at("streaming").get<bool>());
+  EXPECT_FALSE(dense_metrics.contains("streaming"));
+  EXPECT_FALSE(metrics.contains("baseline"));
+  EXPECT_NE(metrics.at("baseline_skipped").get<std::string>().find("N x N"), std::string::npos);
+  EXPECT_EQ(metrics.at("loop_closure"), dense_metrics.at("loop_closure"));
+  EXPECT_EQ(metrics.at("topology"), dense_metrics.at("topology"));
+  EXPECT_GT(metrics.at("loop_closure").at("tp").get<int>(), 0);
+
+  const std::string html = read(streamed / "report.html");
+  EXPECT_NE(html.find("streaming"), std::string::npos);
+  EXPECT_NE(html.find("Timings"), std::string::npos);
+  EXPECT_NE(html.find("alignment (similarity streamed)"), std::string::npos);
+  EXPECT_NE(html.find("not run with --streaming"), std::string::npos);
+}
+
+TEST_F(MapStreaming, LargeSequenceGetsABlockMaxOverview) {
+  const std::size_t n = 2300;  // above 2048: the overview takes 2 x 2 blocks
+  write_walk(n, 8);
+  std::string err;
+  ASSERT_EQ(run("map " + path("walk.npy") + " --streaming --out " + path("out"), &err), 0) << err;
+  const std::string png = read(fs::path(path("out")) / "similarity.png");
+  ASSERT_GE(png.size(), 24U);
+  auto be32 = [&](std::size_t at) {
+    return (static_cast<std::uint32_t>(static_cast<unsigned char>(png[at])) << 24U) |
+           (static_cast<std::uint32_t>(static_cast<unsigned char>(png[at + 1])) << 16U) |
+           (static_cast<std::uint32_t>(static_cast<unsigned char>(png[at + 2])) << 8U) |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(png[at + 3]));
+  };
+  EXPECT_EQ(be32(16), (n + 1) / 2);  // IHDR width
+  EXPECT_EQ(be32(20), (n + 1) / 2);  // IHDR height
+  EXPECT_NE(read(fs::path(path("out")) / "report.html").find("block of 2 x 2 scores"), std::string::npos);
+}
+
+TEST_F(MapStreaming, ImageFolderWithOneVectorDescriptor) {
+  const std::string corridor = std::string(SEQTOPO_SOURCE_DIR) + "/data/rtabmap-corridor";
+  std::string err;
+  ASSERT_EQ(run("map " + corridor + " --streaming --descriptor patch --metric cosine --out " + path("out"), &err), 0)
+      << err;
+  const auto map = nlohmann::json::parse(read(fs::path(path("out")) / "map.json"));
+  EXPECT_EQ(map.at("images").get<int>(), 84);
+  EXPECT_FALSE(map.at("alignments").empty());
+}
+
+TEST_F(MapStreaming, RefusesWhatNeedsTheMatrixInOneLine) {
+  write_walk(60, 8);
+  const std::string corridor = std::string(SEQTOPO_SOURCE_DIR) + "/data/rtabmap-corridor";
+  const std::string walk = path("walk.npy");
+  const std::string bmp = corridor + "/ground_truth.bmp";
+  const std::pair<std::string, std::string> cases[] = {
+      {path("cosine.npy") + " --input-kind similarity", "--streaming"},
+      {walk + " --engine exact", "--engine"},
+      {walk + " --metric chi2", "--metric"},
+      {walk + " --metric l1", "--metric"},
+      {walk + " --preset paper", "--preset"},
+      {walk + " --descriptor joint-histogram,patch", "--descriptor"},
+      {walk + " --contrast-window 0", "--contrast-window"},
+      {walk + " --kappa 2", "--kappa"},
+      {walk + " --ground-truth " + bmp, "--ground-truth"},
+      {walk + " --ground-truth " + path("poses.csv"), "--gt-radius"},
+      {corridor, "--descriptor"},                                          // the default fuses two descriptors
+      {corridor + " --descriptor patch", "--metric"},                      // patch defaults to sad
+      {corridor + " --descriptor joint-histogram --metric cosine", "--descriptor"},
+  };
+  const fs::path out = path("out");
+  for (const auto& [args, subject] : cases) {
+    std::string err;
+    EXPECT_NE(run("map " + args + " --streaming --out " + out.string(), &err), 0) << args;
+    EXPECT_EQ(err.rfind("seqtopo: error: " + subject + ": ", 0), 0U) << args << "\n" << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << args << "\n" << err;
+    EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out)) << args;
+  }
+}
+
+}  // namespace
