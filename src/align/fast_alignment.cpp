@@ -216,12 +216,6 @@ void validate_letters(const LetterScores& s) {
   check(s.b, "b");
 }
 
-// into[k] = max(into[k], from[k]) for k < count (the fill's per-column maxima of a band of rows).
-[[gnu::target_clones("avx2", "default")]] void accumulate_max(Step* __restrict into, const Step* __restrict from,
-                                                              std::size_t count) {
-  for (std::size_t k = 0; k < count; ++k) into[k] = std::max(into[k], from[k]);
-}
-
 using Cell = std::pair<std::size_t, std::size_t>;  // (i, j) in pass coordinates, 1-based
 
 // Buffers of one worker: a row of steps (scores) and a row of source floats.
@@ -279,7 +273,7 @@ class FastPass {
   // Computes row i's columns [lo, hi] ∩ region into cur (cur[lo - 1] holds H(i, lo - 1)); zeroes the
   // rest of [lo, hi]. Returns (row max over those columns, score row pointer).
   std::pair<Step, const Step*> compute(std::size_t i, const Step* prev, Step* cur, std::size_t lo, std::size_t hi,
-                                       Scratch& scratch) const {
+                                       Scratch& scratch, Step* column_max = nullptr) const {
     const auto [rlo, rhi] = region(i);
     const std::size_t a = std::max(lo, rlo), b = std::min(hi, rhi);
     if (a > b) {
@@ -289,7 +283,7 @@ class FastPass {
     if (a > lo) std::fill(cur + lo, cur + a, Step{0});
     if (b < hi) std::fill(cur + b + 1, cur + hi + 1, Step{0});
     const Step* s = row_scores(i, a, b, scratch);
-    RowJob job{prev, cur, s, a, b, st_.gap_a, st_.gap_b, st_.cap, cur[a - 1]};
+    RowJob job{prev, cur, s, a, b, st_.gap_a, st_.gap_b, st_.cap, cur[a - 1], column_max};
     const Step best = kernel_(job);
     if (!st_.capped && best >= kMaxStep) {
       throw std::invalid_argument("cumulative score reaches the int16 range (32767 steps) at scale " +
@@ -329,7 +323,7 @@ class FastPass {
           if (failed.load(std::memory_order_relaxed)) return;
           const Step* prev = rows.data() + ((i - 1) % ring) * stride_;
           Step* cur = rows.data() + (i % ring) * stride_;
-          const Step v = compute(i, prev, cur, lo, hi, scratch).first;
+          const Step v = compute(i, prev, cur, lo, hi, scratch, keep ? band.data() : nullptr).first;
           best[k] = std::max(best[k], v);
           if (keep) keep_row(i, cur, t0, t1, band.data());
           if (strips > 1) {  // nobody waits on a single strip
@@ -361,11 +355,10 @@ class FastPass {
   }
 
   // What the alignment phase keeps of row i, tiles t0 .. t1 - 1: the right column of every tile, the
-  // row itself on a checkpoint row, and the tiles' maxima at the end of the band (`band` collects the
-  // band's column maxima meanwhile).
+  // row itself on a checkpoint row, and the tiles' maxima at the end of the band (from `band`, the
+  // band's column maxima, which the kernel keeps).
   void keep_row(std::size_t i, const Step* cur, std::size_t t0, std::size_t t1, Step* band) {
     const std::size_t lo = t0 * kTile + 1, hi = std::min(n_, t1 * kTile);
-    accumulate_max(band + lo, cur + lo, hi - lo + 1);
     for (std::size_t q = t0 + 1; q <= t1 && q * kTile <= n_; ++q) columns_[i * column_stride_ + q] = cur[q * kTile];
     if (i % kTile == 0) std::copy(cur + lo, cur + hi + 1, checkpoints_.data() + (i / kTile) * stride_ + lo);
     if (i % kTile == 0 || i == m_) {

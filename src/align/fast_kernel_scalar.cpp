@@ -23,6 +23,7 @@ std::int16_t row_scalar(const RowJob& job) {
     t = std::min(std::max(t, 0), static_cast<int>(job.cap));
     left = std::max(t, saturate(left - job.gap_b));
     job.cur[j] = static_cast<std::int16_t>(left);
+    if (job.column_max) job.column_max[j] = std::max(job.column_max[j], job.cur[j]);
     best = std::max(best, left);
   }
   return static_cast<std::int16_t>(best);

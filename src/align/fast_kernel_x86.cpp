@@ -109,11 +109,13 @@ struct Avx2 {
   const std::int16_t* const prev = job.prev;                                                           \
   const std::int16_t* const score = job.score;                                                         \
   std::int16_t* const cur = job.cur;                                                                   \
+  std::int16_t* const column_max = job.column_max;                                                     \
   std::size_t j = lo;                                                                                  \
   for (; j + kLanes - 1 <= hi; j += kLanes) {                                                          \
     SEQTOPO_ROW_VECTOR(W, prev + j - 1, score + j)                                                     \
     W::store(cur + j, x);                                                                              \
     best = W::max(best, x);                                                                            \
+    if (column_max) W::store(column_max + j, W::max(W::load(column_max + j), x));                      \
   }                                                                                                    \
   if (j <= hi) { /* the last, partial vector goes through local copies: nothing past hi is touched */  \
     const std::size_t count = hi - j + 1;                                                              \
@@ -123,6 +125,9 @@ struct Avx2 {
     SEQTOPO_ROW_VECTOR(W, tail_prev, tail_score)                                                       \
     W::store(tail_out, x);                                                                             \
     std::copy(tail_out, tail_out + count, cur + j);                                                    \
+    for (std::size_t k = 0; column_max && k < count; ++k) {                                            \
+      column_max[j + k] = std::max(column_max[j + k], tail_out[k]);                                    \
+    }                                                                                                  \
     /* lanes past hi were computed from zeros: they must not reach best */                             \
     best = W::max(best, W::set1(*std::max_element(tail_out, tail_out + count)));                       \
   }                                                                                                    \

@@ -20,7 +20,8 @@ inline constexpr int kMaxStep = 32767;
 // over columns [lo, hi] (1-based, lo <= hi), with H(i, lo - 1) = left, in saturating int16 arithmetic.
 // prev and cur are H rows, score[j] = S(i, j). Reads prev[lo - 1 .. hi] and score[lo .. hi] only and
 // writes cur[lo .. hi] only (column strips of one row may run on different threads). Returns the
-// maximum of cur[lo .. hi] (0 if none is positive).
+// maximum of cur[lo .. hi] (0 if none is positive). With column_max set, also column_max[j] =
+// max(column_max[j], cur[j]) for j in [lo, hi] (the fill's maxima of a band of rows, while cur is in a register).
 struct RowJob {
   const std::int16_t* prev;
   std::int16_t* cur;
@@ -28,6 +29,7 @@ struct RowJob {
   std::size_t lo, hi;
   std::int16_t gap_a, gap_b, cap;
   std::int16_t left = 0;
+  std::int16_t* column_max = nullptr;
 };
 using RowKernel = std::int16_t (*)(const RowJob&);
 
