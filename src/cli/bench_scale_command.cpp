@@ -23,10 +23,14 @@
 
 #include "command_registry.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/scale/sparse_alignment.hpp"
 #include "seqtopo/scale/sparse_candidates.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
+#include "seqtopo/scale/synthetic_route.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -84,66 +88,10 @@ class PeakSampler {
   std::thread thread_;
 };
 
-// A robot's route as descriptors: a random walk on the unit sphere (the places), observed with noise.
-// The first half explores; the second half alternates 250-frame revisits of the first half (forward,
-// then backward) with 250 frames of new exploration. truth[i] = the first-half frame that frame i
+// The synthetic route (scale/synthetic_route.hpp): truth[i] = the first-half frame that frame i
 // revisits, or -1.
-struct Route {
-  std::vector<float> descriptors;
-  std::vector<long> truth;
-};
-
-Route synthetic_route(std::size_t n, std::size_t dim, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<float> g(0.0F, 1.0F);
-  const float step = 0.25F / std::sqrt(static_cast<float>(dim));  // consecutive places: cosine ~0.97
-  const float look = 0.45F / std::sqrt(static_cast<float>(dim));  // observation noise: cosine ~0.9
-  std::vector<float> place(dim), walk(dim);
-  auto normalise = [](std::vector<float>& v) {
-    double s = 0;
-    for (float x : v) s += static_cast<double>(x) * x;
-    const auto inv = static_cast<float>(1.0 / std::sqrt(s));
-    for (float& x : v) x *= inv;
-  };
-  for (float& x : walk) x = g(rng);
-  normalise(walk);
-  const std::size_t half = n / 2;
-  std::vector<float> places(half * dim);
-  Route r;
-  r.descriptors.resize(n * dim);
-  r.truth.assign(n, -1);
-  auto advance = [&] {
-    for (float& x : walk) x += step * g(rng);
-    normalise(walk);
-  };
-  auto observe = [&](std::size_t i, const float* p) {
-    for (std::size_t t = 0; t < dim; ++t) r.descriptors[i * dim + t] = p[t] + look * g(rng);
-  };
-  for (std::size_t i = 0; i < half; ++i) {
-    advance();
-    std::copy(walk.begin(), walk.end(), places.begin() + static_cast<std::ptrdiff_t>(i * dim));
-    observe(i, walk.data());
-  }
-  const std::size_t block = 250;
-  for (std::size_t b0 = half, k = 0; b0 < n; b0 += block, ++k) {
-    const std::size_t len = std::min(block, n - b0);
-    if (k % 2 == 0 && half > block) {
-      const std::size_t start = std::uniform_int_distribution<std::size_t>(0, half - block)(rng);
-      const bool backward = (k / 2) % 2 == 1;
-      for (std::size_t a = 0; a < len; ++a) {
-        const std::size_t p = backward ? start + block - 1 - a : start + a;
-        observe(b0 + a, places.data() + p * dim);
-        r.truth[b0 + a] = static_cast<long>(p);
-      }
-    } else {
-      for (std::size_t a = 0; a < len; ++a) {
-        advance();
-        observe(b0 + a, walk.data());
-      }
-    }
-  }
-  return r;
-}
+using Route = scale::SyntheticRoute;
+using scale::synthetic_route;
 
 // Fraction of revisiting frames with an aligned pair within +-2 frames of the true place.
 double revisit_recall(const Route& route, const std::vector<align::LocalAlignment>& alignments) {
@@ -230,6 +178,7 @@ struct Options {
   bool json = false;
   std::string out;  // also write the JSON here
   bool similarity_pass = true;
+  std::string write_route;  // write the synthetic route of the one size in `sizes` here, and stop
 };
 
 // The alignment settings of `seqtopo map`'s defaults.
@@ -425,6 +374,30 @@ void run(const Options& opt) {
       dense_exp, sparse_exp, dense_cpu_exp, sparse_cpu_exp);
 }
 
+// The synthetic route as input for `seqtopo map --streaming`: descriptors.npy, and poses.csv putting a
+// revisiting frame where the frame it revisits is and every other frame at its own index (so --gt-radius 2
+// is the +-2 frames of the revisit recall).
+void write_route(const Options& opt) {
+  std::vector<std::size_t> sizes;
+  for (std::size_t n : opt.sizes) {
+    if (n != 0) sizes.push_back(n);
+  }
+  if (sizes.size() != 1) throw io::InputError("--write-route", "needs exactly one N in --sizes");
+  const std::size_t n = sizes.front();
+  const auto route = synthetic_route(n, opt.dim, 7);
+  DenseMatrix<float> descriptors(n, opt.dim);
+  descriptors.values = route.descriptors;
+  std::string poses = "index,x,y\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    poses += fmt::format("{},{},0\n", i, route.truth[i] >= 0 ? route.truth[i] : static_cast<long>(i));
+  }
+  io::OutputDirectory out(opt.write_route);
+  out.write("descriptors.npy", io::encode_npy(descriptors));
+  out.write("poses.csv", poses);
+  out.commit();
+  std::cerr << fmt::format("seqtopo bench scale: wrote {} frames ({} dimensions) to {}\n", n, opt.dim, opt.write_route);
+}
+
 void setup(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   app.add_option("--sizes", opt->sizes, "N for the dense streamed similarity (every pair); 0 = none")->delimiter(',');
@@ -438,10 +411,14 @@ void setup(CLI::App& app) {
   app.add_option("--out", opt->out, "also write the JSON to this file");
   app.add_flag("!--no-similarity-pass", opt->similarity_pass,
                "dense: skip the separate similarity-only pass (alignment still computes it on the fly)");
+  app.add_option("--write-route", opt->write_route,
+                 "write descriptors.npy and poses.csv of the synthetic route (N from --sizes) to this folder, "
+                 "for seqtopo map --streaming, and stop");
   app.callback([opt] {
     Options o = *opt;
     o.threads = resolve_threads(o.threads);
     if (!(o.background < 0)) throw io::InputError("--background", "must be < 0");
+    if (!o.write_route.empty()) return write_route(o);
     run(o);
   });
 }

@@ -155,6 +155,26 @@ TEST_F(MapStreaming, GroundTruthOdometryAndReport) {
   EXPECT_NE(html.find("not run with --streaming"), std::string::npos);
 }
 
+TEST_F(MapStreaming, SyntheticRouteOfTheBenchmarkMapsItsRevisits) {
+  // `seqtopo bench scale --write-route` writes the route BENCHMARK.md maps at 10^5 frames, with its truth.
+  std::string err;
+  ASSERT_EQ(run("bench scale --sizes 3000 --write-route " + path("route"), &err), 0) << err;
+  EXPECT_EQ(seqtopo::io::read_npy_header(path("route") + "/descriptors.npy").shape,
+            (std::vector<std::size_t>{3000, 64}));
+  ASSERT_EQ(run("map " + path("route") + "/descriptors.npy --streaming --ground-truth " + path("route") +
+                    "/poses.csv --gt-radius 5 --out " + path("out"),
+                &err),
+            0)
+      << err;
+  const auto metrics = nlohmann::json::parse(read(fs::path(path("out")) / "metrics.json"));
+  // Its consecutive places look almost as alike as a revisit, so alignments land a few frames off.
+  EXPECT_GT(metrics.at("loop_closure").at("recall").get<double>(), 0.5);
+  EXPECT_GT(metrics.at("loop_closure").at("precision").get<double>(), 0.9);
+  EXPECT_NE(run("bench scale --sizes 300,600 --write-route " + path("two"), &err), 0);
+  EXPECT_NE(err.find("--write-route"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(path("two") + "/descriptors.npy"));
+}
+
 TEST_F(MapStreaming, LargeSequenceGetsABlockMaxOverview) {
   const std::size_t n = 2300;  // above 2048: the overview takes 2 x 2 blocks
   write_walk(n, 8);

@@ -18,6 +18,9 @@
 // passes is the dense one (local_alignments_both), so with max_alignments unlimited the result of
 // sparse_local_alignments_both equals local_alignments_both exactly.
 //
+// The pass as separate steps (components, one box each, the merge) for spreading the work elsewhere:
+// sparse_components.hpp.
+//
 // Memory: the candidates, the positive cells of the fill (12 bytes each) and the largest component box
 // (5 bytes per cell). A component that touches the self band's edge is aligned in a square box on the
 // diagonal (the engine's band needs the diagonal), so a long revisit hugging the band edge costs its

@@ -1,0 +1,121 @@
+// seqtopo-mpi under mpirun: 1 and 2 ranks write byte-identical alignments.json, equal to the sparse mode
+// computed here in one process with the library, and a bad input fails on every rank with one line.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/temp_dir.hpp"
+#include "seqtopo/io/alignment_json.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/scale/sparse_alignment.hpp"
+#include "seqtopo/scale/sparse_candidates.hpp"
+#include "seqtopo/scale/streaming_similarity.hpp"
+#include "seqtopo/scale/synthetic_route.hpp"
+
+namespace seqtopo {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct MpiRun {
+  int code = 0;
+  std::string err;
+};
+
+// mpirun offline and as root if need be (CI): shared memory and self transports only, no binding (ctest
+// runs tests side by side), and no terminal.
+MpiRun mpirun(int ranks, const std::string& args, const fs::path& dir, const std::string& tag) {
+  const fs::path err = dir / (tag + ".err");
+  const std::string command =
+      "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 " +
+      std::string(SEQTOPO_MPIEXEC) + " -np " + std::to_string(ranks) +
+      " --oversubscribe --bind-to none --mca btl self,vader --mca pml ob1 -q " + SEQTOPO_MPI_CLI + " " + args +
+      " >/dev/null 2>" + err.string() + " </dev/null";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(err)};
+}
+
+TEST(SeqtopoMpi, TwoRanksWriteTheAlignmentsOfOneProcess) {
+  testing::TempDir dir;
+  const std::size_t n = 4000, dim = 64;
+  auto route = scale::synthetic_route(n, dim, 7);
+  const fs::path descriptors = dir.path / "descriptors.npy";
+  io::write_npy(descriptors, DenseMatrix<float>(n, dim, std::move(route.descriptors)));
+
+  const std::string input = "sparse " + descriptors.string() + " --out ";
+  const MpiRun one = mpirun(1, input + (dir.path / "one.json").string(), dir.path, "one");
+  ASSERT_EQ(one.code, 0) << one.err;
+  const MpiRun two = mpirun(2, input + (dir.path / "two.json").string(), dir.path, "two");
+  ASSERT_EQ(two.code, 0) << two.err;
+  const std::string one_json = read_text(dir.path / "one.json"), two_json = read_text(dir.path / "two.json");
+  EXPECT_EQ(one_json, two_json);
+
+  // The same input in this process, with the library and seqtopo-mpi's defaults (MapConfig, k = 10,
+  // background -1).
+  const auto read = io::read_npy_matrix<float>(descriptors);
+  const mapping::MapConfig map;
+  scale::StreamingConfig streaming;
+  streaming.contrast_window = map.contrast_window;
+  streaming.contrast_offset = map.contrast_offset;
+  const scale::StreamingSimilarity similarity(read.values, read.rows, read.cols, streaming);
+  scale::CandidateConfig candidates;
+  candidates.neighbours = 10;
+  candidates.exclude = map.min_separation;
+  const auto scores = scale::sparse_map_scores(similarity, -1.0F, candidates);
+  const auto expected = scale::sparse_local_alignments_both(scores, mapping::align_config(map), 2);
+  EXPECT_EQ(two_json, io::alignments_to_json(expected).dump(1) + "\n");
+  EXPECT_GE(expected.size(), 4U);  // the planted revisits, forward and backward
+  bool reverse = false;
+  for (const auto& a : expected) reverse = reverse || a.direction == align::Direction::reverse;
+  EXPECT_TRUE(reverse);
+
+  // Both ranks aligned something: "components per rank A,B".
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(two.err, m, std::regex("components per rank ([0-9]+),([0-9]+);"))) << two.err;
+  EXPECT_GE(std::stoul(m[1]), 1U);
+  EXPECT_GE(std::stoul(m[2]), 1U);
+  EXPECT_NE(one.err.find("ranks 1,"), std::string::npos) << one.err;
+}
+
+TEST(SeqtopoMpi, BadInputFailsOnEveryRankWithOneLine) {
+  testing::TempDir dir;
+  const fs::path bad = dir.path / "bad.npy";
+  std::ofstream(bad) << "not a numpy file";
+  const fs::path out = dir.path / "alignments.json";
+  const MpiRun run = mpirun(2, "sparse " + bad.string() + " --out " + out.string(), dir.path, "bad");
+  EXPECT_NE(run.code, 0);
+  EXPECT_FALSE(fs::exists(out));
+  // The tool's one line, from rank 0 only, naming the file.
+  std::istringstream lines(run.err);
+  std::string line;
+  std::vector<std::string> ours;
+  while (std::getline(lines, line)) {
+    if (line.rfind("seqtopo-mpi:", 0) == 0) ours.push_back(line);
+  }
+  ASSERT_EQ(ours.size(), 1U) << run.err;
+  EXPECT_EQ(ours[0].rfind("seqtopo-mpi: error: " + bad.string() + ": ", 0), 0U) << run.err;
+
+  const MpiRun missing =
+      mpirun(2, "sparse " + (dir.path / "missing.npy").string() + " --out " + out.string(), dir.path, "missing");
+  EXPECT_NE(missing.code, 0);
+  EXPECT_NE(missing.err.find("seqtopo-mpi: error: "), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace seqtopo
