@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "both_passes.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/scale/sparse_components.hpp"
 
@@ -86,26 +87,9 @@ std::vector<LocalAlignment> sparse_local_alignments(const SparseScores& scores, 
 
 std::vector<LocalAlignment> sparse_local_alignments_both(const SparseScores& scores, AlignConfig config,
                                                          unsigned threads, SparseAlignStats* stats) {
-  AlignConfig forward = config, reverse = config;
-  forward.direction = Direction::forward;
-  reverse.direction = Direction::reverse;
-  SparseAlignStats fs, rs;
-  std::vector<LocalAlignment> fwd, rev;
-  if (threads > 1) {
-    auto rev_future = std::async(std::launch::async, [&] { return sparse_local_alignments(scores, reverse, &rs); });
-    fwd = sparse_local_alignments(scores, forward, &fs);
-    rev = rev_future.get();
-  } else {
-    fwd = sparse_local_alignments(scores, forward, &fs);
-    rev = sparse_local_alignments(scores, reverse, &rs);
-  }
-  if (stats != nullptr) {
-    stats->active_cells = fs.active_cells + rs.active_cells;
-    stats->components = fs.components + rs.components;
-    stats->aligned_components = fs.aligned_components + rs.aligned_components;
-    stats->box_cells = fs.box_cells + rs.box_cells;
-    stats->largest_box_cells = std::max(fs.largest_box_cells, rs.largest_box_cells);
-  }
+  auto [fwd, rev] = detail::both_passes(config, threads, stats, [&](const AlignConfig& c, SparseAlignStats* st) {
+    return sparse_local_alignments(scores, c, st);
+  });
   return align::merge_directions(std::move(fwd), std::move(rev), config.max_alignments);
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "both_passes.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 
 namespace seqtopo::scale {
@@ -333,26 +334,9 @@ std::vector<SparseComponent> sparse_components(const SparseScores& scores, const
 
 std::vector<SparseComponent> sparse_components_both(const SparseScores& scores, const AlignConfig& config,
                                                     unsigned threads, SparseAlignStats* stats) {
-  AlignConfig forward = config, reverse = config;
-  forward.direction = Direction::forward;
-  reverse.direction = Direction::reverse;
-  SparseAlignStats fs, rs;
-  std::vector<SparseComponent> fwd, rev;
-  if (threads > 1) {
-    auto rev_future = std::async(std::launch::async, [&] { return sparse_components(scores, reverse, &rs); });
-    fwd = sparse_components(scores, forward, &fs);
-    rev = rev_future.get();
-  } else {
-    fwd = sparse_components(scores, forward, &fs);
-    rev = sparse_components(scores, reverse, &rs);
-  }
-  if (stats != nullptr) {
-    stats->active_cells = fs.active_cells + rs.active_cells;
-    stats->components = fs.components + rs.components;
-    stats->aligned_components = fs.aligned_components + rs.aligned_components;
-    stats->box_cells = fs.box_cells + rs.box_cells;
-    stats->largest_box_cells = std::max(fs.largest_box_cells, rs.largest_box_cells);
-  }
+  auto [fwd, rev] = detail::both_passes(config, threads, stats, [&](const AlignConfig& c, SparseAlignStats* st) {
+    return sparse_components(scores, c, st);
+  });
   fwd.insert(fwd.end(), std::make_move_iterator(rev.begin()), std::make_move_iterator(rev.end()));
   return fwd;
 }
