@@ -174,6 +174,15 @@ evaluation::SamePlace load_ground_truth(const MapOptions& o, const std::string& 
   return [m](std::size_t i, std::size_t j) { return (*m)(i, j) != 0 || (*m)(j, i) != 0; };
 }
 
+// The timing and the one progress line of the map stage, the same for both paths.
+void report_map(MapRun& run) {
+  run.timings.emplace_back("pruning + labels + topology", run.result.seconds_prune_label);
+  progress(fmt::format("      {} alignments ({} contradicted by odometry), {} kept, {} places, {} junctions",
+                       run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),
+                       std::count(run.result.pruning.kept.begin(), run.result.pruning.kept.end(), true),
+                       run.result.map.places.size(), run.result.map.junctions.size()));
+}
+
 // --streaming aligns contrast-enhanced cosine scores of one vector descriptor per image, computed on the
 // fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
 void check_streaming(const MapOptions& o, const Settings& s, image::InputKind kind) {
@@ -258,11 +267,7 @@ void map_streamed(const MapOptions& o, const Settings& settings, const image::Se
   progress("[2/4] alignments (fast engine on streamed scores), pruning, labels, topology");
   run.result = mapping::build_map_from_scores(streamed->source(), settings.map, run.odometry);
   run.timings.emplace_back("alignment (similarity streamed)", run.result.seconds_align);
-  run.timings.emplace_back("pruning + labels + topology", run.result.seconds_prune_label);
-  progress(fmt::format("      {} alignments ({} contradicted by odometry), {} kept, {} places, {} junctions",
-                       run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),
-                       std::count(run.result.pruning.kept.begin(), run.result.pruning.kept.end(), true),
-                       run.result.map.places.size(), run.result.map.junctions.size()));
+  report_map(run);
 
   const auto stats = streamed->stats();
   run.streamed_cells = stats.cells_computed;
@@ -305,11 +310,7 @@ void map_dense(const MapOptions& o, const Settings& settings, const image::Seque
   }
   run.result = mapping::build_map(matrices, settings.map, run.odometry);
   run.timings.emplace_back("alignment", run.result.seconds_align);
-  run.timings.emplace_back("pruning + labels + topology", run.result.seconds_prune_label);
-  progress(fmt::format("      {} alignments ({} contradicted by odometry), {} kept, {} places, {} junctions",
-                       run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),
-                       std::count(run.result.pruning.kept.begin(), run.result.pruning.kept.end(), true),
-                       run.result.map.places.size(), run.result.map.junctions.size()));
+  report_map(run);
 }
 
 void run(MapOptions o) {
