@@ -12,7 +12,7 @@ mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mpirun_args=(--oversubscribe --bind-to none --mca btl self,vader --mca pml ob1 -q)
 
-"$build/tests/synthetic_descriptors" "$n" "$out/descriptors.npy"
+"$build/src/seqtopo" bench scale --sizes "$n" --write-route "$out"
 for np in 1 2; do
   start=$(date +%s%N)
   mpirun "${mpirun_args[@]}" -np "$np" "$build/src/seqtopo-mpi" sparse "$out/descriptors.npy" \
