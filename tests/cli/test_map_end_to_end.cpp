@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "common/cli_run.hpp"
 #include "seqtopo/io/npy.hpp"
 
 namespace {
@@ -22,17 +23,9 @@ class MapCommand : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   int run(const std::string& args, std::string* err = nullptr) {
-    const std::string err_file = (dir_ / "stderr.txt").string();
-    const int raw = std::system((std::string(SEQTOPO_CLI) + " " + args + " >/dev/null 2>" + err_file + " </dev/null").c_str());
-    if (err) *err = read(err_file);
-    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return seqtopo::testing::run_cli(args, dir_ / "stderr.txt", err);
   }
-  static std::string read(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
+  static std::string read(const fs::path& path) { return seqtopo::testing::read_file(path); }
   fs::path dir_;
 };
 

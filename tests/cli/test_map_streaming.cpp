@@ -10,6 +10,7 @@
 #include <random>
 #include <sstream>
 
+#include "common/cli_run.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
@@ -46,18 +47,9 @@ std::size_t true_place(std::size_t i, std::size_t n) {
 class MapStreaming : public ::testing::Test {
  protected:
   int run(const std::string& args, std::string* err = nullptr) {
-    const std::string err_file = (dir_.path / "stderr.txt").string();
-    const int raw =
-        std::system((std::string(SEQTOPO_CLI) + " " + args + " >/dev/null 2>" + err_file + " </dev/null").c_str());
-    if (err) *err = read(err_file);
-    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return seqtopo::testing::run_cli(args, dir_.path / "stderr.txt", err);
   }
-  static std::string read(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
+  static std::string read(const fs::path& path) { return seqtopo::testing::read_file(path); }
   // descriptors.npy of the walk, and the cosine matrix the streamed score starts from (float dot products
   // of the normalised rows, StreamingSimilarity::cosine) as a similarity.npy: the dense command on it
   // aligns enhance_contrast_symmetric(cosine), which the streamed score equals bit for bit.
