@@ -67,22 +67,14 @@ def test_localize_setting_message_equals_cli(cli, tmp_path):
     assert expected == "--gap: " + str(error.value)
 
 
-def test_unknown_algorithm_message_equals_cli(cli, tmp_path):
+@pytest.mark.parametrize("option, value", [("--algorithm", "D"), ("--preset", "A9")])
+def test_unknown_match_strings_setting_message_equals_cli(cli, tmp_path, option, value):
     (tmp_path / "db.tsv").write_text("m0\tvAB\n")
     expected = cli_error(cli, "match-strings", "--db", tmp_path / "db.tsv", "--queries", tmp_path / "db.tsv",
-                         "--algorithm", "D", "--out", tmp_path / "o")
+                         option, value, "--out", tmp_path / "o")
     with pytest.raises(ValueError) as error:
-        seqtopo.match_strings(["vAB"], ["vAB"], algorithm="D")
-    assert expected == "--algorithm: " + str(error.value)
-
-
-def test_unknown_preset_message_equals_cli(cli, tmp_path):
-    (tmp_path / "db.tsv").write_text("m0\tvAB\n")
-    expected = cli_error(cli, "match-strings", "--db", tmp_path / "db.tsv", "--queries", tmp_path / "db.tsv",
-                         "--preset", "A9", "--out", tmp_path / "o")
-    with pytest.raises(ValueError) as error:
-        seqtopo.match_strings(["vAB"], ["vAB"], preset="A9")
-    assert expected == "--preset: " + str(error.value)
+        seqtopo.match_strings(["vAB"], ["vAB"], **{option[2:]: value})
+    assert expected == option + ": " + str(error.value)
 
 
 def test_misuse_raises_value_error():
