@@ -8,6 +8,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "seqtopo/align/fast_alignment.hpp"
+
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -37,6 +39,14 @@ float dot(const float* x, const float* y, std::size_t dim) {
 // every cell's operations and their order (no fused multiply-add: -ffp-contract=off), so the result
 // does not depend on the machine.
 namespace kernels {
+
+#if defined(__x86_64__)
+// The instruction-set check of the alignment engine, asked once.
+bool has_avx2() {
+  static const bool avx2 = align::best_isa() == align::Isa::avx2;
+  return avx2;
+}
+#endif
 
 // out[r * out_stride + b] = sum over t = 0 .. dim-1, in order, of x[r * dim + t] * xt[t * stride + b]
 // (no fused multiply-add): the dot products of `rows` rows with `count` columns.
@@ -87,8 +97,7 @@ void dot_block_portable(float* out, std::size_t out_stride, const float* x, std:
 void dot_block(float* out, std::size_t out_stride, const float* x, std::size_t rows, const float* xt,
                std::size_t stride, std::size_t dim, std::size_t count) {
 #if defined(__x86_64__)
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return dot_block_avx2(out, out_stride, x, rows, xt, stride, dim, count);
+  if (has_avx2()) return dot_block_avx2(out, out_stride, x, rows, xt, stride, dim, count);
 #endif
   dot_block_portable(out, out_stride, x, rows, xt, stride, dim, count);
 }
@@ -136,8 +145,7 @@ void window_sums_portable(double* sum, double* sum2, const float* first, std::si
 void window_sums(double* sum, double* sum2, const float* first, std::size_t stride, std::size_t terms,
                  std::size_t count) {
 #if defined(__x86_64__)
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return window_sums_avx2(sum, sum2, first, stride, terms, count);
+  if (has_avx2()) return window_sums_avx2(sum, sum2, first, stride, terms, count);
 #endif
   window_sums_portable(sum, sum2, first, stride, terms, count);
 }
