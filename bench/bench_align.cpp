@@ -33,7 +33,8 @@ void BM_BestAlignment(benchmark::State& state) {
   for (auto _ : state) {
     benchmark::DoNotOptimize(seqtopo::align::local_alignments(seqtopo::align::ScoreSource::dense(s, n, n), config));
   }
-  state.counters["cells/s"] = benchmark::Counter(static_cast<double>(n * n), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["cells/s"] =
+      benchmark::Counter(static_cast<double>(n * n), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_AllAlignmentsAboveThreshold(benchmark::State& state) {
@@ -49,7 +50,8 @@ void BM_AllAlignmentsAboveThreshold(benchmark::State& state) {
     benchmark::DoNotOptimize(all);
   }
   state.counters["alignments"] = static_cast<double>(found);
-  state.counters["cells/s"] = benchmark::Counter(static_cast<double>(2 * n * n), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["cells/s"] =
+      benchmark::Counter(static_cast<double>(2 * n * n), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 }  // namespace

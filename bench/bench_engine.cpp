@@ -101,8 +101,14 @@ int main(int argc, char** argv) {
   config.gap_a = config.gap_b = kGap;
   const align::LetterScores letters{a, b, matrix, kLetters};
   float fill_score = 0;
-  const double fill_one = seconds([&] { fill_score = align::fast_best_score(letters, config, {1.0F, 1, align::Isa::best}); }, 3);
-  const double fill_all = wall_seconds([&] { align::fast_best_score(letters, config, {1.0F, threads, align::Isa::best}); });
+  const double fill_one = seconds(
+      [&] {
+        fill_score = align::fast_best_score(letters, config, {1.0F, 1, align::Isa::best});
+      },
+      3);
+  const double fill_all = wall_seconds([&] {
+    align::fast_best_score(letters, config, {1.0F, threads, align::Isa::best});
+  });
   auto top = config;
   top.max_alignments = 10;
   std::vector<align::LocalAlignment> ours;
@@ -112,16 +118,22 @@ int main(int argc, char** argv) {
   const align::LetterScores small_letters{std::span(a).first(small), std::span(b).first(small), matrix, kLetters};
   const double scalar = seconds([&] { align::local_alignments(small_letters.source(), top); });
   const double scalar_cells = static_cast<double>(small) * static_cast<double>(small);
-  double scalar_fast_same = seconds([&] { align::fast_local_alignments(small_letters, top, {1.0F, 1, align::Isa::best}); });
+  double scalar_fast_same = seconds([&] {
+    align::fast_local_alignments(small_letters, top, {1.0F, 1, align::Isa::best});
+  });
 
   int scan_score = 0;
-  const double scan = seconds([&] {
-    parasail_result_t* r = parasail_sw_scan_16(a_text.data(), static_cast<int>(n), b_text.data(), static_cast<int>(n), kGap, kGap, pmatrix);
-    scan_score = parasail_result_get_score(r);
-    parasail_result_free(r);
-  }, 3);
+  const double scan = seconds(
+      [&] {
+        parasail_result_t* r = parasail_sw_scan_16(a_text.data(), static_cast<int>(n), b_text.data(),
+                                                   static_cast<int>(n), kGap, kGap, pmatrix);
+        scan_score = parasail_result_get_score(r);
+        parasail_result_free(r);
+      },
+      3);
   const double trace = seconds([&] {
-    parasail_result_t* r = parasail_sw_trace_scan_16(a_text.data(), static_cast<int>(n), b_text.data(), static_cast<int>(n), kGap, kGap, pmatrix);
+    parasail_result_t* r = parasail_sw_trace_scan_16(a_text.data(), static_cast<int>(n), b_text.data(),
+                                                     static_cast<int>(n), kGap, kGap, pmatrix);
     parasail_result_free(r);
   });
   parasail_matrix_free(pmatrix);
@@ -146,12 +158,15 @@ int main(int argc, char** argv) {
   const double matcher = seconds([&] { theirs = matcher_scores(dir, 10); });
   fs::remove_all(dir);
   std::size_t same_scores = 0;
-  for (std::size_t k = 0; k < std::min(ours.size(), theirs.size()); ++k) same_scores += ours[k].score == static_cast<float>(theirs[k]);
+  for (std::size_t k = 0; k < std::min(ours.size(), theirs.size()); ++k)
+    same_scores += ours[k].score == static_cast<float>(theirs[k]);
 
   std::printf("bench_engine: %zu x %zu, %u thread(s), isa %s, gap %d\n", n, n, threads,
               std::string(align::to_string(align::best_isa())).c_str(), kGap);
   std::printf("  %-48s %10s %8s\n", "what (CPU seconds unless marked wall)", "seconds", "GCUPS");
-  auto line = [](const char* what, double s, double c) { std::printf("  %-48s %10.4f %8.2f\n", what, s, c / s * 1e-9); };
+  auto line = [](const char* what, double s, double c) {
+    std::printf("  %-48s %10.4f %8.2f\n", what, s, c / s * 1e-9);
+  };
   line("fast: score-only fill, 1 thread", fill_one, cells);
   line("fast: score-only fill, all threads (wall)", fill_all, cells);
   line("fast: top-10 alignments, 1 thread", top10, cells);
@@ -162,11 +177,12 @@ int main(int argc, char** argv) {
   line("EMBOSS matcher: top-10 alignments", matcher, cells);
   const double per_core = cells / fill_one * 1e-9;
   const double speedup = scalar / scalar_cells / (fill_one / cells);
-  std::printf("targets: %.2f GCUPS/core (>= 4: %s); %.1fx scalar kernel (>= 20: %s); fill / parasail scan %.2f (<= 1.5: %s); "
-              "matcher / top-10 %.1fx (>= 10: %s)\n",
-              per_core, per_core >= 4 ? "met" : "NOT met", speedup, speedup >= 20 ? "met" : "NOT met", fill_one / scan,
-              fill_one / scan <= 1.5 ? "met" : "NOT met", matcher / top10, matcher / top10 >= 10 ? "met" : "NOT met");
-  std::printf("check: best score ours %g, parasail %d; top-10 scores equal to matcher's: %zu of %zu\n", fill_score, scan_score,
-              same_scores, theirs.size());
+  std::printf(
+      "targets: %.2f GCUPS/core (>= 4: %s); %.1fx scalar kernel (>= 20: %s); fill / parasail scan %.2f (<= 1.5: %s); "
+      "matcher / top-10 %.1fx (>= 10: %s)\n",
+      per_core, per_core >= 4 ? "met" : "NOT met", speedup, speedup >= 20 ? "met" : "NOT met", fill_one / scan,
+      fill_one / scan <= 1.5 ? "met" : "NOT met", matcher / top10, matcher / top10 >= 10 ? "met" : "NOT met");
+  std::printf("check: best score ours %g, parasail %d; top-10 scores equal to matcher's: %zu of %zu\n", fill_score,
+              scan_score, same_scores, theirs.size());
   return fill_score == static_cast<float>(scan_score) ? 0 : 1;
 }

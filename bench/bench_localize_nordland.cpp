@@ -6,11 +6,11 @@
 //   bench_localize_nordland [--data DIR] [--tolerance 2] [--offset F] [--gap G] [--cap C|none] [--threshold T]
 //                           [--window W] [--score-window W] [--online] [--cache DIR] [--skip-baselines]
 #include <algorithm>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -60,7 +60,7 @@ evaluation::LocalizationMetrics evaluate(const std::vector<localize::FrameMatch>
 
 // With a cache folder the matrices are kept between runs (for tuning; their seconds then read 0).
 image::SimilarityResult compute_matrix(const std::filesystem::path& query, const std::filesystem::path& map,
-                                   image::Descriptor d, const std::filesystem::path& cache) {
+                                       image::Descriptor d, const std::filesystem::path& cache) {
   const auto cached = cache.empty() ? cache
                                     : cache / (query.filename().string() + "_x_" + map.filename().string() + "_" +
                                                std::string(image::descriptor_name(d)) + ".npy");
@@ -97,17 +97,29 @@ int main(int argc, char** argv) {
       }
       return argv[++k];
     };
-    if (a == "--data") data = next();
-    else if (a == "--cache") cache = next();
-    else if (a == "--tolerance") tolerance = std::stoul(next());
-    else if (a == "--offset") config.offset = std::stof(next());
-    else if (a == "--gap") config.gap = std::stof(next());
-    else if (a == "--cap") { const auto v = next(); config.cap = v == "none" ? std::nullopt : std::optional<float>(std::stof(v)); }
-    else if (a == "--threshold") config.threshold = std::stof(next());
-    else if (a == "--window") config.enhancement_window = std::stoul(next());
-    else if (a == "--score-window") config.score_window = std::stoul(next());
-    else if (a == "--online") online = true;
-    else if (a == "--skip-baselines") skip_baselines = true;  // for tuning
+    if (a == "--data")
+      data = next();
+    else if (a == "--cache")
+      cache = next();
+    else if (a == "--tolerance")
+      tolerance = std::stoul(next());
+    else if (a == "--offset")
+      config.offset = std::stof(next());
+    else if (a == "--gap")
+      config.gap = std::stof(next());
+    else if (a == "--cap") {
+      const auto v = next();
+      config.cap = v == "none" ? std::nullopt : std::optional<float>(std::stof(v));
+    } else if (a == "--threshold")
+      config.threshold = std::stof(next());
+    else if (a == "--window")
+      config.enhancement_window = std::stoul(next());
+    else if (a == "--score-window")
+      config.score_window = std::stoul(next());
+    else if (a == "--online")
+      online = true;
+    else if (a == "--skip-baselines")
+      skip_baselines = true;  // for tuning
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
       return 2;
@@ -135,7 +147,8 @@ int main(int argc, char** argv) {
     double seqslam_seconds = 1;
     if (!skip_baselines) {
       t = cpu_now();
-      const image::SimilarityResult hist = compute_matrix(query_dir, map_dir, image::Descriptor::joint_histogram, cache);
+      const image::SimilarityResult hist =
+          compute_matrix(query_dir, map_dir, image::Descriptor::joint_histogram, cache);
       auto frames = localize::single_frame_matches(hist.similarity);
       rows.push_back({"single frame, joint histogram (chi2)", evaluate(frames, m, tolerance), seconds_since(t)});
       t = cpu_now();
@@ -156,15 +169,16 @@ int main(int argc, char** argv) {
       rows.push_back({"SeqSLAM (len 30, v 0.9-1.6, 8 steps)", evaluate(seq_frames, m, tolerance), seqslam_seconds});
       // The usual protocol: a query frame without a whole sequence of 30 frames behind it is not matched
       // (the search above still answers them, from shorter sequences, with inflated scores).
-      for (std::size_t q = 0; q + 1 < seqslam.sequence_length && q < seq_frames.size(); ++q) seq_frames[q].covered = false;
+      for (std::size_t q = 0; q + 1 < seqslam.sequence_length && q < seq_frames.size(); ++q)
+        seq_frames[q].covered = false;
       rows.push_back({"SeqSLAM, full sequences only", evaluate(seq_frames, m, tolerance), seqslam_seconds});
       // Where SeqSLAM is most confident (explains its recall at 100% precision).
       std::vector<std::size_t> order(seq.size());
       for (std::size_t q = 0; q < order.size(); ++q) order[q] = q;
       std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return seq[a].score > seq[b].score; });
       for (std::size_t k = 0; k < 3 && k < order.size(); ++k) {
-        std::fprintf(stderr, "SeqSLAM top %zu: query %zu -> map %zu, score %.3f\n", k + 1, order[k], seq[order[k]].match,
-                     static_cast<double>(seq[order[k]].score));
+        std::fprintf(stderr, "SeqSLAM top %zu: query %zu -> map %zu, score %.3f\n", k + 1, order[k],
+                     seq[order[k]].match, static_cast<double>(seq[order[k]].score));
       }
     }
 
@@ -188,13 +202,13 @@ int main(int argc, char** argv) {
 
     for (const auto& r : rows) {
       const bool matrix_included = r.method.rfind("single", 0) == 0;
-      std::printf("| %s | %s | %s | %.3f | %.3f | %.3f | %.3f | %.3f%s | %s |\n", map_name, query_name, r.method.c_str(),
-                  r.metrics.recall_at_1, r.metrics.recall_at_5, r.metrics.auc, r.metrics.recall_at_100_precision,
-                  r.seconds, matrix_included ? " (incl. matrix)" : "",
+      std::printf("| %s | %s | %s | %.3f | %.3f | %.3f | %.3f | %.3f%s | %s |\n", map_name, query_name,
+                  r.method.c_str(), r.metrics.recall_at_1, r.metrics.recall_at_5, r.metrics.auc,
+                  r.metrics.recall_at_100_precision, r.seconds, matrix_included ? " (incl. matrix)" : "",
                   matrix_included ? "" : (std::to_string(r.seconds / seqslam_seconds).substr(0, 5) + "x").c_str());
     }
-    std::printf("| %s | %s | (similarity matrix, patch SAD, shared by SeqSLAM and seqtopo) | | | | | %.3f | |\n", map_name,
-                query_name, patch_seconds);
+    std::printf("| %s | %s | (similarity matrix, patch SAD, shared by SeqSLAM and seqtopo) | | | | | %.3f | |\n",
+                map_name, query_name, patch_seconds);
     std::fflush(stdout);
   }
   return 0;

@@ -74,8 +74,8 @@ DenseMatrix<float> baseline_matrix(const std::vector<cv::Mat>& dense, int thread
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     for (std::ptrdiff_t j = 0; j < i; ++j) {
-      const auto d = static_cast<float>(cv::compareHist(dense[static_cast<std::size_t>(i)], dense[static_cast<std::size_t>(j)],
-                                                        cv::HISTCMP_CHISQR));
+      const auto d = static_cast<float>(
+          cv::compareHist(dense[static_cast<std::size_t>(i)], dense[static_cast<std::size_t>(j)], cv::HISTCMP_CHISQR));
       out(static_cast<std::size_t>(i), static_cast<std::size_t>(j)) = d;
     }
   }
@@ -103,7 +103,8 @@ void run_dataset(const char* name, const fs::path& folder, int threads, int repe
   DenseMatrix<float> ours, base;
   seqtopo::similarity::MatrixConfig config;
   config.threads = static_cast<unsigned>(threads);
-  const Timing t_ours = best_of(repeat, [&] { ours = seqtopo::similarity::distance_matrix(set, seqtopo::similarity::Metric::chi2, config); });
+  const Timing t_ours = best_of(
+      repeat, [&] { ours = seqtopo::similarity::distance_matrix(set, seqtopo::similarity::Metric::chi2, config); });
   const Timing t_base = best_of(baseline_repeat, [&] { base = baseline_matrix(dense, threads); });
 
   // Same quantity? OpenCV's HISTCMP_CHISQR is sum (a-b)^2 / a; its HISTCMP_CHISQR_ALT is 2 x paper eq. (1).
@@ -115,8 +116,8 @@ void run_dataset(const char* name, const fs::path& folder, int threads, int repe
     }
   }
 
-  std::printf("| %-18s | %5zu | %7.0f | %8.3f | %10.3g | %10.3g | %8.3f | %10.3g | %10.3g | %6.1fx | %6.1fx | %.1e |\n", name, n,
-              nnz / static_cast<double>(n), t_ours.wall, pairs / t_ours.wall, pairs / t_ours.cpu, t_base.wall,
+  std::printf("| %-18s | %5zu | %7.0f | %8.3f | %10.3g | %10.3g | %8.3f | %10.3g | %10.3g | %6.1fx | %6.1fx | %.1e |\n",
+              name, n, nnz / static_cast<double>(n), t_ours.wall, pairs / t_ours.wall, pairs / t_ours.cpu, t_base.wall,
               pairs / t_base.wall, pairs / t_base.cpu, t_base.wall / t_ours.wall, t_base.cpu / t_ours.cpu, worst);
   std::printf("|   extraction       |       |         | %8.3f s for %zu images (1 thread), %.2f ms per %dx%d image\n",
               extract.wall, n, 1e3 * extract.cpu / static_cast<double>(n), images.front().width, images.front().height);
@@ -136,13 +137,18 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[k], "--baseline-repeat") == 0) baseline_repeat = std::max(1, std::atoi(argv[k + 1]));
   }
   cv::setNumThreads(1);  // compareHist is called from our own threads
-  std::printf("joint histogram (20,480 bins), chi2, lower triangle, %d thread(s), best of %d (baseline: %d); "
-              "pairs/s by wall clock and per CPU second\n\n", threads, repeat, baseline_repeat);
-  std::printf("| %-18s | %5s | %7s | %8s | %10s | %10s | %8s | %10s | %10s | %7s | %7s | %7s |\n", "data", "N", "bins/img",
-              "ours [s]", "pairs/s", "pairs/cpu-s", "cv [s]", "pairs/s", "pairs/cpu-s", "speedup", "cpu-spd", "rel.err");
+  std::printf(
+      "joint histogram (20,480 bins), chi2, lower triangle, %d thread(s), best of %d (baseline: %d); "
+      "pairs/s by wall clock and per CPU second\n\n",
+      threads, repeat, baseline_repeat);
+  std::printf("| %-18s | %5s | %7s | %8s | %10s | %10s | %8s | %10s | %10s | %7s | %7s | %7s |\n", "data", "N",
+              "bins/img", "ours [s]", "pairs/s", "pairs/cpu-s", "cv [s]", "pairs/s", "pairs/cpu-s", "speedup",
+              "cpu-spd", "rel.err");
   std::printf("|%s|\n", std::string(150, '-').c_str());
-  if (only.empty() || only == "nordland") run_dataset("nordland summer", data / "nordland-64x32" / "summer", threads, repeat, baseline_repeat);
-  if (only.empty() || only == "corridor") run_dataset("rtabmap corridor", data / "rtabmap-corridor", threads, repeat, baseline_repeat);
+  if (only.empty() || only == "nordland")
+    run_dataset("nordland summer", data / "nordland-64x32" / "summer", threads, repeat, baseline_repeat);
+  if (only.empty() || only == "corridor")
+    run_dataset("rtabmap corridor", data / "rtabmap-corridor", threads, repeat, baseline_repeat);
 
   // Extraction of one 512 x 384 image, best of many.
   const auto corridor = load_all(data / "rtabmap-corridor", 10);
@@ -151,6 +157,7 @@ int main(int argc, char** argv) {
   });
   std::printf("\ndescriptor extraction, %dx%d image, best of 50 x %zu: %.2f ms wall, %.2f ms CPU per image\n",
               corridor.front().width, corridor.front().height, corridor.size(),
-              1e3 * one.wall / static_cast<double>(corridor.size()), 1e3 * one.cpu / static_cast<double>(corridor.size()));
+              1e3 * one.wall / static_cast<double>(corridor.size()),
+              1e3 * one.cpu / static_cast<double>(corridor.size()));
   return 0;
 }

@@ -65,8 +65,10 @@ int main(int argc, char** argv) {
   const auto multipliers = argc > next ? parse_list(argv[next]) : std::vector<double>{1.0};
   const auto gaps = std::getenv("GAPS") ? parse_list(std::getenv("GAPS")) : std::vector<double>{0.3, 1, 2};
   const auto caps = std::getenv("CAPS") ? parse_list(std::getenv("CAPS")) : std::vector<double>{2, 4, 8, 0};
-  const auto thresholds = std::getenv("THRESHOLDS") ? parse_list(std::getenv("THRESHOLDS")) : std::vector<double>{1, 2, 3, 5, 8};
-  const auto separations = std::getenv("SEPARATIONS") ? parse_list(std::getenv("SEPARATIONS")) : std::vector<double>{5, 15};
+  const auto thresholds =
+      std::getenv("THRESHOLDS") ? parse_list(std::getenv("THRESHOLDS")) : std::vector<double>{1, 2, 3, 5, 8};
+  const auto separations =
+      std::getenv("SEPARATIONS") ? parse_list(std::getenv("SEPARATIONS")) : std::vector<double>{5, 15};
 
   std::vector<Row> rows, baseline_rows;
   for (double mult : multipliers) {
@@ -96,7 +98,9 @@ int main(int argc, char** argv) {
         // the baseline's operating point: the best F1 over its threshold sweep
         const auto all = evaluation::evaluate_loop_closures(pairs, n, same_place, sc.min_separation);
         double best_f1 = 0;
-        for (const auto& p : all.curve) best_f1 = std::max(best_f1, p.precision + p.recall > 0 ? 2 * p.precision * p.recall / (p.precision + p.recall) : 0.0);
+        for (const auto& p : all.curve)
+          best_f1 = std::max(best_f1,
+                             p.precision + p.recall > 0 ? 2 * p.precision * p.recall / (p.precision + p.recall) : 0.0);
         baseline_rows.push_back({best_f1, all.auc, all.recall_at_100_precision, 0, 0,
                                  fmt::format("seqslam len {} sep {} kmult {}", len, sep, mult)});
       }
@@ -114,9 +118,9 @@ int main(int argc, char** argv) {
             for (const auto& p : result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
             const auto m = evaluation::evaluate_loop_closures(pairs, n, same_place, c.min_separation);
             rows.push_back({m.f1, m.auc, m.recall_at_100_precision, m.precision, m.recall,
-                            fmt::format("kmult {} gap {} cap {} threshold {} sep {} ({} alignments, {:.2f} s)", mult, gap,
-                                        cap > 0 ? fmt::format("{}", cap) : "none", thr, sep, result.alignments.size(),
-                                        result.seconds_align)});
+                            fmt::format("kmult {} gap {} cap {} threshold {} sep {} ({} alignments, {:.2f} s)", mult,
+                                        gap, cap > 0 ? fmt::format("{}", cap) : "none", thr, sep,
+                                        result.alignments.size(), result.seconds_align)});
           }
         }
       }
@@ -126,8 +130,8 @@ int main(int argc, char** argv) {
     std::sort(r.begin(), r.end(), [&](const Row& a, const Row& b) { return key(a) > key(b); });
     fmt::print("{}\n", title);
     for (std::size_t k = 0; k < std::min<std::size_t>(8, r.size()); ++k) {
-      fmt::print("  F1 {:.3f}  AUC {:.3f}  R@100P {:.3f}  P {:.3f} R {:.3f}  | {}\n", r[k].f1, r[k].auc, r[k].r100, r[k].precision,
-                 r[k].recall, r[k].setting);
+      fmt::print("  F1 {:.3f}  AUC {:.3f}  R@100P {:.3f}  P {:.3f} R {:.3f}  | {}\n", r[k].f1, r[k].auc, r[k].r100,
+                 r[k].precision, r[k].recall, r[k].setting);
     }
   };
   print("seqtopo by F1", rows, [](const Row& r) { return r.f1; });

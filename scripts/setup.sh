@@ -11,7 +11,7 @@ packages=(
   emboss libedlib-dev libparasail-dev graphviz
   libfaiss-dev libopenmpi-dev openmpi-bin
   python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-pip python3-venv python3-pil
-  chromium chromium-driver python3-selenium ccache
+  chromium chromium-driver python3-selenium ccache clang-format
 )
 
 missing=()

@@ -15,7 +15,8 @@ MatrixView matrix_view(const py::handle& object, const char* name) {
     throw std::invalid_argument(std::string(name) + ": expected a 2-D array of numbers");
   }
   if (array.ndim() != 2) {
-    throw std::invalid_argument(std::string(name) + ": expected a 2-D array, got " + std::to_string(array.ndim()) + "-D");
+    throw std::invalid_argument(std::string(name) + ": expected a 2-D array, got " + std::to_string(array.ndim()) +
+                                "-D");
   }
   MatrixView view;
   view.rows = static_cast<std::size_t>(array.shape(0));

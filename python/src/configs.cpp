@@ -42,12 +42,13 @@ std::size_t limit_from_python(std::optional<std::size_t> value) {
 
 void bind_align(py::module_& m) {
   const align::AlignConfig d{};
-  py::class_<align::AlignConfig> c(m, "AlignConfig",
-                                   "Settings of the local-alignment engine (C++ seqtopo::align::AlignConfig).\n\n"
-                                   "gap_a / gap_b: penalty per element of A / B skipped by a gap; cap: upper bound on the\n"
-                                   "cumulative score (None: classical Smith-Waterman); threshold: minimum reported score;\n"
-                                   "max_alignments: stop after this many (None: all); self: A and B are one sequence, only\n"
-                                   "pairs with i - j >= min_separation are searched.");
+  py::class_<align::AlignConfig> c(
+      m, "AlignConfig",
+      "Settings of the local-alignment engine (C++ seqtopo::align::AlignConfig).\n\n"
+      "gap_a / gap_b: penalty per element of A / B skipped by a gap; cap: upper bound on the\n"
+      "cumulative score (None: classical Smith-Waterman); threshold: minimum reported score;\n"
+      "max_alignments: stop after this many (None: all); self: A and B are one sequence, only\n"
+      "pairs with i - j >= min_separation are searched.");
   c.def(py::init([](float gap_a, float gap_b, std::optional<float> cap, float threshold,
                     std::optional<std::size_t> max_alignments, bool self, std::size_t min_separation) {
           align::AlignConfig config;
@@ -76,14 +77,15 @@ void bind_align(py::module_& m) {
 }
 
 void bind_map(py::module_& m) {
+  using mapping::MapConfig;
   using mapping::PruningConfig;
   using mapping::TopologyConfig;
-  using mapping::MapConfig;
 
-  py::class_<PruningConfig> pruning(m, "PruningConfig",
-                                    "Per-column pruning (C++ seqtopo::mapping::PruningConfig). rank: 'score_then_length'\n"
-                                    "(default) or 'length_then_score' (the paper's longest matching subsequence);\n"
-                                    "min_retained_fraction: an alignment is kept when at least this share of its pairs survive.");
+  py::class_<PruningConfig> pruning(
+      m, "PruningConfig",
+      "Per-column pruning (C++ seqtopo::mapping::PruningConfig). rank: 'score_then_length'\n"
+      "(default) or 'length_then_score' (the paper's longest matching subsequence);\n"
+      "min_retained_fraction: an alignment is kept when at least this share of its pairs survive.");
   auto rank_name = [](PruningConfig::Rank r) {
     return std::string(r == PruningConfig::Rank::score_then_length ? "score_then_length" : "length_then_score");
   };
@@ -100,7 +102,8 @@ void bind_map(py::module_& m) {
              config.min_retained_fraction = min_retained_fraction;
              return config;
            }),
-           py::kw_only(), py::arg("rank") = rank_name(dp.rank), py::arg("min_retained_fraction") = dp.min_retained_fraction)
+           py::kw_only(), py::arg("rank") = rank_name(dp.rank),
+           py::arg("min_retained_fraction") = dp.min_retained_fraction)
       .def_property(
           "rank", [rank_name](const PruningConfig& p) { return rank_name(p.rank); },
           [rank_value](PruningConfig& p, const std::string& name) { p.rank = rank_value(name); })
@@ -108,9 +111,10 @@ void bind_map(py::module_& m) {
   add_repr(pruning, "PruningConfig", {"rank", "min_retained_fraction"});
 
   const TopologyConfig dt{};
-  py::class_<TopologyConfig> topology(m, "TopologyConfig",
-                                      "Topology (C++ seqtopo::mapping::TopologyConfig). u_turn_separation [frames]: a reverse\n"
-                                      "alignment meeting itself closer than this is a U-turn, not a junction.");
+  py::class_<TopologyConfig> topology(
+      m, "TopologyConfig",
+      "Topology (C++ seqtopo::mapping::TopologyConfig). u_turn_separation [frames]: a reverse\n"
+      "alignment meeting itself closer than this is a U-turn, not a junction.");
   topology
       .def(py::init([](std::size_t u_turn_separation) { return TopologyConfig{u_turn_separation}; }), py::kw_only(),
            py::arg("u_turn_separation") = dt.u_turn_separation)
@@ -118,15 +122,17 @@ void bind_map(py::module_& m) {
   add_repr(topology, "TopologyConfig", {"u_turn_separation"});
 
   const MapConfig d{};
-  py::class_<MapConfig> c(m, "MapConfig",
-                          "Settings of build_map (C++ seqtopo::mapping::MapConfig), same names and defaults.\n\n"
-                          "contrast_window [frames] (0: align the raw S, as the paper), contrast_offset [standard\n"
-                          "deviations], gap (penalty per skipped image), cap (None: no cap), threshold (minimum\n"
-                          "alignment score of a revisit), min_separation [frames], reverse (also search paths revisited\n"
-                          "backwards), pruning (PruningConfig), topology (TopologyConfig), threads (forward and reverse\n"
-                          "passes in parallel when > 1; the result does not depend on it).");
-  c.def(py::init([](std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap, float threshold,
-                    std::size_t min_separation, bool reverse, PruningConfig pruning, TopologyConfig topology, unsigned threads) {
+  py::class_<MapConfig> c(
+      m, "MapConfig",
+      "Settings of build_map (C++ seqtopo::mapping::MapConfig), same names and defaults.\n\n"
+      "contrast_window [frames] (0: align the raw S, as the paper), contrast_offset [standard\n"
+      "deviations], gap (penalty per skipped image), cap (None: no cap), threshold (minimum\n"
+      "alignment score of a revisit), min_separation [frames], reverse (also search paths revisited\n"
+      "backwards), pruning (PruningConfig), topology (TopologyConfig), threads (forward and reverse\n"
+      "passes in parallel when > 1; the result does not depend on it).");
+  c.def(py::init([](std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap,
+                    float threshold, std::size_t min_separation, bool reverse, PruningConfig pruning,
+                    TopologyConfig topology, unsigned threads) {
           MapConfig config;
           config.contrast_window = contrast_window;
           config.contrast_offset = contrast_offset;
@@ -154,18 +160,20 @@ void bind_map(py::module_& m) {
       .def_readwrite("pruning", &MapConfig::pruning)
       .def_readwrite("topology", &MapConfig::topology)
       .def_readwrite("threads", &MapConfig::threads);
-  add_repr(c, "MapConfig", {"contrast_window", "contrast_offset", "gap", "cap", "threshold", "min_separation", "reverse",
-                            "pruning", "topology", "threads"});
+  add_repr(c, "MapConfig",
+           {"contrast_window", "contrast_offset", "gap", "cap", "threshold", "min_separation", "reverse", "pruning",
+            "topology", "threads"});
 }
 
 void bind_localize(py::module_& m) {
   using localize::LocalizeConfig;
   const LocalizeConfig d{};
-  py::class_<LocalizeConfig> c(m, "LocalizeConfig",
-                               "Settings of localize (C++ seqtopo::localize::LocalizeConfig), same names and defaults.\n\n"
-                               "enhancement_window [map frames] (0: whole row), enhance, offset [standard deviations], gap,\n"
-                               "cap (None: none), threshold (minimum alignment score that covers frames), reverse,\n"
-                               "max_alignments, score_window [query frames], candidates (kept per frame), threads.");
+  py::class_<LocalizeConfig> c(
+      m, "LocalizeConfig",
+      "Settings of localize (C++ seqtopo::localize::LocalizeConfig), same names and defaults.\n\n"
+      "enhancement_window [map frames] (0: whole row), enhance, offset [standard deviations], gap,\n"
+      "cap (None: none), threshold (minimum alignment score that covers frames), reverse,\n"
+      "max_alignments, score_window [query frames], candidates (kept per frame), threads.");
   c.def(py::init([](std::size_t enhancement_window, bool enhance, float offset, float gap, std::optional<float> cap,
                     float threshold, bool reverse, std::size_t max_alignments, std::size_t score_window,
                     std::size_t candidates, unsigned threads) {
@@ -184,9 +192,10 @@ void bind_localize(py::module_& m) {
           return config;
         }),
         py::kw_only(), py::arg("enhancement_window") = d.enhancement_window, py::arg("enhance") = d.enhance,
-        py::arg("offset") = d.offset, py::arg("gap") = d.gap, py::arg("cap") = d.cap, py::arg("threshold") = d.threshold,
-        py::arg("reverse") = d.reverse, py::arg("max_alignments") = d.max_alignments,
-        py::arg("score_window") = d.score_window, py::arg("candidates") = d.candidates, py::arg("threads") = d.threads)
+        py::arg("offset") = d.offset, py::arg("gap") = d.gap, py::arg("cap") = d.cap,
+        py::arg("threshold") = d.threshold, py::arg("reverse") = d.reverse,
+        py::arg("max_alignments") = d.max_alignments, py::arg("score_window") = d.score_window,
+        py::arg("candidates") = d.candidates, py::arg("threads") = d.threads)
       .def_readwrite("enhancement_window", &LocalizeConfig::enhancement_window)
       .def_readwrite("enhance", &LocalizeConfig::enhance)
       .def_readwrite("offset", &LocalizeConfig::offset)
@@ -198,21 +207,23 @@ void bind_localize(py::module_& m) {
       .def_readwrite("score_window", &LocalizeConfig::score_window)
       .def_readwrite("candidates", &LocalizeConfig::candidates)
       .def_readwrite("threads", &LocalizeConfig::threads);
-  add_repr(c, "LocalizeConfig", {"enhancement_window", "enhance", "offset", "gap", "cap", "threshold", "reverse",
-                                 "max_alignments", "score_window", "candidates", "threads"});
+  add_repr(c, "LocalizeConfig",
+           {"enhancement_window", "enhance", "offset", "gap", "cap", "threshold", "reverse", "max_alignments",
+            "score_window", "candidates", "threads"});
 }
 
 void bind_strings(py::module_& m) {
   using strings::EditCosts;
   using strings::MatchConfig;
   const EditCosts dc{};
-  py::class_<EditCosts> costs(m, "EditCosts",
-                              "Edit costs of algorithm A (C++ seqtopo::strings::EditCosts); the defaults are the unit costs\n"
-                              "of Table III ('A1'). colour_distance: None or a 16 x 16 table in [0, 1] scaling\n"
-                              "colour_difference.");
+  py::class_<EditCosts> costs(
+      m, "EditCosts",
+      "Edit costs of algorithm A (C++ seqtopo::strings::EditCosts); the defaults are the unit costs\n"
+      "of Table III ('A1'). colour_distance: None or a 16 x 16 table in [0, 1] scaling\n"
+      "colour_difference.");
   costs
-      .def(py::init([](double deletion, double insertion, double colour_difference, double coincidence, double discordance,
-                       std::optional<strings::ColourDistanceTable> colour_distance) {
+      .def(py::init([](double deletion, double insertion, double colour_difference, double coincidence,
+                       double discordance, std::optional<strings::ColourDistanceTable> colour_distance) {
              return EditCosts{deletion, insertion, colour_difference, coincidence, discordance, colour_distance};
            }),
            py::kw_only(), py::arg("deletion") = dc.deletion, py::arg("insertion") = dc.insertion,
@@ -227,11 +238,12 @@ void bind_strings(py::module_& m) {
   add_repr(costs, "EditCosts", {"deletion", "insertion", "colour_difference", "coincidence", "discordance"});
 
   const MatchConfig d{};
-  py::class_<MatchConfig> c(m, "MatchConfig",
-                            "Settings of match_strings (C++ seqtopo::strings::MatchConfig). algorithm: 'A', 'B' or 'C';\n"
-                            "k: maximum differences for A and B (None: no limit); costs: EditCosts (A only); cyclic:\n"
-                            "compare with every rotation of each database string; tie_tolerance: scores closer than\n"
-                            "this share a rank.");
+  py::class_<MatchConfig> c(
+      m, "MatchConfig",
+      "Settings of match_strings (C++ seqtopo::strings::MatchConfig). algorithm: 'A', 'B' or 'C';\n"
+      "k: maximum differences for A and B (None: no limit); costs: EditCosts (A only); cyclic:\n"
+      "compare with every rotation of each database string; tie_tolerance: scores closer than\n"
+      "this share a rank.");
   c.def(py::init([](const std::string& algorithm, std::optional<std::size_t> k, EditCosts costs, bool cyclic,
                     double tie_tolerance) {
           MatchConfig config;
@@ -256,8 +268,9 @@ void bind_strings(py::module_& m) {
       .def_readwrite("tie_tolerance", &MatchConfig::tie_tolerance);
   add_repr(c, "MatchConfig", {"algorithm", "k", "costs", "cyclic", "tie_tolerance"});
 
-  m.def("preset_costs", &strings::preset_costs, py::arg("name"),
-        "The paper's named cost tables: 'A1' (Table III), 'A2-rooms', 'A2-ground-floor', 'A2-white-hall', 'A2-global'.");
+  m.def(
+      "preset_costs", &strings::preset_costs, py::arg("name"),
+      "The paper's named cost tables: 'A1' (Table III), 'A2-rooms', 'A2-ground-floor', 'A2-white-hall', 'A2-global'.");
   m.def("preset_names", &strings::preset_names, "Names accepted by preset_costs.");
 }
 
@@ -267,11 +280,12 @@ void bind_kappa(py::module_& m) {
   py::class_<KappaRule> c(m, "KappaRule",
                           "The automatic kappa of S = 1 - kappa * D (C++ seqtopo::similarity::KappaRule): about\n"
                           "matches_per_image partners per image get S > 0, among pairs at least min_separation apart.");
-  c.def(py::init([](double matches_per_image, std::size_t min_separation, double max_fraction, std::size_t max_samples) {
-          return KappaRule{matches_per_image, min_separation, max_fraction, max_samples};
-        }),
-        py::kw_only(), py::arg("matches_per_image") = d.matches_per_image, py::arg("min_separation") = d.min_separation,
-        py::arg("max_fraction") = d.max_fraction, py::arg("max_samples") = d.max_samples)
+  c.def(
+       py::init([](double matches_per_image, std::size_t min_separation, double max_fraction, std::size_t max_samples) {
+         return KappaRule{matches_per_image, min_separation, max_fraction, max_samples};
+       }),
+       py::kw_only(), py::arg("matches_per_image") = d.matches_per_image, py::arg("min_separation") = d.min_separation,
+       py::arg("max_fraction") = d.max_fraction, py::arg("max_samples") = d.max_samples)
       .def_readwrite("matches_per_image", &KappaRule::matches_per_image)
       .def_readwrite("min_separation", &KappaRule::min_separation)
       .def_readwrite("max_fraction", &KappaRule::max_fraction)

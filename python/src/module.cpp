@@ -70,7 +70,8 @@ py::list align_scores(const py::handle& scores, align::AlignConfig config, bool 
     // The engine reads the array's own buffer (no copy for a float32 C-contiguous array).
     const auto source = align::ScoreSource::dense(std::span<const float>(view.data, view.size()), view.rows, view.cols);
     config.direction = align::Direction::forward;
-    alignments = reverse ? align::local_alignments_both(source, config, threads) : align::local_alignments(source, config);
+    alignments =
+        reverse ? align::local_alignments_both(source, config, threads) : align::local_alignments(source, config);
   }
   return alignments_list(alignments);
 }
@@ -153,14 +154,16 @@ py::dict localize(const py::handle& query_x_map, const localize::LocalizeConfig&
     score[q] = f.score;
     covered[q] = f.covered;
     reverse[q] = f.direction == align::Direction::reverse;
-    for (std::size_t k = 0; k < f.candidates.size() && k < width; ++k) candidates[q * width + k] = index(f.candidates[k]);
+    for (std::size_t k = 0; k < f.candidates.size() && k < width; ++k)
+      candidates[q * width + k] = index(f.candidates[k]);
   }
   py::dict out;
   out["map"] = to_array(std::move(map));
   out["score"] = to_array(std::move(score));
   out["covered"] = bool_array(covered);
   out["reverse"] = bool_array(reverse);
-  out["candidates"] = to_array(std::move(candidates), {static_cast<py::ssize_t>(frames), static_cast<py::ssize_t>(width)});
+  out["candidates"] =
+      to_array(std::move(candidates), {static_cast<py::ssize_t>(frames), static_cast<py::ssize_t>(width)});
   out["alignments"] = alignments_list(result.alignments);
   return out;
 }
@@ -173,7 +176,8 @@ py::dict similarity_result(image::SimilarityResult&& r) {
   out["kappa"] = r.kappa;
   out["kappa_auto"] = r.kappa_auto;
   out["kappa_fraction"] = r.kappa_fraction;
-  out["metric"] = r.metric ? py::object(py::str(std::string(similarity::metric_name(*r.metric)))) : py::object(py::none());
+  out["metric"] =
+      r.metric ? py::object(py::str(std::string(similarity::metric_name(*r.metric)))) : py::object(py::none());
   out["frame_names"] = r.frame_names;
   out["column_names"] = r.column_names;
   return out;
@@ -205,9 +209,9 @@ py::dict similarity_of_descriptors(const py::handle& descriptors, const py::hand
     }
     const std::size_t cols = b ? b->rows : a.rows;
     const std::size_t bytes = similarity::matrix_bytes(a.rows, cols) + (a.size() + (b ? b->size() : 0)) * sizeof(float);
-    similarity::check_fits(bytes, similarity::available_memory_bytes(),
-                           "the " + std::to_string(a.rows) + " x " + std::to_string(cols) +
-                               " similarity matrix with its descriptors");
+    similarity::check_fits(
+        bytes, similarity::available_memory_bytes(),
+        "the " + std::to_string(a.rows) + " x " + std::to_string(cols) + " similarity matrix with its descriptors");
     const auto set_a = similarity::DescriptorSet::from_dense(to_matrix(a));
     similarity::MatrixConfig mc;
     mc.threads = threads;
@@ -241,8 +245,8 @@ py::dict similarity_of_descriptors(const py::handle& descriptors, const py::hand
 // The image pipeline on a folder, video, descriptors.npy or similarity.npy (image/similarity_pipeline.hpp).
 py::dict similarity_of_path(const std::filesystem::path& path, const std::optional<std::filesystem::path>& against,
                             const std::string& descriptor, const std::optional<std::string>& metric_name,
-                            std::optional<float> kappa, const std::string& input_kind, std::size_t every, unsigned threads,
-                            const similarity::KappaRule& rule) {
+                            std::optional<float> kappa, const std::string& input_kind, std::size_t every,
+                            unsigned threads, const similarity::KappaRule& rule) {
   image::SimilarityConfig config;
   config.descriptor = image::parse_descriptor(descriptor);
   if (metric_name) config.metric = similarity::parse_metric(*metric_name);

@@ -29,9 +29,9 @@
 #include <tuple>
 
 #include "fast_kernels.hpp"
-#include "seqtopo/align/smith_waterman.hpp"
 #include "plateau.hpp"
 #include "search_region.hpp"
+#include "seqtopo/align/smith_waterman.hpp"
 #include "step_box.hpp"
 
 namespace seqtopo::align {
@@ -45,10 +45,14 @@ using Step = std::int16_t;
 
 std::string_view to_string(Isa isa) {
   switch (isa) {
-    case Isa::scalar: return "scalar";
-    case Isa::sse41: return "sse4.1";
-    case Isa::avx2: return "avx2";
-    case Isa::best: return "best";
+    case Isa::scalar:
+      return "scalar";
+    case Isa::sse41:
+      return "sse4.1";
+    case Isa::avx2:
+      return "avx2";
+    case Isa::best:
+      return "best";
   }
   return "?";
 }
@@ -78,9 +82,12 @@ Kernels kernels_for(Isa wanted) {
   // An ISA the CPU lacks falls back to the best one it has (the order of the enum is the order of power).
   const Isa isa = wanted == Isa::best || static_cast<int>(wanted) > static_cast<int>(have) ? have : wanted;
   switch (isa) {
-    case Isa::avx2: return {detail::row_avx2, detail::quantize_avx2};
-    case Isa::sse41: return {detail::row_sse41, detail::quantize_sse41};
-    default: return {detail::row_scalar, detail::quantize_scalar};
+    case Isa::avx2:
+      return {detail::row_avx2, detail::quantize_avx2};
+    case Isa::sse41:
+      return {detail::row_sse41, detail::quantize_sse41};
+    default:
+      return {detail::row_scalar, detail::quantize_scalar};
   }
 }
 
@@ -230,8 +237,16 @@ class FastPass {
  public:
   FastPass(const RowScores& scores, std::size_t m, std::size_t n, const AlignConfig& config, const Steps& steps,
            const Kernels& kernels, unsigned threads)
-      : scores_(scores), config_(config), st_(steps), kernel_(kernels.row), m_(m), n_(n), stride_(n + 1 + kRowPadding),
-        bands_((m + kTile - 1) / kTile), tiles_((n + kTile - 1) / kTile), column_stride_(n / kTile + 1),
+      : scores_(scores),
+        config_(config),
+        st_(steps),
+        kernel_(kernels.row),
+        m_(m),
+        n_(n),
+        stride_(n + 1 + kRowPadding),
+        bands_((m + kTile - 1) / kTile),
+        tiles_((n + kTile - 1) / kTile),
+        column_stride_(n / kTile + 1),
         threads_(std::max(1U, threads)) {}
 
   // The score-only fill: the largest cell value.
@@ -516,7 +531,8 @@ class FastPass {
     }
     int clamp(int v) const { return std::min(v, static_cast<int>(cap)); }
     bool tight_diag(std::size_t i, std::size_t j) const {
-      return inner(i, j) && value(i, j) > 0 && clamp(detail::saturate(value(i - 1, j - 1) + score(i, j))) == value(i, j);
+      return inner(i, j) && value(i, j) > 0 &&
+             clamp(detail::saturate(value(i - 1, j - 1) + score(i, j))) == value(i, j);
     }
     bool tight_down(std::size_t i, std::size_t j) const {
       return inner(i, j) && value(i, j) > 0 && clamp(detail::saturate(value(i - 1, j) - gap_a)) == value(i, j);
@@ -690,10 +706,10 @@ class FastPass {
   std::size_t column_stride_;  // column checkpoints per row
   unsigned threads_;
   // The table is kept only at tile boundaries: from them any tile, or any window, is recomputed exactly.
-  std::vector<Step> checkpoints_;  // H row k * kTile, at k * stride_
-  std::vector<Step> columns_;      // H(i, q * kTile) at i * column_stride_ + q
-  std::vector<Step> tile_max_;     // maximum of tile (b, t) at b * tiles_ + t
-  std::vector<Step> band_max_;     // maximum of each band of tiles
+  std::vector<Step> checkpoints_;                    // H row k * kTile, at k * stride_
+  std::vector<Step> columns_;                        // H(i, q * kTile) at i * column_stride_ + q
+  std::vector<Step> tile_max_;                       // maximum of tile (b, t) at b * tiles_ + t
+  std::vector<Step> band_max_;                       // maximum of each band of tiles
   std::vector<std::vector<std::size_t>> forbidden_;  // per row, sorted pass columns of used pairs
   std::unique_ptr<Buffers> buffers_;
 };
@@ -766,9 +782,8 @@ AlignConfig quantized(const AlignConfig& config, float scale) {
 
 ScoreSource LetterScores::source() const {
   validate_letters(*this);
-  return ScoreSource::function(a.size(), b.size(), [s = *this](std::size_t i, std::size_t j) {
-    return s.matrix[s.a[i] * s.alphabet + s.b[j]];
-  });
+  return ScoreSource::function(
+      a.size(), b.size(), [s = *this](std::size_t i, std::size_t j) { return s.matrix[s.a[i] * s.alphabet + s.b[j]]; });
 }
 
 std::vector<LocalAlignment> fast_local_alignments(const ScoreSource& scores, const AlignConfig& config,

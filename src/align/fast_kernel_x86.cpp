@@ -86,7 +86,7 @@ struct Avx2 {
 
 // One vector of H from the row above (up = prev + j - 1) and the scores (sc = score + j): defines x
 // and advances carry.
-#define SEQTOPO_ROW_VECTOR(W, up, sc)                                                                     \
+#define SEQTOPO_ROW_VECTOR(W, up, sc)                                                                  \
   W::V x = W::max(W::max(W::adds(W::load(up), W::load(sc)), W::subs(W::load((up) + 1), gap_a)), zero); \
   x = W::scan(W::min(x, cap), steps);                                                                  \
   const W::V last = W::last(x);                                                                        \
@@ -95,42 +95,42 @@ struct Avx2 {
 
 // The body of row_sse41 / row_avx2 over traits W. The saturating subtractions from the carry never
 // saturate: carry is in [0, 32767] and a gap step at most 32767.
-#define SEQTOPO_ROW_KERNEL(W)                                                                          \
-  constexpr std::size_t kLanes = W::kLanes;                                                            \
-  alignas(32) std::int16_t steps[kLanes];                                                              \
-  gap_multiples(job.gap_b, kLanes, steps);                                                             \
-  const W::V gap_a = W::set1(job.gap_a), cap = W::set1(job.cap), zero = W::zero();                     \
-  const W::V carry_steps = W::load(steps);                                                             \
-  const W::V g_all = W::set1(steps[kLanes - 1]);                                                       \
-  W::V best = zero;                                                                                    \
-  W::V carry = W::set1(job.left); /* H(i, j - 1) in every lane */                                      \
-  /* locals: a vector store may alias anything, so fields of job would be reloaded every iteration */  \
-  const std::size_t lo = job.lo, hi = job.hi;                                                          \
-  const std::int16_t* const prev = job.prev;                                                           \
-  const std::int16_t* const score = job.score;                                                         \
-  std::int16_t* const cur = job.cur;                                                                   \
-  std::int16_t* const column_max = job.column_max;                                                     \
-  std::size_t j = lo;                                                                                  \
-  for (; j + kLanes - 1 <= hi; j += kLanes) {                                                          \
-    SEQTOPO_ROW_VECTOR(W, prev + j - 1, score + j)                                                     \
-    W::store(cur + j, x);                                                                              \
-    best = W::max(best, x);                                                                            \
-    if (column_max) W::store(column_max + j, W::max(W::load(column_max + j), x));                      \
-  }                                                                                                    \
-  if (j <= hi) { /* the last, partial vector goes through local copies: nothing past hi is touched */  \
-    const std::size_t count = hi - j + 1;                                                              \
-    alignas(32) std::int16_t tail_prev[kLanes + 1] = {}, tail_score[kLanes] = {}, tail_out[kLanes];    \
-    std::copy(prev + j - 1, prev + j + count, tail_prev);                                              \
-    std::copy(score + j, score + j + count, tail_score);                                               \
-    SEQTOPO_ROW_VECTOR(W, tail_prev, tail_score)                                                       \
-    W::store(tail_out, x);                                                                             \
-    std::copy(tail_out, tail_out + count, cur + j);                                                    \
-    for (std::size_t k = 0; column_max && k < count; ++k) {                                            \
-      column_max[j + k] = std::max(column_max[j + k], tail_out[k]);                                    \
-    }                                                                                                  \
-    /* lanes past hi were computed from zeros: they must not reach best */                             \
-    best = W::max(best, W::set1(*std::max_element(tail_out, tail_out + count)));                       \
-  }                                                                                                    \
+#define SEQTOPO_ROW_KERNEL(W)                                                                         \
+  constexpr std::size_t kLanes = W::kLanes;                                                           \
+  alignas(32) std::int16_t steps[kLanes];                                                             \
+  gap_multiples(job.gap_b, kLanes, steps);                                                            \
+  const W::V gap_a = W::set1(job.gap_a), cap = W::set1(job.cap), zero = W::zero();                    \
+  const W::V carry_steps = W::load(steps);                                                            \
+  const W::V g_all = W::set1(steps[kLanes - 1]);                                                      \
+  W::V best = zero;                                                                                   \
+  W::V carry = W::set1(job.left); /* H(i, j - 1) in every lane */                                     \
+  /* locals: a vector store may alias anything, so fields of job would be reloaded every iteration */ \
+  const std::size_t lo = job.lo, hi = job.hi;                                                         \
+  const std::int16_t* const prev = job.prev;                                                          \
+  const std::int16_t* const score = job.score;                                                        \
+  std::int16_t* const cur = job.cur;                                                                  \
+  std::int16_t* const column_max = job.column_max;                                                    \
+  std::size_t j = lo;                                                                                 \
+  for (; j + kLanes - 1 <= hi; j += kLanes) {                                                         \
+    SEQTOPO_ROW_VECTOR(W, prev + j - 1, score + j)                                                    \
+    W::store(cur + j, x);                                                                             \
+    best = W::max(best, x);                                                                           \
+    if (column_max) W::store(column_max + j, W::max(W::load(column_max + j), x));                     \
+  }                                                                                                   \
+  if (j <= hi) { /* the last, partial vector goes through local copies: nothing past hi is touched */ \
+    const std::size_t count = hi - j + 1;                                                             \
+    alignas(32) std::int16_t tail_prev[kLanes + 1] = {}, tail_score[kLanes] = {}, tail_out[kLanes];   \
+    std::copy(prev + j - 1, prev + j + count, tail_prev);                                             \
+    std::copy(score + j, score + j + count, tail_score);                                              \
+    SEQTOPO_ROW_VECTOR(W, tail_prev, tail_score)                                                      \
+    W::store(tail_out, x);                                                                            \
+    std::copy(tail_out, tail_out + count, cur + j);                                                   \
+    for (std::size_t k = 0; column_max && k < count; ++k) {                                           \
+      column_max[j + k] = std::max(column_max[j + k], tail_out[k]);                                   \
+    }                                                                                                 \
+    /* lanes past hi were computed from zeros: they must not reach best */                            \
+    best = W::max(best, W::set1(*std::max_element(tail_out, tail_out + count)));                      \
+  }                                                                                                   \
   return static_cast<std::int16_t>(W::hmax(best));
 
 [[gnu::target("sse4.1")]] std::int16_t row_sse41(const RowJob& job) { SEQTOPO_ROW_KERNEL(Sse41) }
@@ -176,7 +176,11 @@ struct Avx2 {
 namespace seqtopo::align::detail {
 std::int16_t row_sse41(const RowJob& job) { return row_scalar(job); }
 std::int16_t row_avx2(const RowJob& job) { return row_scalar(job); }
-void quantize_sse41(const float* in, std::size_t count, float scale, std::int16_t* out) { quantize_scalar(in, count, scale, out); }
-void quantize_avx2(const float* in, std::size_t count, float scale, std::int16_t* out) { quantize_scalar(in, count, scale, out); }
+void quantize_sse41(const float* in, std::size_t count, float scale, std::int16_t* out) {
+  quantize_scalar(in, count, scale, out);
+}
+void quantize_avx2(const float* in, std::size_t count, float scale, std::int16_t* out) {
+  quantize_scalar(in, count, scale, out);
+}
 }  // namespace seqtopo::align::detail
 #endif

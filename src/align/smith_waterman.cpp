@@ -39,8 +39,14 @@ class Pass {
 
  public:
   Pass(const ScoreSource& scores, const AlignConfig& config)
-      : scores_(scores), config_(config), m_(scores.rows()), n_(scores.cols()), stride_(n_ + 1),
-        h_((m_ + 1) * stride_, 0.0F), row_best_(m_ + 1, {0.0F, 0}), buffer_(n_) {
+      : scores_(scores),
+        config_(config),
+        m_(scores.rows()),
+        n_(scores.cols()),
+        stride_(n_ + 1),
+        h_((m_ + 1) * stride_, 0.0F),
+        row_best_(m_ + 1, {0.0F, 0}),
+        buffer_(n_) {
     for (std::size_t i = 1; i <= m_; ++i) {
       auto [lo, hi] = region(i);
       if (lo <= hi) compute_cells(i, lo, hi);
@@ -74,9 +80,7 @@ class Pass {
   Score& h(std::size_t i, std::size_t j) { return h_[i * stride_ + j]; }
   Score h(std::size_t i, std::size_t j) const { return h_[i * stride_ + j]; }
 
-  std::size_t original_col(std::size_t j) const {
-    return config_.direction == Direction::forward ? j - 1 : n_ - j;
-  }
+  std::size_t original_col(std::size_t j) const { return config_.direction == Direction::forward ? j - 1 : n_ - j; }
 
   // Scores of pass row i, pass columns [lo, hi] into buffer_[lo-1 .. hi-1].
   void fetch(std::size_t i, std::size_t lo, std::size_t hi) {
@@ -85,13 +89,12 @@ class Pass {
     } else {
       // pass columns lo..hi are original columns n-hi .. n-lo, in the opposite order
       scores_.read_row(i - 1, n_ - hi, n_ - lo + 1, buffer_.data() + (lo - 1));
-      std::reverse(buffer_.begin() + static_cast<std::ptrdiff_t>(lo - 1), buffer_.begin() + static_cast<std::ptrdiff_t>(hi));
+      std::reverse(buffer_.begin() + static_cast<std::ptrdiff_t>(lo - 1),
+                   buffer_.begin() + static_cast<std::ptrdiff_t>(hi));
     }
   }
 
-  bool used(std::size_t i, std::size_t j) const {
-    return !used_.empty() && used_[(i - 1) * n_ + (j - 1)] != 0;
-  }
+  bool used(std::size_t i, std::size_t j) const { return !used_.empty() && used_[(i - 1) * n_ + (j - 1)] != 0; }
 
   Score clamp(Score v) const { return config_.cap ? std::min(v, *config_.cap) : v; }
 
@@ -253,8 +256,8 @@ class Pass {
       changed_cur.clear();
       auto [lo, hi] = region(i);
       bool best_changed = false;
-      std::size_t next = 0;      // index into candidates
-      std::size_t left_next = 0; // column to visit because its left neighbour changed (0 = none)
+      std::size_t next = 0;       // index into candidates
+      std::size_t left_next = 0;  // column to visit because its left neighbour changed (0 = none)
       while (next < candidates.size() || left_next != 0) {
         std::size_t j;
         if (left_next != 0 && (next >= candidates.size() || left_next <= candidates[next])) {

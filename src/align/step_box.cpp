@@ -53,20 +53,18 @@ void bisect(StepBox& box, BoxCell p, BoxCell q, std::vector<std::pair<std::size_
   for (std::size_t r = p.first; r <= mid; ++r) {
     for (std::size_t c = std::max(p.second, box.lo[r]); c <= std::min(q.second, box.hi[r]); ++c) {
       const bool up = r > p.first, left = c > p.second;
-      box.fwd[box.index(r, c)] = (r == p.first && c == p.second) ||
-                                 (up && left && box.diag(r, c) && box.f(r - 1, c - 1)) ||
-                                 (up && box.down(r, c) && box.f(r - 1, c)) ||
-                                 (left && box.right(r, c) && box.f(r, c - 1));
+      box.fwd[box.index(r, c)] =
+          (r == p.first && c == p.second) || (up && left && box.diag(r, c) && box.f(r - 1, c - 1)) ||
+          (up && box.down(r, c) && box.f(r - 1, c)) || (left && box.right(r, c) && box.f(r, c - 1));
     }
   }
   for (std::size_t r = q.first + 1; r-- > mid;) {
     const std::size_t c_lo = std::max(p.second, box.lo[r]), c_hi = std::min(q.second, box.hi[r]);
     for (std::size_t c = c_hi + 1; c-- > c_lo;) {
       const bool below = r < q.first, right = c < q.second;
-      box.bwd[box.index(r, c)] = (r == q.first && c == q.second) ||
-                                 (below && right && box.diag(r + 1, c + 1) && box.b(r + 1, c + 1)) ||
-                                 (below && box.down(r + 1, c) && box.b(r + 1, c)) ||
-                                 (right && box.right(r, c + 1) && box.b(r, c + 1));
+      box.bwd[box.index(r, c)] =
+          (r == q.first && c == q.second) || (below && right && box.diag(r + 1, c + 1) && box.b(r + 1, c + 1)) ||
+          (below && box.down(r + 1, c) && box.b(r + 1, c)) || (right && box.right(r, c + 1) && box.b(r, c + 1));
     }
   }
   std::size_t cross = 0;

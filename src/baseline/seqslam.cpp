@@ -1,12 +1,12 @@
 #include "seqtopo/baseline/seqslam.hpp"
 
-#include "seqtopo/similarity/contrast_enhancement.hpp"
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include <omp.h>
+#include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::baseline {
 
@@ -19,7 +19,8 @@ std::vector<SequenceMatch> seqslam_matches(const SimilarityMatrix& similarity, c
   const SimilarityMatrix e = similarity::enhance_contrast(similarity, config.enhancement_window);
   std::vector<float> velocities;
   for (std::size_t v = 0; v < config.velocity_steps; ++v) {
-    const float t = config.velocity_steps == 1 ? 0.0F : static_cast<float>(v) / static_cast<float>(config.velocity_steps - 1);
+    const float t =
+        config.velocity_steps == 1 ? 0.0F : static_cast<float>(v) / static_cast<float>(config.velocity_steps - 1);
     velocities.push_back(config.min_velocity + t * (config.max_velocity - config.min_velocity));
   }
   const std::size_t len = config.sequence_length;

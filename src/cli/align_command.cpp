@@ -27,7 +27,8 @@ struct AlignOptions {
 };
 
 void run(const AlignOptions& o) {
-  if (o.scores_path.empty() == o.a_path.empty()) throw io::InputError("--a/--scores", "give either --a (and --b) or --scores");
+  if (o.scores_path.empty() == o.a_path.empty())
+    throw io::InputError("--a/--scores", "give either --a (and --b) or --scores");
   if (!o.scores_path.empty() && !o.b_path.empty()) throw io::InputError("--b", "cannot be combined with --scores");
 
   align::AlignConfig config;
@@ -48,7 +49,8 @@ void run(const AlignOptions& o) {
   if (!o.scores_path.empty()) {
     const auto scores = io::read_npy_matrix<float>(o.scores_path);
     if (o.self && !scores.square()) {
-      throw io::InputError(o.scores_path, fmt::format("--self needs a square matrix, got {} x {}", scores.rows, scores.cols));
+      throw io::InputError(o.scores_path,
+                           fmt::format("--self needs a square matrix, got {} x {}", scores.rows, scores.cols));
     }
     config.self = o.self;
     run_engine(align::ScoreSource::dense(scores.values, scores.rows, scores.cols));
@@ -59,9 +61,9 @@ void run(const AlignOptions& o) {
     if (self && a != b) throw io::InputError("--self", "A and B differ; --self needs the same sequence");
     config.self = self;
     const float match = o.match, mismatch = o.mismatch;
-    run_engine(align::ScoreSource::function(a.size(), b.size(), [&a, &b, match, mismatch](std::size_t i, std::size_t j) {
-      return a[i] == b[j] ? match : mismatch;
-    }));
+    run_engine(align::ScoreSource::function(
+        a.size(), b.size(),
+        [&a, &b, match, mismatch](std::size_t i, std::size_t j) { return a[i] == b[j] ? match : mismatch; }));
   }
 
   const std::string text = io::alignments_to_json(alignments).dump(1) + "\n";
@@ -74,32 +76,32 @@ void run(const AlignOptions& o) {
                            alignments.empty() ? "" : fmt::format(", best score {}", alignments.front().score));
 }
 
-const RegisterCommand registered{{
-    "align",
-    "All non-intersecting local alignments of two sequences (FASTA) or of a score matrix (.npy), best first",
-    [](CLI::App& app) {
-      auto o = std::make_shared<AlignOptions>();
-      app.add_option("--a", o->a_path, "FASTA file with sequence A (first record); alone, A is aligned with itself")
-          ->check(CLI::ExistingFile);
-      app.add_option("--b", o->b_path, "FASTA file with sequence B (first record)")->check(CLI::ExistingFile);
-      app.add_option("--scores", o->scores_path, "score matrix S.npy (float32/float64, rows = A, columns = B)")
-          ->check(CLI::ExistingFile);
-      app.add_option("--match", o->match, "score of two equal symbols (FASTA input)")->capture_default_str();
-      app.add_option("--mismatch", o->mismatch, "score of two different symbols (FASTA input)")->capture_default_str();
-      app.add_option("--gap", o->gap, "linear gap penalty: a gap of length L costs L*G")->capture_default_str();
-      app.add_option("--gap-a", o->gap_a, "gap penalty for skipping an element of A (default: --gap)");
-      app.add_option("--gap-b", o->gap_b, "gap penalty for skipping an element of B (default: --gap)");
-      app.add_option("--cap", o->cap, "upper bound on the cumulative score (default: none, classical Smith-Waterman)");
-      app.add_option("--threshold", o->threshold, "minimum alignment score reported (always > 0)")->capture_default_str();
-      app.add_option("--max-alignments", o->max_alignments, "at most this many alignments, best first (0 = all)")
-          ->capture_default_str();
-      app.add_flag("--reverse", o->reverse, "also search reverse alignments (A against B read backwards)");
-      app.add_flag("--self", o->self, "A and B are the same sequence: search one triangle, skip the diagonal band");
-      app.add_option("--min-separation", o->min_separation, "self alignment: pairs (i, j) count only if i - j >= F")
-          ->capture_default_str();
-      app.add_option("--json", o->json_path, "output alignments.json ('-' = standard output)")->capture_default_str();
-      app.callback([o] { run(*o); });
-    }}};
+const RegisterCommand registered{
+    {"align", "All non-intersecting local alignments of two sequences (FASTA) or of a score matrix (.npy), best first",
+     [](CLI::App& app) {
+       auto o = std::make_shared<AlignOptions>();
+       app.add_option("--a", o->a_path, "FASTA file with sequence A (first record); alone, A is aligned with itself")
+           ->check(CLI::ExistingFile);
+       app.add_option("--b", o->b_path, "FASTA file with sequence B (first record)")->check(CLI::ExistingFile);
+       app.add_option("--scores", o->scores_path, "score matrix S.npy (float32/float64, rows = A, columns = B)")
+           ->check(CLI::ExistingFile);
+       app.add_option("--match", o->match, "score of two equal symbols (FASTA input)")->capture_default_str();
+       app.add_option("--mismatch", o->mismatch, "score of two different symbols (FASTA input)")->capture_default_str();
+       app.add_option("--gap", o->gap, "linear gap penalty: a gap of length L costs L*G")->capture_default_str();
+       app.add_option("--gap-a", o->gap_a, "gap penalty for skipping an element of A (default: --gap)");
+       app.add_option("--gap-b", o->gap_b, "gap penalty for skipping an element of B (default: --gap)");
+       app.add_option("--cap", o->cap, "upper bound on the cumulative score (default: none, classical Smith-Waterman)");
+       app.add_option("--threshold", o->threshold, "minimum alignment score reported (always > 0)")
+           ->capture_default_str();
+       app.add_option("--max-alignments", o->max_alignments, "at most this many alignments, best first (0 = all)")
+           ->capture_default_str();
+       app.add_flag("--reverse", o->reverse, "also search reverse alignments (A against B read backwards)");
+       app.add_flag("--self", o->self, "A and B are the same sequence: search one triangle, skip the diagonal band");
+       app.add_option("--min-separation", o->min_separation, "self alignment: pairs (i, j) count only if i - j >= F")
+           ->capture_default_str();
+       app.add_option("--json", o->json_path, "output alignments.json ('-' = standard output)")->capture_default_str();
+       app.callback([o] { run(*o); });
+     }}};
 
 }  // namespace
 }  // namespace seqtopo::cli

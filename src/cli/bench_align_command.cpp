@@ -2,6 +2,7 @@
 // random protein-like sequences (docs/engine.md). One run measures everything on the same input.
 #include <fmt/format.h>
 #include <parasail.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -9,7 +10,6 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <thread>
-#include <time.h>
 
 #include "command_registry.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
@@ -70,13 +70,23 @@ void run(const BenchAlignOptions& o) {
 
   // our score-only fill, one core and all of them
   float best_one = 0, best_all = 0;
-  const double fill_one = seconds([&] { best_one = align::fast_best_score(letters, config, {1.0F, 1, align::Isa::best}); }, repeats);
-  const double fill_all = seconds([&] { best_all = align::fast_best_score(letters, config, {1.0F, threads, align::Isa::best}); }, repeats, true);
+  const double fill_one = seconds(
+      [&] {
+        best_one = align::fast_best_score(letters, config, {1.0F, 1, align::Isa::best});
+      },
+      repeats);
+  const double fill_all = seconds(
+      [&] {
+        best_all = align::fast_best_score(letters, config, {1.0F, threads, align::Isa::best});
+      },
+      repeats, true);
   // our full run: the ten best non-intersecting alignments
   auto top = config;
   top.max_alignments = 10;
   std::vector<align::LocalAlignment> found;
-  const double all_alignments = seconds([&] { found = align::fast_local_alignments(letters, top, {1.0F, 1, align::Isa::best}); });
+  const double all_alignments = seconds([&] {
+    found = align::fast_local_alignments(letters, top, {1.0F, 1, align::Isa::best});
+  });
 
   // the scalar engine, on a smaller square if needed, scaled by cells (its table takes 5 bytes per cell)
   const std::size_t scalar_size = std::min<std::size_t>(o.size, 3000);
@@ -93,15 +103,17 @@ void run(const BenchAlignOptions& o) {
 
   // parasail: score only, and with its traceback table (one alignment)
   int parasail_score = 0, parasail_trace_score = 0;
-  const double scan = seconds([&] {
-    parasail_result_t* r = parasail_sw_scan_16(a_text.data(), static_cast<int>(o.size), b_text.data(),
-                                                static_cast<int>(o.size), kGap, kGap, pmatrix);
-    parasail_score = parasail_result_get_score(r);
-    parasail_result_free(r);
-  }, repeats);
+  const double scan = seconds(
+      [&] {
+        parasail_result_t* r = parasail_sw_scan_16(a_text.data(), static_cast<int>(o.size), b_text.data(),
+                                                   static_cast<int>(o.size), kGap, kGap, pmatrix);
+        parasail_score = parasail_result_get_score(r);
+        parasail_result_free(r);
+      },
+      repeats);
   const double trace = seconds([&] {
     parasail_result_t* r = parasail_sw_trace_scan_16(a_text.data(), static_cast<int>(o.size), b_text.data(),
-                                                      static_cast<int>(o.size), kGap, kGap, pmatrix);
+                                                     static_cast<int>(o.size), kGap, kGap, pmatrix);
     parasail_trace_score = parasail_result_get_score(r);
     parasail_result_free(r);
   });
@@ -154,17 +166,16 @@ void run(const BenchAlignOptions& o) {
                            j["scores_agree"].get<bool>() ? "yes" : "NO");
 }
 
-const RegisterBenchCommand registered{{
-    "align",
-    "Speed of the fast alignment engine against the scalar engine and parasail on random sequences",
-    [](CLI::App& app) {
-      auto o = std::make_shared<BenchAlignOptions>();
-      app.add_option("--size", o->size, "Length of each sequence")->capture_default_str();
-      app.add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
-      app.add_option("--seed", o->seed, "Seed of the random sequences and matrix")->capture_default_str();
-      app.add_flag("--json", o->json, "Print one JSON object instead of a table");
-      app.callback([o] { run(*o); });
-    }}};
+const RegisterBenchCommand registered{
+    {"align", "Speed of the fast alignment engine against the scalar engine and parasail on random sequences",
+     [](CLI::App& app) {
+       auto o = std::make_shared<BenchAlignOptions>();
+       app.add_option("--size", o->size, "Length of each sequence")->capture_default_str();
+       app.add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
+       app.add_option("--seed", o->seed, "Seed of the random sequences and matrix")->capture_default_str();
+       app.add_flag("--json", o->json, "Print one JSON object instead of a table");
+       app.callback([o] { run(*o); });
+     }}};
 
 }  // namespace
 }  // namespace seqtopo::cli

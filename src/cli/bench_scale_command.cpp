@@ -3,29 +3,29 @@
 // neighbour candidates), with the fitted scaling exponent of each.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <condition_variable>
-#include <mutex>
-#include <numeric>
-#include <thread>
 #include <cmath>
+#include <condition_variable>
 #include <fstream>
 #include <iostream>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <random>
-#include <sys/resource.h>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "command_registry.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/io/atomic_output.hpp"
-#include "seqtopo/io/npy.hpp"
 #include "seqtopo/io/input_error.hpp"
+#include "seqtopo/io/npy.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/scale/sparse_alignment.hpp"
 #include "seqtopo/scale/sparse_candidates.hpp"
@@ -138,7 +138,8 @@ struct Row {
   std::size_t candidate_pairs = 0;
   std::size_t active_cells = 0;
   std::size_t cells_computed = 0;
-  std::array<double, 3> candidate_split{};  // sparse: wall seconds of index, search, exact scores  // dense: similarity cells computed during the alignment (tiles, with recomputation)
+  std::array<double, 3> candidate_split{};  // sparse: wall seconds of index, search, exact scores  // dense: similarity
+                                            // cells computed during the alignment (tiles, with recomputation)
   double total_seconds() const {
     double s = 0;
     for (const auto& st : stages) s += st.seconds;
@@ -187,9 +188,8 @@ align::AlignConfig map_align_config() { return mapping::align_config(mapping::Ma
 Row run_dense(std::size_t n, const Options& opt) {
   Row row{"dense", n, {}, 0, 0, 0, 0, 0};
   const Route route = timed(row, "descriptors", [&] { return synthetic_route(n, opt.dim, 7); });
-  const auto sim = timed(row, "normalise", [&] {
-    return std::make_unique<scale::StreamingSimilarity>(route.descriptors, n, opt.dim);
-  });
+  const auto sim = timed(row, "normalise",
+                         [&] { return std::make_unique<scale::StreamingSimilarity>(route.descriptors, n, opt.dim); });
   if (opt.similarity_pass) {
     // Every score of the lower triangle the self alignment reads, once, discarded. The threads take
     // alternate rows, so they share the tiles of one band.
@@ -255,14 +255,14 @@ Row run_dense(std::size_t n, const Options& opt) {
 Row run_sparse(std::size_t n, const Options& opt) {
   Row row{"sparse", n, {}, 0, 0, 0, 0, 0};
   const Route route = timed(row, "descriptors", [&] { return synthetic_route(n, opt.dim, 7); });
-  const auto sim = timed(row, "normalise", [&] {
-    return std::make_unique<scale::StreamingSimilarity>(route.descriptors, n, opt.dim);
-  });
+  const auto sim = timed(row, "normalise",
+                         [&] { return std::make_unique<scale::StreamingSimilarity>(route.descriptors, n, opt.dim); });
   scale::CandidateConfig cc;
   cc.neighbours = opt.neighbours;
   cc.exclude = 10;
   scale::CandidateStats cstats;
-  const auto scores = timed(row, "candidates", [&] { return scale::sparse_map_scores(*sim, opt.background, cc, &cstats); });
+  const auto scores =
+      timed(row, "candidates", [&] { return scale::sparse_map_scores(*sim, opt.background, cc, &cstats); });
   scale::SparseAlignStats astats;
   const auto alignments = timed(row, "alignment", [&] {
     return scale::sparse_local_alignments_both(scores, map_align_config(), opt.threads, &astats);
@@ -314,13 +314,14 @@ void run(const Options& opt) {
     rows.push_back(run_sparse(n, opt));
     if (!opt.json) {
       const auto& r = rows.back();
-      std::cerr << fmt::format("sparse N={}: {:.1f} s (candidates: index {:.1f} s, search {:.1f} s, scores {:.1f} s; {} pairs)\n",
-                               n, r.total_seconds(), r.candidate_split[0], r.candidate_split[1], r.candidate_split[2],
-                               r.candidate_pairs);
+      std::cerr << fmt::format(
+          "sparse N={}: {:.1f} s (candidates: index {:.1f} s, search {:.1f} s, scores {:.1f} s; {} pairs)\n", n,
+          r.total_seconds(), r.candidate_split[0], r.candidate_split[1], r.candidate_split[2], r.candidate_pairs);
     }
   }
   const double dense_exp = scaling_exponent(rows, "dense", false), sparse_exp = scaling_exponent(rows, "sparse", false);
-  const double dense_cpu_exp = scaling_exponent(rows, "dense", true), sparse_cpu_exp = scaling_exponent(rows, "sparse", true);
+  const double dense_cpu_exp = scaling_exponent(rows, "dense", true),
+               sparse_cpu_exp = scaling_exponent(rows, "sparse", true);
   auto number = [](double v) { return std::isnan(v) ? nlohmann::json() : nlohmann::json(v); };
   {
     nlohmann::json out;
@@ -332,7 +333,9 @@ void run(const Options& opt) {
       nlohmann::json j;
       j["mode"] = r.mode;
       j["n"] = r.n;
-      for (const auto& st : r.stages) j["stages"][st.name] = {{"seconds", st.seconds}, {"cpu_seconds", st.cpu_seconds}, {"peak_bytes", st.peak_bytes}};
+      for (const auto& st : r.stages)
+        j["stages"][st.name] = {
+            {"seconds", st.seconds}, {"cpu_seconds", st.cpu_seconds}, {"peak_bytes", st.peak_bytes}};
       j["total_seconds"] = r.total_seconds();
       j["total_cpu_seconds"] = r.total_cpu_seconds();
       j["peak_bytes"] = r.peak_bytes();
@@ -341,8 +344,8 @@ void run(const Options& opt) {
       if (r.mode == "dense") j["similarity_cells_during_alignment"] = r.cells_computed;
       if (r.mode == "sparse") {
         j["candidate_pairs"] = r.candidate_pairs;
-        j["candidate_seconds"] = {{"index", r.candidate_split[0]}, {"search", r.candidate_split[1]},
-                                  {"scores", r.candidate_split[2]}};
+        j["candidate_seconds"] = {
+            {"index", r.candidate_split[0]}, {"search", r.candidate_split[1]}, {"scores", r.candidate_split[2]}};
         j["active_cells"] = r.active_cells;
       }
       out["runs"].push_back(j);
@@ -355,7 +358,8 @@ void run(const Options& opt) {
       return;
     }
   }
-  std::cout << "| mode | N | stage: wall s / CPU s (peak MB) | total wall s | total CPU s | peak MB | alignments | revisit recall |\n";
+  std::cout << "| mode | N | stage: wall s / CPU s (peak MB) | total wall s | total CPU s | peak MB | alignments | "
+               "revisit recall |\n";
   std::cout << "|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     std::string stages;
@@ -424,7 +428,8 @@ void setup(CLI::App& app) {
 }
 
 const RegisterBenchCommand registered{
-    {"scale", "Time and peak memory per stage at N = 10^3 .. 10^6 frames: dense streamed and sparse similarity", setup}};
+    {"scale", "Time and peak memory per stage at N = 10^3 .. 10^6 frames: dense streamed and sparse similarity",
+     setup}};
 
 }  // namespace
 }  // namespace seqtopo::cli

@@ -2,8 +2,8 @@
 // Subcommands register themselves here (one source file each under src/cli/), so adding a command
 // touches only its own file.
 #include <CLI/CLI.hpp>
-#include <stdexcept>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 

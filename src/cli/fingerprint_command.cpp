@@ -89,7 +89,8 @@ void run(const FingerprintOptions& o) {
     }
     records.push_back(std::move(r));
   }
-  if (records.empty()) throw io::InputError("IMAGES", o.role.empty() ? "no image" : "no image with role '" + o.role + "'");
+  if (records.empty())
+    throw io::InputError("IMAGES", o.role.empty() ? "no image" : "no image with role '" + o.role + "'");
   const std::string text = strings::format_strings_tsv(
       records, "id<TAB>fingerprint ('v' vertical edge, 'A'..'P' colour patch)[<TAB>x<TAB>y<TAB>place]");
   if (o.out_path == "-") {
@@ -100,29 +101,32 @@ void run(const FingerprintOptions& o) {
   std::cerr << fmt::format("seqtopo fingerprint: {} panorama(s)\n", records.size());
 }
 
-const RegisterCommand registered{{
-    "fingerprint",
-    "Panoramic images -> fingerprint strings: 'v' = vertical edge, 'A'..'P' = colour patch, in angular order",
-    [](CLI::App& app) {
-      auto o = std::make_shared<FingerprintOptions>();
-      app.add_option("IMAGES", o->inputs, "panoramas (360 degrees across the width): files or folders (natural order)")
-          ->required();
-      app.add_option("--out", o->out_path, "output strings file F.tsv ('-' = standard output)")->capture_default_str();
-      app.add_option("--positions", o->positions_path, "CSV id,role,x,y,place (e.g. the simulator's points.csv): adds x, y, place")
-          ->check(CLI::ExistingFile);
-      app.add_option("--role", o->role, "keep only the images of this role in --positions (map or test)");
-      auto& c = o->config;
-      app.add_option("--edge-step", c.edge_step, "vertical edge: brightness step [grey levels]")->capture_default_str();
-      app.add_option("--edge-fraction", c.edge_min_fraction, "vertical edge: fraction of band rows with the step")
-          ->capture_default_str();
-      app.add_option("--min-patch-width", c.min_patch_width, "colour patch: minimum width [columns]")->capture_default_str();
-      app.add_option("--saturation-min", c.saturation_min, "colour classes: below this saturation a pixel is grey")
-          ->capture_default_str();
-      app.add_option("--brightness-percentile", c.brightness_percentile,
-                     "colour classes: scale brightness so this percentile of the band reaches a fixed level (0 = off)")
-          ->capture_default_str();
-      app.callback([o] { run(*o); });
-    }}};
+const RegisterCommand registered{
+    {"fingerprint",
+     "Panoramic images -> fingerprint strings: 'v' = vertical edge, 'A'..'P' = colour patch, in angular order",
+     [](CLI::App& app) {
+       auto o = std::make_shared<FingerprintOptions>();
+       app.add_option("IMAGES", o->inputs, "panoramas (360 degrees across the width): files or folders (natural order)")
+           ->required();
+       app.add_option("--out", o->out_path, "output strings file F.tsv ('-' = standard output)")->capture_default_str();
+       app.add_option("--positions", o->positions_path,
+                      "CSV id,role,x,y,place (e.g. the simulator's points.csv): adds x, y, place")
+           ->check(CLI::ExistingFile);
+       app.add_option("--role", o->role, "keep only the images of this role in --positions (map or test)");
+       auto& c = o->config;
+       app.add_option("--edge-step", c.edge_step, "vertical edge: brightness step [grey levels]")
+           ->capture_default_str();
+       app.add_option("--edge-fraction", c.edge_min_fraction, "vertical edge: fraction of band rows with the step")
+           ->capture_default_str();
+       app.add_option("--min-patch-width", c.min_patch_width, "colour patch: minimum width [columns]")
+           ->capture_default_str();
+       app.add_option("--saturation-min", c.saturation_min, "colour classes: below this saturation a pixel is grey")
+           ->capture_default_str();
+       app.add_option("--brightness-percentile", c.brightness_percentile,
+                      "colour classes: scale brightness so this percentile of the band reaches a fixed level (0 = off)")
+           ->capture_default_str();
+       app.callback([o] { run(*o); });
+     }}};
 
 }  // namespace
 }  // namespace seqtopo::cli

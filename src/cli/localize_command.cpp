@@ -73,7 +73,8 @@ image::SimilarityConfig similarity_config(const LocalizeOptions& o) {
     c.kappa = option_value("--kappa", [&] {
       std::size_t used = 0;
       const float k = std::stof(o.kappa, &used);
-      if (used != o.kappa.size() || !(k > 0) || !std::isfinite(k)) throw std::invalid_argument("expected a number > 0 or auto");
+      if (used != o.kappa.size() || !(k > 0) || !std::isfinite(k))
+        throw std::invalid_argument("expected a number > 0 or auto");
       return k;
     });
   }
@@ -115,7 +116,8 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o) {
     const std::string what = e.what();
     const char* option = "--threshold";
     for (const char* name : {"gap", "cap", "offset"}) {
-      if (what.rfind(name, 0) == 0) option = name == std::string("gap") ? "--gap" : name == std::string("cap") ? "--cap" : "--offset";
+      if (what.rfind(name, 0) == 0)
+        option = name == std::string("gap") ? "--gap" : name == std::string("cap") ? "--cap" : "--offset";
     }
     throw io::InputError(option, what);
   }
@@ -172,8 +174,10 @@ struct Describer {
 
 double frame_distance(similarity::Metric metric, const FrameDescriptor& a, const FrameDescriptor& b) {
   if (a.index() != b.index()) throw std::invalid_argument("both sequences must have the same kind of descriptor");
-  if (const auto* x = std::get_if<std::vector<float>>(&a)) return similarity::distance(metric, *x, std::get<std::vector<float>>(b));
-  return similarity::distance(metric, std::get<similarity::SparseHistogram>(a), std::get<similarity::SparseHistogram>(b));
+  if (const auto* x = std::get_if<std::vector<float>>(&a))
+    return similarity::distance(metric, *x, std::get<std::vector<float>>(b));
+  return similarity::distance(metric, std::get<similarity::SparseHistogram>(a),
+                              std::get<similarity::SparseHistogram>(b));
 }
 
 // Calls visit(descriptor) for every frame of a sequence, in order, reading it lazily (a query folder is
@@ -202,7 +206,8 @@ void for_each_frame(const std::string& path, image::InputKind kind, std::size_t 
       for (std::size_t i = 0; i < rows.rows; ++i) visit(std::vector<float>(rows.row(i).begin(), rows.row(i).end()));
       return;
     }
-    default: break;
+    default:
+      break;
   }
   throw io::InputError(path, "expected an image folder, a video or descriptors.npy");
 }
@@ -283,11 +288,19 @@ std::vector<evaluation::LocalizationPrediction> predictions(const std::vector<An
 
 nlohmann::json metrics_json(const evaluation::LocalizationMetrics& m) {
   nlohmann::json curve = nlohmann::json::array();
-  for (const auto& p : m.curve) curve.push_back({{"threshold", p.threshold}, {"precision", p.precision}, {"recall", p.recall}});
-  return {{"recall_at_1", m.recall_at_1}, {"recall_at_5", m.recall_at_5}, {"precision", m.precision},
-          {"recall", m.recall}, {"auc", m.auc}, {"recall_at_100_precision", m.recall_at_100_precision},
-          {"queries", m.queries}, {"queries_with_match", m.queries_with_match}, {"predicted", m.predicted},
-          {"correct", m.correct}, {"pr_curve", curve}};
+  for (const auto& p : m.curve)
+    curve.push_back({{"threshold", p.threshold}, {"precision", p.precision}, {"recall", p.recall}});
+  return {{"recall_at_1", m.recall_at_1},
+          {"recall_at_5", m.recall_at_5},
+          {"precision", m.precision},
+          {"recall", m.recall},
+          {"auc", m.auc},
+          {"recall_at_100_precision", m.recall_at_100_precision},
+          {"queries", m.queries},
+          {"queries_with_match", m.queries_with_match},
+          {"predicted", m.predicted},
+          {"correct", m.correct},
+          {"pr_curve", curve}};
 }
 
 std::string read_file(const fs::path& path) {
@@ -366,9 +379,10 @@ void run(const LocalizeOptions& o) {
   std::vector<plot::Polyline> lines;
   for (const auto& a : r.alignments) {
     plot::Polyline line;
-    for (const auto& [i, j] : a.pairs) line.points.emplace_back(static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5);
+    for (const auto& [i, j] : a.pairs)
+      line.points.emplace_back(static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5);
     line.rgb = a.direction == align::Direction::forward ? std::array<std::uint8_t, 3>{230, 30, 30}
-                                                         : std::array<std::uint8_t, 3>{30, 200, 60};
+                                                        : std::array<std::uint8_t, 3>{30, 200, 60};
     line.thickness = 2;
     lines.push_back(std::move(line));
   }
@@ -408,12 +422,15 @@ void run(const LocalizeOptions& o) {
 
     std::vector<plot::Curve> curves(3);
     const std::pair<const char*, const evaluation::LocalizationMetrics*> named[3] = {
-        {o.online ? "seqtopo online" : "seqtopo alignment", &*metrics}, {"SeqSLAM (len 30)", &*seqslam}, {"single frame", &*single}};
+        {o.online ? "seqtopo online" : "seqtopo alignment", &*metrics},
+        {"SeqSLAM (len 30)", &*seqslam},
+        {"single frame", &*single}};
     const std::array<std::uint8_t, 3> colours[3] = {{220, 30, 30}, {40, 90, 220}, {120, 120, 120}};
     for (int k = 0; k < 3; ++k) {
       curves[static_cast<std::size_t>(k)].label = named[k].first;
       curves[static_cast<std::size_t>(k)].rgb = colours[k];
-      for (const auto& p : named[k].second->curve) curves[static_cast<std::size_t>(k)].recall_precision.emplace_back(p.recall, p.precision);
+      for (const auto& p : named[k].second->curve)
+        curves[static_cast<std::size_t>(k)].recall_precision.emplace_back(p.recall, p.precision);
     }
     out.write("pr_curve.png", plot::encode_png(plot::pr_curve_image(curves)));
   }
@@ -421,7 +438,9 @@ void run(const LocalizeOptions& o) {
   std::vector<double> sorted = r.latencies;
   std::sort(sorted.begin(), sorted.end());
   auto percentile = [&](double p) {
-    return sorted.empty() ? 0.0 : sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(p * static_cast<double>(sorted.size())))];
+    return sorted.empty()
+               ? 0.0
+               : sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(p * static_cast<double>(sorted.size())))];
   };
   if (o.online) {
     std::string lat = "query,latency_ms\n";
@@ -448,14 +467,19 @@ void run(const LocalizeOptions& o) {
   if (metrics) {
     html.heading(fmt::format("Localization accuracy (tolerance +-{} frames)", o.tolerance));
     auto row = [](const std::string& name, const evaluation::LocalizationMetrics& m) {
-      return std::vector<std::string>{name, fmt::format("{:.3f}", m.recall_at_1), fmt::format("{:.3f}", m.recall_at_5),
-                                      fmt::format("{:.3f}", m.auc), fmt::format("{:.3f}", m.recall_at_100_precision),
-                                      fmt::format("{:.3f}", m.precision), fmt::format("{:.3f}", m.recall)};
+      return std::vector<std::string>{name,
+                                      fmt::format("{:.3f}", m.recall_at_1),
+                                      fmt::format("{:.3f}", m.recall_at_5),
+                                      fmt::format("{:.3f}", m.auc),
+                                      fmt::format("{:.3f}", m.recall_at_100_precision),
+                                      fmt::format("{:.3f}", m.precision),
+                                      fmt::format("{:.3f}", m.recall)};
     };
     html.table({"method", "recall@1", "recall@5", "AUC", "R@100P", "precision", "recall"},
                {row(o.online ? "seqtopo online" : "seqtopo alignment", *metrics),
                 row("SeqSLAM-style (len 30, v 0.9-1.6)", *seqslam), row("single frame", *single)});
-    html.png("Precision-recall, sweeping the per-frame score threshold", read_file(out.staged("pr_curve.png")), "pr_curve.png");
+    html.png("Precision-recall, sweeping the per-frame score threshold", read_file(out.staged("pr_curve.png")),
+             "pr_curve.png");
   }
   html.heading("Similarity matrix");
   html.png(o.online ? "Query (rows) x map (columns) similarity"
@@ -482,8 +506,8 @@ void run(const LocalizeOptions& o) {
   std::string line = fmt::format("seqtopo localize: {} query frames in {} map frames, {} not in the map, {:.2f} s",
                                  r.queries, r.maps, not_in_map, total);
   if (metrics) {
-    line += fmt::format("; recall@1 {:.3f}, AUC {:.3f}, R@100P {:.3f} (+-{} frames)", metrics->recall_at_1, metrics->auc,
-                        metrics->recall_at_100_precision, o.tolerance);
+    line += fmt::format("; recall@1 {:.3f}, AUC {:.3f}, R@100P {:.3f} (+-{} frames)", metrics->recall_at_1,
+                        metrics->auc, metrics->recall_at_100_precision, o.tolerance);
   }
   if (o.online) {
     line += fmt::format("; latency per frame median {:.3f} ms, max {:.3f} ms", 1e3 * percentile(0.5),
@@ -492,39 +516,47 @@ void run(const LocalizeOptions& o) {
   std::cerr << line << " -> " << (out.dir() / "matches.csv").string() << "\n";
 }
 
-const RegisterCommand registered{{
-    "localize",
-    "Localize a query traverse in a mapped one by aligning image sequences (offline, or --online frame by frame)",
-    [](CLI::App& app) {
-      auto o = std::make_shared<LocalizeOptions>();
-      app.add_option("--map", o->map_path,
-                     "mapped traverse: image folder, video, descriptors.npy, or a query x map similarity.npy "
-                     "(rows = query frames, columns = map frames; then --query is not needed)");
-      app.add_option("--query", o->query_path,
-                     "query traverse of the same kind ('-' with --online: image paths on standard input, one per line)");
-      app.add_option("--out", o->out_dir, "output folder")->capture_default_str();
-      app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
-      app.add_option("--every", o->every, "video: keep every K-th frame")->capture_default_str();
-      app.add_option("--descriptor", o->descriptor, "patch|joint-histogram|panorama|npy (descriptors.npy inputs use their rows)")
-          ->capture_default_str();
-      app.add_option("--metric", o->metric, "chi2|l1|cosine|sad (default: by descriptor)");
-      app.add_option("--kappa", o->kappa, "K > 0 in S = 1 - K * D, or auto (rows are contrast-enhanced, so it rarely matters)");
-      app.add_option("--gap", o->gap, "gap penalty per skipped frame [score units = standard deviations]")->capture_default_str();
-      app.add_option("--cap", o->cap, "upper bound on the cumulative score (default: none)");
-      app.add_option("--threshold", o->threshold, "minimum alignment score (online: minimum confidence)")->capture_default_str();
-      app.add_option("--offset", o->offset, "subtracted from the contrast-enhanced similarity [standard deviations]")
-          ->capture_default_str();
-      app.add_option("--window", o->window, "contrast enhancement: +-W map frames (0 = whole row)")->capture_default_str();
-      app.add_option("--score-window", o->score_window, "per-frame score: +-W query frames of the alignment")
-          ->capture_default_str();
-      app.add_flag("--no-reverse", o->no_reverse, "do not search the map driven backwards");
-      app.add_option("--gt", o->gt, "ground truth: same-index (query k is map k) or a CSV file of query,map pairs; "
-                     "also scores the single-frame and SeqSLAM baselines on the same matrix");
-      app.add_option("--tolerance", o->tolerance, "a match within +-T map frames of the truth is correct")->capture_default_str();
-      app.add_flag("--online", o->online, "take query frames one at a time; print the best map frame after each");
-      app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
-      app.callback([o] { run(*o); });
-    }}};
+const RegisterCommand registered{
+    {"localize",
+     "Localize a query traverse in a mapped one by aligning image sequences (offline, or --online frame by frame)",
+     [](CLI::App& app) {
+       auto o = std::make_shared<LocalizeOptions>();
+       app.add_option("--map", o->map_path,
+                      "mapped traverse: image folder, video, descriptors.npy, or a query x map similarity.npy "
+                      "(rows = query frames, columns = map frames; then --query is not needed)");
+       app.add_option(
+           "--query", o->query_path,
+           "query traverse of the same kind ('-' with --online: image paths on standard input, one per line)");
+       app.add_option("--out", o->out_dir, "output folder")->capture_default_str();
+       app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
+       app.add_option("--every", o->every, "video: keep every K-th frame")->capture_default_str();
+       app.add_option("--descriptor", o->descriptor,
+                      "patch|joint-histogram|panorama|npy (descriptors.npy inputs use their rows)")
+           ->capture_default_str();
+       app.add_option("--metric", o->metric, "chi2|l1|cosine|sad (default: by descriptor)");
+       app.add_option("--kappa", o->kappa,
+                      "K > 0 in S = 1 - K * D, or auto (rows are contrast-enhanced, so it rarely matters)");
+       app.add_option("--gap", o->gap, "gap penalty per skipped frame [score units = standard deviations]")
+           ->capture_default_str();
+       app.add_option("--cap", o->cap, "upper bound on the cumulative score (default: none)");
+       app.add_option("--threshold", o->threshold, "minimum alignment score (online: minimum confidence)")
+           ->capture_default_str();
+       app.add_option("--offset", o->offset, "subtracted from the contrast-enhanced similarity [standard deviations]")
+           ->capture_default_str();
+       app.add_option("--window", o->window, "contrast enhancement: +-W map frames (0 = whole row)")
+           ->capture_default_str();
+       app.add_option("--score-window", o->score_window, "per-frame score: +-W query frames of the alignment")
+           ->capture_default_str();
+       app.add_flag("--no-reverse", o->no_reverse, "do not search the map driven backwards");
+       app.add_option("--gt", o->gt,
+                      "ground truth: same-index (query k is map k) or a CSV file of query,map pairs; "
+                      "also scores the single-frame and SeqSLAM baselines on the same matrix");
+       app.add_option("--tolerance", o->tolerance, "a match within +-T map frames of the truth is correct")
+           ->capture_default_str();
+       app.add_flag("--online", o->online, "take query frames one at a time; print the best map frame after each");
+       app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
+       app.callback([o] { run(*o); });
+     }}};
 
 }  // namespace
 }  // namespace seqtopo::cli

@@ -56,7 +56,8 @@ std::vector<std::string> expand_config(const std::vector<std::string>& args) {
       if (line.empty() || line == "---") continue;
       const auto colon = line.find(':');
       if (colon == std::string::npos) {
-        throw seqtopo::io::InputError(path + ":" + std::to_string(line_no), "expected `name: value`, got '" + line + "'");
+        throw seqtopo::io::InputError(path + ":" + std::to_string(line_no),
+                                      "expected `name: value`, got '" + line + "'");
       }
       const std::string name = trim(line.substr(0, colon));
       std::string value = trim(line.substr(colon + 1));

@@ -14,13 +14,13 @@
 #include "map_outputs.hpp"
 #include "seqtopo/baseline/seqslam.hpp"
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
+#include "seqtopo/evaluation/topology_metrics.hpp"
 #include "seqtopo/image/grey_matrix_file.hpp"
 #include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/io/odometry_csv.hpp"
 #include "seqtopo/io/places_csv.hpp"
-#include "seqtopo/evaluation/topology_metrics.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/metric/ekf_map.hpp"
 #include "seqtopo/metric/pose_graph.hpp"
@@ -67,7 +67,7 @@ Settings resolve_settings(const MapOptions& o) {
     s.descriptors = {image::Descriptor::joint_histogram};
     s.similarity.metric = image::Metric::chi2;
     s.paper_metric = true;
-    s.map.contrast_window = 0;  // the paper aligns S = 1 - kappa D as it is
+    s.map.contrast_window = 0;                                             // the paper aligns S = 1 - kappa D as it is
     s.map.pruning.rank = mapping::PruningConfig::Rank::length_then_score;  // "the longest matching subsequence"
     // Raw S lives on another scale than enhanced scores; these were tuned on the corridor with kappa
     // auto (bench/tune_map.cpp): F1 0.872, AUC 0.773.
@@ -86,7 +86,8 @@ Settings resolve_settings(const MapOptions& o) {
       return list;
     });
   }
-  if (o.metric_name) s.similarity.metric = option_value("--metric", [&] { return similarity::parse_metric(*o.metric_name); });
+  if (o.metric_name)
+    s.similarity.metric = option_value("--metric", [&] { return similarity::parse_metric(*o.metric_name); });
   if (o.kappa && *o.kappa != "auto") {
     try {
       s.similarity.kappa = std::stof(*o.kappa);
@@ -129,9 +130,11 @@ Settings resolve_settings(const MapOptions& o) {
       mapping::OdometryGate gate;
       char comma = 0;
       std::istringstream in(*o.odometry_gate);
-      if (!(in >> gate.base >> comma >> gate.drift) || comma != ',' || !in.eof() || !(gate.base >= 0) || !(gate.drift >= 0)) {
-        throw std::invalid_argument("expected BASE,DRIFT (metres, metres per metre travelled, both >= 0) or none, got '" +
-                                    *o.odometry_gate + "'");
+      if (!(in >> gate.base >> comma >> gate.drift) || comma != ',' || !in.eof() || !(gate.base >= 0) ||
+          !(gate.drift >= 0)) {
+        throw std::invalid_argument(
+            "expected BASE,DRIFT (metres, metres per metre travelled, both >= 0) or none, got '" + *o.odometry_gate +
+            "'");
       }
       return gate;
     });
@@ -156,7 +159,8 @@ void progress(const std::string& text) { std::cerr << "seqtopo map: " << text <<
 // The same-place relation of the ground truth, from an N x N image or from poses and a radius.
 evaluation::SamePlace load_ground_truth(const MapOptions& o, const std::string& path, std::size_t images) {
   if (fs::path(path).extension() == ".csv") {
-    if (!o.gt_radius || !(*o.gt_radius > 0)) throw io::InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
+    if (!o.gt_radius || !(*o.gt_radius > 0))
+      throw io::InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
     const auto poses = io::read_poses_csv(path);
     if (poses.size() != images) {
       throw io::InputError(path, fmt::format("has {} poses, the sequence has {} images", poses.size(), images));
@@ -187,39 +191,46 @@ void report_map(MapRun& run) {
 // fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
 void check_streaming(const MapOptions& o, const Settings& s, image::InputKind kind) {
   if (o.preset == "paper") {
-    throw io::InputError("--preset", "paper aligns the raw S = 1 - kappa D, whose kappa needs the whole distance matrix; "
-                                     "--streaming never holds it (use the default preset)");
+    throw io::InputError("--preset",
+                         "paper aligns the raw S = 1 - kappa D, whose kappa needs the whole distance matrix; "
+                         "--streaming never holds it (use the default preset)");
   }
   if (s.map.engine != mapping::MapConfig::Engine::fast) {
     throw io::InputError("--engine", "exact fills an N x N table; --streaming needs the fast engine (its default)");
   }
   if (kind == image::InputKind::similarity) {
-    throw io::InputError("--streaming", "needs descriptors (descriptors.npy, or images with one vector descriptor), "
-                                        "not a similarity matrix");
+    throw io::InputError("--streaming",
+                         "needs descriptors (descriptors.npy, or images with one vector descriptor), "
+                         "not a similarity matrix");
   }
   if (s.map.contrast_window == 0) {
-    throw io::InputError("--contrast-window", "0 aligns the raw S = 1 - kappa D, whose kappa needs the whole distance "
-                                              "matrix; --streaming aligns contrast-enhanced scores (window >= 1)");
+    throw io::InputError("--contrast-window",
+                         "0 aligns the raw S = 1 - kappa D, whose kappa needs the whole distance "
+                         "matrix; --streaming aligns contrast-enhanced scores (window >= 1)");
   }
-  if (o.kappa) throw io::InputError("--kappa", "has no effect with --streaming: the contrast enhancement removes kappa");
+  if (o.kappa)
+    throw io::InputError("--kappa", "has no effect with --streaming: the contrast enhancement removes kappa");
   if (o.metric_name && s.similarity.metric != image::Metric::cosine) {
     throw io::InputError("--metric", "--streaming scores by cosine similarity only, got '" + *o.metric_name + "'");
   }
   if (o.descriptor && s.descriptors.size() != 1) {
     throw io::InputError("--descriptor", fmt::format("--streaming takes one descriptor, got {} (fusing needs one N x N "
-                                                     "matrix per descriptor)", s.descriptors.size()));
+                                                     "matrix per descriptor)",
+                                                     s.descriptors.size()));
   }
   if (kind != image::InputKind::descriptors) {  // images or a video: the descriptor is computed
     if (!o.descriptor) {
-      throw io::InputError("--descriptor", "--streaming needs one vector descriptor for images (patch or panorama, with "
-                                           "--metric cosine); the default fuses joint-histogram and patch");
+      throw io::InputError("--descriptor",
+                           "--streaming needs one vector descriptor for images (patch or panorama, with "
+                           "--metric cosine); the default fuses joint-histogram and patch");
     }
     if (s.descriptors.front() == image::Descriptor::npy) {
       throw io::InputError("--descriptor", "npy needs a descriptors.npy input");
     }
     if (s.descriptors.front() == image::Descriptor::joint_histogram) {
-      throw io::InputError("--descriptor", "joint-histogram is a sparse histogram without a vector form; --streaming "
-                                           "needs patch or panorama (with --metric cosine)");
+      throw io::InputError("--descriptor",
+                           "joint-histogram is a sparse histogram without a vector form; --streaming "
+                           "needs patch or panorama (with --metric cosine)");
     }
     if (!o.metric_name) {
       throw io::InputError("--metric", "--streaming scores by cosine similarity: give --metric cosine (" +
@@ -229,10 +240,12 @@ void check_streaming(const MapOptions& o, const Settings& s, image::InputKind ki
   }
   if (!o.ground_truth.empty()) {
     if (fs::path(o.ground_truth).extension() != ".csv") {
-      throw io::InputError("--ground-truth", "an N x N image (N^2 bytes, 10 GB at 10^5 images) is refused with "
-                                             "--streaming; give poses.csv with --gt-radius");
+      throw io::InputError("--ground-truth",
+                           "an N x N image (N^2 bytes, 10 GB at 10^5 images) is refused with "
+                           "--streaming; give poses.csv with --gt-radius");
     }
-    if (!o.gt_radius || !(*o.gt_radius > 0)) throw io::InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
+    if (!o.gt_radius || !(*o.gt_radius > 0))
+      throw io::InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
   }
 }
 
@@ -293,7 +306,7 @@ void map_dense(const MapOptions& o, const Settings& settings, const image::Seque
     auto config = settings.similarity;
     config.descriptor = descriptor;
     run.similarities.push_back(image::compute_similarity(input, config));
-    run.descriptor_names.emplace_back(kind == image::InputKind::similarity ? "similarity.npy"
+    run.descriptor_names.emplace_back(kind == image::InputKind::similarity    ? "similarity.npy"
                                       : kind == image::InputKind::descriptors ? "descriptors.npy"
                                                                               : image::descriptor_name(descriptor));
     matrices.push_back(std::move(run.similarities.back().similarity));  // kept once, in run.matrices
@@ -346,7 +359,8 @@ void run(MapOptions o) {
   if (!o.odometry.empty()) {
     run.odometry = io::read_odometry_csv(o.odometry);
     if (expected && run.odometry.size() != *expected) {
-      throw io::InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), *expected));
+      throw io::InputError(o.odometry,
+                           fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), *expected));
     }
   }
   run.preset = o.preset;
@@ -381,7 +395,8 @@ void run(MapOptions o) {
     std::vector<evaluation::ScoredPair> pairs;
     for (const auto& p : run.result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
     run.metrics = evaluation::evaluate_loop_closures(pairs, n, same_place, settings.map.min_separation);
-    if (o.streaming) run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
+    if (o.streaming)
+      run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
     // With --streaming no matrix was kept, so the list below is empty and the baseline does not run.
 
     // The baseline runs on every matrix seqtopo saw (each descriptor's S and the fused, enhanced
@@ -421,25 +436,30 @@ void run(MapOptions o) {
       metrics.recall = at_threshold.recall;
       metrics.f1 = at_threshold.f1;
       run.baseline_metrics = metrics;
-      run.baseline_name = fmt::format("SeqSLAM-style on {} (sequence {}, velocities {}-{}, best-F1 threshold {:.3g})", name,
-                                      seqslam.sequence_length, seqslam.min_velocity, seqslam.max_velocity, best_threshold);
+      run.baseline_name =
+          fmt::format("SeqSLAM-style on {} (sequence {}, velocities {}-{}, best-F1 threshold {:.3g})", name,
+                      seqslam.sequence_length, seqslam.min_velocity, seqslam.max_velocity, best_threshold);
     }
   }
   if (!o.gt_places.empty()) {
     const auto places = io::read_places_csv(o.gt_places);
-    if (places.size() != n) throw io::InputError(o.gt_places, fmt::format("has {} rows, the sequence has {} images", places.size(), n));
+    if (places.size() != n)
+      throw io::InputError(o.gt_places, fmt::format("has {} rows, the sequence has {} images", places.size(), n));
     const fs::path junctions_file = fs::path(o.gt_places).parent_path() / "junctions.csv";
-    const auto true_junctions = fs::exists(junctions_file) ? io::read_junctions_csv(junctions_file) : std::vector<int>{};
+    const auto true_junctions =
+        fs::exists(junctions_file) ? io::read_junctions_csv(junctions_file) : std::vector<int>{};
     // Merges of neighbouring true places that the loop-closure ground truth calls the same place are tolerated.
     const evaluation::Tolerated tolerated =
         o.ground_truth.empty() ? evaluation::Tolerated{} : load_ground_truth(o, o.ground_truth, n);
-    run.topology = evaluation::evaluate_topology(run.result.map.labels, run.result.map.junctions, places, true_junctions,
-                                                 settings.map.min_separation, 2, tolerated);
+    run.topology = evaluation::evaluate_topology(run.result.map.labels, run.result.map.junctions, places,
+                                                 true_junctions, settings.map.min_separation, 2, tolerated);
   }
   if (!o.gt_poses.empty() && !run.odometry.empty()) {
     const auto truth = io::read_poses_csv(o.gt_poses);
-    if (truth.size() != n) throw io::InputError(o.gt_poses, fmt::format("has {} poses, the sequence has {} images", truth.size(), n));
-    run.ate = {metric::absolute_trajectory_error(run.odometry, truth), metric::absolute_trajectory_error(run.ekf, truth),
+    if (truth.size() != n)
+      throw io::InputError(o.gt_poses, fmt::format("has {} poses, the sequence has {} images", truth.size(), n));
+    run.ate = {metric::absolute_trajectory_error(run.odometry, truth),
+               metric::absolute_trajectory_error(run.ekf, truth),
                metric::absolute_trajectory_error(run.pose_graph, truth)};
   }
 
@@ -456,58 +476,64 @@ void run(MapOptions o) {
   }
 }
 
-const RegisterCommand registered{{
-    "map",
-    "The main job: image sequence -> topological map, loop closures, figures and report "
-    "(with no INPUT: the bundled corridor data, scored against its ground truth)",
-    [](CLI::App& app) {
-      auto o = std::make_shared<MapOptions>();
-      app.add_option("input", o->input, "image folder, video, descriptors.npy or similarity.npy");
-      app.add_option("--out", o->out, "output folder")->capture_default_str();
-      app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
-      app.add_option("--every", o->every, "video: use every K-th frame")->capture_default_str();
-      app.add_option("--preset", o->preset, "paper (joint histogram, chi2, EKF) or default")->capture_default_str();
-      app.add_option("--descriptor", o->descriptor,
-                     "joint-histogram|patch|panorama, or several separated by commas to fuse them "
-                     "(default joint-histogram,patch; paper preset joint-histogram)");
-      app.add_option("--metric", o->metric_name, "chi2|l1|cosine|sad (default: by descriptor)");
-      app.add_option("--kappa", o->kappa, "S = 1 - kappa * D: a number, or auto (from the sequence's own distances)");
-      app.add_option("--gap", o->gap, fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
-      app.add_option("--engine", o->engine,
-                     "exact (scalar reference, N x N table) or fast (vectorized, no N x N table, scores quantized "
-                     "to 1/512); default exact, fast with --streaming");
-      app.add_flag("--streaming", o->streaming,
-                   "never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor "
-                   "(descriptors.npy, or patch/panorama with --metric cosine) computed on the fly, fast engine; "
-                   "no scores.npy, similarity.npy nor SeqSLAM baseline, similarity.png a block-max overview");
-      app.add_option("--odometry-gate", o->odometry_gate,
-                     fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
-                                 "(metres travelled between them) apart, as BASE,DRIFT, or none (default {},{})",
-                                 mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift));
-      app.add_option("--cap", o->cap, fmt::format("cap on the cumulative score, or none (default {})", *mapping::MapConfig{}.cap));
-      app.add_option("--threshold", o->threshold,
-                     fmt::format("minimum alignment score of a revisit (default {})", mapping::MapConfig{}.threshold));
-      app.add_option("--min-separation", o->min_separation,
-                     fmt::format("frames around the diagonal that never count (default {})", mapping::MapConfig{}.min_separation));
-      app.add_option("--contrast-window", o->contrast_window,
-                     fmt::format("local contrast enhancement before alignment, half-width in frames; 0 = off "
-                                 "(default {}, paper preset 0)", mapping::MapConfig{}.contrast_window));
-      app.add_option("--contrast-offset", o->contrast_offset,
-                     fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
-                                 mapping::MapConfig{}.contrast_offset));
-      app.add_flag("--no-reverse", o->no_reverse, "do not look for paths revisited in the opposite direction");
-      app.add_option("--odometry", o->odometry, "odometry CSV: index,x,y,theta (cumulative) or index,dx,dy,dtheta");
-      app.add_option("--ground-truth", o->ground_truth, "N x N same-place image, or poses.csv with --gt-radius");
-      app.add_option("--gt-radius", o->gt_radius, "same place when closer than this [m] (poses.csv ground truth)");
-      app.add_option("--gt-places", o->gt_places, "places.csv (index,place) for topological scores");
-      app.add_option("--gt-poses", o->gt_poses, "poses.csv (index,x,y[,theta]) for the metric error (with --odometry)");
-      app.add_option("--threads", o->threads, "worker threads (0 = all cores); results do not depend on it")
-          ->capture_default_str();
-      // Expanded by main() before parsing; declared here so that --help lists it.
-      app.add_option("--config", o->config_file, "options from a file of `name: value` lines (a flat YAML subset); "
-                                                  "options on the command line win");
-      app.callback([o] { run(*o); });
-    }}};
+const RegisterCommand registered{
+    {"map",
+     "The main job: image sequence -> topological map, loop closures, figures and report "
+     "(with no INPUT: the bundled corridor data, scored against its ground truth)",
+     [](CLI::App& app) {
+       auto o = std::make_shared<MapOptions>();
+       app.add_option("input", o->input, "image folder, video, descriptors.npy or similarity.npy");
+       app.add_option("--out", o->out, "output folder")->capture_default_str();
+       app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
+       app.add_option("--every", o->every, "video: use every K-th frame")->capture_default_str();
+       app.add_option("--preset", o->preset, "paper (joint histogram, chi2, EKF) or default")->capture_default_str();
+       app.add_option("--descriptor", o->descriptor,
+                      "joint-histogram|patch|panorama, or several separated by commas to fuse them "
+                      "(default joint-histogram,patch; paper preset joint-histogram)");
+       app.add_option("--metric", o->metric_name, "chi2|l1|cosine|sad (default: by descriptor)");
+       app.add_option("--kappa", o->kappa, "S = 1 - kappa * D: a number, or auto (from the sequence's own distances)");
+       app.add_option("--gap", o->gap, fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
+       app.add_option("--engine", o->engine,
+                      "exact (scalar reference, N x N table) or fast (vectorized, no N x N table, scores quantized "
+                      "to 1/512); default exact, fast with --streaming");
+       app.add_flag("--streaming", o->streaming,
+                    "never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor "
+                    "(descriptors.npy, or patch/panorama with --metric cosine) computed on the fly, fast engine; "
+                    "no scores.npy, similarity.npy nor SeqSLAM baseline, similarity.png a block-max overview");
+       app.add_option(
+           "--odometry-gate", o->odometry_gate,
+           fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
+                       "(metres travelled between them) apart, as BASE,DRIFT, or none (default {},{})",
+                       mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift));
+       app.add_option("--cap", o->cap,
+                      fmt::format("cap on the cumulative score, or none (default {})", *mapping::MapConfig{}.cap));
+       app.add_option("--threshold", o->threshold,
+                      fmt::format("minimum alignment score of a revisit (default {})", mapping::MapConfig{}.threshold));
+       app.add_option("--min-separation", o->min_separation,
+                      fmt::format("frames around the diagonal that never count (default {})",
+                                  mapping::MapConfig{}.min_separation));
+       app.add_option("--contrast-window", o->contrast_window,
+                      fmt::format("local contrast enhancement before alignment, half-width in frames; 0 = off "
+                                  "(default {}, paper preset 0)",
+                                  mapping::MapConfig{}.contrast_window));
+       app.add_option("--contrast-offset", o->contrast_offset,
+                      fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
+                                  mapping::MapConfig{}.contrast_offset));
+       app.add_flag("--no-reverse", o->no_reverse, "do not look for paths revisited in the opposite direction");
+       app.add_option("--odometry", o->odometry, "odometry CSV: index,x,y,theta (cumulative) or index,dx,dy,dtheta");
+       app.add_option("--ground-truth", o->ground_truth, "N x N same-place image, or poses.csv with --gt-radius");
+       app.add_option("--gt-radius", o->gt_radius, "same place when closer than this [m] (poses.csv ground truth)");
+       app.add_option("--gt-places", o->gt_places, "places.csv (index,place) for topological scores");
+       app.add_option("--gt-poses", o->gt_poses,
+                      "poses.csv (index,x,y[,theta]) for the metric error (with --odometry)");
+       app.add_option("--threads", o->threads, "worker threads (0 = all cores); results do not depend on it")
+           ->capture_default_str();
+       // Expanded by main() before parsing; declared here so that --help lists it.
+       app.add_option("--config", o->config_file,
+                      "options from a file of `name: value` lines (a flat YAML subset); "
+                      "options on the command line win");
+       app.callback([o] { run(*o); });
+     }}};
 
 }  // namespace
 }  // namespace seqtopo::cli

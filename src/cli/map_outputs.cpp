@@ -27,14 +27,8 @@ std::string read_file(const std::filesystem::path& path) {
 }
 
 nlohmann::json metrics_json(const evaluation::LoopClosureMetrics& m) {
-  return {{"tp", m.tp},
-          {"fp", m.fp},
-          {"fn", m.fn},
-          {"precision", m.precision},
-          {"recall", m.recall},
-          {"f1", m.f1},
-          {"auc", m.auc},
-          {"recall_at_100_precision", m.recall_at_100_precision}};
+  return {{"tp", m.tp},         {"fp", m.fp}, {"fn", m.fn},   {"precision", m.precision},
+          {"recall", m.recall}, {"f1", m.f1}, {"auc", m.auc}, {"recall_at_100_precision", m.recall_at_100_precision}};
 }
 
 // Small maps are drawn place by place; large ones (more places than a layout can place legibly) as
@@ -69,7 +63,8 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
         if (!drawn[end]) node(map.places[end]);
         drawn[end] = true;
       }
-      dot << "  p" << s.places.front() << " -- p" << s.places.back() << " [label=\"" << s.places.size() << "\", fontsize=8];\n";
+      dot << "  p" << s.places.front() << " -- p" << s.places.back() << " [label=\"" << s.places.size()
+          << "\", fontsize=8];\n";
     }
   }
   dot << "}\n";
@@ -138,13 +133,19 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
   nlohmann::json segments = nlohmann::json::array();
   for (const auto& s : map.segments) segments.push_back(s.places);
   const nlohmann::json alignments = io::alignments_to_json(result.alignments, &result.pruning.kept)["alignments"];
-  const nlohmann::json map_json = {{"images", n},          {"labels", map.labels},    {"places", places},
-                                   {"edges", edges},       {"junctions", map.junctions}, {"segments", segments},
+  const nlohmann::json map_json = {{"images", n},
+                                   {"labels", map.labels},
+                                   {"places", places},
+                                   {"edges", edges},
+                                   {"junctions", map.junctions},
+                                   {"segments", segments},
                                    {"alignments", alignments}};
   out.write("map.json", map_json.dump(1) + "\n");
-  out.write("alignments.json", nlohmann::json{{"alignments", alignments},
-                                              {"rejected_by_odometry", io::alignments_to_json(result.rejected)["alignments"]}}
-                                      .dump(1) + "\n");
+  out.write("alignments.json",
+            nlohmann::json{{"alignments", alignments},
+                           {"rejected_by_odometry", io::alignments_to_json(result.rejected)["alignments"]}}
+                    .dump(1) +
+                "\n");
 
   std::string csv = "i,j,score\n";
   for (const auto& p : result.pruning.pairs) csv += fmt::format("{},{},{}\n", p.i, p.j, p.score);
@@ -187,7 +188,8 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
         metrics["baseline_skipped"] = run.baseline_skipped;
       }
       nlohmann::json curve = nlohmann::json::array();
-      for (const auto& p : run.metrics->curve) curve.push_back({{"threshold", p.threshold}, {"precision", p.precision}, {"recall", p.recall}});
+      for (const auto& p : run.metrics->curve)
+        curve.push_back({{"threshold", p.threshold}, {"precision", p.precision}, {"recall", p.recall}});
       metrics["loop_closure"]["pr_curve"] = curve;
 
       std::vector<plot::Curve> curves(run.baseline_metrics ? 2 : 1);
@@ -197,19 +199,24 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
       if (run.baseline_metrics) {
         curves[1].label = "SeqSLAM-style baseline";
         curves[1].rgb = {40, 90, 220};
-        for (const auto& p : run.baseline_metrics->curve) curves[1].recall_precision.emplace_back(p.recall, p.precision);
+        for (const auto& p : run.baseline_metrics->curve)
+          curves[1].recall_precision.emplace_back(p.recall, p.precision);
       }
       out.write("pr_curve.png", plot::encode_png(plot::pr_curve_image(curves)));
     }
     if (run.topology) {
       const auto& t = *run.topology;
       metrics["topology"] = {{"adjusted_rand_index", t.adjusted_rand_index},
-                             {"adjusted_rand_index_frames", t.adjusted_rand_index_frames}, {"false_merges", t.false_merges},
-                             {"missed_merges", t.missed_merges}, {"junctions_true", t.junctions_true},
-                             {"junctions_found", t.junctions_found}, {"junctions_matched", t.junctions_matched}};
+                             {"adjusted_rand_index_frames", t.adjusted_rand_index_frames},
+                             {"false_merges", t.false_merges},
+                             {"missed_merges", t.missed_merges},
+                             {"junctions_true", t.junctions_true},
+                             {"junctions_found", t.junctions_found},
+                             {"junctions_matched", t.junctions_matched}};
     }
     if (run.ate) {
-      metrics["metric"] = {{"ate_odometry", run.ate->odometry}, {"ate_ekf", run.ate->ekf}, {"ate_pose_graph", run.ate->pose_graph}};
+      metrics["metric"] = {
+          {"ate_odometry", run.ate->odometry}, {"ate_ekf", run.ate->ekf}, {"ate_pose_graph", run.ate->pose_graph}};
     }
     out.write("metrics.json", metrics.dump(1) + "\n");
   }
@@ -241,27 +248,32 @@ void write_report(const MapRun& run, io::OutputDirectory& out) {
     std::vector<std::vector<std::string>> rows{row("seqtopo alignment", *run.metrics)};
     if (run.baseline_metrics) rows.push_back(row(run.baseline_name, *run.baseline_metrics));
     html.table({"method", "precision", "recall", "F1", "AUC", "R@100P", "TP / FP / FN"}, rows);
-    if (!run.baseline_metrics && !run.baseline_skipped.empty()) html.paragraph("Not compared: " + run.baseline_skipped + ".");
+    if (!run.baseline_metrics && !run.baseline_skipped.empty())
+      html.paragraph("Not compared: " + run.baseline_skipped + ".");
     html.png("Precision-recall, sweeping the score threshold", read_file(out.staged("pr_curve.png")), "pr_curve.png");
   }
   if (run.topology) {
     const auto& t = *run.topology;
     html.heading("Topological correctness");
-    html.table({"adjusted Rand index (places / images)", "false merges", "missed merges", "junctions true / found / matched"},
-               {{fmt::format("{:.3f} / {:.3f}", t.adjusted_rand_index, t.adjusted_rand_index_frames), std::to_string(t.false_merges), std::to_string(t.missed_merges),
-                 fmt::format("{} / {} / {}", t.junctions_true, t.junctions_found, t.junctions_matched)}});
+    html.table(
+        {"adjusted Rand index (places / images)", "false merges", "missed merges", "junctions true / found / matched"},
+        {{fmt::format("{:.3f} / {:.3f}", t.adjusted_rand_index, t.adjusted_rand_index_frames),
+          std::to_string(t.false_merges), std::to_string(t.missed_merges),
+          fmt::format("{} / {} / {}", t.junctions_true, t.junctions_found, t.junctions_matched)}});
   }
   if (run.ate) {
     html.heading("Metric error (ATE, RMSE after rigid alignment)");
     html.table({"odometry [m]", "EKF [m]", "pose graph [m]"},
-               {{fmt::format("{:.3f}", run.ate->odometry), fmt::format("{:.3f}", run.ate->ekf), fmt::format("{:.3f}", run.ate->pose_graph)}});
+               {{fmt::format("{:.3f}", run.ate->odometry), fmt::format("{:.3f}", run.ate->ekf),
+                 fmt::format("{:.3f}", run.ate->pose_graph)}});
   }
   html.heading("Similarity matrix and alignments");
   if (run.streaming) {
-    html.png(fmt::format("Contrast-enhanced similarity, streamed: each pixel the maximum of a block of {0} x {0} scores "
-                         "(bright = similar), with the alignments: kept pairs red, pruned blue",
-                         run.overview.block),
-             read_file(out.staged("similarity.png")), "similarity.png");
+    html.png(
+        fmt::format("Contrast-enhanced similarity, streamed: each pixel the maximum of a block of {0} x {0} scores "
+                    "(bright = similar), with the alignments: kept pairs red, pruned blue",
+                    run.overview.block),
+        read_file(out.staged("similarity.png")), "similarity.png");
   } else {
     html.png(std::string(run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity" : "Similarity matrix") +
                  " (bright = similar) with the alignments: kept pairs red, pruned blue",
@@ -271,8 +283,7 @@ void write_report(const MapRun& run, io::OutputDirectory& out) {
   html.svg(run.result.map.places.size() <= kMaxDrawnPlaces
                ? "Places (red: junctions, blue: revisited places) and their connections"
                : "Junctions (red) and path ends joined by path segments (edge label: number of places)",
-           read_file(out.staged("topology.svg")),
-           "topology.svg");
+           read_file(out.staged("topology.svg")), "topology.svg");
   if (!run.odometry.empty()) {
     html.heading("Metric picture");
     html.png("Odometry beside the corrected map; dots coloured by place", read_file(out.staged("metric_map.png")),
@@ -283,28 +294,32 @@ void write_report(const MapRun& run, io::OutputDirectory& out) {
   std::vector<std::pair<std::string, std::string>> parameters{{"input", run.input}, {"preset", run.preset}};
   if (run.streaming) {
     const double n = static_cast<double>(result.map.labels.size());
-    parameters.emplace_back("streaming", "true: cosine similarity of the descriptors, contrast-enhanced on the fly "
-                                         "(scale/streaming_similarity.hpp), fast engine; no N x N matrix held");
+    parameters.emplace_back("streaming",
+                            "true: cosine similarity of the descriptors, contrast-enhanced on the fly "
+                            "(scale/streaming_similarity.hpp), fast engine; no N x N matrix held");
     parameters.emplace_back("similarity cells computed during the alignment",
                             fmt::format("{} ({:.2f} x N^2, recomputations included)", run.streamed_cells,
                                         static_cast<double>(run.streamed_cells) / (n * n)));
-    parameters.emplace_back("tile cache [MB]", fmt::format("{:.1f}", static_cast<double>(run.streamed_cache_bytes) / 1e6));
+    parameters.emplace_back("tile cache [MB]",
+                            fmt::format("{:.1f}", static_cast<double>(run.streamed_cache_bytes) / 1e6));
   }
   std::string names;
   for (std::size_t k = 0; k < run.descriptor_names.size(); ++k) {
     names += (k ? ", " : "") + run.descriptor_names[k] +
-             (k < run.similarities.size() ? fmt::format(" (kappa {:.4g})", run.similarities[k].kappa) : std::string(" (cosine)"));
+             (k < run.similarities.size() ? fmt::format(" (kappa {:.4g})", run.similarities[k].kappa)
+                                          : std::string(" (cosine)"));
   }
   parameters.emplace_back("descriptors", names);
-  parameters.insert(
-      parameters.end(),
-      {{"contrast enhancement", c.contrast_window > 0 ? fmt::format("window {} frames, offset {} sd", c.contrast_window, c.contrast_offset) : "off"},
-       {"gap", fmt::format("{}", c.gap)},
-       {"cap", c.cap ? fmt::format("{}", *c.cap) : "none"},
-       {"threshold", fmt::format("{}", c.threshold)},
-       {"min separation [frames]", std::to_string(c.min_separation)},
-       {"reverse pass", c.reverse ? "yes" : "no"},
-       {"pruning: min retained fraction", fmt::format("{}", c.pruning.min_retained_fraction)}});
+  parameters.insert(parameters.end(),
+                    {{"contrast enhancement", c.contrast_window > 0 ? fmt::format("window {} frames, offset {} sd",
+                                                                                  c.contrast_window, c.contrast_offset)
+                                                                    : "off"},
+                     {"gap", fmt::format("{}", c.gap)},
+                     {"cap", c.cap ? fmt::format("{}", *c.cap) : "none"},
+                     {"threshold", fmt::format("{}", c.threshold)},
+                     {"min separation [frames]", std::to_string(c.min_separation)},
+                     {"reverse pass", c.reverse ? "yes" : "no"},
+                     {"pruning: min retained fraction", fmt::format("{}", c.pruning.min_retained_fraction)}});
   html.key_values(parameters);
   html.heading("Timings");
   std::vector<std::vector<std::string>> rows;

@@ -45,7 +45,8 @@ std::vector<strings::StringRecord> read_strings(const std::string& path) {
 }
 
 // `test_id,map_id` pairs (header first); ids must name a query and a database record.
-std::vector<std::vector<bool>> read_adjacency(const std::string& path, const std::map<std::string, std::size_t>& queries,
+std::vector<std::vector<bool>> read_adjacency(const std::string& path,
+                                              const std::map<std::string, std::size_t>& queries,
                                               const std::map<std::string, std::size_t>& db) {
   std::vector<std::vector<bool>> adjacent(queries.size(), std::vector<bool>(db.size(), false));
   for (const auto& row : io::read_csv(path, {"test_id", "map_id"})) {
@@ -117,9 +118,9 @@ void run(const MatchStringsOptions& o) {
 
   io::OutputDirectory out(o.out_dir);
   // With --cyclic a fifth column gives the rotation (in symbols) of the database string that matched best.
-  std::string tsv = fmt::format("# seqtopo match-strings --algorithm {}{}{}\nquery_id\trank\tdb_id\tscore{}\n", o.algorithm,
-                                o.cyclic ? " --cyclic" : "", o.k ? fmt::format(" --k {}", *o.k) : "",
-                                o.cyclic ? "\trotation" : "");
+  std::string tsv =
+      fmt::format("# seqtopo match-strings --algorithm {}{}{}\nquery_id\trank\tdb_id\tscore{}\n", o.algorithm,
+                  o.cyclic ? " --cyclic" : "", o.k ? fmt::format(" --k {}", *o.k) : "", o.cyclic ? "\trotation" : "");
   for (std::size_t q = 0; q < matches.size(); ++q) {
     for (const auto& c : matches[q].ranked) {
       tsv += fmt::format("{}\t{}\t{}\t{:.6g}", queries[q].id, c.rank, db[c.db_index].id, c.score);
@@ -152,60 +153,76 @@ void run(const MatchStringsOptions& o) {
   }
   const auto metrics = strings::score_localization(matches, truth);
   if (metrics.topological || metrics.geometric) {
-    nlohmann::json j = {{"algorithm", o.algorithm}, {"cyclic", o.cyclic}, {"window", o.window}, {"queries", queries.size()},
+    nlohmann::json j = {{"algorithm", o.algorithm},
+                        {"cyclic", o.cyclic},
+                        {"window", o.window},
+                        {"queries", queries.size()},
                         {"database", db.size()}};
     if (o.k) j["k"] = *o.k;
     if (config.algorithm == strings::Algorithm::A) {
-      j["costs"] = {{"deletion", config.costs.deletion}, {"insertion", config.costs.insertion},
-                    {"colour_difference", config.costs.colour_difference}, {"coincidence", config.costs.coincidence},
+      j["costs"] = {{"deletion", config.costs.deletion},
+                    {"insertion", config.costs.insertion},
+                    {"colour_difference", config.costs.colour_difference},
+                    {"coincidence", config.costs.coincidence},
                     {"discordance", config.costs.discordance}};
     }
     if (metrics.topological) j["topological"] = rates_json(*metrics.topological);
     if (metrics.geometric) j["geometric"] = rates_json(*metrics.geometric);
     out.write("metrics.json", j.dump(1) + "\n");
-    const std::string table = metrics_table(metrics, fmt::format("algorithm {}{}", o.algorithm, o.cyclic ? " (cyclic)" : ""));
+    const std::string table =
+        metrics_table(metrics, fmt::format("algorithm {}{}", o.algorithm, o.cyclic ? " (cyclic)" : ""));
     out.write("metrics.txt", table);
     std::cout << table;
   }
   out.commit();
   std::size_t best_total = 0;
   for (const auto& m : matches) best_total += m.best().size();
-  std::cerr << fmt::format("seqtopo match-strings: {} queries x {} database strings, {:.2f} best matchings per query\n",
-                           queries.size(), db.size(),
-                           queries.empty() ? 0.0 : static_cast<double>(best_total) / static_cast<double>(queries.size()));
+  std::cerr << fmt::format(
+      "seqtopo match-strings: {} queries x {} database strings, {:.2f} best matchings per query\n", queries.size(),
+      db.size(), queries.empty() ? 0.0 : static_cast<double>(best_total) / static_cast<double>(queries.size()));
 }
 
-const RegisterCommand registered{{
-    "match-strings",
-    "String-matching localization: every query fingerprint against every database fingerprint (algorithm A, B or C)",
-    [](CLI::App& app) {
-      auto o = std::make_shared<MatchStringsOptions>();
-      app.add_option("--db", o->db_path, "database strings (map points): id<TAB>string[<TAB>x<TAB>y[<TAB>place]]")
-          ->required()->check(CLI::ExistingFile);
-      app.add_option("--queries", o->queries_path, "query strings (test points), same format")->required()->check(CLI::ExistingFile);
-      app.add_option("--algorithm", o->algorithm,
-                     "A = global alignment with <= k differences (weighted costs), B = k-differences inexact matching "
-                     "(Landau-Vishkin), C = longest common subsequence (Hunt-Szymanski)")
-          ->capture_default_str();
-      app.add_option("--k", o->k, "maximum number of differences for A and B (default: no limit)");
-      app.add_option("--preset", o->preset, "cost table for A: A1, A2-rooms, A2-ground-floor, A2-white-hall, A2-global")
-          ->capture_default_str();
-      app.add_option("--deletion-cost", o->deletion, "cost of deleting a query symbol (overrides the preset)");
-      app.add_option("--insertion-cost", o->insertion, "cost of inserting a database symbol (overrides the preset)");
-      app.add_option("--colour-difference-cost", o->colour_difference, "cost of two different colour patches (overrides the preset)");
-      app.add_option("--coincidence-cost", o->coincidence, "cost of two equal symbols, may be negative (overrides the preset)");
-      app.add_option("--discordance-cost", o->discordance, "cost of an edge against a colour patch (overrides the preset)");
-      app.add_flag("--cyclic", o->cyclic, "panoramas: compare with every rotation of each database string (heading unknown)");
-      app.add_option("--window", o->window,
-                     "localize each query with the W queries ending at it, along a monotone chain of database points "
-                     "(both files in travel order)")
-          ->capture_default_str();
-      app.add_option("--adjacency", o->adjacency_path, "CSV test_id,map_id of adjacent points (default: same place label)")
-          ->check(CLI::ExistingFile);
-      app.add_option("--out", o->out_dir, "output folder: matches.tsv, and metrics.json + metrics.txt with ground truth")
-          ->capture_default_str();
-      app.callback([o] { run(*o); });
-    }}};
+const RegisterCommand registered{
+    {"match-strings",
+     "String-matching localization: every query fingerprint against every database fingerprint (algorithm A, B or C)",
+     [](CLI::App& app) {
+       auto o = std::make_shared<MatchStringsOptions>();
+       app.add_option("--db", o->db_path, "database strings (map points): id<TAB>string[<TAB>x<TAB>y[<TAB>place]]")
+           ->required()
+           ->check(CLI::ExistingFile);
+       app.add_option("--queries", o->queries_path, "query strings (test points), same format")
+           ->required()
+           ->check(CLI::ExistingFile);
+       app.add_option("--algorithm", o->algorithm,
+                      "A = global alignment with <= k differences (weighted costs), B = k-differences inexact matching "
+                      "(Landau-Vishkin), C = longest common subsequence (Hunt-Szymanski)")
+           ->capture_default_str();
+       app.add_option("--k", o->k, "maximum number of differences for A and B (default: no limit)");
+       app.add_option("--preset", o->preset,
+                      "cost table for A: A1, A2-rooms, A2-ground-floor, A2-white-hall, A2-global")
+           ->capture_default_str();
+       app.add_option("--deletion-cost", o->deletion, "cost of deleting a query symbol (overrides the preset)");
+       app.add_option("--insertion-cost", o->insertion, "cost of inserting a database symbol (overrides the preset)");
+       app.add_option("--colour-difference-cost", o->colour_difference,
+                      "cost of two different colour patches (overrides the preset)");
+       app.add_option("--coincidence-cost", o->coincidence,
+                      "cost of two equal symbols, may be negative (overrides the preset)");
+       app.add_option("--discordance-cost", o->discordance,
+                      "cost of an edge against a colour patch (overrides the preset)");
+       app.add_flag("--cyclic", o->cyclic,
+                    "panoramas: compare with every rotation of each database string (heading unknown)");
+       app.add_option("--window", o->window,
+                      "localize each query with the W queries ending at it, along a monotone chain of database points "
+                      "(both files in travel order)")
+           ->capture_default_str();
+       app.add_option("--adjacency", o->adjacency_path,
+                      "CSV test_id,map_id of adjacent points (default: same place label)")
+           ->check(CLI::ExistingFile);
+       app.add_option("--out", o->out_dir,
+                      "output folder: matches.tsv, and metrics.json + metrics.txt with ground truth")
+           ->capture_default_str();
+       app.callback([o] { run(*o); });
+     }}};
 
 }  // namespace
 }  // namespace seqtopo::cli

@@ -72,37 +72,41 @@ void run(const SimilarityOptions& o) {
 
   std::string kappa_text = "input was a similarity matrix";
   if (!std::isnan(result.kappa)) {
-    kappa_text = result.kappa_auto ? fmt::format("kappa {:.4g} (auto: S > 0 for the closest {:.2f}% of candidate pairs)",
-                                                 result.kappa, 100.0 * result.kappa_fraction)
-                                   : fmt::format("kappa {:.4g}", result.kappa);
+    kappa_text = result.kappa_auto
+                     ? fmt::format("kappa {:.4g} (auto: S > 0 for the closest {:.2f}% of candidate pairs)",
+                                   result.kappa, 100.0 * result.kappa_fraction)
+                     : fmt::format("kappa {:.4g}", result.kappa);
   }
-  std::cerr << fmt::format("seqtopo similarity: {} x {}{}, {}; descriptors {:.2f} s, matrix {:.2f} s -> {}\n",
-                           result.similarity.rows, result.similarity.cols,
-                           result.metric ? fmt::format(" ({})", similarity::metric_name(*result.metric)) : "", kappa_text,
-                           result.seconds_descriptors, result.seconds_matrix, (out.dir() / "similarity.npy").string());
+  std::cerr << fmt::format(
+      "seqtopo similarity: {} x {}{}, {}; descriptors {:.2f} s, matrix {:.2f} s -> {}\n", result.similarity.rows,
+      result.similarity.cols, result.metric ? fmt::format(" ({})", similarity::metric_name(*result.metric)) : "",
+      kappa_text, result.seconds_descriptors, result.seconds_matrix, (out.dir() / "similarity.npy").string());
 }
 
-const RegisterCommand registered{{
-    "similarity",
-    "Similarity matrix S = 1 - kappa * D of an image folder, video, descriptors.npy or similarity.npy",
-    [](CLI::App& app) {
-      auto o = std::make_shared<SimilarityOptions>();
-      app.add_option("INPUT", o->input, "image folder, video file, descriptors.npy (N x D) or similarity.npy")
-          ->required()
-          ->check(CLI::ExistingPath);
-      app.add_option("--against", o->against, "second sequence of the same kind: N x M matrix, rows = INPUT")
-          ->check(CLI::ExistingPath);
-      app.add_option("--out", o->out_dir, "output folder for similarity.npy and similarity.png")->capture_default_str();
-      app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
-      app.add_option("--every", o->every, "video: keep every K-th frame")->capture_default_str();
-      app.add_option("--descriptor", o->descriptor, "joint-histogram|patch|panorama|npy (a descriptors.npy input uses its rows)")
-          ->capture_default_str();
-      app.add_option("--metric", o->metric,
-                     "chi2|l1|cosine|sad (default: chi2 for joint-histogram, sad for patch and panorama, cosine for npy)");
-      app.add_option("--kappa", o->kappa, "K > 0 in S = 1 - K * D, or auto (see docs/similarity.md)")->capture_default_str();
-      app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
-      app.callback([o] { run(*o); });
-    }}};
+const RegisterCommand registered{
+    {"similarity", "Similarity matrix S = 1 - kappa * D of an image folder, video, descriptors.npy or similarity.npy",
+     [](CLI::App& app) {
+       auto o = std::make_shared<SimilarityOptions>();
+       app.add_option("INPUT", o->input, "image folder, video file, descriptors.npy (N x D) or similarity.npy")
+           ->required()
+           ->check(CLI::ExistingPath);
+       app.add_option("--against", o->against, "second sequence of the same kind: N x M matrix, rows = INPUT")
+           ->check(CLI::ExistingPath);
+       app.add_option("--out", o->out_dir, "output folder for similarity.npy and similarity.png")
+           ->capture_default_str();
+       app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
+       app.add_option("--every", o->every, "video: keep every K-th frame")->capture_default_str();
+       app.add_option("--descriptor", o->descriptor,
+                      "joint-histogram|patch|panorama|npy (a descriptors.npy input uses its rows)")
+           ->capture_default_str();
+       app.add_option(
+           "--metric", o->metric,
+           "chi2|l1|cosine|sad (default: chi2 for joint-histogram, sad for patch and panorama, cosine for npy)");
+       app.add_option("--kappa", o->kappa, "K > 0 in S = 1 - K * D, or auto (see docs/similarity.md)")
+           ->capture_default_str();
+       app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
+       app.callback([o] { run(*o); });
+     }}};
 
 }  // namespace
 }  // namespace seqtopo::cli

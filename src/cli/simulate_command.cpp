@@ -48,7 +48,8 @@ void write_images(io::OutputDirectory& out, const std::string& folder, const std
   std::vector<std::string> encoded(images.size());
   const auto n = static_cast<std::ptrdiff_t>(images.size());
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
-  for (std::ptrdiff_t k = 0; k < n; ++k) encoded[static_cast<std::size_t>(k)] = plot::encode_png(images[static_cast<std::size_t>(k)]);
+  for (std::ptrdiff_t k = 0; k < n; ++k)
+    encoded[static_cast<std::size_t>(k)] = plot::encode_png(images[static_cast<std::size_t>(k)]);
   const std::filesystem::path dir = out.staged(folder);
   std::filesystem::create_directories(dir);
   for (std::size_t k = 0; k < images.size(); ++k) {
@@ -79,7 +80,8 @@ void run(const SimulateOptions& o) {
   if (o.odometry_noise < 0) throw io::InputError("--odometry-noise", "must be >= 0");
   if (o.pixel_noise < 0) throw io::InputError("--pixel-noise", "must be >= 0");
   if (o.lighting_change < 0) throw io::InputError("--lighting-change", "must be >= 0");
-  if (o.panorama_width < 8 || o.panorama_height < 2) throw io::InputError("--panorama-width/--panorama-height", "too small");
+  if (o.panorama_width < 8 || o.panorama_height < 2)
+    throw io::InputError("--panorama-width/--panorama-height", "too small");
   if (o.image_width < 8 || o.image_height < 2) throw io::InputError("--image-width/--image-height", "too small");
   if (o.supersample < 1 || o.supersample > 8) throw io::InputError("--supersample", "must be in 1..8");
   if (!(o.place_length > 0)) throw io::InputError("--place-length", "must be > 0");
@@ -124,14 +126,16 @@ void run(const SimulateOptions& o) {
     }
     std::string adjacency = "test_id,map_id\n";
     for (const auto& [t, m] : result.adjacency) {
-      adjacency += fmt::format("{},{}\n", result.points[static_cast<std::size_t>(t)].id, result.points[static_cast<std::size_t>(m)].id);
+      adjacency += fmt::format("{},{}\n", result.points[static_cast<std::size_t>(t)].id,
+                               result.points[static_cast<std::size_t>(m)].id);
     }
     write_images(out, "panoramas", result.panoramas, names, threads);
     out.write("points.csv", points);
     out.write("adjacency.csv", adjacency);
     const auto maps = std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return p.map; });
-    out.write("simulation.json", fmt::format("{{\"scenario\": \"{}\", \"seed\": {}, \"map_points\": {}, \"test_points\": {}}}\n",
-                                             result.scenario, o.seed, maps, result.points.size() - static_cast<std::size_t>(maps)));
+    out.write("simulation.json",
+              fmt::format("{{\"scenario\": \"{}\", \"seed\": {}, \"map_points\": {}, \"test_points\": {}}}\n",
+                          result.scenario, o.seed, maps, result.points.size() - static_cast<std::size_t>(maps)));
     summary = fmt::format("{} map and {} test points", maps, result.points.size() - static_cast<std::size_t>(maps));
   } else {
     const std::size_t n = result.poses.size();
@@ -173,43 +177,50 @@ void run(const SimulateOptions& o) {
                            summary, render_seconds, total - render_seconds, o.out);
 }
 
-const RegisterCommand registered{{
-    "simulate",
-    "Synthetic worlds with exact ground truth: panoramas, camera images, odometry, poses, places",
-    [](CLI::App& app) {
-      auto o = std::make_shared<SimulateOptions>();
-      app.add_option("--scenario", o->scenario, "scenario name (see --list)");
-      app.add_option("--out", o->out, "output directory");
-      app.add_flag("--list", o->list, "list the scenarios and exit");
-      app.add_option("--seed", o->seed, "seed of the world's decoration and of all noise")->capture_default_str();
-      app.add_option("--interval", o->interval, "travel between frames [m] (default per scenario: 0.25 indoors, 0.5 outdoors)");
-      app.add_option("--odometry-noise", o->odometry_noise, "factor on the scenario's odometry drift and noise (0 = exact)")
-          ->capture_default_str();
-      app.add_option("--heading-drift", o->heading_drift, "systematic odometry heading drift [rad/m]");
-      app.add_option("--scale-error", o->scale_error, "systematic odometry scale error (0.01 = reads 1 % long)");
-      app.add_option("--zigzag-amplitude", o->zigzag, "amplitude of the zigzag scenario's zig-zagging traversal [m]");
-      app.add_option("--panorama-width", o->panorama_width, "panorama width [pixels] = 360 degrees")->capture_default_str();
-      app.add_option("--panorama-height", o->panorama_height, "panorama height [pixels] (elevation -30..+30 degrees)")
-          ->capture_default_str();
-      app.add_option("--image-width", o->image_width, "forward camera width [pixels] (60 degree field of view)")
-          ->capture_default_str();
-      app.add_option("--image-height", o->image_height, "forward camera height [pixels]")->capture_default_str();
-      app.add_flag("--no-images", o->no_images, "skip the forward camera (panoramas only)");
-      app.add_option("--supersample", o->supersample, "rays per pixel along each axis (anti-aliasing)")->capture_default_str();
-      app.add_option("--pixel-noise", o->pixel_noise, "sensor noise, standard deviation [grey levels]")->capture_default_str();
-      app.add_option("--lighting-change", o->lighting_change,
-                     "factor on the lighting differences between traversals (0 = same lighting)")
-          ->capture_default_str();
-      app.add_option("--place-length", o->place_length, "length of a ground-truth place along a path [m]")->capture_default_str();
-      app.add_option("--junction-radius", o->junction_radius, "stretch of path around a node that is the node's place [m]")
-          ->capture_default_str();
-      app.add_option("--gt-radius", o->gt_radius, "ground_truth.png: same place when path points are within R [m]")
-          ->capture_default_str();
-      app.add_option("--gt-band", o->gt_band, "ground_truth.png: pairs with |i - j| < B frames are zero (default: 5 m of travel)");
-      app.add_option("--max-frames", o->max_frames, "keep only the first N frames (0 = all)")->capture_default_str();
-      app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
-      app.callback([o] { run(*o); });
-    }}};
+const RegisterCommand registered{
+    {"simulate", "Synthetic worlds with exact ground truth: panoramas, camera images, odometry, poses, places",
+     [](CLI::App& app) {
+       auto o = std::make_shared<SimulateOptions>();
+       app.add_option("--scenario", o->scenario, "scenario name (see --list)");
+       app.add_option("--out", o->out, "output directory");
+       app.add_flag("--list", o->list, "list the scenarios and exit");
+       app.add_option("--seed", o->seed, "seed of the world's decoration and of all noise")->capture_default_str();
+       app.add_option("--interval", o->interval,
+                      "travel between frames [m] (default per scenario: 0.25 indoors, 0.5 outdoors)");
+       app.add_option("--odometry-noise", o->odometry_noise,
+                      "factor on the scenario's odometry drift and noise (0 = exact)")
+           ->capture_default_str();
+       app.add_option("--heading-drift", o->heading_drift, "systematic odometry heading drift [rad/m]");
+       app.add_option("--scale-error", o->scale_error, "systematic odometry scale error (0.01 = reads 1 % long)");
+       app.add_option("--zigzag-amplitude", o->zigzag, "amplitude of the zigzag scenario's zig-zagging traversal [m]");
+       app.add_option("--panorama-width", o->panorama_width, "panorama width [pixels] = 360 degrees")
+           ->capture_default_str();
+       app.add_option("--panorama-height", o->panorama_height, "panorama height [pixels] (elevation -30..+30 degrees)")
+           ->capture_default_str();
+       app.add_option("--image-width", o->image_width, "forward camera width [pixels] (60 degree field of view)")
+           ->capture_default_str();
+       app.add_option("--image-height", o->image_height, "forward camera height [pixels]")->capture_default_str();
+       app.add_flag("--no-images", o->no_images, "skip the forward camera (panoramas only)");
+       app.add_option("--supersample", o->supersample, "rays per pixel along each axis (anti-aliasing)")
+           ->capture_default_str();
+       app.add_option("--pixel-noise", o->pixel_noise, "sensor noise, standard deviation [grey levels]")
+           ->capture_default_str();
+       app.add_option("--lighting-change", o->lighting_change,
+                      "factor on the lighting differences between traversals (0 = same lighting)")
+           ->capture_default_str();
+       app.add_option("--place-length", o->place_length, "length of a ground-truth place along a path [m]")
+           ->capture_default_str();
+       app.add_option("--junction-radius", o->junction_radius,
+                      "stretch of path around a node that is the node's place [m]")
+           ->capture_default_str();
+       app.add_option("--gt-radius", o->gt_radius, "ground_truth.png: same place when path points are within R [m]")
+           ->capture_default_str();
+       app.add_option("--gt-band", o->gt_band,
+                      "ground_truth.png: pairs with |i - j| < B frames are zero (default: 5 m of travel)");
+       app.add_option("--max-frames", o->max_frames, "keep only the first N frames (0 = all)")->capture_default_str();
+       app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
+       app.callback([o] { run(*o); });
+     }}};
 
 }  // namespace
 }  // namespace seqtopo::cli

@@ -23,9 +23,9 @@ LocalizationTruth LocalizationTruth::from_pairs(const std::vector<std::pair<std:
   t.truth.resize(query_frames);
   for (const auto& [q, m] : pairs) {
     if (q >= query_frames || m >= map_frames) {
-      throw std::invalid_argument("ground-truth pair (" + std::to_string(q) + ", " + std::to_string(m) +
-                                  ") outside " + std::to_string(query_frames) + " query x " +
-                                  std::to_string(map_frames) + " map frames");
+      throw std::invalid_argument("ground-truth pair (" + std::to_string(q) + ", " + std::to_string(m) + ") outside " +
+                                  std::to_string(query_frames) + " query x " + std::to_string(map_frames) +
+                                  " map frames");
     }
     t.truth[q].push_back(m);
   }
@@ -117,7 +117,8 @@ LocalizationMetrics evaluate_localization(const std::vector<LocalizationPredicti
     hits1 += correct[q];
     // recall@5 looks at the map frame first, then the candidates after it.
     bool any = correct[q] != 0;
-    for (std::size_t k = 0; k < p.candidates.size() && k < 5 && !any; ++k) any = truth.correct(q, p.candidates[k], tolerance);
+    for (std::size_t k = 0; k < p.candidates.size() && k < 5 && !any; ++k)
+      any = truth.correct(q, p.candidates[k], tolerance);
     hits5 += any ? 1 : 0;
   }
   const auto with_match = static_cast<double>(m.queries_with_match);

@@ -7,7 +7,8 @@
 
 namespace seqtopo::evaluation {
 
-PrSweep sweep_precision_recall(const std::vector<float>& scores, const std::vector<bool>& correct, std::size_t positives) {
+PrSweep sweep_precision_recall(const std::vector<float>& scores, const std::vector<bool>& correct,
+                               std::size_t positives) {
   if (scores.size() != correct.size()) throw std::invalid_argument("one correctness flag per score needed");
   std::vector<std::size_t> order(scores.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;

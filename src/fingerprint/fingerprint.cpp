@@ -49,7 +49,8 @@ void check(const FingerprintConfig& c) {
   if (!(c.edge_min_fraction > 0 && c.edge_min_fraction <= 1) || !(c.column_majority > 0 && c.column_majority <= 1)) {
     throw std::invalid_argument("fingerprint: fractions must be in (0, 1]");
   }
-  if (!(c.brightness_percentile >= 0 && c.brightness_percentile <= 1) || !(c.brightness_target > 0 && c.brightness_target <= 1)) {
+  if (!(c.brightness_percentile >= 0 && c.brightness_percentile <= 1) ||
+      !(c.brightness_target > 0 && c.brightness_target <= 1)) {
     throw std::invalid_argument("fingerprint: brightness_percentile must be in [0, 1] and brightness_target in (0, 1]");
   }
   if (c.edge_suppression < 0 || c.min_patch_width < 1 || !(c.edge_step > 0)) {
@@ -95,12 +96,24 @@ std::array<std::uint8_t, 3> class_colour(int c) {
   const double ch = p.v * p.s, hp = p.h / 60.0, x = ch * (1 - std::abs(std::fmod(hp, 2.0) - 1)), m = p.v - ch;
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(hp) % 6) {
-    case 0: r = ch, g = x; break;
-    case 1: r = x, g = ch; break;
-    case 2: g = ch, b = x; break;
-    case 3: g = x, b = ch; break;
-    case 4: r = x, b = ch; break;
-    default: r = ch, b = x; break;
+    case 0:
+      r = ch, g = x;
+      break;
+    case 1:
+      r = x, g = ch;
+      break;
+    case 2:
+      g = ch, b = x;
+      break;
+    case 3:
+      g = x, b = ch;
+      break;
+    case 4:
+      r = x, b = ch;
+      break;
+    default:
+      r = ch, b = x;
+      break;
   }
   auto byte = [](double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); };
   return {byte(r + m), byte(g + m), byte(b + m)};
@@ -168,7 +181,8 @@ Fingerprint extract_fingerprint(const RgbImage& image, const FingerprintConfig& 
       ++votes[static_cast<std::size_t>(colour_class(scaled(p[0]), scaled(p[1]), scaled(p[2]), config))];
     }
     const auto best = std::max_element(votes.begin(), votes.end());
-    if (*best >= config.column_majority * rows) dominant[static_cast<std::size_t>(x)] = static_cast<int>(best - votes.begin());
+    if (*best >= config.column_majority * rows)
+      dominant[static_cast<std::size_t>(x)] = static_cast<int>(best - votes.begin());
   }
   auto at = [&](int x) { return dominant[static_cast<std::size_t>(((x % w) + w) % w)]; };
   // Start scanning just after a class change so no run is cut by the image border.

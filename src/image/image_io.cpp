@@ -1,13 +1,13 @@
 #include "seqtopo/image/image_io.hpp"
 
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
-#include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <vector>
 
@@ -30,10 +30,17 @@ RgbImage to_rgb(const cv::Mat& decoded) {
   }
   cv::Mat rgb;
   switch (eight.channels()) {
-    case 1: cv::cvtColor(eight, rgb, cv::COLOR_GRAY2RGB); break;
-    case 3: cv::cvtColor(eight, rgb, cv::COLOR_BGR2RGB); break;
-    case 4: cv::cvtColor(eight, rgb, cv::COLOR_BGRA2RGB); break;
-    default: throw std::invalid_argument("unsupported number of channels");
+    case 1:
+      cv::cvtColor(eight, rgb, cv::COLOR_GRAY2RGB);
+      break;
+    case 3:
+      cv::cvtColor(eight, rgb, cv::COLOR_BGR2RGB);
+      break;
+    case 4:
+      cv::cvtColor(eight, rgb, cv::COLOR_BGRA2RGB);
+      break;
+    default:
+      throw std::invalid_argument("unsupported number of channels");
   }
   RgbImage out(rgb.cols, rgb.rows);
   for (int y = 0; y < rgb.rows; ++y) {
@@ -100,7 +107,8 @@ cv::VideoCapture open_video(const fs::path& path) {
     if (!capture.open(path.string(), cv::CAP_FFMPEG)) capture.open(path.string(), cv::CAP_GSTREAMER);
   } catch (const cv::Exception&) {
   }
-  if (!capture.isOpened()) throw io::InputError(path.string(), "cannot open as a video (corrupt or unsupported format)");
+  if (!capture.isOpened())
+    throw io::InputError(path.string(), "cannot open as a video (corrupt or unsupported format)");
   return capture;
 }
 

@@ -112,7 +112,8 @@ JointFeatures joint_features(const RgbImage& image, const JointHistogramConfig& 
     for (int dy = 0; dy <= 2 * kPad; ++dy) {
       const std::uint8_t* row = pe.data() + static_cast<std::ptrdiff_t>(y + dy) * pw;
 #pragma omp simd
-      for (int x = 0; x < pw; ++x) column[static_cast<std::size_t>(x)] = static_cast<std::uint8_t>(column[static_cast<std::size_t>(x)] + row[x]);
+      for (int x = 0; x < pw; ++x)
+        column[static_cast<std::size_t>(x)] = static_cast<std::uint8_t>(column[static_cast<std::size_t>(x)] + row[x]);
     }
     std::uint8_t* out = f.edge_count.data() + static_cast<std::ptrdiff_t>(y) * w;
 #pragma omp simd

@@ -26,7 +26,8 @@ std::vector<float> patch_thumbnail(const RgbImage& image, const PatchConfig& con
     small = intensity;
   } else {
     const bool shrinking = config.width <= image.width && config.height <= image.height;
-    cv::resize(intensity, small, cv::Size(config.width, config.height), 0, 0, shrinking ? cv::INTER_AREA : cv::INTER_LINEAR);
+    cv::resize(intensity, small, cv::Size(config.width, config.height), 0, 0,
+               shrinking ? cv::INTER_AREA : cv::INTER_LINEAR);
   }
 
   std::vector<float> out(static_cast<std::size_t>(config.width) * static_cast<std::size_t>(config.height));

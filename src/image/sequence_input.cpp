@@ -23,11 +23,16 @@ InputKind parse_input_kind(std::string_view name) {
 
 std::string_view input_kind_name(InputKind kind) {
   switch (kind) {
-    case InputKind::automatic: return "auto";
-    case InputKind::images: return "images";
-    case InputKind::video: return "video";
-    case InputKind::descriptors: return "descriptors";
-    case InputKind::similarity: return "similarity";
+    case InputKind::automatic:
+      return "auto";
+    case InputKind::images:
+      return "images";
+    case InputKind::video:
+      return "video";
+    case InputKind::descriptors:
+      return "descriptors";
+    case InputKind::similarity:
+      return "similarity";
   }
   return "?";
 }
@@ -71,8 +76,8 @@ int natural_compare(std::string_view a, std::string_view b) {
 }
 
 bool is_image_extension(const fs::path& p) {
-  static const char* const known[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp",
-                                      ".pgm", ".ppm", ".pnm", ".jp2"};
+  static const char* const known[] = {".png",  ".jpg", ".jpeg", ".bmp", ".tif", ".tiff",
+                                      ".webp", ".pgm", ".ppm",  ".pnm", ".jp2"};
   const std::string ext = lower(p.extension().string());
   return std::any_of(std::begin(known), std::end(known), [&](const char* k) { return ext == k; });
 }
@@ -111,8 +116,9 @@ std::vector<fs::path> list_images(const fs::path& folder) {
     files.push_back(entry.path());
   }
   if (files.empty()) throw io::InputError(folder.string(), "folder holds no image (png, jpg, bmp, tif, ...)");
-  std::sort(files.begin(), files.end(),
-            [](const fs::path& a, const fs::path& b) { return natural_less(a.filename().string(), b.filename().string()); });
+  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+    return natural_less(a.filename().string(), b.filename().string());
+  });
   return files;
 }
 

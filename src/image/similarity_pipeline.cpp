@@ -30,38 +30,52 @@ Descriptor parse_descriptor(std::string_view name) {
 
 std::string_view descriptor_name(Descriptor descriptor) {
   switch (descriptor) {
-    case Descriptor::joint_histogram: return "joint-histogram";
-    case Descriptor::patch: return "patch";
-    case Descriptor::panorama: return "panorama";
-    case Descriptor::npy: return "npy";
+    case Descriptor::joint_histogram:
+      return "joint-histogram";
+    case Descriptor::patch:
+      return "patch";
+    case Descriptor::panorama:
+      return "panorama";
+    case Descriptor::npy:
+      return "npy";
   }
   return "?";
 }
 
 Metric default_metric(Descriptor descriptor) {
   switch (descriptor) {
-    case Descriptor::joint_histogram: return Metric::chi2;
-    case Descriptor::patch: return Metric::sad;
-    case Descriptor::panorama: return Metric::sad;
-    case Descriptor::npy: return Metric::cosine;
+    case Descriptor::joint_histogram:
+      return Metric::chi2;
+    case Descriptor::patch:
+      return Metric::sad;
+    case Descriptor::panorama:
+      return Metric::sad;
+    case Descriptor::npy:
+      return Metric::cosine;
   }
   return Metric::chi2;
 }
 
 std::vector<float> dense_descriptor(const RgbImage& image, Descriptor descriptor, const SimilarityConfig& config) {
   switch (descriptor) {
-    case Descriptor::patch: return patch_thumbnail(image, config.patch);
-    case Descriptor::panorama: return panorama_signature(image, config.panorama);
-    default: throw std::invalid_argument("descriptor '" + std::string(descriptor_name(descriptor)) + "' is not dense");
+    case Descriptor::patch:
+      return patch_thumbnail(image, config.patch);
+    case Descriptor::panorama:
+      return panorama_signature(image, config.panorama);
+    default:
+      throw std::invalid_argument("descriptor '" + std::string(descriptor_name(descriptor)) + "' is not dense");
   }
 }
 
 std::size_t dense_dimension(Descriptor descriptor, const SimilarityConfig& config) {
   switch (descriptor) {
     case Descriptor::patch:
-      return static_cast<std::size_t>(std::max(0, config.patch.width)) * static_cast<std::size_t>(std::max(0, config.patch.height));
-    case Descriptor::panorama: return config.panorama.dimension();
-    default: throw std::invalid_argument("descriptor '" + std::string(descriptor_name(descriptor)) + "' is not dense");
+      return static_cast<std::size_t>(std::max(0, config.patch.width)) *
+             static_cast<std::size_t>(std::max(0, config.patch.height));
+    case Descriptor::panorama:
+      return config.panorama.dimension();
+    default:
+      throw std::invalid_argument("descriptor '" + std::string(descriptor_name(descriptor)) + "' is not dense");
   }
 }
 
@@ -81,9 +95,9 @@ unsigned thread_count(unsigned requested) {
 struct Source {
   SequenceInput input;
   InputKind kind = InputKind::automatic;
-  std::vector<fs::path> images;             // kind images
-  std::optional<std::size_t> count;         // items, when known in advance
-  std::optional<std::size_t> dimension;     // descriptor length, when known in advance
+  std::vector<fs::path> images;          // kind images
+  std::optional<std::size_t> count;      // items, when known in advance
+  std::optional<std::size_t> dimension;  // descriptor length, when known in advance
 };
 
 Source resolve(const SequenceInput& input) {
@@ -107,7 +121,8 @@ Source resolve(const SequenceInput& input) {
       s.dimension = header.shape[1];
       break;
     }
-    case InputKind::automatic: break;
+    case InputKind::automatic:
+      break;
   }
   return s;
 }
@@ -133,8 +148,10 @@ std::size_t descriptor_bytes(Descriptor d, const Source& s, const SimilarityConf
       return sizeof(similarity::SparseHistogram) + bins * (sizeof(std::uint32_t) + sizeof(float));
     }
     case Descriptor::patch:
-    case Descriptor::panorama: return dense_dimension(d, c) * sizeof(float);
-    case Descriptor::npy: return s.dimension.value_or(0) * sizeof(float);
+    case Descriptor::panorama:
+      return dense_dimension(d, c) * sizeof(float);
+    case Descriptor::npy:
+      return s.dimension.value_or(0) * sizeof(float);
   }
   return 0;
 }
@@ -193,7 +210,7 @@ void parallel_items(std::size_t n, unsigned threads, F&& describe) {
   std::vector<std::exception_ptr> errors(n);
   std::atomic<bool> failed{false};
   const auto count = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(static_cast<int>(threads))
+#pragma omp parallel for schedule(dynamic, 1) num_threads(static_cast <int>(threads))
   for (std::ptrdiff_t k = 0; k < count; ++k) {
     if (failed.load(std::memory_order_relaxed)) continue;
     try {
@@ -276,7 +293,8 @@ Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& 
   } else {
     const std::size_t dim = dense_dimension(d, c);
     out.set.dense = DenseMatrix<float>(rows.size(), dim);
-    for (std::size_t i = 0; i < rows.size(); ++i) std::copy(rows[i].begin(), rows[i].end(), out.set.dense.row(i).begin());
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      std::copy(rows[i].begin(), rows[i].end(), out.set.dense.row(i).begin());
   }
   return out;
 }
@@ -290,8 +308,10 @@ std::vector<std::string> row_names(std::size_t n, const char* word) {
 
 Described describe(const Source& s, Descriptor d, const SimilarityConfig& c) {
   switch (s.kind) {
-    case InputKind::images: return describe_images(s, d, c);
-    case InputKind::video: return describe_video(s, d, c);
+    case InputKind::images:
+      return describe_images(s, d, c);
+    case InputKind::video:
+      return describe_video(s, d, c);
     case InputKind::descriptors: {
       Described out;
       out.set = similarity::DescriptorSet::from_dense(io::read_npy_matrix<float>(s.input.path));
@@ -299,7 +319,8 @@ Described describe(const Source& s, Descriptor d, const SimilarityConfig& c) {
       out.names = row_names(out.set.dense.rows, "row");
       return out;
     }
-    default: break;
+    default:
+      break;
   }
   throw std::invalid_argument("internal: no descriptors for this input kind");
 }
@@ -351,7 +372,8 @@ SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b,
   const auto t1 = Clock::now();
   DenseMatrix<float> distances;
   try {
-    distances = db ? similarity::distance_matrix(da.set, db->set, metric, mc) : similarity::distance_matrix(da.set, metric, mc);
+    distances =
+        db ? similarity::distance_matrix(da.set, db->set, metric, mc) : similarity::distance_matrix(da.set, metric, mc);
   } catch (const similarity::MemoryError& e) {
     throw io::InputError(a.input.path.string(), e.what());
   } catch (const std::invalid_argument& e) {

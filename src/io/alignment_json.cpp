@@ -7,9 +7,9 @@ namespace seqtopo::io {
 nlohmann::json to_json(const align::LocalAlignment& a) {
   nlohmann::json pairs = nlohmann::json::array();
   for (auto [i, j] : a.pairs) pairs.push_back({i, j});
-  return {{"score", a.score},     {"direction", align::to_string(a.direction)},
-          {"a_begin", a.a_begin}, {"a_end", a.a_end},
-          {"b_begin", a.b_begin}, {"b_end", a.b_end},
+  return {{"score", a.score},         {"direction", align::to_string(a.direction)},
+          {"a_begin", a.a_begin},     {"a_end", a.a_end},
+          {"b_begin", a.b_begin},     {"b_end", a.b_end},
           {"pairs", std::move(pairs)}};
 }
 
@@ -29,7 +29,8 @@ std::vector<align::LocalAlignment> alignments_from_json(const nlohmann::json& do
   for (const auto& a : document.at("alignments")) {
     align::LocalAlignment x;
     x.score = a.at("score").get<align::Score>();
-    x.direction = a.at("direction").get<std::string>() == "reverse" ? align::Direction::reverse : align::Direction::forward;
+    x.direction =
+        a.at("direction").get<std::string>() == "reverse" ? align::Direction::reverse : align::Direction::forward;
     x.a_begin = a.at("a_begin").get<std::size_t>();
     x.a_end = a.at("a_end").get<std::size_t>();
     x.b_begin = a.at("b_begin").get<std::size_t>();

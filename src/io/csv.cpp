@@ -25,13 +25,14 @@ std::vector<CsvRow> read_csv(const std::filesystem::path& path, const std::vecto
     for (std::string field; std::getline(fields, field, ',');) row.fields.push_back(field);
     if (!line.empty() && line.back() == ',') row.fields.emplace_back();  // a trailing empty field
     if (!header_seen) {
-      if (row.fields != header) throw InputError(row.where, "expected the header '" + header_text + "', got '" + line + "'");
+      if (row.fields != header)
+        throw InputError(row.where, "expected the header '" + header_text + "', got '" + line + "'");
       header_seen = true;
       continue;
     }
     if (row.fields.size() != header.size()) {
-      throw InputError(row.where, "expected " + std::to_string(header.size()) + " comma-separated fields (" + header_text +
-                                      "), got " + std::to_string(row.fields.size()));
+      throw InputError(row.where, "expected " + std::to_string(header.size()) + " comma-separated fields (" +
+                                      header_text + "), got " + std::to_string(row.fields.size()));
     }
     rows.push_back(std::move(row));
   }

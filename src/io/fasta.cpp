@@ -31,7 +31,8 @@ std::vector<FastaRecord> read_fasta(const std::filesystem::path& path) {
       if (!std::isspace(static_cast<unsigned char>(c))) residues.push_back(c);
     }
     if (residues.empty()) continue;
-    if (records.empty()) throw InputError(path.string() + ":" + std::to_string(line_no), "sequence before the first '>' header");
+    if (records.empty())
+      throw InputError(path.string() + ":" + std::to_string(line_no), "sequence before the first '>' header");
     records.back().sequence += residues;
   }
   check_last();

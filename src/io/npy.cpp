@@ -1,12 +1,12 @@
 #include "seqtopo/io/npy.hpp"
 
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <limits>
-#include <cctype>
 
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/input_error.hpp"

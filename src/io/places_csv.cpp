@@ -13,7 +13,8 @@ int parse_int(const CsvRow& row, std::size_t field) {
   const std::string& text = row.fields[field];
   int value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc{} || end != text.data() + text.size()) throw InputError(row.where, "expected an integer, got '" + text + "'");
+  if (ec != std::errc{} || end != text.data() + text.size())
+    throw InputError(row.where, "expected an integer, got '" + text + "'");
   return value;
 }
 

@@ -15,7 +15,8 @@ namespace {
 
 void check_matrix(const SimilarityMatrix& s) {
   if (s.empty()) throw std::invalid_argument("empty similarity matrix");
-  if (s.values.size() != s.rows * s.cols) throw std::invalid_argument("similarity matrix size does not match its shape");
+  if (s.values.size() != s.rows * s.cols)
+    throw std::invalid_argument("similarity matrix size does not match its shape");
   for (float v : s.values) {
     if (!std::isfinite(v)) throw std::invalid_argument("similarity matrix has a non-finite value");
   }
@@ -106,15 +107,18 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
         const auto [i0, j0] = a.pairs[next - 1];
         const auto [i1, j1] = a.pairs[next];
         const double t = static_cast<double>(q - i0) / static_cast<double>(i1 - i0);
-        map = static_cast<std::size_t>(std::lround(static_cast<double>(j0) + t * (static_cast<double>(j1) - static_cast<double>(j0))));
+        map = static_cast<std::size_t>(
+            std::lround(static_cast<double>(j0) + t * (static_cast<double>(j1) - static_cast<double>(j0))));
       }
       // Local score: pairs with query index in [q - window, q + window].
       const auto lo_q = static_cast<std::ptrdiff_t>(q) - window;
       const auto hi_q = static_cast<std::ptrdiff_t>(q) + window;
-      const auto lo = std::lower_bound(a.pairs.begin(), a.pairs.end(), lo_q,
-                                       [](const auto& p, std::ptrdiff_t v) { return static_cast<std::ptrdiff_t>(p.first) < v; });
-      const auto hi = std::upper_bound(a.pairs.begin(), a.pairs.end(), hi_q,
-                                       [](std::ptrdiff_t v, const auto& p) { return v < static_cast<std::ptrdiff_t>(p.first); });
+      const auto lo = std::lower_bound(a.pairs.begin(), a.pairs.end(), lo_q, [](const auto& p, std::ptrdiff_t v) {
+        return static_cast<std::ptrdiff_t>(p.first) < v;
+      });
+      const auto hi = std::upper_bound(a.pairs.begin(), a.pairs.end(), hi_q, [](std::ptrdiff_t v, const auto& p) {
+        return v < static_cast<std::ptrdiff_t>(p.first);
+      });
       double local = 0;
       if (lo < hi) {
         const auto first = static_cast<std::size_t>(lo - a.pairs.begin());
@@ -140,7 +144,8 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
     f.direction = cands.front().direction;
     for (const auto& cand : cands) {
       if (f.candidates.size() >= c.candidates) break;
-      if (std::find(f.candidates.begin(), f.candidates.end(), cand.map) == f.candidates.end()) f.candidates.push_back(cand.map);
+      if (std::find(f.candidates.begin(), f.candidates.end(), cand.map) == f.candidates.end())
+        f.candidates.push_back(cand.map);
     }
   }
   return frames;

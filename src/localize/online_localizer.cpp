@@ -8,8 +8,13 @@
 namespace seqtopo::localize {
 
 OnlineLocalizer::OnlineLocalizer(std::size_t map_frames, const LocalizeConfig& config)
-    : map_frames_(map_frames), config_(config), forward_(map_frames, 0.0F), reverse_(map_frames, 0.0F),
-      previous_forward_(map_frames, 0.0F), previous_reverse_(map_frames, 0.0F), scores_(map_frames, 0.0F) {
+    : map_frames_(map_frames),
+      config_(config),
+      forward_(map_frames, 0.0F),
+      reverse_(map_frames, 0.0F),
+      previous_forward_(map_frames, 0.0F),
+      previous_reverse_(map_frames, 0.0F),
+      scores_(map_frames, 0.0F) {
   if (map_frames == 0) throw std::invalid_argument("the map has no frame");
   validate(config);
 }

@@ -20,14 +20,15 @@ SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarit
   const std::size_t n = similarities.front().rows;
   for (const auto& s : similarities) {
     if (!s.square() || s.rows != n) {
-      throw std::invalid_argument("similarity matrix must be square and " + std::to_string(n) + " x " + std::to_string(n) +
-                                  ", got " + std::to_string(s.rows) + " x " + std::to_string(s.cols));
+      throw std::invalid_argument("similarity matrix must be square and " + std::to_string(n) + " x " +
+                                  std::to_string(n) + ", got " + std::to_string(s.rows) + " x " +
+                                  std::to_string(s.cols));
     }
   }
   if (similarities.size() == 1) {
-    return config.contrast_window == 0
-               ? similarities.front()
-               : similarity::enhance_contrast_symmetric(similarities.front(), config.contrast_window, config.contrast_offset);
+    return config.contrast_window == 0 ? similarities.front()
+                                       : similarity::enhance_contrast_symmetric(
+                                             similarities.front(), config.contrast_window, config.contrast_offset);
   }
   SimilarityMatrix sum(n, n, 0.0F);
   for (const auto& s : similarities) {
@@ -51,7 +52,8 @@ align::AlignConfig align_config(const MapConfig& config) {
   return c;
 }
 
-MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config, std::span<const metric::Pose2> odometry) {
+MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config,
+                    std::span<const metric::Pose2> odometry) {
   return build_map(std::vector<SimilarityMatrix>{similarity}, config, odometry);
 }
 
@@ -93,7 +95,8 @@ MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfi
   if (!odometry.empty() && config.odometry_gate) {
     const std::vector<bool> keep = consistent_with_odometry(result.alignments, odometry, *config.odometry_gate);
     std::vector<align::LocalAlignment> kept;
-    for (std::size_t k = 0; k < keep.size(); ++k) (keep[k] ? kept : result.rejected).push_back(std::move(result.alignments[k]));
+    for (std::size_t k = 0; k < keep.size(); ++k)
+      (keep[k] ? kept : result.rejected).push_back(std::move(result.alignments[k]));
     result.alignments = std::move(kept);
   }
   result.seconds_align = seconds_since(start);

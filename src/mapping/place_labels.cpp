@@ -33,7 +33,8 @@ class UnionFind {
 
 }  // namespace
 
-std::vector<PlaceLabel> label_places(std::size_t images, const std::vector<std::pair<std::size_t, std::size_t>>& same_place) {
+std::vector<PlaceLabel> label_places(std::size_t images,
+                                     const std::vector<std::pair<std::size_t, std::size_t>>& same_place) {
   UnionFind sets(images);
   for (auto [i, j] : same_place) {
     if (i >= images || j >= images) {

@@ -56,15 +56,18 @@ std::vector<PathSegment> collapse_segments(const Adjacency& adjacency, const std
     const PlaceLabel q = *adjacency[p].begin();
     if (!walked.count({p, q}) && !walked.count({q, p})) walk(p, q);
   }
-  std::sort(segments.begin(), segments.end(), [](const PathSegment& a, const PathSegment& b) { return a.places < b.places; });
+  std::sort(segments.begin(), segments.end(),
+            [](const PathSegment& a, const PathSegment& b) { return a.places < b.places; });
   return segments;
 }
 
 }  // namespace
 
-TopologicalMap build_topology(const std::vector<PlaceLabel>& labels, const std::vector<align::LocalAlignment>& alignments,
-                              const PruningResult& pruning, const TopologyConfig& config) {
-  if (pruning.kept.size() != alignments.size()) throw std::invalid_argument("pruning result does not match the alignments");
+TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
+                              const std::vector<align::LocalAlignment>& alignments, const PruningResult& pruning,
+                              const TopologyConfig& config) {
+  if (pruning.kept.size() != alignments.size())
+    throw std::invalid_argument("pruning result does not match the alignments");
   TopologicalMap map;
   map.labels = labels;
   PlaceLabel count = 0;

@@ -8,11 +8,10 @@
 // order and writes alignments.json. The merge does not depend on where a component ran nor on the
 // order the results arrive, so the file is the one of sparse_local_alignments_both in one process,
 // byte for byte, for any number of ranks.
+#include <fmt/format.h>
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -49,17 +48,23 @@ struct Options {
   mapping::MapConfig map;    // contrast window and offset, gap, cap, threshold, min separation
   float cap = 40.0F;         // MapConfig's
   bool no_cap = false;
-  unsigned threads = 2;      // rank 0: the two passes' fills run concurrently
+  unsigned threads = 2;  // rank 0: the two passes' fills run concurrently
 };
 
 template <typename T>
 MPI_Datatype datatype();
 template <>
-MPI_Datatype datatype<std::uint64_t>() { return MPI_UINT64_T; }
+MPI_Datatype datatype<std::uint64_t>() {
+  return MPI_UINT64_T;
+}
 template <>
-MPI_Datatype datatype<std::uint32_t>() { return MPI_UINT32_T; }
+MPI_Datatype datatype<std::uint32_t>() {
+  return MPI_UINT32_T;
+}
 template <>
-MPI_Datatype datatype<float>() { return MPI_FLOAT; }
+MPI_Datatype datatype<float>() {
+  return MPI_FLOAT;
+}
 
 // MPI counts are int: long arrays go in pieces.
 constexpr std::size_t chunk = std::size_t{1} << 28U;
@@ -160,8 +165,8 @@ Prepared prepare(const Options& opt) {
   streaming.contrast_offset = opt.map.contrast_offset;
   std::unique_ptr<scale::StreamingSimilarity> similarity;
   try {
-    similarity = std::make_unique<scale::StreamingSimilarity>(descriptors.values, descriptors.rows, descriptors.cols,
-                                                              streaming);
+    similarity =
+        std::make_unique<scale::StreamingSimilarity>(descriptors.values, descriptors.rows, descriptors.cols, streaming);
   } catch (const std::invalid_argument& e) {
     throw io::InputError(opt.descriptors, e.what());  // a zero or non-finite descriptor
   }

@@ -60,10 +60,9 @@ std::vector<std::uint64_t> encode_components(std::span<const scale::SparseCompon
   std::vector<std::uint64_t> w{components.size()};
   for (const scale::SparseComponent* c : components) {
     w.insert(w.end(), {c->direction == align::Direction::forward ? 0U : 1U, c->order, c->row_begin, c->row_end,
-                       c->pass_col_begin, c->pass_col_end,
-                       c->kind == scale::SparseBoxKind::inside_band ? 0U : 1U, c->box_row_begin, c->box_row_end,
-                       c->box_col_begin, c->box_col_end, std::bit_cast<std::uint32_t>(c->best),
-                       c->cell_begin.size(), c->cells.size()});
+                       c->pass_col_begin, c->pass_col_end, c->kind == scale::SparseBoxKind::inside_band ? 0U : 1U,
+                       c->box_row_begin, c->box_row_end, c->box_col_begin, c->box_col_end,
+                       std::bit_cast<std::uint32_t>(c->best), c->cell_begin.size(), c->cells.size()});
     w.insert(w.end(), c->cell_begin.begin(), c->cell_begin.end());
     w.insert(w.end(), c->cells.begin(), c->cells.end());
   }

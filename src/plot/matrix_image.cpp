@@ -7,7 +7,8 @@
 
 namespace seqtopo::plot {
 
-RgbImage matrix_image(const DenseMatrix<float>& m, const std::vector<Polyline>& overlays, const MatrixImageConfig& config) {
+RgbImage matrix_image(const DenseMatrix<float>& m, const std::vector<Polyline>& overlays,
+                      const MatrixImageConfig& config) {
   if (m.empty()) return RgbImage(1, 1);
   std::vector<float> sorted = m.values;
   std::sort(sorted.begin(), sorted.end());
@@ -36,7 +37,8 @@ RgbImage matrix_image(const DenseMatrix<float>& m, const std::vector<Polyline>& 
   for (const auto& line : overlays) {
     std::vector<cv::Point> pts;
     for (auto [r, c] : line.points) {
-      pts.emplace_back(static_cast<int>(std::lround((c + 0.5) * scale)), static_cast<int>(std::lround((r + 0.5) * scale)));
+      pts.emplace_back(static_cast<int>(std::lround((c + 0.5) * scale)),
+                       static_cast<int>(std::lround((r + 0.5) * scale)));
     }
     const cv::Scalar colour(line.rgb[0], line.rgb[1], line.rgb[2]);
     if (pts.size() == 1) {

@@ -27,7 +27,8 @@ RgbImage pr_curve_image(const std::vector<Curve>& curves, int width, int height)
     }
   }
   cv::rectangle(img, to_px(0, 1), to_px(1, 0), black, 1);
-  cv::putText(img, "recall", cv::Point(left + w / 2 - 20, height - 12), cv::FONT_HERSHEY_SIMPLEX, 0.5, black, 1, cv::LINE_AA);
+  cv::putText(img, "recall", cv::Point(left + w / 2 - 20, height - 12), cv::FONT_HERSHEY_SIMPLEX, 0.5, black, 1,
+              cv::LINE_AA);
   cv::putText(img, "precision", cv::Point(4, top + 12), cv::FONT_HERSHEY_SIMPLEX, 0.4, black, 1, cv::LINE_AA);
   int legend_y = top + h - 10 - 18 * static_cast<int>(curves.size());
   for (const auto& curve : curves) {
@@ -40,7 +41,8 @@ RgbImage pr_curve_image(const std::vector<Curve>& curves, int width, int height)
     for (const auto& p : pts) cv::circle(img, p, 2, colour, cv::FILLED);
     legend_y += 18;
     cv::line(img, cv::Point(left + 12, legend_y - 4), cv::Point(left + 36, legend_y - 4), colour, 2);
-    cv::putText(img, curve.label, cv::Point(left + 42, legend_y), cv::FONT_HERSHEY_SIMPLEX, 0.45, black, 1, cv::LINE_AA);
+    cv::putText(img, curve.label, cv::Point(left + 42, legend_y), cv::FONT_HERSHEY_SIMPLEX, 0.45, black, 1,
+                cv::LINE_AA);
   }
   cv::Mat rgb;
   cv::cvtColor(img, rgb, cv::COLOR_BGR2RGB);

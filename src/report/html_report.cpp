@@ -7,11 +7,20 @@ std::string escape_html(const std::string& text) {
   out.reserve(text.size());
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -67,12 +76,14 @@ void HtmlReport::key_values(const std::vector<std::pair<std::string, std::string
 
 void HtmlReport::png(const std::string& caption, const std::string& png_bytes, const std::string& file_name) {
   body_ += "<figure><img alt=\"" + escape_html(caption) + "\" src=\"data:image/png;base64," + base64(png_bytes) +
-           "\"><figcaption>" + escape_html(caption) + " (<code>" + escape_html(file_name) + "</code>)</figcaption></figure>\n";
+           "\"><figcaption>" + escape_html(caption) + " (<code>" + escape_html(file_name) +
+           "</code>)</figcaption></figure>\n";
 }
 
 void HtmlReport::svg(const std::string& caption, const std::string& svg_text, const std::string& file_name) {
   body_ += "<figure><img alt=\"" + escape_html(caption) + "\" src=\"data:image/svg+xml;base64," + base64(svg_text) +
-           "\"><figcaption>" + escape_html(caption) + " (<code>" + escape_html(file_name) + "</code>)</figcaption></figure>\n";
+           "\"><figcaption>" + escape_html(caption) + " (<code>" + escape_html(file_name) +
+           "</code>)</figcaption></figure>\n";
 }
 
 std::string HtmlReport::html() const {

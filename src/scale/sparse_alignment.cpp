@@ -68,9 +68,8 @@ void SparseScores::read_row(std::size_t i, std::size_t j_begin, std::size_t j_en
 }
 
 align::ScoreSource SparseScores::source() const {
-  return align::ScoreSource(rows_, cols_, [this](std::size_t i, std::size_t jb, std::size_t je, float* out) {
-    read_row(i, jb, je, out);
-  });
+  return align::ScoreSource(
+      rows_, cols_, [this](std::size_t i, std::size_t jb, std::size_t je, float* out) { read_row(i, jb, je, out); });
 }
 
 std::vector<LocalAlignment> sparse_local_alignments(const SparseScores& scores, const AlignConfig& config,

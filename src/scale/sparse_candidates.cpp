@@ -35,8 +35,8 @@ std::vector<std::vector<std::uint32_t>> nearest_neighbours(std::span<const float
   const auto count = static_cast<faiss::Index::idx_t>(n);
   std::unique_ptr<faiss::IndexFlatIP> quantizer;
   std::unique_ptr<faiss::Index> index;
-  std::size_t lists = config.lists != 0 ? config.lists
-                                        : static_cast<std::size_t>(2.0 * std::sqrt(static_cast<double>(n)));
+  std::size_t lists =
+      config.lists != 0 ? config.lists : static_cast<std::size_t>(2.0 * std::sqrt(static_cast<double>(n)));
   lists = std::min(lists, n / 39);
   if (config.exact || lists < 2) {
     index = std::make_unique<faiss::IndexFlatIP>(d);
@@ -65,8 +65,8 @@ std::vector<std::vector<std::uint32_t>> nearest_neighbours(std::span<const float
   std::vector<faiss::Index::idx_t> labels(batch * want);
   for (std::size_t q0 = 0; q0 < n; q0 += batch) {
     const std::size_t q = std::min(batch, n - q0);
-    index->search(static_cast<faiss::Index::idx_t>(q), descriptors.data() + q0 * dim, static_cast<faiss::Index::idx_t>(want),
-                  dist.data(), labels.data());
+    index->search(static_cast<faiss::Index::idx_t>(q), descriptors.data() + q0 * dim,
+                  static_cast<faiss::Index::idx_t>(want), dist.data(), labels.data());
     for (std::size_t a = 0; a < q; ++a) {
       const std::size_t i = q0 + a;
       auto& row = out[i];

@@ -21,9 +21,8 @@ bool SparseComponent::contains(std::size_t row, std::size_t pass_col) const {
   const std::size_t r = row - row_begin;
   const auto first = cells.begin() + static_cast<std::ptrdiff_t>(cell_begin[r]);
   const auto last = cells.begin() + static_cast<std::ptrdiff_t>(cell_begin[r + 1]);
-  return std::binary_search(first, last, pass_col, [](auto a, auto b) {
-    return static_cast<std::size_t>(a) < static_cast<std::size_t>(b);
-  });
+  return std::binary_search(first, last, pass_col,
+                            [](auto a, auto b) { return static_cast<std::size_t>(a) < static_cast<std::size_t>(b); });
 }
 
 namespace {
@@ -106,8 +105,8 @@ class SparseFill {
         }
         left_next = none;
         if (t < lo || t > hi) continue;
-        const auto cit = std::lower_bound(cand.begin(), cand.end(), t,
-                                          [](const auto& c, std::size_t v) { return c.first < v; });
+        const auto cit =
+            std::lower_bound(cand.begin(), cand.end(), t, [](const auto& c, std::size_t v) { return c.first < v; });
         const float s = cit != cand.end() && cit->first == t ? cit->second : bg;
         const Cell* diag = prev != nullptr && t > 0 ? find_cell(*prev, t - 1) : nullptr;
         const Cell* up = prev != nullptr ? find_cell(*prev, t) : nullptr;
@@ -306,7 +305,8 @@ void check(const SparseScores& scores, const AlignConfig& config) {
   align::local_alignments(
       align::ScoreSource(scores.rows(), scores.cols(), [](std::size_t, std::size_t, std::size_t, float*) {}), c);
   if (!(scores.background() < 0)) throw std::invalid_argument("sparse alignment needs a background score < 0");
-  if (!(config.gap_a > 0) || !(config.gap_b > 0)) throw std::invalid_argument("sparse alignment needs gap penalties > 0");
+  if (!(config.gap_a > 0) || !(config.gap_b > 0))
+    throw std::invalid_argument("sparse alignment needs gap penalties > 0");
 }
 
 void check_aligned(std::span<const SparseComponent> components,
@@ -413,8 +413,8 @@ std::vector<LocalAlignment> merge_pass(const SparseScores& scores, const AlignCo
     while (hi < order.size() && !key_less(order[lo], order[hi])) ++hi;
     if (hi - lo > 1) {
       for (std::size_t k = lo; k < hi; ++k) {
-        order[k].first_max = first_max_key(scores, config, *components[order[k].group], aligned[order[k].group],
-                                           order[k].index);
+        order[k].first_max =
+            first_max_key(scores, config, *components[order[k].group], aligned[order[k].group], order[k].index);
       }
       std::stable_sort(order.begin() + static_cast<std::ptrdiff_t>(lo), order.begin() + static_cast<std::ptrdiff_t>(hi),
                        [](const Ref& x, const Ref& y) { return x.first_max < y.first_max; });

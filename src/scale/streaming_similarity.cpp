@@ -151,8 +151,8 @@ void window_sums(double* sum, double* sum2, const float* first, std::size_t stri
 }
 
 [[gnu::target_clones("avx2", "default")]] void finish(float* out, const float* v, const double* rs, const double* rs2,
-                                                       const double* row_count, const double* cs, const double* cs2,
-                                                       double col_count, float offset, std::size_t count) {
+                                                      const double* row_count, const double* cs, const double* cs2,
+                                                      double col_count, float offset, std::size_t count) {
   for (std::size_t b = 0; b < count; ++b) {
     const float e_ij = enhanced(v[b], rs[b], rs2[b], row_count[b]);
     const float e_ji = enhanced(v[b], cs[b], cs2[b], col_count);
@@ -191,7 +191,8 @@ StreamingSimilarity::StreamingSimilarity(std::span<const float> descriptors, std
     double norm2 = 0;
     for (std::size_t t = 0; t < dim; ++t) norm2 += static_cast<double>(x[t]) * x[t];
     if (!(norm2 > 0) || !std::isfinite(norm2)) {
-      throw std::invalid_argument("descriptor " + std::to_string(i) + " is zero or not finite (cosine needs a direction)");
+      throw std::invalid_argument("descriptor " + std::to_string(i) +
+                                  " is zero or not finite (cosine needs a direction)");
     }
     const double inv = 1.0 / std::sqrt(norm2);
     for (std::size_t t = 0; t < dim; ++t) {
@@ -295,8 +296,9 @@ TilePtr StreamingSimilarity::tile(std::size_t tile_row, std::size_t tile_col, bo
       future = it->second.tile;
     } else {
       if (cache_->entries.size() >= cache_->capacity) {
-        auto oldest = std::min_element(cache_->entries.begin(), cache_->entries.end(),
-                                       [](const auto& a, const auto& b) { return a.second.last_use < b.second.last_use; });
+        auto oldest =
+            std::min_element(cache_->entries.begin(), cache_->entries.end(),
+                             [](const auto& a, const auto& b) { return a.second.last_use < b.second.last_use; });
         cache_->entries.erase(oldest);
       }
       Cache::Entry entry{promise.get_future().share(), ++cache_->clock};
@@ -320,7 +322,8 @@ TilePtr StreamingSimilarity::tile(std::size_t tile_row, std::size_t tile_col, bo
 }
 
 void StreamingSimilarity::read_row(std::size_t i, std::size_t j_begin, std::size_t j_end, float* out) const {
-  if (i >= n_ || j_end > n_ || j_begin > j_end) throw std::out_of_range("streaming similarity: row segment out of range");
+  if (i >= n_ || j_end > n_ || j_begin > j_end)
+    throw std::out_of_range("streaming similarity: row segment out of range");
   const std::size_t T = config_.tile;
   const std::size_t tr = i / T;
   // First compute the segment's missing tiles, skipping those another reader is computing: concurrent

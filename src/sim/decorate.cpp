@@ -8,7 +8,8 @@ namespace seqtopo::sim::detail {
 namespace {
 
 Colour pick(const std::vector<Colour>& colours, Rng& rng) {
-  return colours.empty() ? rgb(200, 60, 60) : colours[static_cast<std::size_t>(rng.below(static_cast<int>(colours.size())))];
+  return colours.empty() ? rgb(200, 60, 60)
+                         : colours[static_cast<std::size_t>(rng.below(static_cast<int>(colours.size())))];
 }
 
 Decal on_run(const FaceRun& run, double u0, double u1, double z0, double z1) {
@@ -69,7 +70,7 @@ std::vector<FaceRun> face_runs(const GridWorld& w, Rect region, double min_heigh
 DecorStyle office_style() {
   DecorStyle s;
   s.door_colours = {rgb(150, 100, 60), rgb(120, 80, 50), rgb(180, 140, 90), rgb(90, 110, 140), rgb(200, 200, 195)};
-  s.colours = {rgb(210, 40, 40),  rgb(40, 90, 200),  rgb(240, 200, 40), rgb(40, 160, 70),  rgb(230, 120, 30),
+  s.colours = {rgb(210, 40, 40),  rgb(40, 90, 200),  rgb(240, 200, 40),  rgb(40, 160, 70), rgb(230, 120, 30),
                rgb(140, 60, 170), rgb(30, 170, 180), rgb(235, 110, 160), rgb(110, 70, 40), rgb(20, 20, 30)};
   return s;
 }
@@ -178,8 +179,8 @@ double place_item(GridWorld& world, const FaceRun& run, double u, int kind, cons
 }
 
 void decorate(GridWorld& world, Rect region, const DecorStyle& style, Rng& rng) {
-  const std::vector<double> weights{style.doors, style.posters, style.patches, style.bars, style.boards, style.small,
-                                    style.windows};
+  const std::vector<double> weights{style.doors,  style.posters, style.patches, style.bars,
+                                    style.boards, style.small,   style.windows};
   double total = 0;
   for (double w : weights) total += w;
   if (total <= 0) return;

@@ -22,7 +22,8 @@ struct Canvas {
   void disc(double x, double y, double r, Pixel c) {
     for (int dy = static_cast<int>(-std::ceil(r)); dy <= std::ceil(r); ++dy) {
       for (int dx = static_cast<int>(-std::ceil(r)); dx <= std::ceil(r); ++dx) {
-        if (dx * dx + dy * dy <= r * r) dot(static_cast<int>(std::lround(x)) + dx, static_cast<int>(std::lround(y)) + dy, c);
+        if (dx * dx + dy * dy <= r * r)
+          dot(static_cast<int>(std::lround(x)) + dx, static_cast<int>(std::lround(y)) + dy, c);
       }
     }
   }
@@ -47,7 +48,8 @@ Pixel pixel(Colour c, float scale = 1.0F, float towards_white = 0.0F) {
   Pixel p{};
   for (int k = 0; k < 3; ++k) {
     const float v = c[static_cast<std::size_t>(k)] * scale;
-    p[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(std::clamp(v + (255.0F - v) * towards_white, 0.0F, 255.0F));
+    p[static_cast<std::size_t>(k)] =
+        static_cast<std::uint8_t>(std::clamp(v + (255.0F - v) * towards_white, 0.0F, 255.0F));
   }
   return p;
 }
@@ -83,22 +85,36 @@ RgbImage draw_floor_plan(const ScenarioSetup& setup, const SimulatedRun& run, do
     const double out = 0.12;  // [m] into the free space
     Vec2 a, b;
     switch (d.side) {
-      case Side::west: a = {d.plane - out, d.u0}; b = {d.plane - out, d.u1}; break;
-      case Side::east: a = {d.plane + out, d.u0}; b = {d.plane + out, d.u1}; break;
-      case Side::south: a = {d.u0, d.plane - out}; b = {d.u1, d.plane - out}; break;
-      case Side::north: a = {d.u0, d.plane + out}; b = {d.u1, d.plane + out}; break;
+      case Side::west:
+        a = {d.plane - out, d.u0};
+        b = {d.plane - out, d.u1};
+        break;
+      case Side::east:
+        a = {d.plane + out, d.u0};
+        b = {d.plane + out, d.u1};
+        break;
+      case Side::south:
+        a = {d.u0, d.plane - out};
+        b = {d.u1, d.plane - out};
+        break;
+      case Side::north:
+        a = {d.u0, d.plane + out};
+        b = {d.u1, d.plane + out};
+        break;
     }
     canvas.line(a, b, std::max(1.0, 0.08 * canvas.ppm), pixel(d.fill));
   }
   // The route: the path followed (grey) and the robot's actual trajectory (red).
-  for (std::size_t k = 1; k < run.on_path.size(); ++k) canvas.line(run.on_path[k - 1], run.on_path[k], 1.0, {90, 90, 90});
+  for (std::size_t k = 1; k < run.on_path.size(); ++k)
+    canvas.line(run.on_path[k - 1], run.on_path[k], 1.0, {90, 90, 90});
   for (std::size_t k = 1; k < run.poses.size(); ++k) {
     canvas.line({run.poses[k - 1].x, run.poses[k - 1].y}, {run.poses[k].x, run.poses[k].y}, 1.2, {220, 20, 20});
   }
   // Junctions of the route.
   std::set<int> used;
   for (const RouteLeg& leg : setup.legs) {
-    for (std::size_t k = 0; k + 1 < leg.nodes.size(); ++k) used.insert(setup.graph.edge_between(leg.nodes[k], leg.nodes[k + 1]));
+    for (std::size_t k = 0; k + 1 < leg.nodes.size(); ++k)
+      used.insert(setup.graph.edge_between(leg.nodes[k], leg.nodes[k + 1]));
   }
   std::vector<int> degree(setup.graph.nodes.size(), 0);
   for (int e : used) {

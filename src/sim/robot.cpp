@@ -39,7 +39,8 @@ int raw_place(const PathGraph& graph, const PlaceConfig& config, int edge, doubl
   int offset = static_cast<int>(graph.nodes.size());
   for (int e = 0; e < edge; ++e) {
     const auto& [p, q] = graph.edges[static_cast<std::size_t>(e)];
-    offset += pieces(distance(graph.nodes[static_cast<std::size_t>(p)], graph.nodes[static_cast<std::size_t>(q)]), config);
+    offset +=
+        pieces(distance(graph.nodes[static_cast<std::size_t>(p)], graph.nodes[static_cast<std::size_t>(q)]), config);
   }
   const int k = pieces(length, config);
   const double piece = (length - 2 * r) / k;
@@ -54,7 +55,7 @@ struct Sample {
   int edge = 0;
   double along = 0;
   int leg = 0;
-  double leg_s = 0;     // path length since the leg began [m]
+  double leg_s = 0;  // path length since the leg began [m]
   double leg_length = 0;
 };
 
@@ -78,7 +79,8 @@ std::vector<RouteFrame> follow_route(const PathGraph& graph, const std::vector<R
     if (nodes.empty()) throw std::invalid_argument("route leg " + std::to_string(l) + " has no nodes");
     for (int n : nodes) {
       if (n < 0 || n >= static_cast<int>(graph.nodes.size())) {
-        throw std::invalid_argument("route leg " + std::to_string(l) + " names node " + std::to_string(n) + ", which does not exist");
+        throw std::invalid_argument("route leg " + std::to_string(l) + " names node " + std::to_string(n) +
+                                    ", which does not exist");
       }
     }
     if (previous_end >= 0 && nodes.front() != previous_end) {
@@ -87,7 +89,8 @@ std::vector<RouteFrame> follow_route(const PathGraph& graph, const std::vector<R
     previous_end = nodes.back();
     double leg_length = 0;
     for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
-      leg_length += distance(graph.nodes[static_cast<std::size_t>(nodes[k])], graph.nodes[static_cast<std::size_t>(nodes[k + 1])]);
+      leg_length += distance(graph.nodes[static_cast<std::size_t>(nodes[k])],
+                             graph.nodes[static_cast<std::size_t>(nodes[k + 1])]);
     }
     double leg_s = 0;
     for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
@@ -114,7 +117,8 @@ std::vector<RouteFrame> follow_route(const PathGraph& graph, const std::vector<R
       const Vec2 pa = graph.nodes[static_cast<std::size_t>(a)], pb = graph.nodes[static_cast<std::size_t>(b)];
       const bool forward = graph.edges[static_cast<std::size_t>(e)][0] == a;
       const double length = distance(pa, pb);
-      samples.push_back({pb, (1.0 / length) * (pb - pa), e, forward ? length : 0.0, static_cast<int>(l), leg_s, leg_length});
+      samples.push_back(
+          {pb, (1.0 / length) * (pb - pa), e, forward ? length : 0.0, static_cast<int>(l), leg_s, leg_length});
     }
   }
   if (samples.size() < 2) throw std::invalid_argument("the route is empty: it needs at least one edge");
@@ -163,7 +167,8 @@ std::vector<RouteFrame> follow_route(const PathGraph& graph, const std::vector<R
       frame.on_path = samples[k].ideal + f * (samples[k + 1].ideal - samples[k].ideal);
       frame.edge = samples[near].edge;
       frame.along = samples[near].along;
-      if (samples[k].edge == samples[k + 1].edge) frame.along = samples[k].along + f * (samples[k + 1].along - samples[k].along);
+      if (samples[k].edge == samples[k + 1].edge)
+        frame.along = samples[k].along + f * (samples[k + 1].along - samples[k].along);
       frame.leg = samples[near].leg;
       frames.push_back(frame);
       next += interval;
@@ -207,7 +212,8 @@ std::vector<Pose2> simulate_odometry(const std::vector<Pose2>& truth, const Odom
     const double root = std::sqrt(travelled);
     d.x = d.x * (1 + noise.scale_error) + noise.translation_sigma * root * n1;
     d.y = d.y * (1 + noise.scale_error) + 0.5 * noise.translation_sigma * root * n2;
-    d.theta += noise.heading_drift * travelled + noise.rotation_sigma * std::sqrt(travelled + 0.3 * std::abs(d.theta)) * n3;
+    d.theta +=
+        noise.heading_drift * travelled + noise.rotation_sigma * std::sqrt(travelled + 0.3 * std::abs(d.theta)) * n3;
   }
   return integrate_increments(truth.front(), increments);
 }

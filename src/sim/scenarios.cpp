@@ -18,16 +18,19 @@ namespace {
 using detail::decorate;
 using detail::DecorStyle;
 
-constexpr double kCell = 0.25;           // [m] grid resolution of every scenario
-constexpr double kCorridorWidth = 2.2;   // [m]
+constexpr double kCell = 0.25;          // [m] grid resolution of every scenario
+constexpr double kCorridorWidth = 2.2;  // [m]
 
 const std::vector<Colour>& wall_paints() {
-  static const std::vector<Colour> paints{rgb(226, 216, 190), rgb(205, 210, 214), rgb(196, 220, 196), rgb(190, 208, 228),
-                                          rgb(232, 222, 160), rgb(228, 196, 180), rgb(215, 205, 230), rgb(240, 240, 236)};
+  static const std::vector<Colour> paints{rgb(226, 216, 190), rgb(205, 210, 214), rgb(196, 220, 196),
+                                          rgb(190, 208, 228), rgb(232, 222, 160), rgb(228, 196, 180),
+                                          rgb(215, 205, 230), rgb(240, 240, 236)};
   return paints;
 }
 
-int paint(GridWorld& w, Colour c) { return w.add_material({Pattern::plain, c, {c[0] * 0.55F, c[1] * 0.55F, c[2] * 0.55F}, 2.6, 1.0}); }
+int paint(GridWorld& w, Colour c) {
+  return w.add_material({Pattern::plain, c, {c[0] * 0.55F, c[1] * 0.55F, c[2] * 0.55F}, 2.6, 1.0});
+}
 
 // Office floors and walls shared by the indoor scenarios.
 struct Office {
@@ -88,9 +91,9 @@ ScenarioSetup figure_eight(const SimulationConfig& config) {
   GridWorld w({-4, -10, 36, 19}, kCell);
   const Office o = office_materials(w);
   w.fill(w.bounds(), o.walls[0]);
-  w.fill({-4, 4, 36, 19}, o.walls[3]);       // north wing in another colour
-  w.fill({24, -10, 36, 4}, o.walls[4]);      // east exit
-  w.fill({9.5, 1.5, 20.5, 8.5}, o.panels);   // meeting room inside the loop
+  w.fill({-4, 4, 36, 19}, o.walls[3]);      // north wing in another colour
+  w.fill({24, -10, 36, 4}, o.walls[4]);     // east exit
+  w.fill({9.5, 1.5, 20.5, 8.5}, o.panels);  // meeting room inside the loop
   PathGraph& g = s.graph;
   const int start = g.add_node({0, 0}), j1 = g.add_node({8, 0}), j2 = g.add_node({22, 0}), n1 = g.add_node({22, 10}),
             n2 = g.add_node({8, 10}), end = g.add_node({32, 0}), side = g.add_node({1, 10}), up = g.add_node({22, 16});
@@ -103,10 +106,10 @@ ScenarioSetup figure_eight(const SimulationConfig& config) {
   g.add_edge(n2, side);  // corridors the route never takes
   g.add_edge(n1, up);
   carve_graph(w, g, kCorridorWidth, o.carpet);
-  w.carve({11, 2.5, 19, 7.5}, o.lino);       // meeting room, open to both corridors
+  w.carve({11, 2.5, 19, 7.5}, o.lino);  // meeting room, open to both corridors
   w.carve({12.5, 1.0, 14.0, 2.6}, o.lino);
   w.carve({16.0, 7.4, 17.5, 9.0}, o.lino);
-  w.carve({11, -8, 19, -3}, o.tiles);        // kitchen south of the shared corridor
+  w.carve({11, -8, 19, -3}, o.tiles);  // kitchen south of the shared corridor
   w.carve({14, -3.2, 16, -1.0}, o.tiles);
   Rng decor(config.seed, 2);
   decorate(w, w.bounds(), detail::office_style(), decor);
@@ -228,8 +231,10 @@ Campus build_campus(ScenarioSetup& s, const SimulationConfig& config) {
       const double y = ys[j] + (j == 0 ? -2.6 : 2.6);
       if (j == 1 && i == 2) continue;  // indoors
       for (double x = xs[i] + 3; x < xs[i + 1] - 2; x += rng.uniform(4.5, 8)) {
-        if (rng.chance(0.7)) w.fill({x, y - 0.5, x + 0.5, y}, tree);
-        else w.fill({x, y - 0.25, x + 0.25, y}, lamp);
+        if (rng.chance(0.7))
+          w.fill({x, y - 0.5, x + 0.5, y}, tree);
+        else
+          w.fill({x, y - 0.25, x + 0.25, y}, lamp);
       }
     }
   }
@@ -237,8 +242,10 @@ Campus build_campus(ScenarioSetup& s, const SimulationConfig& config) {
     const double x = xs[i] + (i == 3 ? 2.6 : -2.6);
     const double top = i >= 2 ? 16 : 33;
     for (double y = 3; y < top; y += rng.uniform(5, 9)) {
-      if (rng.chance(0.6)) w.fill({x - 0.5, y, x, y + 0.5}, tree);
-      else w.fill({x, y, x + 0.25, y + 0.25}, lamp);
+      if (rng.chance(0.6))
+        w.fill({x - 0.5, y, x, y + 0.5}, tree);
+      else
+        w.fill({x, y, x + 0.25, y + 0.25}, lamp);
     }
   }
   Rng decor(config.seed, 12);
@@ -415,9 +422,12 @@ ScenarioSetup rooms(const SimulationConfig& config) {
     const double hw = rng.uniform(2.3, 3.4), hh = rng.uniform(2.0, 3.2);
     const Rect r{cx - hw, cy - hh, cx + hw, cy + hh};
     // Each wall of the room (a 0.5 m shell) in its own material.
-    const Rect walls[4] = {{r.x0 - 0.5, r.y0, r.x0, r.y1}, {r.x1, r.y0, r.x1 + 0.5, r.y1},
-                           {r.x0 - 0.5, r.y0 - 0.5, r.x1 + 0.5, r.y0}, {r.x0 - 0.5, r.y1, r.x1 + 0.5, r.y1 + 0.5}};
-    for (const Rect& wr : walls) w.fill(wr, wall_materials[static_cast<std::size_t>(rng.below(static_cast<int>(wall_materials.size())))]);
+    const Rect walls[4] = {{r.x0 - 0.5, r.y0, r.x0, r.y1},
+                           {r.x1, r.y0, r.x1 + 0.5, r.y1},
+                           {r.x0 - 0.5, r.y0 - 0.5, r.x1 + 0.5, r.y0},
+                           {r.x0 - 0.5, r.y1, r.x1 + 0.5, r.y1 + 0.5}};
+    for (const Rect& wr : walls)
+      w.fill(wr, wall_materials[static_cast<std::size_t>(rng.below(static_cast<int>(wall_materials.size())))]);
     w.carve(r, grounds[static_cast<std::size_t>(rng.below(static_cast<int>(grounds.size())))]);
     // Furniture against the walls.
     const int pieces = 1 + rng.below(3);
@@ -425,10 +435,26 @@ ScenarioSetup rooms(const SimulationConfig& config) {
       const int m = f == 0 ? cabinet : (rng.chance(0.5) ? desk : shelf);
       const double len = rng.uniform(0.8, 1.8), depth = m == desk ? 0.75 : 0.5;
       switch (rng.below(4)) {
-        case 0: { const double x = rng.uniform(r.x0, r.x1 - len); w.fill({x, r.y0, x + len, r.y0 + depth}, m); break; }
-        case 1: { const double x = rng.uniform(r.x0, r.x1 - len); w.fill({x, r.y1 - depth, x + len, r.y1}, m); break; }
-        case 2: { const double y = rng.uniform(r.y0, r.y1 - len); w.fill({r.x0, y, r.x0 + depth, y + len}, m); break; }
-        default: { const double y = rng.uniform(r.y0, r.y1 - len); w.fill({r.x1 - depth, y, r.x1, y + len}, m); break; }
+        case 0: {
+          const double x = rng.uniform(r.x0, r.x1 - len);
+          w.fill({x, r.y0, x + len, r.y0 + depth}, m);
+          break;
+        }
+        case 1: {
+          const double x = rng.uniform(r.x0, r.x1 - len);
+          w.fill({x, r.y1 - depth, x + len, r.y1}, m);
+          break;
+        }
+        case 2: {
+          const double y = rng.uniform(r.y0, r.y1 - len);
+          w.fill({r.x0, y, r.x0 + depth, y + len}, m);
+          break;
+        }
+        default: {
+          const double y = rng.uniform(r.y0, r.y1 - len);
+          w.fill({r.x1 - depth, y, r.x1, y + len}, m);
+          break;
+        }
       }
     }
     if (rng.chance(0.4)) {  // a pillar
@@ -439,7 +465,8 @@ ScenarioSetup rooms(const SimulationConfig& config) {
     style.spacing = 1.0;
     style.windows = 0;
     decorate(w, r, style, rng);
-    add_point(s, rng, numbered('m', map_count++), true, {cx + rng.uniform(-0.1, 0.1), cy + rng.uniform(-0.1, 0.1)}, config);
+    add_point(s, rng, numbered('m', map_count++), true, {cx + rng.uniform(-0.1, 0.1), cy + rng.uniform(-0.1, 0.1)},
+              config);
     const int map_index = static_cast<int>(s.points.size()) - 1;
     for (int t = 0; t < 3; ++t) {
       const double a = rng.uniform(0, 2 * std::numbers::pi), d = rng.uniform(0.3, 0.6);
@@ -495,15 +522,16 @@ ScenarioSetup ground_floor(const SimulationConfig& config) {
     const Vec2 p = at <= 34 ? Vec2{-4 + at, 0} : Vec2{30, at - 34};
     map_points.push_back(p + Vec2{rng.uniform(-0.15, 0.15), rng.uniform(-0.15, 0.15)});
   }
-  for (int k = 0; k < 21; ++k) add_point(s, rng, numbered('m', k), true, map_points[static_cast<std::size_t>(k)], config);
+  for (int k = 0; k < 21; ++k)
+    add_point(s, rng, numbered('m', k), true, map_points[static_cast<std::size_t>(k)], config);
   // 22 test points: one in each of the 20 gaps, a second in two of them.
   int test = 0;
   for (int gap = 0; gap < 20; ++gap) {
     const int count = (gap == 5 || gap == 14) ? 2 : 1;
     for (int c = 0; c < count; ++c) {
       const double f = count == 1 ? rng.uniform(0.3, 0.7) : (c == 0 ? rng.uniform(0.2, 0.4) : rng.uniform(0.6, 0.8));
-      const Vec2 p = between(map_points[static_cast<std::size_t>(gap)], map_points[static_cast<std::size_t>(gap + 1)], f,
-                             rng.uniform(-0.4, 0.4));
+      const Vec2 p = between(map_points[static_cast<std::size_t>(gap)], map_points[static_cast<std::size_t>(gap + 1)],
+                             f, rng.uniform(-0.4, 0.4));
       add_point(s, rng, numbered('t', test++), false, p, config);
       const int t = static_cast<int>(s.points.size()) - 1;
       s.adjacency.push_back({t, gap});
@@ -529,9 +557,9 @@ ScenarioSetup white_hall(const SimulationConfig& config) {
   const int marble = w.add_ground({Pattern::tiles, rgb(225, 222, 215), rgb(195, 192, 186), 0.8, true});
   w.fill(w.bounds(), white);
   w.carve({0, 0, 20, 13}, marble);
-  w.fill({6, -0.5, 14, 0}, glass);      // entrance
-  w.fill({20, 3, 20.5, 10}, stairs);    // stair case to the east
-  w.fill({7, 11.8, 13, 12.6}, desk);    // reception desk
+  w.fill({6, -0.5, 14, 0}, glass);    // entrance
+  w.fill({20, 3, 20.5, 10}, stairs);  // stair case to the east
+  w.fill({7, 11.8, 13, 12.6}, desk);  // reception desk
   for (const Vec2 c : {Vec2{4.75, 6.5}, Vec2{8.25, 6.5}, Vec2{11.75, 6.5}, Vec2{15.25, 6.5}}) {  // a colonnade
     w.fill({c.x - 0.3, c.y - 0.3, c.x + 0.3, c.y + 0.3}, column);
   }
@@ -549,7 +577,8 @@ ScenarioSetup white_hall(const SimulationConfig& config) {
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 5; ++i) {
       index[i][j] = static_cast<int>(s.points.size());
-      add_point(s, rng, numbered('m', k++), true, {xs[i] + rng.uniform(-0.1, 0.1), ys[j] + rng.uniform(-0.1, 0.1)}, config);
+      add_point(s, rng, numbered('m', k++), true, {xs[i] + rng.uniform(-0.1, 0.1), ys[j] + rng.uniform(-0.1, 0.1)},
+                config);
     }
   }
   // 18 test points: the centre of each of the 8 grid squares (adjacent to its 4 corners) and the
@@ -561,7 +590,8 @@ ScenarioSetup white_hall(const SimulationConfig& config) {
   };
   for (int j = 0; j < 2; ++j) {
     for (int i = 0; i < 4; ++i) {
-      test_point({(xs[i] + xs[i + 1]) / 2, (ys[j] + ys[j + 1]) / 2}, {index[i][j], index[i + 1][j], index[i][j + 1], index[i + 1][j + 1]});
+      test_point({(xs[i] + xs[i + 1]) / 2, (ys[j] + ys[j + 1]) / 2},
+                 {index[i][j], index[i + 1][j], index[i][j + 1], index[i + 1][j + 1]});
     }
   }
   for (int j = 0; j < 2; ++j) {
@@ -598,15 +628,24 @@ const std::vector<ScenarioInfo>& scenarios() {
 
 ScenarioSetup build_scenario(const std::string& name, const SimulationConfig& config) {
   ScenarioSetup s;
-  if (name == "figure-eight") s = figure_eight(config);
-  else if (name == "corridor-reverse") s = corridor_reverse(config);
-  else if (name == "nested-loops") s = nested_loops(config);
-  else if (name == "zigzag") s = zigzag(config);
-  else if (name == "aliasing") s = aliasing(config);
-  else if (name == "rooms") s = rooms(config);
-  else if (name == "ground-floor") s = ground_floor(config);
-  else if (name == "white-hall") s = white_hall(config);
-  else throw std::invalid_argument("unknown scenario '" + name + "' (see --list)");
+  if (name == "figure-eight")
+    s = figure_eight(config);
+  else if (name == "corridor-reverse")
+    s = corridor_reverse(config);
+  else if (name == "nested-loops")
+    s = nested_loops(config);
+  else if (name == "zigzag")
+    s = zigzag(config);
+  else if (name == "aliasing")
+    s = aliasing(config);
+  else if (name == "rooms")
+    s = rooms(config);
+  else if (name == "ground-floor")
+    s = ground_floor(config);
+  else if (name == "white-hall")
+    s = white_hall(config);
+  else
+    throw std::invalid_argument("unknown scenario '" + name + "' (see --list)");
   if (config.interval) s.interval = *config.interval;
   const double f = config.odometry_noise;
   if (f < 0) throw std::invalid_argument("odometry noise factor must be >= 0");
@@ -632,7 +671,8 @@ SimulatedRun simulate(const ScenarioSetup& setup, const SimulationConfig& config
     run.points = setup.points;
     run.adjacency = setup.adjacency;
     for (const SurveyPoint& p : run.points) {
-      if (setup.world.solid_at({p.pose.x, p.pose.y})) throw std::logic_error(setup.name + ": point " + p.id + " is inside a wall");
+      if (setup.world.solid_at({p.pose.x, p.pose.y}))
+        throw std::logic_error(setup.name + ": point " + p.id + " is inside a wall");
     }
     run.panoramas.resize(run.points.size());
     const auto n = static_cast<std::ptrdiff_t>(run.points.size());
@@ -660,7 +700,8 @@ SimulatedRun simulate(const ScenarioSetup& setup, const SimulationConfig& config
   // Junctions: nodes where three or more of the route's edges meet.
   std::set<int> used_edges;
   for (const RouteLeg& leg : setup.legs) {
-    for (std::size_t k = 0; k + 1 < leg.nodes.size(); ++k) used_edges.insert(setup.graph.edge_between(leg.nodes[k], leg.nodes[k + 1]));
+    for (std::size_t k = 0; k + 1 < leg.nodes.size(); ++k)
+      used_edges.insert(setup.graph.edge_between(leg.nodes[k], leg.nodes[k + 1]));
   }
   std::vector<int> degree(setup.graph.nodes.size(), 0);
   for (int e : used_edges) {
@@ -687,9 +728,11 @@ SimulatedRun simulate(const ScenarioSetup& setup, const SimulationConfig& config
     const auto i = static_cast<std::size_t>(k);
     Lighting lighting = setup.legs[static_cast<std::size_t>(frames[i].leg)].lighting;
     lighting.noise_sigma = config.pixel_noise;
-    run.panoramas[i] = render_panorama(setup.world, frames[i].pose, config.panorama, lighting, hash_combine(config.seed, hash_combine(1, i)));
+    run.panoramas[i] = render_panorama(setup.world, frames[i].pose, config.panorama, lighting,
+                                       hash_combine(config.seed, hash_combine(1, i)));
     if (config.forward_images) {
-      run.images[i] = render_pinhole(setup.world, frames[i].pose, config.camera, lighting, hash_combine(config.seed, hash_combine(2, i)));
+      run.images[i] = render_pinhole(setup.world, frames[i].pose, config.camera, lighting,
+                                     hash_combine(config.seed, hash_combine(2, i)));
     }
   }
   run.floor_plan = draw_floor_plan(setup, run);

@@ -13,7 +13,8 @@ namespace {
 
 // Value noise in [0, 1) of integer lattice coordinates: textures vary but never change between frames.
 float lattice(std::int64_t a, std::int64_t b, std::uint64_t salt) {
-  const std::uint64_t h = hash_combine(hash_combine(static_cast<std::uint64_t>(a), static_cast<std::uint64_t>(b)), salt);
+  const std::uint64_t h =
+      hash_combine(hash_combine(static_cast<std::uint64_t>(a), static_cast<std::uint64_t>(b)), salt);
   return static_cast<float>(h >> 40) * (1.0F / 16777216.0F);
 }
 
@@ -25,7 +26,9 @@ Colour mix(Colour a, Colour b, float t) {
   return {a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t};
 }
 
-std::uint64_t face_key(std::size_t cell, Side side) { return static_cast<std::uint64_t>(cell) * 4U + static_cast<std::uint64_t>(side); }
+std::uint64_t face_key(std::size_t cell, Side side) {
+  return static_cast<std::uint64_t>(cell) * 4U + static_cast<std::uint64_t>(side);
+}
 
 // A surface pattern at texture coordinates (u, v) [m]; v is the height on walls.
 Colour pattern_colour(Pattern pattern, Colour base, Colour accent, double period, double u, double v, double height,
@@ -144,7 +147,8 @@ void for_cells_in(const GridWorld& w, Rect r, F&& f) {
 }  // namespace
 
 void GridWorld::fill(Rect area, int material) {
-  if (material < 1 || material > static_cast<int>(material_table_.size())) throw std::invalid_argument("unknown material");
+  if (material < 1 || material > static_cast<int>(material_table_.size()))
+    throw std::invalid_argument("unknown material");
   for_cells_in(*this, area, [&](int x, int y) { materials_[index(x, y)] = static_cast<std::uint16_t>(material); });
 }
 
@@ -176,7 +180,8 @@ void GridWorld::carve_corridor(Vec2 a, Vec2 b, double width, int ground) {
 }
 
 void GridWorld::add_decal(const Decal& decal) {
-  if (!(decal.u1 > decal.u0) || !(decal.z1 > decal.z0)) throw std::invalid_argument("a decal needs u1 > u0 and z1 > z0");
+  if (!(decal.u1 > decal.u0) || !(decal.z1 > decal.z0))
+    throw std::invalid_argument("a decal needs u1 > u0 and z1 > z0");
   const auto id = static_cast<std::uint32_t>(decals_.size());
   decals_.push_back(decal);
   const bool x_plane = decal.side == Side::west || decal.side == Side::east;
@@ -214,13 +219,14 @@ Colour GridWorld::face_colour(const Face& face, double u, double z) const {
     }
   }
   const Material& m = material(face.material);
-  return pattern_colour(m.pattern, m.base, m.accent, m.period, u, z, m.height, static_cast<std::uint64_t>(face.material));
+  return pattern_colour(m.pattern, m.base, m.accent, m.period, u, z, m.height,
+                        static_cast<std::uint64_t>(face.material));
 }
 
 Colour GridWorld::ground_colour(int cx, int cy, Vec2 p) const {
   const Ground& g = ground(ground_at(cx, cy));
-  return pattern_colour(g.pattern == Pattern::plain ? Pattern::tiles : g.pattern, g.base, g.accent, g.period, p.x, p.y, 1.0,
-                        1000U + ground_at(cx, cy));
+  return pattern_colour(g.pattern == Pattern::plain ? Pattern::tiles : g.pattern, g.base, g.accent, g.period, p.x, p.y,
+                        1.0, 1000U + ground_at(cx, cy));
 }
 
 Colour GridWorld::ceiling_colour(Vec2 p) const {

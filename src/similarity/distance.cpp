@@ -27,10 +27,14 @@ void check_dimensions(const SparseHistogram& a, const SparseHistogram& b) {
 
 std::string_view metric_name(Metric metric) {
   switch (metric) {
-    case Metric::chi2: return "chi2";
-    case Metric::l1: return "l1";
-    case Metric::cosine: return "cosine";
-    case Metric::sad: return "sad";
+    case Metric::chi2:
+      return "chi2";
+    case Metric::l1:
+      return "l1";
+    case Metric::cosine:
+      return "cosine";
+    case Metric::sad:
+      return "sad";
   }
   return "?";
 }
@@ -67,10 +71,14 @@ double sad_distance(std::span<const float> a, std::span<const float> b) {
 
 double distance(Metric metric, std::span<const float> a, std::span<const float> b) {
   switch (metric) {
-    case Metric::chi2: return chi2_distance(a, b);
-    case Metric::l1: return l1_distance(a, b);
-    case Metric::cosine: return cosine_distance(a, b);
-    case Metric::sad: return sad_distance(a, b);
+    case Metric::chi2:
+      return chi2_distance(a, b);
+    case Metric::l1:
+      return l1_distance(a, b);
+    case Metric::cosine:
+      return cosine_distance(a, b);
+    case Metric::sad:
+      return sad_distance(a, b);
   }
   throw std::invalid_argument("unknown metric");
 }

@@ -26,9 +26,7 @@ DescriptorSet DescriptorSet::from_sparse(std::vector<SparseHistogram> histograms
   return set;
 }
 
-std::size_t DescriptorSet::dimension() const {
-  return is_sparse() ? sparse.front().dimension : dense.cols;
-}
+std::size_t DescriptorSet::dimension() const { return is_sparse() ? sparse.front().dimension : dense.cols; }
 
 std::size_t DescriptorSet::memory_bytes() const {
   std::size_t bytes = dense.values.size() * sizeof(float);
@@ -54,8 +52,8 @@ void validate(const DescriptorSet& set, Metric metric, const char* which) {
   } else if (metric == Metric::chi2) {
     for (float v : set.dense.values) {
       if (!(v >= 0.0F)) {
-        throw std::invalid_argument(std::string(which) +
-                                    ": the chi2 distance needs non-negative descriptors (histograms); use l1 or cosine");
+        throw std::invalid_argument(
+            std::string(which) + ": the chi2 distance needs non-negative descriptors (histograms); use l1 or cosine");
       }
     }
   }
@@ -86,9 +84,12 @@ struct Tile {
 double finish(Metric metric, double sum, double sum_a, double dimension, double norm2_a, double norm2_b) {
   switch (metric) {
     case Metric::chi2:
-    case Metric::l1: return sum_a + sum;
-    case Metric::sad: return dimension == 0 ? 0.0 : (sum_a + sum) / dimension;
-    case Metric::cosine: return detail::cosine_from_dot(sum, norm2_a, norm2_b);
+    case Metric::l1:
+      return sum_a + sum;
+    case Metric::sad:
+      return dimension == 0 ? 0.0 : (sum_a + sum) / dimension;
+    case Metric::cosine:
+      return detail::cosine_from_dot(sum, norm2_a, norm2_b);
   }
   return 0.0;
 }
@@ -98,7 +99,7 @@ double finish(Metric metric, double sum, double sum_a, double dimension, double 
 void fill_sparse_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa, const DescriptorSet& b,
                       const Prepared& pb, Metric metric, DenseMatrix<float>& out, std::vector<float>& scratch) {
   constexpr std::size_t G = detail::kRows;
-  const auto kind = metric == Metric::chi2 ? detail::SparseSum::chi2
+  const auto kind = metric == Metric::chi2     ? detail::SparseSum::chi2
                     : metric == Metric::cosine ? detail::SparseSum::dot
                                                : detail::SparseSum::l1;
   const double dim = static_cast<double>(a.dimension());
@@ -108,7 +109,8 @@ void fill_sparse_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa,
     if (col_end <= t.col_begin) continue;
     for (std::size_t r = 0; r < g; ++r) {
       const SparseHistogram& h = a.sparse[i0 + r];
-      for (std::size_t k = 0; k < h.bins.size(); ++k) scratch[static_cast<std::size_t>(h.bins[k]) * G + r] = h.values[k];
+      for (std::size_t k = 0; k < h.bins.size(); ++k)
+        scratch[static_cast<std::size_t>(h.bins[k]) * G + r] = h.values[k];
     }
     double sums[G];
     for (std::size_t j = t.col_begin; j < col_end; ++j) {
@@ -136,10 +138,18 @@ void fill_dense_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa, 
       const float* y = b.dense.row(j).data();
       double d = 0;
       switch (metric) {
-        case Metric::chi2: d = detail::dense_chi2(x, y, n); break;
-        case Metric::l1: d = detail::dense_l1(x, y, n); break;
-        case Metric::sad: d = n == 0 ? 0.0 : detail::dense_l1(x, y, n) / static_cast<double>(n); break;
-        case Metric::cosine: d = detail::cosine_from_dot(detail::dense_dot(x, y, n), pa.norm2[i], pb.norm2[j]); break;
+        case Metric::chi2:
+          d = detail::dense_chi2(x, y, n);
+          break;
+        case Metric::l1:
+          d = detail::dense_l1(x, y, n);
+          break;
+        case Metric::sad:
+          d = n == 0 ? 0.0 : detail::dense_l1(x, y, n) / static_cast<double>(n);
+          break;
+        case Metric::cosine:
+          d = detail::cosine_from_dot(detail::dense_dot(x, y, n), pa.norm2[i], pb.norm2[j]);
+          break;
       }
       out(i, j) = static_cast<float>(d);
     }
@@ -151,7 +161,8 @@ DenseMatrix<float> compute(const DescriptorSet& a, const DescriptorSet& b, bool 
   if (config.tile == 0) throw std::invalid_argument("distance matrix: tile size must be positive");
   const std::size_t rows = a.size(), cols = b.size();
   if (rows > 0 && cols > 0) {
-    if (a.is_sparse() != b.is_sparse()) throw std::invalid_argument("distance matrix: cannot compare sparse and dense descriptors");
+    if (a.is_sparse() != b.is_sparse())
+      throw std::invalid_argument("distance matrix: cannot compare sparse and dense descriptors");
     if (a.dimension() != b.dimension()) {
       throw std::invalid_argument("distance matrix: descriptors differ in dimension (" + std::to_string(a.dimension()) +
                                   " and " + std::to_string(b.dimension()) + ")");

@@ -18,7 +18,6 @@ constexpr std::size_t kLanes = 8;
 
 double combine(const double (&l)[kLanes]) { return ((l[0] + l[1]) + (l[2] + l[3])) + ((l[4] + l[5]) + (l[6] + l[7])); }
 
-
 }  // namespace
 
 SEQTOPO_KERNEL double lane_sum_squares(const float* values, std::size_t n) {
@@ -26,7 +25,8 @@ SEQTOPO_KERNEL double lane_sum_squares(const float* values, std::size_t n) {
   std::size_t k = 0;
   for (; k + kLanes <= n; k += kLanes) {
 #pragma omp simd
-    for (std::size_t l = 0; l < kLanes; ++l) s[l] += static_cast<double>(values[k + l]) * static_cast<double>(values[k + l]);
+    for (std::size_t l = 0; l < kLanes; ++l)
+      s[l] += static_cast<double>(values[k + l]) * static_cast<double>(values[k + l]);
   }
   for (std::size_t l = 0; k < n; ++k, ++l) s[l] += static_cast<double>(values[k]) * static_cast<double>(values[k]);
   return combine(s);
@@ -84,9 +84,15 @@ inline double sequential_sum(std::size_t n, F&& f) {
 SEQTOPO_KERNEL void sparse_sums(SparseSum kind, const float* a8, const std::uint32_t* bins, const float* values,
                                 std::size_t n, double (&out)[kRows]) {
   switch (kind) {
-    case SparseSum::chi2: rows_pass<SparseSum::chi2>(a8, bins, values, n, out); break;
-    case SparseSum::l1: rows_pass<SparseSum::l1>(a8, bins, values, n, out); break;
-    case SparseSum::dot: rows_pass<SparseSum::dot>(a8, bins, values, n, out); break;
+    case SparseSum::chi2:
+      rows_pass<SparseSum::chi2>(a8, bins, values, n, out);
+      break;
+    case SparseSum::l1:
+      rows_pass<SparseSum::l1>(a8, bins, values, n, out);
+      break;
+    case SparseSum::dot:
+      rows_pass<SparseSum::dot>(a8, bins, values, n, out);
+      break;
   }
 }
 

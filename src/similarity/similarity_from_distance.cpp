@@ -10,7 +10,8 @@ namespace seqtopo::similarity {
 KappaChoice choose_kappa(const DenseMatrix<float>& d, bool symmetric, const KappaRule& rule) {
   if (symmetric && !d.square()) throw std::invalid_argument("choose_kappa: a symmetric distance matrix must be square");
   if (!(rule.matches_per_image > 0) || !(rule.max_fraction > 0) || rule.max_fraction > 1) {
-    throw std::invalid_argument("choose_kappa: matches_per_image and max_fraction must be positive (max_fraction <= 1)");
+    throw std::invalid_argument(
+        "choose_kappa: matches_per_image and max_fraction must be positive (max_fraction <= 1)");
   }
   KappaChoice choice;
   if (d.empty()) return choice;
@@ -48,7 +49,8 @@ KappaChoice choose_kappa(const DenseMatrix<float>& d, bool symmetric, const Kapp
   }
 
   const double fraction = std::min(rule.max_fraction, rule.matches_per_image / static_cast<double>(per_image));
-  const std::size_t index = std::min(samples.size() - 1, static_cast<std::size_t>(fraction * static_cast<double>(samples.size())));
+  const std::size_t index =
+      std::min(samples.size() - 1, static_cast<std::size_t>(fraction * static_cast<double>(samples.size())));
   std::nth_element(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(index), samples.end());
   double q = samples[index];
   if (!(q > 0)) {

@@ -76,7 +76,9 @@ GlobalAlignment banded_global_alignment_bounded(std::string_view pattern, std::s
       } else {
         if (i > 0 && j > 0) {
           const bool same = pattern[static_cast<std::size_t>(i - 1)] == text[static_cast<std::size_t>(j - 1)];
-          best = step(get(i - 1, j - 1), c.substitution(pattern[static_cast<std::size_t>(i - 1)], text[static_cast<std::size_t>(j - 1)]), !same);
+          best = step(get(i - 1, j - 1),
+                      c.substitution(pattern[static_cast<std::size_t>(i - 1)], text[static_cast<std::size_t>(j - 1)]),
+                      !same);
         }
         if (i > 0) {
           const Cell del = step(get(i - 1, j), c.deletion, true);
@@ -108,7 +110,9 @@ GlobalAlignment banded_global_alignment_bounded(std::string_view pattern, std::s
   Index i = n, j = m;
   while (i > 0 || j > 0) {
     const Cell here = at(i, j);
-    auto same = [&](const Cell& a) { return a.reachable() && a.cost == here.cost && a.differences == here.differences; };
+    auto same = [&](const Cell& a) {
+      return a.reachable() && a.cost == here.cost && a.differences == here.differences;
+    };
     if (i > 0 && j > 0) {
       const char p = pattern[static_cast<std::size_t>(i - 1)], t = text[static_cast<std::size_t>(j - 1)];
       if (same(step(get(i - 1, j - 1), c.substitution(p, t), p != t))) {
@@ -132,7 +136,8 @@ GlobalAlignment banded_global_alignment_bounded(std::string_view pattern, std::s
 
 }  // namespace detail
 
-GlobalAlignment banded_global_alignment(std::string_view pattern, std::string_view text, const GlobalAlignmentConfig& config) {
+GlobalAlignment banded_global_alignment(std::string_view pattern, std::string_view text,
+                                        const GlobalAlignmentConfig& config) {
   return detail::banded_global_alignment_bounded(pattern, text, config, std::numeric_limits<double>::infinity());
 }
 

@@ -19,8 +19,8 @@ double EditCosts::min_diagonal_cost() const {
 }
 
 bool EditCosts::unit() const {
-  return deletion == 1.0 && insertion == 1.0 && colour_difference == 1.0 && coincidence == 0.0 &&
-         discordance == 1.0 && !colour_distance;
+  return deletion == 1.0 && insertion == 1.0 && colour_difference == 1.0 && coincidence == 0.0 && discordance == 1.0 &&
+         !colour_distance;
 }
 
 void validate(const EditCosts& c) {
@@ -35,7 +35,8 @@ void validate(const EditCosts& c) {
     for (int a = 0; a < kColourClasses; ++a) {
       if (t[a][a] != 0.0) throw std::invalid_argument("colour distance table: the diagonal must be 0");
       for (int b = 0; b < kColourClasses; ++b) {
-        if (!(t[a][b] >= 0.0 && t[a][b] <= 1.0)) throw std::invalid_argument("colour distance table: entries must be in [0, 1]");
+        if (!(t[a][b] >= 0.0 && t[a][b] <= 1.0))
+          throw std::invalid_argument("colour distance table: entries must be in [0, 1]");
         if (t[a][b] != t[b][a]) throw std::invalid_argument("colour distance table: must be symmetric");
       }
     }

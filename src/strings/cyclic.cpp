@@ -125,9 +125,11 @@ CyclicCommonSubsequence cyclic_lcs_by_lis(std::string_view pattern, std::string_
   const auto prefix = prefix_lcs_lengths(pattern, text);
   const std::string reversed_pattern(pattern.rbegin(), pattern.rend()), reversed_text(text.rbegin(), text.rend());
   const auto suffix = prefix_lcs_lengths(reversed_pattern, reversed_text);  // suffix[m - r] = LCS(P, T[r, m))
-  std::vector<std::pair<std::size_t, std::size_t>> order;  // (upper bound, rotation)
+  std::vector<std::pair<std::size_t, std::size_t>> order;                   // (upper bound, rotation)
   for (std::size_t r = 0; r < m; ++r) order.emplace_back(std::min(count_bound, prefix[r] + suffix[m - r]), r);
-  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) {
+    return a.first > b.first || (a.first == b.first && a.second < b.second);
+  });
 
   CyclicCommonSubsequence best;
   bool have = false;

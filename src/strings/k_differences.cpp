@@ -29,7 +29,8 @@ KDifferencesResult k_differences(std::string_view pattern, std::string_view text
   std::vector<std::size_t> found(static_cast<std::size_t>(m + 1), static_cast<std::size_t>(-1));
 
   auto extend = [&](Index d, Index row) {
-    if (row < n && row + d < m) row += static_cast<Index>(lce(static_cast<std::size_t>(row), static_cast<std::size_t>(row + d)));
+    if (row < n && row + d < m)
+      row += static_cast<Index>(lce(static_cast<std::size_t>(row), static_cast<std::size_t>(row + d)));
     return row;
   };
   for (Index e = 0; e <= k; ++e) {

@@ -21,9 +21,12 @@ Algorithm parse_algorithm(std::string_view name) {
 
 const char* algorithm_name(Algorithm algorithm) {
   switch (algorithm) {
-    case Algorithm::A: return "A";
-    case Algorithm::B: return "B";
-    case Algorithm::C: return "C";
+    case Algorithm::A:
+      return "A";
+    case Algorithm::B:
+      return "B";
+    case Algorithm::C:
+      return "C";
   }
   return "?";
 }
@@ -87,7 +90,8 @@ std::vector<std::size_t> QueryMatches::best() const {
 namespace {
 
 QueryMatches rank(std::vector<Candidate> candidates, double tolerance) {
-  std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
   // A tie group starts at its best score; everything within the tolerance of it shares the rank.
   double group_score = 0.0;
   std::size_t group_rank = 0;
@@ -108,8 +112,9 @@ std::vector<QueryMatches> match_all(const std::vector<std::string>& db, const st
   return match_all_windowed(db, queries, config, 1);
 }
 
-std::vector<QueryMatches> match_all_windowed(const std::vector<std::string>& db, const std::vector<std::string>& queries,
-                                             const MatchConfig& config, std::size_t window) {
+std::vector<QueryMatches> match_all_windowed(const std::vector<std::string>& db,
+                                             const std::vector<std::string>& queries, const MatchConfig& config,
+                                             std::size_t window) {
   if (window == 0) throw std::invalid_argument("match window must be >= 1");
   if (config.algorithm == Algorithm::A) validate(config.costs);
   if (!(config.tie_tolerance >= 0.0)) throw std::invalid_argument("tie tolerance must be >= 0");
@@ -151,7 +156,8 @@ LocalizationMetrics score_localization(const std::vector<QueryMatches>& matches,
   const bool have_adjacency = !truth.adjacent.empty();
   if (have_adjacency && truth.adjacent.size() != nq) throw std::invalid_argument("adjacency: one row per query needed");
   const bool have_positions = !truth.query_positions.empty() && !truth.db_positions.empty();
-  if (have_positions && truth.query_positions.size() != nq) throw std::invalid_argument("positions: one per query needed");
+  if (have_positions && truth.query_positions.size() != nq)
+    throw std::invalid_argument("positions: one per query needed");
 
   std::vector<bool> topologically_correct(nq, true);
   if (have_adjacency) {

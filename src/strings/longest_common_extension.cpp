@@ -27,7 +27,8 @@ std::vector<std::uint32_t> suffix_array(const std::vector<std::uint32_t>& s) {
   return sa;
 }
 
-LongestCommonExtension::LongestCommonExtension(std::string_view a, std::string_view b) : a_size_(a.size()), b_size_(b.size()) {
+LongestCommonExtension::LongestCommonExtension(std::string_view a, std::string_view b)
+    : a_size_(a.size()), b_size_(b.size()) {
   // Symbols 1..256 for bytes; 257 separates a from b and 0 ends b, so no common prefix crosses either.
   std::vector<std::uint32_t> s;
   s.reserve(a.size() + b.size() + 2);

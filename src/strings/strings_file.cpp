@@ -54,7 +54,8 @@ std::vector<StringRecord> parse_strings_tsv(std::string_view text) {
     if (!ids.insert(r.id).second) throw StringsFileError(line_no, "repeated id '" + r.id + "'");
     r.symbols = std::string(fields[1]);
     for (char c : r.symbols) {
-      if (c == ' ' || static_cast<unsigned char>(c) < 32) throw StringsFileError(line_no, "the string contains white space or a control character");
+      if (c == ' ' || static_cast<unsigned char>(c) < 32)
+        throw StringsFileError(line_no, "the string contains white space or a control character");
     }
     if (fields.size() >= 4) {
       r.x = parse_number(fields[2], line_no, "x");

@@ -55,7 +55,8 @@ inline RandomProblem random_problem(std::mt19937& rng, std::size_t max_size = 24
   c.gap_a = gaps[gap_pick(rng)];
   c.gap_b = std::bernoulli_distribution(0.5)(rng) ? c.gap_a : gaps[gap_pick(rng)];
   if (std::bernoulli_distribution(0.5)(rng)) c.cap = static_cast<float>(std::uniform_int_distribution<int>(1, 8)(rng));
-  c.threshold = std::bernoulli_distribution(0.5)(rng) ? 0.0F : static_cast<float>(std::uniform_int_distribution<int>(1, 4)(rng));
+  c.threshold =
+      std::bernoulli_distribution(0.5)(rng) ? 0.0F : static_cast<float>(std::uniform_int_distribution<int>(1, 4)(rng));
   c.min_separation = std::uniform_int_distribution<std::size_t>(1, 4)(rng);
   c.direction = std::bernoulli_distribution(0.5)(rng) ? align::Direction::forward : align::Direction::reverse;
   return p;

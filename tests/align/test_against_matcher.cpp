@@ -118,7 +118,7 @@ void plant(std::mt19937& rng, std::string& s, const std::string& repeat, std::si
   std::uniform_real_distribution<double> u(0, 1);
   for (char c : repeat) {
     const double r = u(rng);
-    if (r < 0.06) continue;                                   // deletion
+    if (r < 0.06) continue;                                                     // deletion
     if (r < 0.12) mutated.push_back("ACGT"[static_cast<int>(u(rng) * 4) % 4]);  // insertion before c
     mutated.push_back(r < 0.2 ? "ACGT"[static_cast<int>(u(rng) * 4) % 4] : c);  // substitution
   }
@@ -195,9 +195,8 @@ TEST_F(AgainstMatcher, BestScoreAlwaysAndTopTenExplained) {
     config.gap_a = config.gap_b = static_cast<float>(gap);
     config.max_alignments = want.size();
     const auto got = align::local_alignments(
-        align::ScoreSource::function(n, m, [&](std::size_t i, std::size_t j) {
-          return static_cast<float>(a[i] == b[j] ? kMatch : kMismatch);
-        }),
+        align::ScoreSource::function(
+            n, m, [&](std::size_t i, std::size_t j) { return static_cast<float>(a[i] == b[j] ? kMatch : kMismatch); }),
         config);
     ASSERT_FALSE(got.empty());
     ASSERT_EQ(got.front().score, static_cast<float>(want.front().score)) << "best score differs; case " << c;
@@ -231,9 +230,10 @@ TEST_F(AgainstMatcher, BestScoreAlwaysAndTopTenExplained) {
   RecordProperty("top10_identical", top10_identical);
   RecordProperty("scores_compared", compared_scores);
   RecordProperty("alignments_with_same_pairs", same_pairs);
-  std::printf("matcher comparison: %d cases, %d scores compared, top-10 identical in %d, explained ties in %d, "
-              "%d alignments with the same pairs\n",
-              cases, compared_scores, top10_identical, explained, same_pairs);
+  std::printf(
+      "matcher comparison: %d cases, %d scores compared, top-10 identical in %d, explained ties in %d, "
+      "%d alignments with the same pairs\n",
+      cases, compared_scores, top10_identical, explained, same_pairs);
 }
 
 }  // namespace

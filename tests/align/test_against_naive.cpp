@@ -53,9 +53,8 @@ TEST(AgainstNaive, CallableSourceEqualsDenseSource) {
   std::mt19937 rng(11);
   for (int case_id = 0; case_id < 300; ++case_id) {
     const auto p = testing::random_problem(rng);
-    const auto callable = align::ScoreSource::function(p.rows, p.cols, [&p](std::size_t i, std::size_t j) {
-      return p.naive.s[i][j];
-    });
+    const auto callable =
+        align::ScoreSource::function(p.rows, p.cols, [&p](std::size_t i, std::size_t j) { return p.naive.s[i][j]; });
     expect_same(align::local_alignments(callable, p.naive.config), align::local_alignments(p.source(), p.naive.config),
                 case_id);
   }

@@ -82,7 +82,8 @@ TEST(FastAlignment, LargerProblemsThreadsAndMaxAlignments) {
     const bool large = case_id % 3 == 0;
     auto p = testing::random_problem(rng, large ? 1100 : 200);
     auto& c = p.naive.config;
-    c.max_alignments = case_id % 4 == 1 && !large ? std::numeric_limits<std::size_t>::max() : 1 + case_id % (large ? 6 : 25);
+    c.max_alignments =
+        case_id % 4 == 1 && !large ? std::numeric_limits<std::size_t>::max() : 1 + case_id % (large ? 6 : 25);
     if (c.self) c.min_separation = 1 + static_cast<std::size_t>(case_id % 7) * 3;
     if (large || (!c.cap && case_id % 2 == 0)) c.cap = 12.0F;
     const float scale = c.cap ? 0.0F : 4.0F;
@@ -230,7 +231,8 @@ TEST(FastAlignment, LetterScoresEqualTheirScoreSource) {
   for (int case_id = 0; case_id < 24; ++case_id) {
     const std::size_t k = 4 + static_cast<std::size_t>(case_id % 17);
     std::uniform_int_distribution<int> letter(0, static_cast<int>(k) - 1);
-    std::vector<std::uint8_t> a(50 + static_cast<std::size_t>(case_id) * 13), b(40 + static_cast<std::size_t>(case_id) * 17);
+    std::vector<std::uint8_t> a(50 + static_cast<std::size_t>(case_id) * 13),
+        b(40 + static_cast<std::size_t>(case_id) * 17);
     for (auto& x : a) x = static_cast<std::uint8_t>(letter(rng));
     for (auto& x : b) x = static_cast<std::uint8_t>(letter(rng));
     std::vector<float> matrix(k * k);
@@ -276,12 +278,26 @@ TEST(FastAlignment, QuantizationOfSpecialValuesMatchesEveryIsa) {
   // Ties (x.5 rounds to even), values beyond int16 (saturate), infinities and NaN (-32767 steps):
   // the vector quantizers must agree with the scalar rule that quantized() applies.
   std::mt19937 rng(17);
-  const float specials[] = {0.5F, 1.5F, 2.5F, -0.5F, -2.5F, 1e30F, -1e30F, 40000.0F, -40000.0F,
-                            std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
-                            std::numeric_limits<float>::quiet_NaN(), 3.0F, 7.0F, 32767.4F, 32767.6F};
+  const float specials[] = {0.5F,
+                            1.5F,
+                            2.5F,
+                            -0.5F,
+                            -2.5F,
+                            1e30F,
+                            -1e30F,
+                            40000.0F,
+                            -40000.0F,
+                            std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity(),
+                            std::numeric_limits<float>::quiet_NaN(),
+                            3.0F,
+                            7.0F,
+                            32767.4F,
+                            32767.6F};
   std::uniform_int_distribution<int> pick(0, 15);
   for (int case_id = 0; case_id < 60; ++case_id) {
-    const std::size_t rows = 5 + static_cast<std::size_t>(case_id % 9), cols = 9 + static_cast<std::size_t>(case_id) % 40;
+    const std::size_t rows = 5 + static_cast<std::size_t>(case_id % 9),
+                      cols = 9 + static_cast<std::size_t>(case_id) % 40;
     std::vector<float> s(rows * cols);
     for (auto& v : s) v = specials[pick(rng)];
     const auto source = ScoreSource::dense(s, rows, cols);
@@ -290,7 +306,8 @@ TEST(FastAlignment, QuantizationOfSpecialValuesMatchesEveryIsa) {
     c.gap_a = c.gap_b = 2.0F;
     c.direction = case_id % 2 == 0 ? Direction::forward : Direction::reverse;
     const auto want = scalar_on_quantized(source, c, 1.0F);
-    for (Isa isa : isas()) expect_same(align::fast_local_alignments(source, c, {1.0F, 1, isa}), want, describe(case_id, c, 1, isa, 1));
+    for (Isa isa : isas())
+      expect_same(align::fast_local_alignments(source, c, {1.0F, 1, isa}), want, describe(case_id, c, 1, isa, 1));
     const auto q = align::quantized(source, 1.0F);
     for (std::size_t i = 0; i < rows; ++i) {
       for (std::size_t j = 0; j < cols; ++j) {

@@ -80,8 +80,7 @@ TEST(WorkedExample, GapAndCap) {
   const auto found = align::local_alignments(letters("xabcdey", "abczde", 1.0F, -1.0F), config);
   ASSERT_FALSE(found.empty());
   EXPECT_EQ(found[0].score, 3.0F);
-  EXPECT_EQ(found[0].pairs,
-            (std::vector<std::pair<std::size_t, std::size_t>>{{1, 0}, {2, 1}, {3, 2}, {4, 4}, {5, 5}}));
+  EXPECT_EQ(found[0].pairs, (std::vector<std::pair<std::size_t, std::size_t>>{{1, 0}, {2, 1}, {3, 2}, {4, 4}, {5, 5}}));
   EXPECT_EQ(found[0].b_end, 6U);
 }
 

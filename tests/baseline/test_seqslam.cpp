@@ -16,7 +16,8 @@ TEST(SeqSlam, FindsPlantedSequenceAtDifferentSpeed) {
   std::uniform_real_distribution<float> noise(0.0F, 0.5F);
   SimilarityMatrix s(nq, nd);
   for (auto& v : s.values) v = noise(rng);
-  for (std::size_t q = 0; q < nq; ++q) s(q, static_cast<std::size_t>(std::lround(1.2 * static_cast<double>(q))) + 5) = 1.0F;
+  for (std::size_t q = 0; q < nq; ++q)
+    s(q, static_cast<std::size_t>(std::lround(1.2 * static_cast<double>(q))) + 5) = 1.0F;
   SeqSlamConfig config;
   config.sequence_length = 8;
   config.min_velocity = 1.0F;

@@ -56,7 +56,8 @@ TEST_F(Cli, AlignRejectsBadInputWithOneLineAndNoOutput) {
   const auto a = write("a.fa", ">a\nACGTACGT\n");
   const auto json = dir_ / "out.json";
   expect_clean_error(run("align --a " + (dir_ / "missing.fa").string() + " --json " + json.string()), "--a");
-  expect_clean_error(run("align --a " + write("empty.fa", "").string() + " --json " + json.string()), (dir_ / "empty.fa").string());
+  expect_clean_error(run("align --a " + write("empty.fa", "").string() + " --json " + json.string()),
+                     (dir_ / "empty.fa").string());
   expect_clean_error(run("align --a " + a.string() + " --gap -1 --json " + json.string()), "--gap");
   expect_clean_error(run("align --a " + a.string() + " --cap 0 --json " + json.string()), "--cap");
   expect_clean_error(run("align --scores " + write("bad.npy", "garbage").string() + " --json " + json.string()),
@@ -87,7 +88,8 @@ TEST_F(Cli, AlignWritesAlignmentsJson) {
   EXPECT_EQ(best["direction"].get<std::string>(), "forward");
   EXPECT_EQ(best["pairs"].size(), 8U);
   std::size_t temporaries = 0;
-  for (const auto& e : fs::directory_iterator(dir_)) temporaries += e.path().string().find(".tmp.") != std::string::npos;
+  for (const auto& e : fs::directory_iterator(dir_))
+    temporaries += e.path().string().find(".tmp.") != std::string::npos;
   EXPECT_EQ(temporaries, 0U);
 }
 

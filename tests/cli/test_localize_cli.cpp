@@ -32,8 +32,9 @@ std::string slurp(const fs::path& p) {
 class LocalizeCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("seqtopo-localize-cli-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("seqtopo-localize-cli-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -43,7 +44,8 @@ class LocalizeCli : public ::testing::Test {
 
   Result run(const std::string& args) {
     const auto out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string command = std::string(SEQTOPO_CLI) + " localize " + args + " >" + out.string() + " 2>" + err.string();
+    const std::string command =
+        std::string(SEQTOPO_CLI) + " localize " + args + " >" + out.string() + " 2>" + err.string();
     const int raw = std::system(command.c_str());
     return {WEXITSTATUS(raw), slurp(out), slurp(err)};
   }

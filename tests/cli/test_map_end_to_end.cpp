@@ -100,7 +100,10 @@ TEST_F(MapCommand, BadInputsGiveOneLineAndNoOutput) {
 
   seqtopo::io::write_npy(dir_ / "s.npy", seqtopo::DenseMatrix<float>(30, 30, 0.5F));
   std::ofstream(dir_ / "odo.csv") << "index,x,y,theta\n0,0,0,0\n1,1,0,0\n";
-  EXPECT_NE(run("map " + (dir_ / "s.npy").string() + " --odometry " + (dir_ / "odo.csv").string() + " --out " + out.string(), &err), 0);
+  EXPECT_NE(
+      run("map " + (dir_ / "s.npy").string() + " --odometry " + (dir_ / "odo.csv").string() + " --out " + out.string(),
+          &err),
+      0);
   EXPECT_EQ(err, "seqtopo: error: " + (dir_ / "odo.csv").string() + ": has 2 poses, the sequence has 30 images\n");
 
   EXPECT_NE(run("map " + (dir_ / "missing").string() + " --out " + out.string(), &err), 0);

@@ -118,13 +118,14 @@ TEST_F(MapStreaming, SameMapAsTheDenseCommandOnTheSameScores) {
 TEST_F(MapStreaming, GroundTruthOdometryAndReport) {
   const std::size_t n = 300;
   write_walk(n, 16);
-  const std::string truth = " --ground-truth " + path("poses.csv") + " --gt-radius 2 --gt-places " + path("places.csv") +
-                            " --odometry " + path("odometry.csv") + " --odometry-gate none";
+  const std::string truth = " --ground-truth " + path("poses.csv") + " --gt-radius 2 --gt-places " +
+                            path("places.csv") + " --odometry " + path("odometry.csv") + " --odometry-gate none";
   std::string err;
   ASSERT_EQ(run("map " + path("walk.npy") + " --streaming" + truth + " --out " + path("streamed"), &err), 0) << err;
-  ASSERT_EQ(run("map " + path("cosine.npy") + " --input-kind similarity --engine fast" + truth + " --out " + path("dense"),
-                &err),
-            0)
+  ASSERT_EQ(
+      run("map " + path("cosine.npy") + " --input-kind similarity --engine fast" + truth + " --out " + path("dense"),
+          &err),
+      0)
       << err;
   const fs::path streamed = path("streamed");
   for (const char* name : {"metric_map.png", "pr_curve.png", "metrics.json", "report.html"}) {
@@ -211,8 +212,8 @@ TEST_F(MapStreaming, RefusesWhatNeedsTheMatrixInOneLine) {
       {walk + " --kappa 2", "--kappa"},
       {walk + " --ground-truth " + bmp, "--ground-truth"},
       {walk + " --ground-truth " + path("poses.csv"), "--gt-radius"},
-      {corridor, "--descriptor"},                                          // the default fuses two descriptors
-      {corridor + " --descriptor patch", "--metric"},                      // patch defaults to sad
+      {corridor, "--descriptor"},                      // the default fuses two descriptors
+      {corridor + " --descriptor patch", "--metric"},  // patch defaults to sad
       {corridor + " --descriptor joint-histogram --metric cosine", "--descriptor"},
   };
   const fs::path out = path("out");

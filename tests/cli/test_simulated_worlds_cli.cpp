@@ -30,8 +30,12 @@ TEST(SimulatedWorlds, RoomsThroughFingerprintsAndStringMatching) {
   seqtopo::testing::TempDir dir;
   const std::string world = (dir.path / "rooms").string();
   ASSERT_EQ(run("simulate --scenario rooms --no-images --out " + world), 0);
-  ASSERT_EQ(run("fingerprint " + world + "/panoramas --positions " + world + "/points.csv --role map --out " + world + "/map.tsv"), 0);
-  ASSERT_EQ(run("fingerprint " + world + "/panoramas --positions " + world + "/points.csv --role test --out " + world + "/test.tsv"), 0);
+  ASSERT_EQ(run("fingerprint " + world + "/panoramas --positions " + world + "/points.csv --role map --out " + world +
+                "/map.tsv"),
+            0);
+  ASSERT_EQ(run("fingerprint " + world + "/panoramas --positions " + world + "/points.csv --role test --out " + world +
+                "/test.tsv"),
+            0);
   EXPECT_EQ(data_lines(world + "/map.tsv"), 10U);   // ten rooms, one map point each
   EXPECT_EQ(data_lines(world + "/test.tsv"), 30U);  // three test points per room
   for (const char* algorithm : {"A", "B", "C"}) {
@@ -52,8 +56,10 @@ TEST(SimulatedWorlds, RoomsThroughFingerprintsAndStringMatching) {
 TEST(SimulatedWorlds, FigureEightMapsWithOdometry) {
   seqtopo::testing::TempDir dir;
   const std::string world = (dir.path / "eight").string();
-  ASSERT_EQ(run("simulate --scenario figure-eight --no-images --interval 0.5 --panorama-width 120 --panorama-height 24 --supersample 1 "
-                "--out " + world),
+  ASSERT_EQ(run("simulate --scenario figure-eight --no-images --interval 0.5 --panorama-width 120 --panorama-height 24 "
+                "--supersample 1 "
+                "--out " +
+                world),
             0);
   const std::size_t frames = data_lines(world + "/odometry.csv") - 1;  // minus the header
   ASSERT_GT(frames, 80U);
@@ -64,13 +70,15 @@ TEST(SimulatedWorlds, FigureEightMapsWithOdometry) {
   EXPECT_EQ(panoramas, frames);
 
   const std::string out = (dir.path / "map").string();
-  ASSERT_EQ(run("map " + world + "/panoramas --odometry " + world + "/odometry.csv --ground-truth " + world +
-                "/ground_truth.png --gt-places " + world + "/places.csv --gt-poses " + world + "/poses.csv --out " + out),
-            0);
+  ASSERT_EQ(
+      run("map " + world + "/panoramas --odometry " + world + "/odometry.csv --ground-truth " + world +
+          "/ground_truth.png --gt-places " + world + "/places.csv --gt-poses " + world + "/poses.csv --out " + out),
+      0);
   EXPECT_TRUE(fs::exists(out + "/metric_map.png"));
   std::ifstream in(out + "/metrics.json");
   const auto metrics = nlohmann::json::parse(in);
-  for (const char* key : {"ate_odometry", "ate_ekf", "ate_pose_graph"}) EXPECT_GE(metrics.at("metric").at(key).get<double>(), 0.0);
+  for (const char* key : {"ate_odometry", "ate_ekf", "ate_pose_graph"})
+    EXPECT_GE(metrics.at("metric").at(key).get<double>(), 0.0);
   EXPECT_EQ(metrics.at("topology").at("junctions_true").get<int>(), 2);  // the figure-eight's merge and branch
 }
 
@@ -81,7 +89,8 @@ TEST(SimulatedWorlds, CorridorWalkedBackIsFoundWithThePanoramaDescriptor) {
   seqtopo::testing::TempDir dir;
   const std::string world = (dir.path / "corridor").string();
   ASSERT_EQ(run("simulate --scenario corridor-reverse --no-images --interval 0.5 --panorama-width 120 "
-                "--panorama-height 24 --supersample 1 --out " + world),
+                "--panorama-height 24 --supersample 1 --out " +
+                world),
             0);
   const std::string out = (dir.path / "map").string();
   ASSERT_EQ(run("map " + world + "/panoramas --descriptor joint-histogram,panorama --min-separation 10 --odometry " +
@@ -92,7 +101,8 @@ TEST(SimulatedWorlds, CorridorWalkedBackIsFoundWithThePanoramaDescriptor) {
   const auto metrics = nlohmann::json::parse(in);
   EXPECT_GE(metrics.at("loop_closure").at("f1").get<double>(), 0.9);
   EXPECT_GE(metrics.at("topology").at("adjusted_rand_index").get<double>(), 0.9);
-  EXPECT_LT(metrics.at("metric").at("ate_pose_graph").get<double>(), 0.5 * metrics.at("metric").at("ate_odometry").get<double>());
+  EXPECT_LT(metrics.at("metric").at("ate_pose_graph").get<double>(),
+            0.5 * metrics.at("metric").at("ate_odometry").get<double>());
   // The revisit is a reverse alignment.
   std::ifstream alignments_file(out + "/alignments.json");
   const auto alignments = nlohmann::json::parse(alignments_file);

@@ -68,8 +68,10 @@ TEST(LocalizationMetrics, PairsTruthAndCsv) {
 }
 
 TEST(LocalizationMetrics, RejectsMismatchedSizes) {
-  EXPECT_THROW(evaluate_localization({predict(0, 1.0F)}, LocalizationTruth::same_index(2, 2), 0), std::invalid_argument);
-  EXPECT_THROW(evaluate_localization({predict(5, 1.0F)}, LocalizationTruth::same_index(1, 2), 0), std::invalid_argument);
+  EXPECT_THROW(evaluate_localization({predict(0, 1.0F)}, LocalizationTruth::same_index(2, 2), 0),
+               std::invalid_argument);
+  EXPECT_THROW(evaluate_localization({predict(5, 1.0F)}, LocalizationTruth::same_index(1, 2), 0),
+               std::invalid_argument);
 }
 
 TEST(LocalizationMetrics, CurveEqualsBruteForceSweep) {

@@ -26,7 +26,8 @@ RgbImage panorama(const std::vector<Stripe>& stripes, int background, double noi
       if (y < 4 || y >= 36) c = 2;  // ceiling and floor bands are outside the scanned rows
       const auto rgb = class_colour(c);
       for (int k = 0; k < 3; ++k) {
-        img.at(x, y)[k] = static_cast<std::uint8_t>(std::clamp(rgb[static_cast<std::size_t>(k)] + (noise > 0 ? n(rng) : 0.0), 0.0, 255.0));
+        img.at(x, y)[k] = static_cast<std::uint8_t>(
+            std::clamp(rgb[static_cast<std::size_t>(k)] + (noise > 0 ? n(rng) : 0.0), 0.0, 255.0));
       }
     }
   }
@@ -40,7 +41,7 @@ TEST(ColourClasses, RepresentativeColoursClassifyToThemselves) {
   }
   EXPECT_EQ(colour_class(0, 0, 0), 0);
   EXPECT_EQ(colour_class(255, 255, 255), 3);
-  EXPECT_EQ(colour_class(250, 10, 10), 10);  // bright red 'K'
+  EXPECT_EQ(colour_class(250, 10, 10), 10);    // bright red 'K'
   EXPECT_EQ(colour_class(10, 10, 90), 4 + 4);  // dark blue 'I'
 }
 

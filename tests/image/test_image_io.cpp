@@ -7,8 +7,8 @@
 #include <opencv2/videoio.hpp>
 #include <random>
 
-#include "seqtopo/image/image_io.hpp"
 #include "common/temp_dir.hpp"
+#include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/input_error.hpp"
 
 namespace seqtopo::image {
@@ -59,7 +59,8 @@ TEST(LoadImage, CorruptFilesAreNamed) {
   cv::randu(noise, 0, 255);
   std::vector<std::uint8_t> jpeg;
   ASSERT_TRUE(cv::imencode(".jpg", noise, jpeg));
-  std::ofstream(cut, std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size() / 2));
+  std::ofstream(cut, std::ios::binary)
+      .write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size() / 2));
   expect_error_naming(garbage, [&] { load_image(garbage); });
   expect_error_naming(empty, [&] { load_image(empty); });
   expect_error_naming(cut, [&] { load_image(cut); });

@@ -69,7 +69,8 @@ struct Naive {
     const int digits[7] = {e, g, t, r, p[0] / 64, p[1] / 64, p[2] / 64};
     const int radix[7] = {4, 5, 4, 4, 4, 4, 4};
     std::uint32_t index = 0;
-    for (int k = 0; k < 7; ++k) index = index * static_cast<std::uint32_t>(radix[k]) + static_cast<std::uint32_t>(digits[k]);
+    for (int k = 0; k < 7; ++k)
+      index = index * static_cast<std::uint32_t>(radix[k]) + static_cast<std::uint32_t>(digits[k]);
     return index;
   }
 };
@@ -133,7 +134,8 @@ TEST(JointFeatures, EveryFeatureMatchesNaiveDefinition) {
           ASSERT_EQ(f.rank[i], naive.rank(x, y));
           ASSERT_EQ(f.bin[i], naive.bin(x, y, c));
           const std::uint8_t* p = img.at(x, y);
-          ASSERT_EQ(f.bin[i], joint_bin(f.edge_count[i], f.gradient2[i], f.texturedness[i], f.rank[i], p[0], p[1], p[2], c));
+          ASSERT_EQ(f.bin[i],
+                    joint_bin(f.edge_count[i], f.gradient2[i], f.texturedness[i], f.rank[i], p[0], p[1], p[2], c));
         }
       }
     }

@@ -89,7 +89,8 @@ TEST(PanoramaSignature, EqualsTheMagnitudesOfAnIndependentDft) {
     for (int h = 1; h <= 10; ++h) {
       const cv::Vec2d z = spectrum.at<cv::Vec2d>(0, h);
       const double expected = std::hypot(z[0], z[1]) / sd[0] / 32.0;
-      EXPECT_NEAR(s[static_cast<std::size_t>(band * 10 + h - 1)], expected, 1e-4) << "band " << band << " harmonic " << h;
+      EXPECT_NEAR(s[static_cast<std::size_t>(band * 10 + h - 1)], expected, 1e-4)
+          << "band " << band << " harmonic " << h;
     }
   }
 }

@@ -68,7 +68,8 @@ TEST(PatchThumbnail, FlatImageGivesZerosAndMisuseThrows) {
   const auto t = patch_thumbnail(RgbImage(64, 32, 90));
   for (float v : t) EXPECT_EQ(v, 0.0F);
   EXPECT_THROW(patch_thumbnail(RgbImage{}), std::invalid_argument);
-  EXPECT_THROW(patch_thumbnail(RgbImage(4, 4), PatchConfig{.width = 0, .height = 4, .patch = 2}), std::invalid_argument);
+  EXPECT_THROW(patch_thumbnail(RgbImage(4, 4), PatchConfig{.width = 0, .height = 4, .patch = 2}),
+               std::invalid_argument);
 }
 
 }  // namespace

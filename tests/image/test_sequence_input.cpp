@@ -6,8 +6,8 @@
 #include <fstream>
 #include <random>
 
-#include "seqtopo/image/sequence_input.hpp"
 #include "common/temp_dir.hpp"
+#include "seqtopo/image/sequence_input.hpp"
 #include "seqtopo/io/input_error.hpp"
 
 namespace seqtopo::image {

@@ -100,12 +100,14 @@ TEST_F(Npy, ReadsWhatNumpyWrites) {
 
 TEST_F(Npy, Rejections) {
   const std::string six = raw(std::vector<float>{0, 1, 2, 3, 4, 5});
-  expect_rejected(handmade("fortran.npy", "{'descr': '<f4', 'fortran_order': True, 'shape': (2, 3), }", six), "Fortran");
+  expect_rejected(handmade("fortran.npy", "{'descr': '<f4', 'fortran_order': True, 'shape': (2, 3), }", six),
+                  "Fortran");
   expect_rejected(handmade("int.npy", "{'descr': '<i4', 'fortran_order': False, 'shape': (2, 3), }", six), "dtype");
   expect_rejected(handmade("big.npy", "{'descr': '>f4', 'fortran_order': False, 'shape': (2, 3), }", six), "dtype");
   expect_rejected(handmade("1d.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (6,), }", six), "2-D");
   expect_rejected(handmade("3d.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (1, 2, 3), }", six), "2-D");
-  expect_rejected(handmade("short.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (3, 3), }", six), "truncated");
+  expect_rejected(handmade("short.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (3, 3), }", six),
+                  "truncated");
   expect_rejected(handmade("empty.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (0, 3), }", ""), "empty");
   expect_rejected(handmade("nan.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }",
                            raw(std::vector<float>{0, 1, 2, NAN, 4, 5})),

@@ -182,9 +182,11 @@ TEST(Localize, FrameMatchesFollowTheAlignmentsWithWindowedScores) {
         for (std::size_t k = 0; k < a.pairs.size(); ++k) {
           if (a.pairs[k].first == q) map = a.pairs[k].second;
           if (a.pairs[k].first < q && k + 1 < a.pairs.size() && a.pairs[k + 1].first > q) {
-            const double t = static_cast<double>(q - a.pairs[k].first) / static_cast<double>(a.pairs[k + 1].first - a.pairs[k].first);
-            map = static_cast<std::size_t>(std::lround(static_cast<double>(a.pairs[k].second) +
-                                                       t * (static_cast<double>(a.pairs[k + 1].second) - static_cast<double>(a.pairs[k].second))));
+            const double t = static_cast<double>(q - a.pairs[k].first) /
+                             static_cast<double>(a.pairs[k + 1].first - a.pairs[k].first);
+            map = static_cast<std::size_t>(
+                std::lround(static_cast<double>(a.pairs[k].second) +
+                            t * (static_cast<double>(a.pairs[k + 1].second) - static_cast<double>(a.pairs[k].second))));
           }
         }
         if (static_cast<float>(local) > best[q] + 1e-4F) {

@@ -13,8 +13,8 @@ namespace seqtopo::localize {
 namespace {
 
 // The whole forward (or reverse) table of the first `rows` query frames, textbook recurrence.
-std::vector<std::vector<float>> naive_table(const SimilarityMatrix& scores, std::size_t rows, bool reverse,
-                                            float gap, std::optional<float> cap) {
+std::vector<std::vector<float>> naive_table(const SimilarityMatrix& scores, std::size_t rows, bool reverse, float gap,
+                                            std::optional<float> cap) {
   const std::size_t m = scores.cols;
   std::vector<std::vector<float>> h(rows + 1, std::vector<float>(m + 2, 0.0F));  // map j at index j + 1
   for (std::size_t i = 1; i <= rows; ++i) {
@@ -83,7 +83,8 @@ TEST(Online, EstimatesNeverDependOnLaterFrames) {
   LocalizeConfig c;
   const auto all = online_estimates(s, c);
   for (std::size_t t = 1; t <= s.rows; t += 7) {
-    SimilarityMatrix prefix(t, s.cols, std::vector<float>(s.values.begin(), s.values.begin() + static_cast<std::ptrdiff_t>(t * s.cols)));
+    SimilarityMatrix prefix(
+        t, s.cols, std::vector<float>(s.values.begin(), s.values.begin() + static_cast<std::ptrdiff_t>(t * s.cols)));
     const auto part = online_estimates(prefix, c);
     for (std::size_t i = 0; i < t; ++i) {
       EXPECT_EQ(part[i].map, all[i].map);
@@ -114,7 +115,8 @@ TEST(Online, BestConfidenceSoFarIsTheEnginesBestAlignmentScore) {
       ac.gap_a = ac.gap_b = c.gap;
       ac.cap = c.cap;
       ac.max_alignments = 1;
-      const auto source = align::ScoreSource::dense(std::span<const float>(scores.values.data(), (i + 1) * s.cols), i + 1, s.cols);
+      const auto source =
+          align::ScoreSource::dense(std::span<const float>(scores.values.data(), (i + 1) * s.cols), i + 1, s.cols);
       const auto engine = c.reverse ? align::local_alignments_both(source, ac, 1) : align::local_alignments(source, ac);
       const float expected = engine.empty() ? 0.0F : engine.front().score;
       EXPECT_FLOAT_EQ(best_so_far, expected) << "round " << round << " frame " << i;
@@ -127,8 +129,8 @@ TEST(Online, FollowsPlantedPathsInBothDirections) {
   std::uniform_real_distribution<float> u(0.0F, 0.5F);
   SimilarityMatrix s(80, 120);
   for (auto& v : s.values) v = u(rng);
-  for (std::size_t q = 0; q < 40; ++q) s(q, 20 + q) = 1.0F;   // forward along map 20..59
-  for (std::size_t q = 40; q < 80; ++q) s(q, 159 - q) = 1.0F; // then backwards along map 119..80
+  for (std::size_t q = 0; q < 40; ++q) s(q, 20 + q) = 1.0F;    // forward along map 20..59
+  for (std::size_t q = 40; q < 80; ++q) s(q, 159 - q) = 1.0F;  // then backwards along map 119..80
   LocalizeConfig c;
   c.enhance = false;
   c.offset = 0.6F;

@@ -47,7 +47,8 @@ void expect_same_map(const MapResult& a, const MapResult& b, const std::string& 
   EXPECT_EQ(a.map.edges, b.map.edges) << what;
   EXPECT_EQ(a.map.junctions, b.map.junctions) << what;
   ASSERT_EQ(a.map.segments.size(), b.map.segments.size()) << what;
-  for (std::size_t k = 0; k < a.map.segments.size(); ++k) EXPECT_EQ(a.map.segments[k].places, b.map.segments[k].places) << what;
+  for (std::size_t k = 0; k < a.map.segments.size(); ++k)
+    EXPECT_EQ(a.map.segments[k].places, b.map.segments[k].places) << what;
 }
 
 TEST(MapFromScores, EqualsBuildMapOnTheSameScores) {
@@ -63,7 +64,8 @@ TEST(MapFromScores, EqualsBuildMapOnTheSameScores) {
         const MapResult dense = build_map(s, config, odometry);
         const SimilarityMatrix scores = alignment_scores({s}, config);
         ASSERT_EQ(dense.scores.values, scores.values);
-        const std::string what = "seed " + std::to_string(seed) + (engine == MapConfig::Engine::fast ? " fast" : " exact") +
+        const std::string what = "seed " + std::to_string(seed) +
+                                 (engine == MapConfig::Engine::fast ? " fast" : " exact") +
                                  (with_odometry ? " with odometry" : "");
         ASSERT_FALSE(dense.alignments.empty()) << what;
         any_rejected = any_rejected || !dense.rejected.empty();
@@ -72,8 +74,8 @@ TEST(MapFromScores, EqualsBuildMapOnTheSameScores) {
         const MapResult from_dense =
             build_map_from_scores(align::ScoreSource::dense(scores.values, n, n), config, odometry);
         const MapResult from_function = build_map_from_scores(
-            align::ScoreSource::function(n, n, [&scores](std::size_t i, std::size_t j) { return scores(i, j); }), config,
-            odometry);
+            align::ScoreSource::function(n, n, [&scores](std::size_t i, std::size_t j) { return scores(i, j); }),
+            config, odometry);
         expect_same_map(dense, from_dense, what + ", dense source");
         expect_same_map(dense, from_function, what + ", function source");
         EXPECT_TRUE(from_dense.scores.empty());
@@ -88,7 +90,8 @@ TEST(MapFromScores, RefusesBadSizes) {
   EXPECT_THROW(build_map_from_scores(align::ScoreSource::dense(s.values, 100, 400)), std::invalid_argument);
   EXPECT_THROW(build_map_from_scores(align::ScoreSource::dense(std::span<const float>{}, 0, 0)), std::invalid_argument);
   const auto odometry = straight_odometry(199);
-  EXPECT_THROW(build_map_from_scores(align::ScoreSource::dense(s.values, 200, 200), {}, odometry), std::invalid_argument);
+  EXPECT_THROW(build_map_from_scores(align::ScoreSource::dense(s.values, 200, 200), {}, odometry),
+               std::invalid_argument);
 }
 
 }  // namespace

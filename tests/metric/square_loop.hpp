@@ -1,14 +1,14 @@
 #pragma once
 // A synthetic test world: a 10 m square driven twice in 0.5 m steps, with odometry that drifts (scale
 // and heading bias) and jitters. The second lap revisits every place of the first.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdint>
 #include <numbers>
 #include <random>
 #include <utility>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "seqtopo/metric/pose2.hpp"
 
@@ -23,7 +23,6 @@ inline void expect_same_poses(const std::vector<Pose2>& a, const std::vector<Pos
     EXPECT_NEAR(wrap_angle(a[i].theta - b[i].theta), 0.0, tol) << "pose " << i;
   }
 }
-
 
 struct SquareLoop {
   std::vector<Pose2> truth;

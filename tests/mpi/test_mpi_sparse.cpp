@@ -1,7 +1,6 @@
 // seqtopo-mpi under mpirun: 1 and 2 ranks write byte-identical alignments.json, equal to the sparse mode
 // computed here in one process with the library, and a bad input fails on every rank with one line.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <cstdlib>

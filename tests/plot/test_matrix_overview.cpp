@@ -40,11 +40,12 @@ TEST(MatrixOverview, EqualsBruteForceBlockMax) {
     std::size_t rows, cols, max_side, block;
   };
   // block = the smallest with both sides <= max_side; uneven last blocks included
-  const Case cases[] = {{1, 1, 4, 1},  {7, 7, 7, 1},   {7, 7, 6, 2},    {23, 23, 5, 5},
+  const Case cases[] = {{1, 1, 4, 1},   {7, 7, 7, 1},   {7, 7, 6, 2},       {23, 23, 5, 5},
                         {50, 31, 8, 7}, {31, 50, 8, 7}, {100, 100, 10, 10}, {101, 101, 10, 11}};
   for (const Case& c : cases) {
     const auto m = random_matrix(c.rows, c.cols, static_cast<unsigned>(c.rows * 100 + c.cols), false);
-    const auto overview = matrix_overview(align::ScoreSource::dense(m.values, c.rows, c.cols), {.max_side = c.max_side});
+    const auto overview =
+        matrix_overview(align::ScoreSource::dense(m.values, c.rows, c.cols), {.max_side = c.max_side});
     EXPECT_EQ(overview.block, c.block) << c.rows << " x " << c.cols;
     const auto expected = brute_force(m, c.block);
     EXPECT_EQ(overview.cells.rows, expected.rows);
@@ -58,11 +59,12 @@ TEST(MatrixOverview, SymmetricReadsHalfAndGivesTheSameResult) {
     for (const std::size_t max_side : {1, 3, 8, 200}) {
       const auto m = random_matrix(n, n, static_cast<unsigned>(n + max_side), true);
       std::atomic<std::size_t> reads{0};
-      const align::ScoreSource source(n, n, [&](std::size_t i, std::size_t j_begin, std::size_t j_end, align::Score* out) {
-        EXPECT_LE(j_end, i + 1) << "a symmetric overview reads only j <= i";
-        reads += j_end - j_begin;
-        for (std::size_t j = j_begin; j < j_end; ++j) out[j - j_begin] = m(i, j);
-      });
+      const align::ScoreSource source(n, n,
+                                      [&](std::size_t i, std::size_t j_begin, std::size_t j_end, align::Score* out) {
+                                        EXPECT_LE(j_end, i + 1) << "a symmetric overview reads only j <= i";
+                                        reads += j_end - j_begin;
+                                        for (std::size_t j = j_begin; j < j_end; ++j) out[j - j_begin] = m(i, j);
+                                      });
       const auto overview = matrix_overview(source, {.max_side = max_side, .symmetric = true});
       EXPECT_EQ(reads.load(), n * (n + 1) / 2);
       const auto full = matrix_overview(align::ScoreSource::dense(m.values, n, n), {.max_side = max_side});
@@ -89,7 +91,8 @@ TEST(MatrixOverview, CoordinatesLandInTheCellThatHoldsThePosition) {
   for (const std::size_t block : {2U, 5U, 50U}) {
     for (double x = 0; x < 500; ++x) {
       const double drawn = overview_coordinate(x, block) + 0.5;  // matrix_image's cell-centre offset
-      EXPECT_EQ(static_cast<std::size_t>(std::floor(drawn)), static_cast<std::size_t>(x) / block) << x << ", block " << block;
+      EXPECT_EQ(static_cast<std::size_t>(std::floor(drawn)), static_cast<std::size_t>(x) / block)
+          << x << ", block " << block;
     }
   }
 }

@@ -53,7 +53,7 @@ inline Problem random_problem(std::mt19937& rng, bool integer_scores) {
     const bool anti = std::bernoulli_distribution(0.5)(rng);
     for (std::size_t k = 0; k < len; ++k) {
       if (std::bernoulli_distribution(0.1)(rng)) continue;  // a hole: the run needs a gap or a mismatch
-      const std::size_t j = anti ? j0 - k : j0 + k;          // wraps out of range when anti runs off
+      const std::size_t j = anti ? j0 - k : j0 + k;         // wraps out of range when anti runs off
       add(i0 + k, j, value(0.5F, 3.0F));
     }
   }
@@ -65,8 +65,8 @@ inline Problem random_problem(std::mt19937& rng, bool integer_scores) {
   c.gap_a = gaps[gap_pick(rng)];
   c.gap_b = std::bernoulli_distribution(0.5)(rng) ? c.gap_a : gaps[gap_pick(rng)];
   if (std::bernoulli_distribution(0.6)(rng)) c.cap = static_cast<float>(std::uniform_int_distribution<int>(2, 12)(rng));
-  c.threshold = std::bernoulli_distribution(0.4)(rng) ? 0.0F
-                                                      : static_cast<float>(std::uniform_int_distribution<int>(1, 6)(rng));
+  c.threshold =
+      std::bernoulli_distribution(0.4)(rng) ? 0.0F : static_cast<float>(std::uniform_int_distribution<int>(1, 6)(rng));
   c.min_separation = std::uniform_int_distribution<std::size_t>(1, 12)(rng);
   return p;
 }

@@ -10,9 +10,9 @@
 #include <set>
 #include <vector>
 
+#include "scale/random_sparse_problems.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/scale/sparse_alignment.hpp"
-#include "scale/random_sparse_problems.hpp"
 
 namespace seqtopo::align {
 // Readable failure messages.
@@ -39,8 +39,8 @@ TEST(SparseAlignment, EqualsDenseEngineOnRandomCases) {
     if (got != expected) {
       std::size_t k = 0;
       while (k < got.size() && k < expected.size() && got[k] == expected[k]) ++k;
-      ADD_FAILURE() << "trial " << trial << " rows " << p.scores.rows() << " self " << p.config.self << ": first difference at "
-                    << k << " of " << expected.size() << " / " << got.size() << ": got "
+      ADD_FAILURE() << "trial " << trial << " rows " << p.scores.rows() << " self " << p.config.self
+                    << ": first difference at " << k << " of " << expected.size() << " / " << got.size() << ": got "
                     << (k < got.size() ? ::testing::PrintToString(got[k]) : "-") << " expected "
                     << (k < expected.size() ? ::testing::PrintToString(expected[k]) : "-");
       return;

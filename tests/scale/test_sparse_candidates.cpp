@@ -28,7 +28,8 @@ std::vector<float> clustered(std::size_t n, std::size_t dim, unsigned seed) {
 }
 
 // Brute force: largest cosine first among frames at least `exclude` away.
-std::vector<std::uint32_t> brute_force(const StreamingSimilarity& s, std::size_t i, std::size_t k, std::size_t exclude) {
+std::vector<std::uint32_t> brute_force(const StreamingSimilarity& s, std::size_t i, std::size_t k,
+                                       std::size_t exclude) {
   std::vector<std::pair<float, std::uint32_t>> all;
   for (std::size_t j = 0; j < s.size(); ++j) {
     if ((i > j ? i - j : j - i) >= exclude) all.emplace_back(-s.cosine(i, j), static_cast<std::uint32_t>(j));

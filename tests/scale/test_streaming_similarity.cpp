@@ -23,8 +23,8 @@ std::vector<float> walk_descriptors(std::size_t n, std::size_t dim, unsigned see
   for (std::size_t i = 1; i < n; ++i) {
     for (std::size_t t = 0; t < dim; ++t) {
       float base = x[(i - 1) * dim + t];
-      if (i >= n / 2 && i < n / 2 + n / 5) base = x[(i - n / 2) * dim + t];                   // forward revisit
-      if (i >= n / 2 + n / 5 && i < n / 2 + 2 * (n / 5)) base = x[(n - i) * dim + t];         // reverse revisit
+      if (i >= n / 2 && i < n / 2 + n / 5) base = x[(i - n / 2) * dim + t];            // forward revisit
+      if (i >= n / 2 + n / 5 && i < n / 2 + 2 * (n / 5)) base = x[(n - i) * dim + t];  // reverse revisit
       x[i * dim + t] = base + 0.4F * noise(rng);
     }
   }
@@ -67,9 +67,9 @@ TEST(StreamingSimilarity, EqualsDenseContrastEnhancementBitForBit) {
     std::size_t n, dim, window, tile;
     float offset;
   };
-  const Case cases[] = {{1, 3, 10, 4, 0.5F},   {17, 5, 3, 4, 0.0F},    {120, 16, 10, 32, 0.5F},
-                        {203, 9, 4, 7, 0.25F}, {150, 32, 0, 64, 0.5F}, {90, 12, 60, 256, 1.0F},
-                        {700, 64, 10, 256, 0.5F}};  // the defaults, with interior tiles
+  const Case cases[] = {
+      {1, 3, 10, 4, 0.5F},    {17, 5, 3, 4, 0.0F},     {120, 16, 10, 32, 0.5F}, {203, 9, 4, 7, 0.25F},
+      {150, 32, 0, 64, 0.5F}, {90, 12, 60, 256, 1.0F}, {700, 64, 10, 256, 0.5F}};  // the defaults, with interior tiles
   for (const Case& c : cases) {
     const auto x = walk_descriptors(c.n, c.dim, static_cast<unsigned>(c.n + c.tile));
     const StreamingSimilarity s(x, c.n, c.dim, {c.window, c.offset, c.tile, 3});

@@ -45,13 +45,13 @@ TEST(RayCasting, DistancesAtKnownAngles) {
     Side side;
   };
   const Case cases[] = {
-      {{5, 5}, 0.0, 4.0, Side::west},                             // east wall, seen face is the wall cell's west side
+      {{5, 5}, 0.0, 4.0, Side::west},  // east wall, seen face is the wall cell's west side
       {{5, 5}, kPi / 2, 4.0, Side::south},
       {{5, 5}, kPi, 4.0, Side::east},
       {{5, 5}, -kPi / 2, 4.0, Side::north},
-      {{5, 5}, kPi / 6, 4.0 / std::cos(kPi / 6), Side::west},     // 30 degrees: x = 9 at y = 7.31
-      {{5, 5}, kPi / 3, 4.0 / std::sin(kPi / 3), Side::south},    // 60 degrees: y = 9 at x = 7.31
-      {{3, 5}, kPi / 4, 4.0 * std::sqrt(2.0), Side::south},       // 45 degrees: y = 9 at x = 7
+      {{5, 5}, kPi / 6, 4.0 / std::cos(kPi / 6), Side::west},   // 30 degrees: x = 9 at y = 7.31
+      {{5, 5}, kPi / 3, 4.0 / std::sin(kPi / 3), Side::south},  // 60 degrees: y = 9 at x = 7.31
+      {{3, 5}, kPi / 4, 4.0 * std::sqrt(2.0), Side::south},     // 45 degrees: y = 9 at x = 7
       {{2.1, 1.6}, kPi, 1.1, Side::east},
   };
   for (const Case& c : cases) {
@@ -103,11 +103,11 @@ TEST(Panorama, ColumnZeroIsTheHeadingAndAnglesIncreaseCounterClockwise) {
   cam.supersample = 1;
   const int mid = cam.height / 2;
   const RgbImage east = render_panorama(w, {5, 5, 0.0}, cam, no_noise());
-  EXPECT_TRUE(dominant(east, 0, mid, 0));                // heading: the red east wall
-  EXPECT_TRUE(dominant(east, cam.width / 4, mid, 1));    // 90 degrees left: green north wall
-  EXPECT_TRUE(dominant(east, cam.width / 2, mid, 2));    // behind: blue west wall
+  EXPECT_TRUE(dominant(east, 0, mid, 0));              // heading: the red east wall
+  EXPECT_TRUE(dominant(east, cam.width / 4, mid, 1));  // 90 degrees left: green north wall
+  EXPECT_TRUE(dominant(east, cam.width / 2, mid, 2));  // behind: blue west wall
   const std::uint8_t* south = east.at(3 * cam.width / 4, mid);
-  EXPECT_GT(south[0], 120);                              // 90 degrees right: yellow
+  EXPECT_GT(south[0], 120);  // 90 degrees right: yellow
   EXPECT_GT(south[1], 120);
   EXPECT_LT(south[2], 80);
   const RgbImage north = render_panorama(w, {5, 5, kPi / 2}, cam, no_noise());

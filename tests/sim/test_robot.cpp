@@ -37,7 +37,7 @@ TEST(Route, FramesAreOneIntervalApartAlongThePath) {
   for (std::size_t k = 1; k < frames.size(); ++k) {
     const double step = std::hypot(frames[k].pose.x - frames[k - 1].pose.x, frames[k].pose.y - frames[k - 1].pose.y);
     EXPECT_LE(step, 0.25 + 1e-9);
-    EXPECT_GT(step, 0.17);  // only corners cut the straight-line distance short
+    EXPECT_GT(step, 0.17);                                     // only corners cut the straight-line distance short
     EXPECT_NEAR(frames[k].pose.x, frames[k].on_path.x, 1e-9);  // perfect path following
     EXPECT_NEAR(frames[k].pose.y, frames[k].on_path.y, 1e-9);
   }
@@ -58,7 +58,8 @@ TEST(Route, ZigZagTravelsFurtherAndStaysNearThePath) {
   EXPECT_GT(zigzag.size(), straight.size() + 50);
   EXPECT_LT(zigzag.size(), straight.size() + 66);
   double max_offset = 0;
-  for (const auto& f : zigzag) max_offset = std::max(max_offset, std::hypot(f.pose.x - f.on_path.x, f.pose.y - f.on_path.y));
+  for (const auto& f : zigzag)
+    max_offset = std::max(max_offset, std::hypot(f.pose.x - f.on_path.x, f.pose.y - f.on_path.y));
   EXPECT_GT(max_offset, 0.4);
   EXPECT_LE(max_offset, 0.5 + 1e-6);
 }
@@ -90,10 +91,10 @@ TEST(Route, BrokenRoutesAreRejected) {
 
 TEST(Places, RevisitsShareIdsAndNodesOwnTheirSurroundings) {
   const PathGraph g = loop_with_tail();
-  PlaceConfig config;  // 1.5 m places, 0.75 m around nodes
-  EXPECT_EQ(raw_place(g, config, 1, 0.5), 1);   // near node 1 on edge 1-2
-  EXPECT_EQ(raw_place(g, config, 0, 4.5), 1);   // near node 1 on edge 0-1
-  EXPECT_EQ(raw_place(g, config, 4, 5.9), 1);   // near node 1 on edge 4-1
+  PlaceConfig config;                          // 1.5 m places, 0.75 m around nodes
+  EXPECT_EQ(raw_place(g, config, 1, 0.5), 1);  // near node 1 on edge 1-2
+  EXPECT_EQ(raw_place(g, config, 0, 4.5), 1);  // near node 1 on edge 0-1
+  EXPECT_EQ(raw_place(g, config, 4, 5.9), 1);  // near node 1 on edge 4-1
   EXPECT_EQ(raw_place(g, config, 1, 9.6), 2);
   // Edge 1-2 (10 m): 8.5 m between the node places in 6 pieces of 1.417 m, after edge 0-1's 2 pieces.
   EXPECT_EQ(raw_place(g, config, 1, 0.8), 5 + 2);
@@ -103,7 +104,8 @@ TEST(Places, RevisitsShareIdsAndNodesOwnTheirSurroundings) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     for (std::size_t j = i + 1; j < frames.size(); ++j) {
       if (std::hypot(frames[i].on_path.x - frames[j].on_path.x, frames[i].on_path.y - frames[j].on_path.y) < 1e-9) {
-        EXPECT_EQ(raw_place(g, config, frames[i].edge, frames[i].along), raw_place(g, config, frames[j].edge, frames[j].along));
+        EXPECT_EQ(raw_place(g, config, frames[i].edge, frames[i].along),
+                  raw_place(g, config, frames[j].edge, frames[j].along));
       }
     }
   }
@@ -147,7 +149,8 @@ TEST(Odometry, HeadingDriftAccumulatesWithDistance) {
   drift.heading_drift = 0.001;  // [rad/m]
   const auto odometry = simulate_odometry(poses, drift, 11);
   double travelled = 0;
-  for (std::size_t k = 1; k < poses.size(); ++k) travelled += std::hypot(poses[k].x - poses[k - 1].x, poses[k].y - poses[k - 1].y);
+  for (std::size_t k = 1; k < poses.size(); ++k)
+    travelled += std::hypot(poses[k].x - poses[k - 1].x, poses[k].y - poses[k - 1].y);
   EXPECT_NEAR(wrap_angle(odometry.back().theta - poses.back().theta), 0.001 * travelled, 1e-9);
 }
 

@@ -198,7 +198,8 @@ TEST(Scenarios, SurveysHaveTheirPapersPointCountsAndAdjacency) {
       if (p.map) continue;
       bool nearest_is_adjacent = false;
       for (const auto& [tt, m] : run.adjacency) {
-        if (static_cast<std::size_t>(tt) == t && run.points[static_cast<std::size_t>(m)].place == p.place) nearest_is_adjacent = true;
+        if (static_cast<std::size_t>(tt) == t && run.points[static_cast<std::size_t>(m)].place == p.place)
+          nearest_is_adjacent = true;
       }
       EXPECT_TRUE(nearest_is_adjacent) << c.name << " " << p.id;
     }

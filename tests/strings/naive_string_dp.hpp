@@ -20,7 +20,8 @@ inline std::pair<double, std::size_t> naive_global(std::string_view p, std::stri
                                                    std::int64_t hi = std::numeric_limits<std::int64_t>::max()) {
   const double inf = std::numeric_limits<double>::infinity();
   const std::size_t n = p.size(), m = t.size();
-  std::vector<std::vector<std::pair<double, std::size_t>>> D(n + 1, std::vector<std::pair<double, std::size_t>>(m + 1, {inf, 0}));
+  std::vector<std::vector<std::pair<double, std::size_t>>> D(
+      n + 1, std::vector<std::pair<double, std::size_t>>(m + 1, {inf, 0}));
   auto inside = [&](std::size_t i, std::size_t j) {
     const auto d = static_cast<std::int64_t>(j) - static_cast<std::int64_t>(i);
     return d >= lo && d <= hi;

@@ -27,7 +27,8 @@ std::pair<std::int64_t, std::int64_t> band_by_scan(std::size_t n, std::size_t m,
 }
 
 // Re-scores an edit path and checks it spells P and T.
-double path_cost(std::string_view p, std::string_view t, const std::string& path, const EditCosts& c, std::size_t* diffs) {
+double path_cost(std::string_view p, std::string_view t, const std::string& path, const EditCosts& c,
+                 std::size_t* diffs) {
   std::size_t i = 0, j = 0;
   double cost = 0.0;
   *diffs = 0;
@@ -90,7 +91,8 @@ TEST(BandedGlobalAlignment, MatchesFullTableOnRandomStrings) {
   std::size_t within = 0, beyond = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     const std::string p = random_fingerprint(rng, 0, 30);
-    const std::string t = std::bernoulli_distribution(0.5)(rng) ? testing::mutate(rng, p, 0.3) : random_fingerprint(rng, 0, 30);
+    const std::string t =
+        std::bernoulli_distribution(0.5)(rng) ? testing::mutate(rng, p, 0.3) : random_fingerprint(rng, 0, 30);
     GlobalAlignmentConfig config;
     config.costs = tables[static_cast<std::size_t>(trial) % tables.size()];
     config.want_path = true;
@@ -104,7 +106,8 @@ TEST(BandedGlobalAlignment, MatchesFullTableOnRandomStrings) {
     } else {
       want = naive_global(p, t, config.costs);
     }
-    const bool want_within = want.first != std::numeric_limits<double>::infinity() && (!limited || want.second <= config.k);
+    const bool want_within =
+        want.first != std::numeric_limits<double>::infinity() && (!limited || want.second <= config.k);
     ASSERT_EQ(got.within_k, want_within) << p << " / " << t << " k=" << config.k;
     (got.within_k ? within : beyond)++;
     if (!got.within_k) continue;
@@ -122,7 +125,8 @@ TEST(BandedGlobalAlignment, UnitCostsAgreeWithEdlibGlobalMode) {
   std::mt19937 rng(77);
   for (int trial = 0; trial < 3000; ++trial) {
     const std::string p = random_fingerprint(rng, 1, 60, 15);
-    const std::string t = std::bernoulli_distribution(0.6)(rng) ? testing::mutate(rng, p, 0.25, 15) : random_fingerprint(rng, 1, 60, 15);
+    const std::string t =
+        std::bernoulli_distribution(0.6)(rng) ? testing::mutate(rng, p, 0.25, 15) : random_fingerprint(rng, 1, 60, 15);
     if (t.empty()) continue;
     const int k = std::uniform_int_distribution<int>(0, 30)(rng);
     const EdlibAlignResult ref = edlibAlign(p.data(), static_cast<int>(p.size()), t.data(), static_cast<int>(t.size()),

@@ -32,10 +32,12 @@ TEST(Cyclic, FindsTheHeading) {
 
 TEST(Cyclic, AlgorithmAEqualsEveryRotation) {
   std::mt19937 rng(1);
-  const std::vector<EditCosts> tables = {preset_costs("A1"), preset_costs("A2-ground-floor"), preset_costs("A2-white-hall")};
+  const std::vector<EditCosts> tables = {preset_costs("A1"), preset_costs("A2-ground-floor"),
+                                         preset_costs("A2-white-hall")};
   for (int trial = 0; trial < 600; ++trial) {
     const std::string t = random_fingerprint(rng, 1, 24, 5);
-    const std::string p = testing::mutate(rng, rotate(t, std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng)), 0.3, 5);
+    const std::string p =
+        testing::mutate(rng, rotate(t, std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng)), 0.3, 5);
     GlobalAlignmentConfig config;
     config.costs = tables[static_cast<std::size_t>(trial) % tables.size()];
     if (trial % 2) config.k = std::uniform_int_distribution<std::size_t>(0, 10)(rng);
@@ -45,7 +47,8 @@ TEST(Cyclic, AlgorithmAEqualsEveryRotation) {
     std::size_t want_r = 0;
     for (std::size_t r = 0; r < t.size(); ++r) {
       const auto a = banded_global_alignment(p, rotate(t, r), config);
-      const bool better = a.within_k && (!want.within_k || a.cost < want.cost || (a.cost == want.cost && a.differences < want.differences));
+      const bool better = a.within_k && (!want.within_k || a.cost < want.cost ||
+                                         (a.cost == want.cost && a.differences < want.differences));
       if (better) want = a, want_r = r;
     }
     ASSERT_EQ(got.alignment.within_k, want.within_k) << p << " / " << t;
@@ -65,7 +68,8 @@ TEST(Cyclic, AlgorithmBEqualsEveryRotation) {
     const std::size_t len = std::uniform_int_distribution<std::size_t>(0, t.size() - std::min(t.size(), k))(rng);
     const std::size_t start = std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng);
     std::string p = testing::mutate(rng, rotate(t, start).substr(0, len), 0.3, 4);
-    if (p.size() + k > t.size()) p.resize(t.size() > k ? t.size() - k : 0);  // the doubled text covers every occurrence then
+    if (p.size() + k > t.size())
+      p.resize(t.size() > k ? t.size() - k : 0);  // the doubled text covers every occurrence then
     const auto got = cyclic_k_differences(p, t, {k});
     const std::size_t m = t.size();
     std::vector<std::size_t> want(m + 1, static_cast<std::size_t>(-1));
@@ -91,8 +95,10 @@ TEST(Cyclic, AlgorithmCEqualsEveryRotation) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 800; ++trial) {
     const std::string t = random_fingerprint(rng, 0, 30, trial % 2 ? 2 : 8);
-    const std::string p = t.empty() ? random_fingerprint(rng, 0, 5) :
-        testing::mutate(rng, rotate(t, std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng)), 0.4, trial % 2 ? 2 : 8);
+    const std::string p =
+        t.empty() ? random_fingerprint(rng, 0, 5)
+                  : testing::mutate(rng, rotate(t, std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng)),
+                                    0.4, trial % 2 ? 2 : 8);
     const auto got = cyclic_lcs_by_lis(p, t);
     std::size_t want = 0, want_r = 0;
     for (std::size_t r = 0; r < std::max<std::size_t>(t.size(), 1); ++r) {

@@ -76,7 +76,8 @@ TEST(KDifferences, AgreesWithEdlibInfixMode) {
       for (const auto& o : got.occurrences) {
         if (o.differences == static_cast<std::size_t>(ref.editDistance)) best_ends.push_back(o.end);
       }
-      for (int i = 0; i < ref.numLocations; ++i) edlib_ends.push_back(static_cast<std::size_t>(ref.endLocations[i] + 1));
+      for (int i = 0; i < ref.numLocations; ++i)
+        edlib_ends.push_back(static_cast<std::size_t>(ref.endLocations[i] + 1));
       EXPECT_EQ(best_ends, edlib_ends) << p << " in " << t;
     }
     edlibFreeAlignResult(ref);

@@ -48,7 +48,7 @@ TEST(LcsByLis, MatchesDynamicProgrammingAndIndelDistance) {
     const int colours = trial % 3 == 0 ? 1 : 15;
     const std::string p = testing::random_fingerprint(rng, 0, 50, colours);
     const std::string t = std::bernoulli_distribution(0.5)(rng) ? testing::mutate(rng, p, 0.3, colours)
-                                                                 : testing::random_fingerprint(rng, 0, 50, colours);
+                                                                : testing::random_fingerprint(rng, 0, 50, colours);
     const auto c = lcs_by_lis(p, t);
     ASSERT_EQ(c.length, testing::naive_lcs(p, t)) << p << " / " << t;
     const std::size_t indel = testing::naive_indel_distance(p, t);

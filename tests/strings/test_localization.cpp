@@ -131,12 +131,12 @@ TEST(StringsFile, MalformedLinesNameTheLine) {
     }
     return std::size_t{0};
   };
-  EXPECT_EQ(line_of("a\tvA\nb\tvB\t1\n"), 2U);            // x without y
-  EXPECT_EQ(line_of("a\tvA\n# c\na\tvB\n"), 3U);          // repeated id
-  EXPECT_EQ(line_of("a\tvA\tone\t2\n"), 1U);              // not a number
-  EXPECT_EQ(line_of("a\n"), 1U);                          // no string
-  EXPECT_EQ(line_of("\tvA\n"), 1U);                       // empty id
-  EXPECT_EQ(line_of("a\tvA\t1\t2\t\n"), 1U);              // empty place
+  EXPECT_EQ(line_of("a\tvA\nb\tvB\t1\n"), 2U);    // x without y
+  EXPECT_EQ(line_of("a\tvA\n# c\na\tvB\n"), 3U);  // repeated id
+  EXPECT_EQ(line_of("a\tvA\tone\t2\n"), 1U);      // not a number
+  EXPECT_EQ(line_of("a\n"), 1U);                  // no string
+  EXPECT_EQ(line_of("\tvA\n"), 1U);               // empty id
+  EXPECT_EQ(line_of("a\tvA\t1\t2\t\n"), 1U);      // empty place
   EXPECT_EQ(line_of("a\tvA\t1\t2\tp\n"), 0U);
 }
 

@@ -39,17 +39,17 @@ struct LocalizationTruth {
 std::vector<std::pair<std::size_t, std::size_t>> parse_pairs_csv(std::string_view text);
 
 struct LocalizationPrediction {
-  std::optional<std::size_t> map;        // nullopt = "not in the map"
-  float score = 0;                       // higher = more confident
-  std::vector<std::size_t> candidates;   // best first (candidates[0] == *map when given); for recall@k
+  std::optional<std::size_t> map;       // nullopt = "not in the map"
+  float score = 0;                      // higher = more confident
+  std::vector<std::size_t> candidates;  // best first (candidates[0] == *map when given); for recall@k
 };
 
 struct LocalizationMetrics {
   std::size_t queries = 0, queries_with_match = 0, predicted = 0, correct = 0;
   double recall_at_1 = 0, recall_at_5 = 0;
-  double precision = 0, recall = 0;     // every prediction accepted
+  double precision = 0, recall = 0;  // every prediction accepted
   double auc = 0, recall_at_100_precision = 0;
-  std::vector<PrPoint> curve;           // by decreasing threshold
+  std::vector<PrPoint> curve;  // by decreasing threshold
 };
 
 // Throws std::invalid_argument when the sizes disagree.

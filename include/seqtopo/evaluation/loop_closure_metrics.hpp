@@ -39,7 +39,8 @@ struct PrSweep {
   double auc = 0, recall_at_100_precision = 0;
 };
 // scores[k] and correct[k] describe detection k; `positives` is the recall denominator.
-PrSweep sweep_precision_recall(const std::vector<float>& scores, const std::vector<bool>& correct, std::size_t positives);
+PrSweep sweep_precision_recall(const std::vector<float>& scores, const std::vector<bool>& correct,
+                               std::size_t positives);
 
 // Same-place relation of the ground truth (symmetric).
 using SamePlace = std::function<bool(std::size_t, std::size_t)>;

@@ -39,16 +39,16 @@
 namespace seqtopo::fingerprint {
 
 struct FingerprintConfig {
-  double band_top = 0.2;          // fraction of the height where the scanned band starts
-  double band_bottom = 0.8;       // ... and ends
-  double edge_step = 24.0;        // [levels of the most changing channel] between a pixel's two neighbours
-  double edge_min_fraction = 0.6; // of band rows with such a step
-  int edge_suppression = 2;       // [columns] each side
+  double band_top = 0.2;           // fraction of the height where the scanned band starts
+  double band_bottom = 0.8;        // ... and ends
+  double edge_step = 24.0;         // [levels of the most changing channel] between a pixel's two neighbours
+  double edge_min_fraction = 0.6;  // of band rows with such a step
+  int edge_suppression = 2;        // [columns] each side
   double saturation_min = 0.25;
   double value_min_colour = 0.15;
   double bright_value = 0.6;
   double column_majority = 0.5;
-  int min_patch_width = 6;        // [columns]
+  int min_patch_width = 6;             // [columns]
   double brightness_percentile = 0.9;  // 0 = no brightness normalization
   double brightness_target = 0.9;      // fraction of full scale
 };

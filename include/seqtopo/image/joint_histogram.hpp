@@ -44,14 +44,14 @@ namespace seqtopo::image {
 struct JointHistogramConfig {
   // Sobel magnitude bin edges, increasing: bin g holds gradient_edges[g-1] <= m < gradient_edges[g].
   std::array<int, 4> gradient_edges{16, 48, 120, 320};
-  int edge_threshold = 96;                      // edge pixel: Sobel magnitude m > this
+  int edge_threshold = 96;                          // edge pixel: Sobel magnitude m > this
   std::array<int, 3> edge_density_edges{1, 6, 12};  // bin e holds counts >= edges[e-1] and < edges[e]
-  int texture_threshold = 8;                    // neighbour counts when |I_n - I| > this [grey levels]
-  std::array<int, 3> texture_edges{1, 3, 6};    // bins of the texturedness count, as for edge density
+  int texture_threshold = 8;                        // neighbour counts when |I_n - I| > this [grey levels]
+  std::array<int, 3> texture_edges{1, 3, 6};        // bins of the texturedness count, as for edge density
 
   static constexpr int edge_density_bins = 4, gradient_bins = 5, texture_bins = 4, rank_bins = 4, colour_bins = 4;
   static constexpr std::uint32_t bins = 4 * 5 * 4 * 4 * 4 * 4 * 4;  // 20,480
-  static constexpr int window_radius = 2;       // 5x5 windows for edge density and rank
+  static constexpr int window_radius = 2;                           // 5x5 windows for edge density and rank
 };
 
 // Every per-pixel feature, row-major, width * height each (exposed for tests and plots).

@@ -11,9 +11,9 @@
 namespace seqtopo::image {
 
 struct PatchConfig {
-  int width = 64;   // thumbnail size [pixels]; SeqSLAM's 64 x 32
+  int width = 64;  // thumbnail size [pixels]; SeqSLAM's 64 x 32
   int height = 32;
-  int patch = 8;    // side of the normalised patches [pixels]; patches at the right/bottom border may be smaller
+  int patch = 8;  // side of the normalised patches [pixels]; patches at the right/bottom border may be smaller
 };
 
 // width * height values, row-major. A patch of constant intensity becomes all zeros. Throws

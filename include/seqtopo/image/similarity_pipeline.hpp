@@ -34,14 +34,14 @@ Metric default_metric(Descriptor descriptor);
 
 struct SimilarityConfig {
   Descriptor descriptor = Descriptor::joint_histogram;  // a descriptors.npy input always uses its rows
-  std::optional<Metric> metric;            // default by descriptor: default_metric()
-  std::optional<float> kappa;              // nullopt = auto (kappa_rule)
-  unsigned threads = 0;                    // 0 = all cores
+  std::optional<Metric> metric;                         // default by descriptor: default_metric()
+  std::optional<float> kappa;                           // nullopt = auto (kappa_rule)
+  unsigned threads = 0;                                 // 0 = all cores
   JointHistogramConfig joint_histogram;
   PatchConfig patch;
   PanoramaConfig panorama;
   similarity::KappaRule kappa_rule;
-  std::size_t tile = 64;                   // matrix tile side [cells]
+  std::size_t tile = 64;  // matrix tile side [cells]
 
   // Reports from long stages (never printed by the library): progress(stage, done, total) and notes such
   // as the memory estimate made before the matrix is allocated. Both are called from one thread at a time.
@@ -51,13 +51,13 @@ struct SimilarityConfig {
 };
 
 struct SimilarityResult {
-  SimilarityMatrix similarity;             // S, rows = first sequence, cols = second (or same)
-  float kappa = 0;                         // the kappa used (NaN when the input was a similarity matrix)
+  SimilarityMatrix similarity;  // S, rows = first sequence, cols = second (or same)
+  float kappa = 0;              // the kappa used (NaN when the input was a similarity matrix)
   bool kappa_auto = false;
-  double kappa_fraction = 0;               // kappa auto: the fraction p of candidate pairs given S > 0
-  std::optional<Metric> metric;            // nullopt when the input was a similarity matrix
-  std::vector<std::string> frame_names;    // file names / "frame 17" / "row 17", one per row
-  std::vector<std::string> column_names;   // one per column
+  double kappa_fraction = 0;              // kappa auto: the fraction p of candidate pairs given S > 0
+  std::optional<Metric> metric;           // nullopt when the input was a similarity matrix
+  std::vector<std::string> frame_names;   // file names / "frame 17" / "row 17", one per row
+  std::vector<std::string> column_names;  // one per column
   double seconds_descriptors = 0, seconds_matrix = 0;
 };
 
@@ -66,16 +66,17 @@ struct SimilarityResult {
 SimilarityResult compute_similarity(const SequenceInput& input, const SimilarityConfig& config = {});
 // N x M between two sequences: rows = a, cols = b. For InputKind::similarity on `a`, `b` is ignored and the
 // N x M matrix is returned as is.
-SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b, const SimilarityConfig& config = {});
+SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b,
+                                    const SimilarityConfig& config = {});
 
 // The per-image vectors of one sequence, without any N x N matrix (for scores streamed from them,
 // scale/streaming_similarity.hpp): the rows of a descriptors.npy, or the patch / panorama descriptor of
 // every image or frame. A joint histogram has no vector form and a similarity.npy no descriptors: both
 // throw io::InputError naming the input, as bad input does; misuse throws std::invalid_argument.
 struct DescriptorResult {
-  DenseMatrix<float> descriptors;          // N x dim, one row per image
-  Descriptor descriptor = Descriptor::npy; // the one used (npy for a descriptors.npy input)
-  std::vector<std::string> frame_names;    // as in SimilarityResult
+  DenseMatrix<float> descriptors;           // N x dim, one row per image
+  Descriptor descriptor = Descriptor::npy;  // the one used (npy for a descriptors.npy input)
+  std::vector<std::string> frame_names;     // as in SimilarityResult
   double seconds_descriptors = 0;
 };
 DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config = {});

@@ -10,8 +10,8 @@
 namespace seqtopo::io {
 
 struct CsvRow {
-  std::string where;                 // "file:line", for error messages about this row
-  std::vector<std::string> fields;   // as many as the header has
+  std::string where;                // "file:line", for error messages about this row
+  std::vector<std::string> fields;  // as many as the header has
 };
 
 // Throws InputError naming the file (missing, empty) or file:line (another header, a row with

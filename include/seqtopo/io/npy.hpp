@@ -12,10 +12,10 @@
 namespace seqtopo::io {
 
 struct NpyHeader {
-  std::string dtype;                // "<f4" or "<f8"
+  std::string dtype;  // "<f4" or "<f8"
   bool fortran_order = false;
   std::vector<std::size_t> shape;
-  std::size_t data_offset = 0;      // bytes from the start of the file to the data
+  std::size_t data_offset = 0;  // bytes from the start of the file to the data
 };
 
 NpyHeader read_npy_header(const std::filesystem::path& path);

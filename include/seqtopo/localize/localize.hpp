@@ -40,12 +40,12 @@ namespace seqtopo::localize {
 struct LocalizeConfig {
   // Row contrast enhancement: z-score against +-window map frames (0 = the whole row; see score_matrix).
   std::size_t enhancement_window = 10;
-  bool enhance = true;            // false: the similarity is used as given (minus offset)
-  float offset = 0.75F;           // subtracted after enhancement [standard deviations]
-  float gap = 2.0F;               // gap penalty, both directions [score units]
-  std::optional<float> cap;       // upper bound on the cumulative score (mapping paper); nullopt = none
-  float threshold = 10.0F;        // minimum alignment score for an alignment to cover frames
-  bool reverse = true;            // also search the map driven backwards
+  bool enhance = true;       // false: the similarity is used as given (minus offset)
+  float offset = 0.75F;      // subtracted after enhancement [standard deviations]
+  float gap = 2.0F;          // gap penalty, both directions [score units]
+  std::optional<float> cap;  // upper bound on the cumulative score (mapping paper); nullopt = none
+  float threshold = 10.0F;   // minimum alignment score for an alignment to cover frames
+  bool reverse = true;       // also search the map driven backwards
   std::size_t max_alignments = 1000;
   std::size_t score_window = 10;  // [query frames] half-width of the per-frame score window
   std::size_t candidates = 5;     // best map frames kept per query frame (for recall@k)
@@ -53,16 +53,16 @@ struct LocalizeConfig {
 };
 
 struct FrameMatch {
-  bool covered = false;           // false = "not in the map"
-  std::size_t map = 0;            // best map frame (meaningful when covered)
-  float score = 0;                // local alignment score around this frame (higher = more confident)
+  bool covered = false;  // false = "not in the map"
+  std::size_t map = 0;   // best map frame (meaningful when covered)
+  float score = 0;       // local alignment score around this frame (higher = more confident)
   align::Direction direction = align::Direction::forward;
   std::vector<std::size_t> candidates;  // best first, distinct alignments; candidates[0] == map when covered
 };
 
 struct LocalizeResult {
-  std::vector<FrameMatch> frames;                  // one per query frame (row)
-  std::vector<align::LocalAlignment> alignments;   // every alignment found, best first (a = query, b = map)
+  std::vector<FrameMatch> frames;                 // one per query frame (row)
+  std::vector<align::LocalAlignment> alignments;  // every alignment found, best first (a = query, b = map)
 };
 
 // The matrix the alignment scores: contrast-enhanced rows minus the offset (see above). Throws

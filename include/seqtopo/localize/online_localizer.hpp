@@ -27,10 +27,10 @@
 namespace seqtopo::localize {
 
 struct OnlineEstimate {
-  std::size_t query = 0;      // index of the frame just fed
-  bool in_map = false;        // confidence >= threshold
-  std::size_t map = 0;        // best map frame now
-  float confidence = 0;       // the table value there (capped alignment score ending at this frame)
+  std::size_t query = 0;  // index of the frame just fed
+  bool in_map = false;    // confidence >= threshold
+  std::size_t map = 0;    // best map frame now
+  float confidence = 0;   // the table value there (capped alignment score ending at this frame)
   align::Direction direction = align::Direction::forward;
 };
 

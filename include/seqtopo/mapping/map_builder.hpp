@@ -29,7 +29,7 @@ struct MapConfig {
   // Minimum alignment score for a revisit. The real sequences give the same result anywhere in 8..20;
   // the simulated worlds (bench/worlds.sh) need 20 to drop short chance alignments.
   float threshold = 20.0F;
-  std::size_t min_separation = 10;   // [frames] pairs closer than this in time never count
+  std::size_t min_separation = 10;  // [frames] pairs closer than this in time never count
   bool reverse = true;              // also look for paths revisited in the opposite direction
   // exact: the scalar reference engine (align/smith_waterman.hpp, a float table of N x N cells);
   // fast: the vectorized linear-memory engine (align/fast_alignment.hpp) on scores quantized to

@@ -10,6 +10,7 @@ namespace seqtopo::mapping {
 
 using PlaceLabel = int;
 
-std::vector<PlaceLabel> label_places(std::size_t images, const std::vector<std::pair<std::size_t, std::size_t>>& same_place);
+std::vector<PlaceLabel> label_places(std::size_t images,
+                                     const std::vector<std::pair<std::size_t, std::size_t>>& same_place);
 
 }  // namespace seqtopo::mapping

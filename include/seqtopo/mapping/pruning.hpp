@@ -33,16 +33,16 @@ struct PruningConfig {
 };
 
 struct RetainedPair {
-  std::size_t i = 0, j = 0;      // image indices, i > j for a self alignment
-  std::size_t alignment = 0;     // index into the alignment list
-  float score = 0;               // that alignment's score
+  std::size_t i = 0, j = 0;   // image indices, i > j for a self alignment
+  std::size_t alignment = 0;  // index into the alignment list
+  float score = 0;            // that alignment's score
   friend bool operator==(const RetainedPair&, const RetainedPair&) = default;
 };
 
 struct PruningResult {
-  std::vector<bool> kept;                 // one per alignment
-  std::vector<std::size_t> retained_count;// pairs of each alignment that survived
-  std::vector<RetainedPair> pairs;        // surviving pairs, ordered by (alignment, i)
+  std::vector<bool> kept;                   // one per alignment
+  std::vector<std::size_t> retained_count;  // pairs of each alignment that survived
+  std::vector<RetainedPair> pairs;          // surviving pairs, ordered by (alignment, i)
 };
 
 PruningResult prune_per_column(const std::vector<align::LocalAlignment>& alignments, const PruningConfig& config = {});

@@ -30,18 +30,19 @@ struct PathSegment {
 };
 
 struct TopologicalMap {
-  std::vector<PlaceLabel> labels;                       // one per image
-  std::vector<Place> places;                            // indexed by label
-  std::vector<std::pair<PlaceLabel, PlaceLabel>> edges; // (p, q) with p < q, sorted, unique
-  std::vector<PlaceLabel> junctions;                    // sorted
-  std::vector<PathSegment> segments;                    // sorted by first place
+  std::vector<PlaceLabel> labels;                        // one per image
+  std::vector<Place> places;                             // indexed by label
+  std::vector<std::pair<PlaceLabel, PlaceLabel>> edges;  // (p, q) with p < q, sorted, unique
+  std::vector<PlaceLabel> junctions;                     // sorted
+  std::vector<PathSegment> segments;                     // sorted by first place
 };
 
 struct TopologyConfig {
   std::size_t u_turn_separation = 10;  // [frames]
 };
 
-TopologicalMap build_topology(const std::vector<PlaceLabel>& labels, const std::vector<align::LocalAlignment>& alignments,
-                              const PruningResult& pruning, const TopologyConfig& config = {});
+TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
+                              const std::vector<align::LocalAlignment>& alignments, const PruningResult& pruning,
+                              const TopologyConfig& config = {});
 
 }  // namespace seqtopo::mapping

@@ -14,13 +14,13 @@ namespace seqtopo::plot {
 struct Polyline {
   std::vector<std::pair<double, double>> points;  // (row, column) in matrix cells
   std::array<std::uint8_t, 3> rgb{255, 0, 0};
-  int thickness = 1;                              // [pixels]
+  int thickness = 1;  // [pixels]
 };
 
 struct MatrixImageConfig {
-  int min_size = 512;       // the image is upscaled (nearest cell) until its larger side is at least this [pixels]
-  int max_size = 2048;      // and reduced (block means) when larger [pixels]
-  bool robust_range = true; // map the 1st..99th percentile to black..white instead of min..max
+  int min_size = 512;        // the image is upscaled (nearest cell) until its larger side is at least this [pixels]
+  int max_size = 2048;       // and reduced (block means) when larger [pixels]
+  bool robust_range = true;  // map the 1st..99th percentile to black..white instead of min..max
 };
 
 // Grey levels from the matrix values. Matrices larger than max_size are reduced by taking the mean of

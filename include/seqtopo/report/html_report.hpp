@@ -11,7 +11,7 @@ class HtmlReport {
  public:
   explicit HtmlReport(std::string title);
   void heading(const std::string& text);
-  void paragraph(const std::string& text);                       // text is escaped
+  void paragraph(const std::string& text);  // text is escaped
   void table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
   void key_values(const std::vector<std::pair<std::string, std::string>>& rows);
   void png(const std::string& caption, const std::string& png_bytes, const std::string& file_name);

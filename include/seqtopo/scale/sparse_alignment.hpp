@@ -68,10 +68,10 @@ class SparseScores {
 };
 
 struct SparseAlignStats {
-  std::size_t active_cells = 0;       // cells with H > 0 in the first fill (both passes)
-  std::size_t components = 0;         // connected components of them
-  std::size_t aligned_components = 0; // those whose best cell reaches the threshold
-  std::size_t box_cells = 0;          // cells of all boxes given to the exact engine
+  std::size_t active_cells = 0;        // cells with H > 0 in the first fill (both passes)
+  std::size_t components = 0;          // connected components of them
+  std::size_t aligned_components = 0;  // those whose best cell reaches the threshold
+  std::size_t box_cells = 0;           // cells of all boxes given to the exact engine
   std::size_t largest_box_cells = 0;
 };
 
@@ -81,6 +81,7 @@ std::vector<align::LocalAlignment> sparse_local_alignments(const SparseScores& s
                                                            SparseAlignStats* stats = nullptr);
 // Forward and reverse (concurrently when threads > 1), merged as local_alignments_both() merges them.
 std::vector<align::LocalAlignment> sparse_local_alignments_both(const SparseScores& scores, align::AlignConfig config,
-                                                                unsigned threads = 2, SparseAlignStats* stats = nullptr);
+                                                                unsigned threads = 2,
+                                                                SparseAlignStats* stats = nullptr);
 
 }  // namespace seqtopo::scale

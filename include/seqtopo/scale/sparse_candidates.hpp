@@ -32,8 +32,8 @@ struct CandidateConfig {
 };
 
 struct CandidateStats {
-  std::size_t pairs = 0;           // distinct cells (i, j) with a candidate score (both triangles)
-  double seconds_index = 0;        // training and adding
+  std::size_t pairs = 0;     // distinct cells (i, j) with a candidate score (both triangles)
+  double seconds_index = 0;  // training and adding
   double seconds_search = 0;
   double seconds_scores = 0;
 };

@@ -38,7 +38,7 @@ struct StreamingConfig {
 struct StreamingStats {
   std::uint64_t tiles_computed = 0;  // including recomputations after eviction
   std::uint64_t cells_computed = 0;
-  std::size_t cache_bytes = 0;       // the cache's capacity [bytes]
+  std::size_t cache_bytes = 0;  // the cache's capacity [bytes]
 };
 
 class StreamingSimilarity {
@@ -76,8 +76,8 @@ class StreamingSimilarity {
 
   std::size_t n_, dim_;
   StreamingConfig config_;
-  std::vector<float> normalized_;   // n x dim
-  std::vector<float> transposed_;   // dim x n
+  std::vector<float> normalized_;  // n x dim
+  std::vector<float> transposed_;  // dim x n
   std::unique_ptr<Cache> cache_;
 };
 

@@ -12,7 +12,7 @@
 namespace seqtopo::sim {
 
 struct PathGraph {
-  std::vector<Vec2> nodes;              // [m]
+  std::vector<Vec2> nodes;                // [m]
   std::vector<std::array<int, 2>> edges;  // straight segments between nodes
   int add_node(Vec2 p) {
     nodes.push_back(p);
@@ -26,8 +26,8 @@ struct PathGraph {
 // How the path graph is cut into places: each node owns the stretch within junction_radius of it; the rest
 // of each edge is split evenly into pieces close to place_length.
 struct PlaceConfig {
-  double place_length = 1.5;     // [m]
-  double junction_radius = 0.75; // [m]
+  double place_length = 1.5;      // [m]
+  double junction_radius = 0.75;  // [m]
 };
 
 // Place id on the path graph before compaction: nodes first, then the pieces of each edge in order.
@@ -36,9 +36,9 @@ int raw_place(const PathGraph& graph, const PlaceConfig& config, int edge, doubl
 // Imperfect path following: a constant lateral offset (to the left of travel) plus a zig-zag
 // (triangle wave) of the given amplitude and period along the path.
 struct PathFollowing {
-  double lateral_offset = 0.0;   // [m]
-  double zigzag_amplitude = 0.0; // [m]
-  double zigzag_period = 4.0;    // [m] of path
+  double lateral_offset = 0.0;    // [m]
+  double zigzag_amplitude = 0.0;  // [m]
+  double zigzag_period = 4.0;     // [m] of path
 };
 
 struct RouteLeg {

@@ -32,15 +32,15 @@ const std::vector<ScenarioInfo>& scenarios();
 
 struct SimulationConfig {
   std::uint64_t seed = 1;
-  std::optional<double> interval;  // [m] between frames; default per scenario (0.25 indoors, 0.5 outdoors)
-  double odometry_noise = 1.0;     // multiplies the scenario's odometry error model (0 = exact odometry)
-  std::optional<double> heading_drift;  // [rad/m], overrides the scenario's
-  std::optional<double> scale_error;    // overrides the scenario's
+  std::optional<double> interval;          // [m] between frames; default per scenario (0.25 indoors, 0.5 outdoors)
+  double odometry_noise = 1.0;             // multiplies the scenario's odometry error model (0 = exact odometry)
+  std::optional<double> heading_drift;     // [rad/m], overrides the scenario's
+  std::optional<double> scale_error;       // overrides the scenario's
   std::optional<double> zigzag_amplitude;  // [m], overrides the zig-zag traversal's
   PanoramaCamera panorama;
   PinholeCamera camera;
   bool forward_images = true;
-  double pixel_noise = 2.0;  // [grey levels]
+  double pixel_noise = 2.0;      // [grey levels]
   double lighting_change = 1.0;  // scales the lighting differences between traversals (0 = identical lighting)
   PlaceConfig places;
   std::size_t max_frames = 0;  // keep only the first N frames (0 = all)
@@ -52,7 +52,7 @@ struct SurveyPoint {
   std::string id;
   bool map = true;  // map point (database) or test point (query)
   Pose2 pose;
-  int place = 0;    // the map point's index for map points; the nearest map point's for test points
+  int place = 0;  // the map point's index for map points; the nearest map point's for test points
 };
 
 // The world, paths and route of a scenario, before anything is rendered.
@@ -65,7 +65,7 @@ struct ScenarioSetup {
   double interval = 0.25;
   OdometryNoise odometry;
   std::vector<SurveyPoint> points;
-  std::vector<Lighting> point_lighting;      // one per point
+  std::vector<Lighting> point_lighting;        // one per point
   std::vector<std::pair<int, int>> adjacency;  // (test point, adjacent map point), indices into points
 };
 
@@ -74,13 +74,13 @@ struct SimulatedRun {
   ScenarioKind kind = ScenarioKind::sequence;
   double interval = 0.0;  // [m]
   // Sequence scenarios, one entry per frame:
-  std::vector<Pose2> poses;       // ground truth
-  std::vector<Pose2> odometry;    // cumulative, drifting
-  std::vector<Vec2> on_path;      // the path point being followed [m]
-  std::vector<int> places;        // ground-truth place id (0.. in order of first visit)
-  std::vector<int> traversals;    // route leg of each frame
-  std::vector<int> junctions;     // place ids that are branching/merging points of the route
-  std::vector<RgbImage> images;   // forward camera (empty when disabled)
+  std::vector<Pose2> poses;      // ground truth
+  std::vector<Pose2> odometry;   // cumulative, drifting
+  std::vector<Vec2> on_path;     // the path point being followed [m]
+  std::vector<int> places;       // ground-truth place id (0.. in order of first visit)
+  std::vector<int> traversals;   // route leg of each frame
+  std::vector<int> junctions;    // place ids that are branching/merging points of the route
+  std::vector<RgbImage> images;  // forward camera (empty when disabled)
   // Both kinds: panoramas (per frame, or per survey point).
   std::vector<RgbImage> panoramas;
   // Survey scenarios:

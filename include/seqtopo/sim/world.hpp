@@ -15,9 +15,7 @@ namespace seqtopo::sim {
 
 using Colour = std::array<float, 3>;  // R G B, 0..255
 
-inline Colour rgb(int r, int g, int b) {
-  return {static_cast<float>(r), static_cast<float>(g), static_cast<float>(b)};
-}
+inline Colour rgb(int r, int g, int b) { return {static_cast<float>(r), static_cast<float>(g), static_cast<float>(b)}; }
 
 // Procedural surface patterns; `period` [m] sets their scale.
 enum class Pattern : std::uint8_t {
@@ -61,7 +59,7 @@ enum class DecalStyle : std::uint8_t {
 // y = plane (south/north), covering u in [u0, u1] along the wall (u = y or x) and heights [z0, z1].
 struct Decal {
   Side side = Side::north;
-  double plane = 0.0;       // [m]
+  double plane = 0.0;         // [m]
   double u0 = 0.0, u1 = 0.0;  // [m]
   double z0 = 0.0, z1 = 0.0;  // [m]
   Colour fill = rgb(255, 255, 255);
@@ -76,7 +74,7 @@ struct RayHit {
   double distance = 0.0;  // [m] from the ray origin
   int cx = 0, cy = 0;     // the solid cell
   Side side = Side::west;
-  Vec2 point;             // [m]
+  Vec2 point;  // [m]
 };
 
 class GridWorld {

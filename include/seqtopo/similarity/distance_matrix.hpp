@@ -18,8 +18,8 @@ namespace seqtopo::similarity {
 
 // The descriptors of one sequence: either dense rows (thumbnails, external descriptors) or sparse histograms.
 struct DescriptorSet {
-  DenseMatrix<float> dense;               // one row per item; used when `sparse` is empty
-  std::vector<SparseHistogram> sparse;    // one histogram per item
+  DenseMatrix<float> dense;             // one row per item; used when `sparse` is empty
+  std::vector<SparseHistogram> sparse;  // one histogram per item
 
   static DescriptorSet from_dense(DenseMatrix<float> rows);
   static DescriptorSet from_sparse(std::vector<SparseHistogram> histograms);

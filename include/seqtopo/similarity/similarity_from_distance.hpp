@@ -20,16 +20,16 @@
 namespace seqtopo::similarity {
 
 struct KappaRule {
-  double matches_per_image = 5.0;     // expected true partners of one image: a revisit is recognised within +-2 frames
-  std::size_t min_separation = 5;     // frames |i - j| < this are not revisits (symmetric case only)
-  double max_fraction = 0.25;         // p never exceeds this (short sequences)
+  double matches_per_image = 5.0;  // expected true partners of one image: a revisit is recognised within +-2 frames
+  std::size_t min_separation = 5;  // frames |i - j| < this are not revisits (symmetric case only)
+  double max_fraction = 0.25;      // p never exceeds this (short sequences)
   std::size_t max_samples = 4'000'000;
 };
 
 struct KappaChoice {
   float kappa = 1.0F;
-  double fraction = 0;      // p
-  double quantile = 0;      // q = 1 / kappa
+  double fraction = 0;         // p
+  double quantile = 0;         // q = 1 / kappa
   std::size_t candidates = 0;  // pairs the quantile was taken over (before sampling)
 };
 

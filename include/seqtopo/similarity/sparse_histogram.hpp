@@ -10,9 +10,9 @@
 namespace seqtopo::similarity {
 
 struct SparseHistogram {
-  std::uint32_t dimension = 0;       // number of bins of the dense histogram
-  std::vector<std::uint32_t> bins;   // indices of the non-empty bins, strictly increasing, < dimension
-  std::vector<float> values;         // their values (> 0), same length as bins
+  std::uint32_t dimension = 0;      // number of bins of the dense histogram
+  std::vector<std::uint32_t> bins;  // indices of the non-empty bins, strictly increasing, < dimension
+  std::vector<float> values;        // their values (> 0), same length as bins
 
   std::size_t nonzeros() const { return bins.size(); }
   // Keeps the positive entries of a dense histogram. Throws std::invalid_argument on negative or

@@ -34,9 +34,9 @@ struct GlobalAlignmentConfig {
 };
 
 struct GlobalAlignment {
-  bool within_k = false;         // false: "more than k differences" (cost/differences then meaningless)
+  bool within_k = false;  // false: "more than k differences" (cost/differences then meaningless)
   double cost = std::numeric_limits<double>::infinity();
-  std::size_t differences = 0;   // non-coincidence steps of the reported alignment
+  std::size_t differences = 0;  // non-coincidence steps of the reported alignment
   // One letter per step, P against T: '=' coincidence, 'X' substitution, 'D' deletion (P symbol
   // skipped), 'I' insertion (T symbol skipped). Empty unless asked for.
   std::string path;

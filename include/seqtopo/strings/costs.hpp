@@ -21,9 +21,7 @@ namespace seqtopo::strings {
 inline constexpr int kColourClasses = 16;  // 'A'..'P'
 
 // Colour class index of a symbol, or -1 when it is not a colour patch.
-constexpr int colour_class(char symbol) {
-  return symbol >= 'A' && symbol < 'A' + kColourClasses ? symbol - 'A' : -1;
-}
+constexpr int colour_class(char symbol) { return symbol >= 'A' && symbol < 'A' + kColourClasses ? symbol - 'A' : -1; }
 
 // distance[a][b] in [0, 1] between colour classes a and b (0 on the diagonal), scaling colour_difference.
 using ColourDistanceTable = std::array<std::array<double, kColourClasses>, kColourClasses>;

@@ -33,6 +33,7 @@ struct KDifferencesResult {
   std::optional<std::size_t> best_differences() const;
 };
 
-KDifferencesResult k_differences(std::string_view pattern, std::string_view text, const KDifferencesConfig& config = {});
+KDifferencesResult k_differences(std::string_view pattern, std::string_view text,
+                                 const KDifferencesConfig& config = {});
 
 }  // namespace seqtopo::strings

@@ -49,7 +49,7 @@ struct Candidate {
 };
 
 struct QueryMatches {
-  std::vector<Candidate> ranked;  // matched database strings, best first (ties by database order)
+  std::vector<Candidate> ranked;          // matched database strings, best first (ties by database order)
   std::vector<std::size_t> best() const;  // database indices of rank 1
 };
 
@@ -62,8 +62,9 @@ std::vector<QueryMatches> match_all(const std::vector<std::string>& db, const st
 // d_0 <= d_1 <= ... <= d_last = d, each step advancing 0, 1 or 2 map points (test and map points need
 // not be evenly spaced), as the mean of score(q - window + 1 + t, d_t). A chain through an unmatched pair
 // is not allowed; no chain: no candidate. Fewer terms near the start of the list. window = 1 gives match_all.
-std::vector<QueryMatches> match_all_windowed(const std::vector<std::string>& db, const std::vector<std::string>& queries,
-                                             const MatchConfig& config, std::size_t window);
+std::vector<QueryMatches> match_all_windowed(const std::vector<std::string>& db,
+                                             const std::vector<std::string>& queries, const MatchConfig& config,
+                                             std::size_t window);
 
 // ---- scoring (Section III) ----
 
@@ -80,7 +81,9 @@ struct GroundTruth {
 
 struct Rates {
   std::size_t exact = 0, correct = 0, wrong = 0, total = 0;
-  double percent(std::size_t count) const { return total == 0 ? 0.0 : 100.0 * static_cast<double>(count) / static_cast<double>(total); }
+  double percent(std::size_t count) const {
+    return total == 0 ? 0.0 : 100.0 * static_cast<double>(count) / static_cast<double>(total);
+  }
 };
 
 struct LocalizationMetrics {

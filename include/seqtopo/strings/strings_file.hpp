@@ -12,8 +12,8 @@ namespace seqtopo::strings {
 
 struct StringRecord {
   std::string id;
-  std::string symbols;              // may be empty (a panorama without features)
-  std::optional<double> x, y;       // [m]
+  std::string symbols;         // may be empty (a panorama without features)
+  std::optional<double> x, y;  // [m]
   std::optional<std::string> place;
 };
 
