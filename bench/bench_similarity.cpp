@@ -104,7 +104,7 @@ void run_dataset(const char* name, const fs::path& folder, int threads, int repe
   seqtopo::similarity::MatrixConfig config;
   config.threads = static_cast<unsigned>(threads);
   const Timing t_ours = best_of(
-      repeat, [&] { ours = seqtopo::similarity::distance_matrix(set, seqtopo::similarity::Metric::chi2, config); });
+      repeat, [&] { ours = seqtopo::similarity::distance_matrix(set, seqtopo::similarity::Distance::chi2, config); });
   const Timing t_base = best_of(baseline_repeat, [&] { base = baseline_matrix(dense, threads); });
 
   // Same quantity? OpenCV's HISTCMP_CHISQR is sum (a-b)^2 / a; its HISTCMP_CHISQR_ALT is 2 x paper eq. (1).

@@ -20,8 +20,8 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/similarity_pipeline.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/similarity/distance_matrix.hpp"
@@ -177,7 +177,7 @@ py::dict similarity_result(image::SimilarityResult&& r) {
   out["kappa_auto"] = r.kappa_auto;
   out["kappa_fraction"] = r.kappa_fraction;
   out["metric"] =
-      r.metric ? py::object(py::str(std::string(similarity::metric_name(*r.metric)))) : py::object(py::none());
+      r.distance ? py::object(py::str(std::string(similarity::distance_name(*r.distance)))) : py::object(py::none());
   out["frame_names"] = r.frame_names;
   out["column_names"] = r.column_names;
   return out;
@@ -192,8 +192,8 @@ py::dict similarity_of_descriptors(const py::handle& descriptors, const py::hand
                                    const std::optional<std::string>& metric_name, std::optional<float> kappa,
                                    unsigned threads, const similarity::KappaRule& rule) {
   check_kappa(kappa);
-  const similarity::Metric metric =
-      metric_name ? similarity::parse_metric(*metric_name) : image::default_metric(image::Descriptor::npy);
+  const similarity::Distance metric =
+      metric_name ? similarity::parse_distance(*metric_name) : image::default_distance(image::Descriptor::npy);
   const MatrixView a = matrix_view(descriptors, "descriptors");
   std::optional<MatrixView> b;
   if (!against.is_none()) b = matrix_view(against, "against");
@@ -231,7 +231,7 @@ py::dict similarity_of_descriptors(const py::handle& descriptors, const py::hand
       r.kappa_fraction = choice.fraction;
     }
     r.similarity = similarity::similarity_from_distance(std::move(distances), r.kappa);
-    r.metric = metric;
+    r.distance = metric;
   }
   for (std::size_t i = 0; i < a.rows; ++i) r.frame_names.push_back("row " + std::to_string(i));
   if (b) {
@@ -249,7 +249,7 @@ py::dict similarity_of_path(const std::filesystem::path& path, const std::option
                             unsigned threads, const similarity::KappaRule& rule) {
   image::SimilarityConfig config;
   config.descriptor = image::parse_descriptor(descriptor);
-  if (metric_name) config.metric = similarity::parse_metric(*metric_name);
+  if (metric_name) config.distance = similarity::parse_distance(*metric_name);
   check_kappa(kappa);
   config.kappa = kappa;
   config.threads = threads;
@@ -295,13 +295,13 @@ void register_exceptions(py::module_& m) {
   // seqtopo.InputError: a problem with a file or option the user gave; str() is the CLI's
   // "<subject>: <message>", and .subject / .message hold the two parts.
   static PyObject* input_error = nullptr;
-  const py::exception<io::InputError> type(m, "InputError", PyExc_ValueError);
+  const py::exception<InputError> type(m, "InputError", PyExc_ValueError);
   input_error = type.ptr();
   Py_INCREF(input_error);  // lives as long as the interpreter: the translator may run until then
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
-    } catch (const io::InputError& e) {
+    } catch (const InputError& e) {
       const py::object cls = py::reinterpret_borrow<py::object>(input_error);
       py::object error = cls(e.subject() + ": " + e.what());
       error.attr("subject") = e.subject();

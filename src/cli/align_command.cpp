@@ -6,10 +6,10 @@
 
 #include "command_registry.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/alignment_json.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/fasta.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 
 namespace seqtopo::cli {
@@ -28,8 +28,8 @@ struct AlignOptions {
 
 void run(const AlignOptions& o) {
   if (o.scores_path.empty() == o.a_path.empty())
-    throw io::InputError("--a/--scores", "give either --a (and --b) or --scores");
-  if (!o.scores_path.empty() && !o.b_path.empty()) throw io::InputError("--b", "cannot be combined with --scores");
+    throw InputError("--a/--scores", "give either --a (and --b) or --scores");
+  if (!o.scores_path.empty() && !o.b_path.empty()) throw InputError("--b", "cannot be combined with --scores");
 
   align::AlignConfig config;
   config.gap_a = o.gap_a.value_or(o.gap);
@@ -38,9 +38,9 @@ void run(const AlignOptions& o) {
   config.threshold = o.threshold;
   config.max_alignments = o.max_alignments == 0 ? std::numeric_limits<std::size_t>::max() : o.max_alignments;
   config.min_separation = o.min_separation;
-  if (config.gap_a < 0 || config.gap_b < 0) throw io::InputError("--gap", "must be >= 0");
-  if (o.cap && *o.cap <= 0) throw io::InputError("--cap", "must be > 0");
-  if (o.min_separation == 0) throw io::InputError("--min-separation", "must be >= 1");
+  if (config.gap_a < 0 || config.gap_b < 0) throw InputError("--gap", "must be >= 0");
+  if (o.cap && *o.cap <= 0) throw InputError("--cap", "must be > 0");
+  if (o.min_separation == 0) throw InputError("--min-separation", "must be >= 1");
 
   std::vector<align::LocalAlignment> alignments;
   auto run_engine = [&](const align::ScoreSource& source) {
@@ -49,8 +49,8 @@ void run(const AlignOptions& o) {
   if (!o.scores_path.empty()) {
     const auto scores = io::read_npy_matrix<float>(o.scores_path);
     if (o.self && !scores.square()) {
-      throw io::InputError(o.scores_path,
-                           fmt::format("--self needs a square matrix, got {} x {}", scores.rows, scores.cols));
+      throw InputError(o.scores_path,
+                       fmt::format("--self needs a square matrix, got {} x {}", scores.rows, scores.cols));
     }
     config.self = o.self;
     run_engine(align::ScoreSource::dense(scores.values, scores.rows, scores.cols));
@@ -58,7 +58,7 @@ void run(const AlignOptions& o) {
     const std::string a = io::read_fasta(o.a_path).front().sequence;
     const bool self = o.b_path.empty() || o.self;
     const std::string b = o.b_path.empty() ? a : io::read_fasta(o.b_path).front().sequence;
-    if (self && a != b) throw io::InputError("--self", "A and B differ; --self needs the same sequence");
+    if (self && a != b) throw InputError("--self", "A and B differ; --self needs the same sequence");
     config.self = self;
     const float match = o.match, mismatch = o.mismatch;
     run_engine(align::ScoreSource::function(

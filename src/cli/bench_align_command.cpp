@@ -51,7 +51,7 @@ double seconds(F&& f, int repeats = 1, bool wall = false) {
 }
 
 void run(const BenchAlignOptions& o) {
-  if (o.size == 0) throw io::InputError("--size", "must be > 0");
+  if (o.size == 0) throw InputError("--size", "must be > 0");
   const unsigned threads = resolve_threads(o.threads);
   const align::LetterProblem problem = align::random_letter_problem(o.size, o.seed);
   const auto& [a, b, a_text, b_text, matrix] = problem;

@@ -23,8 +23,8 @@
 
 #include "command_registry.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/scale/sparse_alignment.hpp"
@@ -386,7 +386,7 @@ void write_route(const Options& opt) {
   for (std::size_t n : opt.sizes) {
     if (n != 0) sizes.push_back(n);
   }
-  if (sizes.size() != 1) throw io::InputError("--write-route", "needs exactly one N in --sizes");
+  if (sizes.size() != 1) throw InputError("--write-route", "needs exactly one N in --sizes");
   const std::size_t n = sizes.front();
   const auto route = synthetic_route(n, opt.dim, 7);
   DenseMatrix<float> descriptors(n, opt.dim);
@@ -421,7 +421,7 @@ void setup(CLI::App& app) {
   app.callback([opt] {
     Options o = *opt;
     o.threads = resolve_threads(o.threads);
-    if (!(o.background < 0)) throw io::InputError("--background", "must be < 0");
+    if (!(o.background < 0)) throw InputError("--background", "must be < 0");
     if (!o.write_route.empty()) return write_route(o);
     run(o);
   });

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 
 namespace seqtopo::cli {
 
@@ -37,7 +37,7 @@ auto option_value(const char* option, F&& parse) {
   try {
     return parse();
   } catch (const std::invalid_argument& e) {
-    throw io::InputError(option, e.what());
+    throw InputError(option, e.what());
   }
 }
 

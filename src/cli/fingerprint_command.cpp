@@ -8,12 +8,12 @@
 #include <sstream>
 
 #include "command_registry.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/fingerprint/fingerprint.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/image/sequence_input.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/csv.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/strings/strings_file.hpp"
 
 namespace seqtopo::cli {
@@ -42,16 +42,16 @@ std::map<std::string, PointRow> read_points(const std::string& path) {
       row.y = std::stod(f[3], &used_y);
       if (used_x != f[2].size() || used_y != f[3].size()) throw std::invalid_argument("trailing characters");
     } catch (const std::exception&) {
-      throw io::InputError(r.where, "x and y must be numbers");
+      throw InputError(r.where, "x and y must be numbers");
     }
-    if (f[0].empty() || row.place.empty()) throw io::InputError(r.where, "empty id or place");
-    if (!rows.emplace(f[0], row).second) throw io::InputError(r.where, "repeated id '" + f[0] + "'");
+    if (f[0].empty() || row.place.empty()) throw InputError(r.where, "empty id or place");
+    if (!rows.emplace(f[0], row).second) throw InputError(r.where, "repeated id '" + f[0] + "'");
   }
   return rows;
 }
 
 void run(const FingerprintOptions& o) {
-  if (!o.role.empty() && o.positions_path.empty()) throw io::InputError("--role", "needs --positions");
+  if (!o.role.empty() && o.positions_path.empty()) throw InputError("--role", "needs --positions");
   std::vector<std::filesystem::path> files;
   for (const auto& input : o.inputs) {
     if (std::filesystem::is_directory(input)) {
@@ -60,7 +60,7 @@ void run(const FingerprintOptions& o) {
     } else if (std::filesystem::exists(input)) {
       files.emplace_back(input);
     } else {
-      throw io::InputError(input, "no such file or folder");
+      throw InputError(input, "no such file or folder");
     }
   }
   std::map<std::string, PointRow> points;
@@ -73,24 +73,23 @@ void run(const FingerprintOptions& o) {
     r.id = file.stem().string();
     if (!o.positions_path.empty()) {
       const auto it = points.find(r.id);
-      if (it == points.end()) throw io::InputError(o.positions_path, "no row for image '" + file.string() + "'");
+      if (it == points.end()) throw InputError(o.positions_path, "no row for image '" + file.string() + "'");
       if (!o.role.empty() && it->second.role != o.role) continue;
       r.x = it->second.x;
       r.y = it->second.y;
       r.place = it->second.place;
     }
     if (const auto [it, fresh] = seen.emplace(r.id, file.string()); !fresh) {
-      throw io::InputError(file.string(), "same id '" + r.id + "' as " + it->second);
+      throw InputError(file.string(), "same id '" + r.id + "' as " + it->second);
     }
     try {
       r.symbols = fingerprint::extract_fingerprint(image::load_image(file), o.config).symbols;
     } catch (const std::invalid_argument& e) {
-      throw io::InputError(file.string(), e.what());
+      throw InputError(file.string(), e.what());
     }
     records.push_back(std::move(r));
   }
-  if (records.empty())
-    throw io::InputError("IMAGES", o.role.empty() ? "no image" : "no image with role '" + o.role + "'");
+  if (records.empty()) throw InputError("IMAGES", o.role.empty() ? "no image" : "no image with role '" + o.role + "'");
   const std::string text = strings::format_strings_tsv(
       records, "id<TAB>fingerprint ('v' vertical edge, 'A'..'P' colour patch)[<TAB>x<TAB>y<TAB>place]");
   if (o.out_path == "-") {

@@ -16,11 +16,11 @@
 
 #include "command_registry.hpp"
 #include "seqtopo/baseline/seqslam.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/evaluation/localization_metrics.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/atomic_output.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/localize/online_localizer.hpp"
@@ -68,7 +68,7 @@ struct Run {
 image::SimilarityConfig similarity_config(const LocalizeOptions& o) {
   image::SimilarityConfig c;
   c.descriptor = option_value("--descriptor", [&] { return image::parse_descriptor(o.descriptor); });
-  if (!o.metric.empty()) c.metric = option_value("--metric", [&] { return similarity::parse_metric(o.metric); });
+  if (!o.metric.empty()) c.distance = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
   if (!o.kappa.empty() && o.kappa != "auto") {
     c.kappa = option_value("--kappa", [&] {
       std::size_t used = 0;
@@ -91,11 +91,11 @@ std::optional<fs::path> similarity_file(const LocalizeOptions& o, image::InputKi
   const bool map_s = is_similarity(o.map_path), query_s = is_similarity(o.query_path);
   if (!map_s && !query_s) return std::nullopt;
   if (map_s && query_s && fs::path(o.map_path) != fs::path(o.query_path)) {
-    throw io::InputError("--query", "give the query x map similarity.npy once (as --map or --query), not two of them");
+    throw InputError("--query", "give the query x map similarity.npy once (as --map or --query), not two of them");
   }
   if (map_s != query_s && !o.map_path.empty() && !o.query_path.empty()) {
-    throw io::InputError(map_s ? "--query" : "--map",
-                         "cannot be combined with a similarity matrix; the matrix already holds both sequences");
+    throw InputError(map_s ? "--query" : "--map",
+                     "cannot be combined with a similarity matrix; the matrix already holds both sequences");
   }
   return fs::path(map_s ? o.map_path : o.query_path);
 }
@@ -119,7 +119,7 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o) {
       if (what.rfind(name, 0) == 0)
         option = name == std::string("gap") ? "--gap" : name == std::string("cap") ? "--cap" : "--offset";
     }
-    throw io::InputError(option, what);
+    throw InputError(option, what);
   }
   return c;
 }
@@ -144,7 +144,7 @@ void run_offline(const LocalizeOptions& o, const localize::LocalizeConfig& confi
                                     image::SequenceInput{o.map_path, kind, o.every}, similarity_config(o));
     }
   } catch (const std::invalid_argument& e) {
-    throw io::InputError(o.query_path.empty() ? o.map_path : o.query_path, e.what());
+    throw InputError(o.query_path.empty() ? o.map_path : o.query_path, e.what());
   }
   run.timings.emplace_back("similarity matrix", seconds_since(t0));
   run.similarity = std::move(s.similarity);
@@ -172,7 +172,7 @@ struct Describer {
   }
 };
 
-double frame_distance(similarity::Metric metric, const FrameDescriptor& a, const FrameDescriptor& b) {
+double frame_distance(similarity::Distance metric, const FrameDescriptor& a, const FrameDescriptor& b) {
   if (a.index() != b.index()) throw std::invalid_argument("both sequences must have the same kind of descriptor");
   if (const auto* x = std::get_if<std::vector<float>>(&a))
     return similarity::distance(metric, *x, std::get<std::vector<float>>(b));
@@ -202,14 +202,14 @@ void for_each_frame(const std::string& path, image::InputKind kind, std::size_t 
       return;
     case image::InputKind::descriptors: {
       const auto rows = io::read_npy_matrix<float>(path);
-      if (rows.empty()) throw io::InputError(path, "no descriptors (empty array)");
+      if (rows.empty()) throw InputError(path, "no descriptors (empty array)");
       for (std::size_t i = 0; i < rows.rows; ++i) visit(std::vector<float>(rows.row(i).begin(), rows.row(i).end()));
       return;
     }
     default:
       break;
   }
-  throw io::InputError(path, "expected an image folder, a video or descriptors.npy");
+  throw InputError(path, "expected an image folder, a video or descriptors.npy");
 }
 
 void run_online(const LocalizeOptions& o, const localize::LocalizeConfig& config, image::InputKind kind, Run& run) {
@@ -229,7 +229,7 @@ void run_online(const LocalizeOptions& o, const localize::LocalizeConfig& config
   if (const auto file = similarity_file(o, kind)) {
     // The rows of a precomputed matrix arrive one by one.
     const auto s = io::read_npy_matrix<float>(*file);
-    if (s.empty()) throw io::InputError(file->string(), "empty similarity matrix");
+    if (s.empty()) throw InputError(file->string(), "empty similarity matrix");
     localize::OnlineLocalizer localizer(s.cols, config);
     for (std::size_t i = 0; i < s.rows; ++i) {
       const auto t = Clock::now();
@@ -249,9 +249,9 @@ void run_online(const LocalizeOptions& o, const localize::LocalizeConfig& config
   const image::InputKind map_kind = image::resolve_input_kind({o.map_path, kind, o.every});
   const image::Descriptor d = map_kind == image::InputKind::descriptors ? image::Descriptor::npy : sc.descriptor;
   if (d == image::Descriptor::npy && map_kind != image::InputKind::descriptors) {
-    throw io::InputError("--descriptor", "npy needs descriptors .npy files as input");
+    throw InputError("--descriptor", "npy needs descriptors .npy files as input");
   }
-  const similarity::Metric metric = sc.metric.value_or(image::default_metric(d));
+  const similarity::Distance metric = sc.distance.value_or(image::default_distance(d));
   const Describer describe{d, sc};
   const auto t0 = Clock::now();
   std::vector<FrameDescriptor> map;
@@ -266,7 +266,7 @@ void run_online(const LocalizeOptions& o, const localize::LocalizeConfig& config
     try {
       for (std::size_t j = 0; j < map.size(); ++j) row[j] = static_cast<float>(-frame_distance(metric, q, map[j]));
     } catch (const std::invalid_argument& e) {
-      throw io::InputError(o.query_path, e.what());
+      throw InputError(o.query_path, e.what());
     }
     const auto e = localizer.feed(row);
     kept.insert(kept.end(), row.begin(), row.end());
@@ -274,7 +274,7 @@ void run_online(const LocalizeOptions& o, const localize::LocalizeConfig& config
     t = Clock::now();
   });
   run.queries = run.answers.size();
-  if (run.queries == 0) throw io::InputError(o.query_path, "no query frame");
+  if (run.queries == 0) throw InputError(o.query_path, "no query frame");
   run.similarity = SimilarityMatrix(run.queries, run.maps, std::move(kept));
 }
 
@@ -311,33 +311,33 @@ std::string read_file(const fs::path& path) {
 }
 
 void run(const LocalizeOptions& o) {
-  if (o.map_path.empty() && o.query_path.empty()) throw io::InputError("--map", "give --map and --query");
+  if (o.map_path.empty() && o.query_path.empty()) throw InputError("--map", "give --map and --query");
   const auto kind = option_value("--input-kind", [&] { return image::parse_input_kind(o.input_kind); });
-  if (o.every == 0) throw io::InputError("--every", "must be at least 1");
+  if (o.every == 0) throw InputError("--every", "must be at least 1");
   const auto config = localize_config(o);
   const bool have_matrix = [&] {
     for (const auto* p : {&o.map_path, &o.query_path}) {
-      if (!p->empty() && *p != "-" && !fs::exists(*p)) throw io::InputError(*p, "does not exist");
+      if (!p->empty() && *p != "-" && !fs::exists(*p)) throw InputError(*p, "does not exist");
     }
     return similarity_file(o, kind).has_value();
   }();
   if (!have_matrix && (o.map_path.empty() || o.query_path.empty())) {
-    throw io::InputError(o.map_path.empty() ? "--map" : "--query", "is required unless a similarity.npy is given");
+    throw InputError(o.map_path.empty() ? "--map" : "--query", "is required unless a similarity.npy is given");
   }
-  if (o.query_path == "-" && !o.online) throw io::InputError("--query", "'-' (paths on standard input) needs --online");
+  if (o.query_path == "-" && !o.online) throw InputError("--query", "'-' (paths on standard input) needs --online");
 
   // Ground truth is read before the work, so a bad file fails fast.
   std::optional<std::vector<std::pair<std::size_t, std::size_t>>> gt_pairs;
   const bool same_index = o.gt == "same-index";
   if (!o.gt.empty() && !same_index) {
     std::ifstream in(o.gt, std::ios::binary);
-    if (!in) throw io::InputError(o.gt, "cannot open the ground-truth file");
+    if (!in) throw InputError(o.gt, "cannot open the ground-truth file");
     std::stringstream ss;
     ss << in.rdbuf();
     try {
       gt_pairs = evaluation::parse_pairs_csv(ss.str());
     } catch (const std::invalid_argument& e) {
-      throw io::InputError(o.gt, e.what());
+      throw InputError(o.gt, e.what());
     }
   }
 
@@ -357,7 +357,7 @@ void run(const LocalizeOptions& o) {
       truth = same_index ? evaluation::LocalizationTruth::same_index(r.queries, r.maps)
                          : evaluation::LocalizationTruth::from_pairs(*gt_pairs, r.queries, r.maps);
     } catch (const std::invalid_argument& e) {
-      throw io::InputError(o.gt, e.what());
+      throw InputError(o.gt, e.what());
     }
   }
 

@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "command_registry.hpp"
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 
 namespace seqtopo::cli {
 
@@ -41,7 +41,7 @@ std::vector<std::string> expand_config(const std::vector<std::string>& args) {
     }
     if (insert_at == std::string::npos) insert_at = out.size();
     std::ifstream in(path);
-    if (!in) throw seqtopo::io::InputError(path, "cannot open config file");
+    if (!in) throw seqtopo::InputError(path, "cannot open config file");
     std::string line;
     std::size_t line_no = 0;
     while (std::getline(in, line)) {
@@ -56,8 +56,7 @@ std::vector<std::string> expand_config(const std::vector<std::string>& args) {
       if (line.empty() || line == "---") continue;
       const auto colon = line.find(':');
       if (colon == std::string::npos) {
-        throw seqtopo::io::InputError(path + ":" + std::to_string(line_no),
-                                      "expected `name: value`, got '" + line + "'");
+        throw seqtopo::InputError(path + ":" + std::to_string(line_no), "expected `name: value`, got '" + line + "'");
       }
       const std::string name = trim(line.substr(0, colon));
       std::string value = trim(line.substr(colon + 1));
@@ -108,7 +107,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::cerr << "seqtopo: error: " << e.what() << " (see seqtopo --help)\n";
     return 2;
-  } catch (const seqtopo::io::InputError& e) {
+  } catch (const seqtopo::InputError& e) {
     std::cerr << "seqtopo: error: " << e.subject() << ": " << e.what() << "\n";
     return 1;
   } catch (const std::bad_alloc&) {

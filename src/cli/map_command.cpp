@@ -13,20 +13,20 @@
 #include "command_registry.hpp"
 #include "map_outputs.hpp"
 #include "seqtopo/baseline/seqslam.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
 #include "seqtopo/evaluation/topology_metrics.hpp"
 #include "seqtopo/image/grey_matrix_file.hpp"
 #include "seqtopo/image/similarity_pipeline.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/io/odometry_csv.hpp"
 #include "seqtopo/io/places_csv.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
-#include "seqtopo/metric/ekf_map.hpp"
-#include "seqtopo/metric/pose_graph.hpp"
-#include "seqtopo/metric/trajectory_error.hpp"
 #include "seqtopo/plot/matrix_overview.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
+#include "seqtopo/trajectory/ekf_map.hpp"
+#include "seqtopo/trajectory/pose_graph.hpp"
+#include "seqtopo/trajectory/trajectory_error.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -65,7 +65,7 @@ Settings resolve_settings(const MapOptions& o) {
   Settings s;
   if (o.preset == "paper") {
     s.descriptors = {image::Descriptor::joint_histogram};
-    s.similarity.metric = image::Metric::chi2;
+    s.similarity.distance = image::Distance::chi2;
     s.paper_metric = true;
     s.map.contrast_window = 0;                                             // the paper aligns S = 1 - kappa D as it is
     s.map.pruning.rank = mapping::PruningConfig::Rank::length_then_score;  // "the longest matching subsequence"
@@ -75,7 +75,7 @@ Settings resolve_settings(const MapOptions& o) {
     s.map.cap = 8.0F;
     s.map.threshold = 3.0F;
   } else if (o.preset != "default") {
-    throw io::InputError("--preset", "unknown preset '" + o.preset + "' (paper or default)");
+    throw InputError("--preset", "unknown preset '" + o.preset + "' (paper or default)");
   }
   if (o.descriptor) {
     s.descriptors = option_value("--descriptor", [&] {
@@ -87,23 +87,23 @@ Settings resolve_settings(const MapOptions& o) {
     });
   }
   if (o.metric_name)
-    s.similarity.metric = option_value("--metric", [&] { return similarity::parse_metric(*o.metric_name); });
+    s.similarity.distance = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });
   if (o.kappa && *o.kappa != "auto") {
     try {
       s.similarity.kappa = std::stof(*o.kappa);
     } catch (const std::exception&) {
-      throw io::InputError("--kappa", "expected a number or 'auto', got '" + *o.kappa + "'");
+      throw InputError("--kappa", "expected a number or 'auto', got '" + *o.kappa + "'");
     }
-    if (!(*s.similarity.kappa > 0)) throw io::InputError("--kappa", "must be > 0");
+    if (!(*s.similarity.kappa > 0)) throw InputError("--kappa", "must be > 0");
   }
   s.similarity.threads = o.threads;
   s.similarity.note = [](std::string_view text) { std::cerr << "seqtopo map: " << text << "\n"; };
   if (o.gap) {
-    if (!(*o.gap >= 0)) throw io::InputError("--gap", "must be >= 0");
+    if (!(*o.gap >= 0)) throw InputError("--gap", "must be >= 0");
     s.map.gap = *o.gap;
   }
   if (o.threshold) {
-    if (!(*o.threshold > 0)) throw io::InputError("--threshold", "must be > 0");
+    if (!(*o.threshold > 0)) throw InputError("--threshold", "must be > 0");
     s.map.threshold = *o.threshold;
   }
   if (o.cap) {
@@ -113,16 +113,16 @@ Settings resolve_settings(const MapOptions& o) {
       try {
         s.map.cap = std::stof(*o.cap);
       } catch (const std::exception&) {
-        throw io::InputError("--cap", "expected a number or 'none', got '" + *o.cap + "'");
+        throw InputError("--cap", "expected a number or 'none', got '" + *o.cap + "'");
       }
-      if (!(*s.map.cap > 0)) throw io::InputError("--cap", "must be > 0");
+      if (!(*s.map.cap > 0)) throw InputError("--cap", "must be > 0");
     }
   }
   const std::string engine = o.engine.value_or(o.streaming ? "fast" : "exact");
   if (engine == "fast") {
     s.map.engine = mapping::MapConfig::Engine::fast;
   } else if (engine != "exact") {
-    throw io::InputError("--engine", "expected exact or fast, got '" + engine + "'");
+    throw InputError("--engine", "expected exact or fast, got '" + engine + "'");
   }
   if (o.odometry_gate) {
     s.map.odometry_gate = option_value("--odometry-gate", [&]() -> std::optional<mapping::OdometryGate> {
@@ -140,7 +140,7 @@ Settings resolve_settings(const MapOptions& o) {
     });
   }
   if (o.min_separation) {
-    if (*o.min_separation == 0) throw io::InputError("--min-separation", "must be >= 1");
+    if (*o.min_separation == 0) throw InputError("--min-separation", "must be >= 1");
     s.map.min_separation = *o.min_separation;
   }
   if (o.contrast_window) s.map.contrast_window = *o.contrast_window;
@@ -160,10 +160,10 @@ void progress(const std::string& text) { std::cerr << "seqtopo map: " << text <<
 evaluation::SamePlace load_ground_truth(const MapOptions& o, const std::string& path, std::size_t images) {
   if (fs::path(path).extension() == ".csv") {
     if (!o.gt_radius || !(*o.gt_radius > 0))
-      throw io::InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
+      throw InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
     const auto poses = io::read_poses_csv(path);
     if (poses.size() != images) {
-      throw io::InputError(path, fmt::format("has {} poses, the sequence has {} images", poses.size(), images));
+      throw InputError(path, fmt::format("has {} poses, the sequence has {} images", poses.size(), images));
     }
     const double r2 = *o.gt_radius * *o.gt_radius;
     return [poses, r2](std::size_t i, std::size_t j) {
@@ -173,7 +173,7 @@ evaluation::SamePlace load_ground_truth(const MapOptions& o, const std::string& 
   }
   auto m = std::make_shared<DenseMatrix<std::uint8_t>>(image::read_grey_matrix_image(path));
   if (m->rows != images || m->cols != images) {
-    throw io::InputError(path, fmt::format("is {} x {}, the sequence has {} images", m->rows, m->cols, images));
+    throw InputError(path, fmt::format("is {} x {}, the sequence has {} images", m->rows, m->cols, images));
   }
   return [m](std::size_t i, std::size_t j) { return (*m)(i, j) != 0 || (*m)(j, i) != 0; };
 }
@@ -191,61 +191,60 @@ void report_map(MapRun& run) {
 // fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
 void check_streaming(const MapOptions& o, const Settings& s, image::InputKind kind) {
   if (o.preset == "paper") {
-    throw io::InputError("--preset",
-                         "paper aligns the raw S = 1 - kappa D, whose kappa needs the whole distance matrix; "
-                         "--streaming never holds it (use the default preset)");
+    throw InputError("--preset",
+                     "paper aligns the raw S = 1 - kappa D, whose kappa needs the whole distance matrix; "
+                     "--streaming never holds it (use the default preset)");
   }
   if (s.map.engine != mapping::MapConfig::Engine::fast) {
-    throw io::InputError("--engine", "exact fills an N x N table; --streaming needs the fast engine (its default)");
+    throw InputError("--engine", "exact fills an N x N table; --streaming needs the fast engine (its default)");
   }
   if (kind == image::InputKind::similarity) {
-    throw io::InputError("--streaming",
-                         "needs descriptors (descriptors.npy, or images with one vector descriptor), "
-                         "not a similarity matrix");
+    throw InputError("--streaming",
+                     "needs descriptors (descriptors.npy, or images with one vector descriptor), "
+                     "not a similarity matrix");
   }
   if (s.map.contrast_window == 0) {
-    throw io::InputError("--contrast-window",
-                         "0 aligns the raw S = 1 - kappa D, whose kappa needs the whole distance "
-                         "matrix; --streaming aligns contrast-enhanced scores (window >= 1)");
+    throw InputError("--contrast-window",
+                     "0 aligns the raw S = 1 - kappa D, whose kappa needs the whole distance "
+                     "matrix; --streaming aligns contrast-enhanced scores (window >= 1)");
   }
-  if (o.kappa)
-    throw io::InputError("--kappa", "has no effect with --streaming: the contrast enhancement removes kappa");
-  if (o.metric_name && s.similarity.metric != image::Metric::cosine) {
-    throw io::InputError("--metric", "--streaming scores by cosine similarity only, got '" + *o.metric_name + "'");
+  if (o.kappa) throw InputError("--kappa", "has no effect with --streaming: the contrast enhancement removes kappa");
+  if (o.metric_name && s.similarity.distance != image::Distance::cosine) {
+    throw InputError("--metric", "--streaming scores by cosine similarity only, got '" + *o.metric_name + "'");
   }
   if (o.descriptor && s.descriptors.size() != 1) {
-    throw io::InputError("--descriptor", fmt::format("--streaming takes one descriptor, got {} (fusing needs one N x N "
-                                                     "matrix per descriptor)",
-                                                     s.descriptors.size()));
+    throw InputError("--descriptor", fmt::format("--streaming takes one descriptor, got {} (fusing needs one N x N "
+                                                 "matrix per descriptor)",
+                                                 s.descriptors.size()));
   }
   if (kind != image::InputKind::descriptors) {  // images or a video: the descriptor is computed
     if (!o.descriptor) {
-      throw io::InputError("--descriptor",
-                           "--streaming needs one vector descriptor for images (patch or panorama, with "
-                           "--metric cosine); the default fuses joint-histogram and patch");
+      throw InputError("--descriptor",
+                       "--streaming needs one vector descriptor for images (patch or panorama, with "
+                       "--metric cosine); the default fuses joint-histogram and patch");
     }
     if (s.descriptors.front() == image::Descriptor::npy) {
-      throw io::InputError("--descriptor", "npy needs a descriptors.npy input");
+      throw InputError("--descriptor", "npy needs a descriptors.npy input");
     }
     if (s.descriptors.front() == image::Descriptor::joint_histogram) {
-      throw io::InputError("--descriptor",
-                           "joint-histogram is a sparse histogram without a vector form; --streaming "
-                           "needs patch or panorama (with --metric cosine)");
+      throw InputError("--descriptor",
+                       "joint-histogram is a sparse histogram without a vector form; --streaming "
+                       "needs patch or panorama (with --metric cosine)");
     }
     if (!o.metric_name) {
-      throw io::InputError("--metric", "--streaming scores by cosine similarity: give --metric cosine (" +
-                                           std::string(image::descriptor_name(s.descriptors.front())) +
-                                           " defaults to sad)");
+      throw InputError("--metric", "--streaming scores by cosine similarity: give --metric cosine (" +
+                                       std::string(image::descriptor_name(s.descriptors.front())) +
+                                       " defaults to sad)");
     }
   }
   if (!o.ground_truth.empty()) {
     if (fs::path(o.ground_truth).extension() != ".csv") {
-      throw io::InputError("--ground-truth",
-                           "an N x N image (N^2 bytes, 10 GB at 10^5 images) is refused with "
-                           "--streaming; give poses.csv with --gt-radius");
+      throw InputError("--ground-truth",
+                       "an N x N image (N^2 bytes, 10 GB at 10^5 images) is refused with "
+                       "--streaming; give poses.csv with --gt-radius");
     }
     if (!o.gt_radius || !(*o.gt_radius > 0))
-      throw io::InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
+      throw InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
   }
 }
 
@@ -262,9 +261,9 @@ void map_streamed(const MapOptions& o, const Settings& settings, const image::Se
                                         ? "descriptors.npy"
                                         : std::string(image::descriptor_name(described.descriptor)));
   progress(fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
-  if (n < 2) throw io::InputError(o.input, "needs at least 2 images");
+  if (n < 2) throw InputError(o.input, "needs at least 2 images");
   if (!run.odometry.empty() && run.odometry.size() != n) {
-    throw io::InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
+    throw InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
   }
   std::optional<scale::StreamingSimilarity> streamed;
   try {
@@ -272,7 +271,7 @@ void map_streamed(const MapOptions& o, const Settings& settings, const image::Se
                      scale::StreamingConfig{.contrast_window = settings.map.contrast_window,
                                             .contrast_offset = settings.map.contrast_offset});
   } catch (const std::invalid_argument& e) {
-    throw io::InputError(o.input, e.what());  // e.g. an all-zero descriptor has no direction
+    throw InputError(o.input, e.what());  // e.g. an all-zero descriptor has no direction
   }
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
   run.timings.emplace_back("descriptors", seconds_since(t));
@@ -315,11 +314,11 @@ void map_dense(const MapOptions& o, const Settings& settings, const image::Seque
   }
   run.timings.emplace_back("similarity", seconds_since(t));
   const std::size_t n = matrices.front().rows;
-  if (n < 2) throw io::InputError(o.input, "needs at least 2 images");
+  if (n < 2) throw InputError(o.input, "needs at least 2 images");
 
   progress("[2/4] alignments, pruning, labels, topology");
   if (!o.odometry.empty() && run.odometry.size() != n) {
-    throw io::InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
+    throw InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
   }
   run.result = mapping::build_map(matrices, settings.map, run.odometry);
   run.timings.emplace_back("alignment", run.result.seconds_align);
@@ -339,9 +338,9 @@ void run(MapOptions o) {
     // Its ground truth is an N x N image, which --streaming refuses.
     if (o.ground_truth.empty() && !o.streaming) o.ground_truth = (fs::path(o.input) / "ground_truth.bmp").string();
   }
-  if (!fs::exists(o.input)) throw io::InputError(o.input, "no such file or folder");
+  if (!fs::exists(o.input)) throw InputError(o.input, "no such file or folder");
   for (const auto* path : {&o.odometry, &o.ground_truth, &o.gt_poses, &o.gt_places}) {
-    if (!path->empty() && !fs::exists(*path)) throw io::InputError(*path, "no such file");
+    if (!path->empty() && !fs::exists(*path)) throw InputError(*path, "no such file");
   }
   image::SequenceInput input{o.input, image::parse_input_kind(o.input_kind), o.every};
   const auto kind = image::resolve_input_kind(input);
@@ -353,14 +352,14 @@ void run(MapOptions o) {
     const auto header = io::read_npy_header(o.input);
     if (!header.shape.empty()) expected = header.shape[0];
     if (kind == image::InputKind::similarity && (header.shape.size() != 2 || header.shape[0] != header.shape[1])) {
-      throw io::InputError(o.input, "a similarity matrix for map must be square (N x N)");
+      throw InputError(o.input, "a similarity matrix for map must be square (N x N)");
     }
   }
   if (!o.odometry.empty()) {
     run.odometry = io::read_odometry_csv(o.odometry);
     if (expected && run.odometry.size() != *expected) {
-      throw io::InputError(o.odometry,
-                           fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), *expected));
+      throw InputError(o.odometry,
+                       fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), *expected));
     }
   }
   run.preset = o.preset;
@@ -382,10 +381,10 @@ void run(MapOptions o) {
   auto t = std::chrono::steady_clock::now();
   if (!o.odometry.empty()) {
     progress("[3/4] metric picture (EKF and pose graph)");
-    run.ekf = metric::ekf_map(run.odometry, run.result.map.labels).images;
+    run.ekf = trajectory::ekf_map(run.odometry, run.result.map.labels).images;
     std::vector<std::pair<std::size_t, std::size_t>> loops;
     for (const auto& p : run.result.pruning.pairs) loops.emplace_back(p.i, p.j);
-    run.pose_graph = metric::pose_graph(run.odometry, loops);
+    run.pose_graph = trajectory::pose_graph(run.odometry, loops);
     run.timings.emplace_back("metric picture", seconds_since(t));
   }
 
@@ -444,7 +443,7 @@ void run(MapOptions o) {
   if (!o.gt_places.empty()) {
     const auto places = io::read_places_csv(o.gt_places);
     if (places.size() != n)
-      throw io::InputError(o.gt_places, fmt::format("has {} rows, the sequence has {} images", places.size(), n));
+      throw InputError(o.gt_places, fmt::format("has {} rows, the sequence has {} images", places.size(), n));
     const fs::path junctions_file = fs::path(o.gt_places).parent_path() / "junctions.csv";
     const auto true_junctions =
         fs::exists(junctions_file) ? io::read_junctions_csv(junctions_file) : std::vector<int>{};
@@ -457,10 +456,10 @@ void run(MapOptions o) {
   if (!o.gt_poses.empty() && !run.odometry.empty()) {
     const auto truth = io::read_poses_csv(o.gt_poses);
     if (truth.size() != n)
-      throw io::InputError(o.gt_poses, fmt::format("has {} poses, the sequence has {} images", truth.size(), n));
-    run.ate = {metric::absolute_trajectory_error(run.odometry, truth),
-               metric::absolute_trajectory_error(run.ekf, truth),
-               metric::absolute_trajectory_error(run.pose_graph, truth)};
+      throw InputError(o.gt_poses, fmt::format("has {} poses, the sequence has {} images", truth.size(), n));
+    run.ate = {trajectory::absolute_trajectory_error(run.odometry, truth),
+               trajectory::absolute_trajectory_error(run.ekf, truth),
+               trajectory::absolute_trajectory_error(run.pose_graph, truth)};
   }
 
   t = std::chrono::steady_clock::now();

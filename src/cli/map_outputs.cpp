@@ -7,13 +7,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/alignment_json.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
-#include "seqtopo/plot/metric_map.hpp"
 #include "seqtopo/plot/png.hpp"
 #include "seqtopo/plot/pr_curve.hpp"
+#include "seqtopo/plot/trajectory_map.hpp"
 #include "seqtopo/report/html_report.hpp"
 
 namespace seqtopo::cli {
@@ -79,7 +79,7 @@ void render_svg(const std::filesystem::path& dot_file, const std::filesystem::pa
   for (const char* layout : {"timeout 60 dot -Kneato", "timeout 120 dot -Ksfdp"}) {
     if (std::system((std::string(layout) + files).c_str()) == 0) return;
   }
-  throw io::InputError("topology.svg", "Graphviz 'dot' failed or is missing (scripts/setup.sh installs graphviz)");
+  throw InputError("topology.svg", "Graphviz 'dot' failed or is missing (scripts/setup.sh installs graphviz)");
 }
 
 // Alignments in the coordinates of the drawn matrix: the scores themselves (block 1) or an overview of
@@ -167,13 +167,13 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
   if (!run.odometry.empty()) {
     std::vector<std::pair<std::size_t, std::size_t>> loops;
     for (const auto& p : result.pruning.pairs) loops.emplace_back(p.i, p.j);
-    std::vector<plot::MetricMapPanel> panels{{"(a) cumulative odometry", run.odometry}};
+    std::vector<plot::TrajectoryPanel> panels{{"(a) cumulative odometry", run.odometry}};
     if (run.paper_metric) {
       panels.push_back({"(b) topological map with odometry (EKF)", run.ekf});
     } else {
       panels.push_back({"(b) topological map with odometry (pose graph)", run.pose_graph});
     }
-    out.write("metric_map.png", plot::encode_png(plot::metric_map_image(panels, map.labels, loops)));
+    out.write("metric_map.png", plot::encode_png(plot::trajectory_map_image(panels, map.labels, loops)));
   }
 
   if (run.metrics || run.ate || run.topology) {

@@ -6,12 +6,12 @@
 #include <utility>
 #include <vector>
 
+#include "seqtopo/core/pose2.hpp"
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
 #include "seqtopo/evaluation/topology_metrics.hpp"
 #include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
-#include "seqtopo/metric/pose2.hpp"
 #include "seqtopo/plot/matrix_overview.hpp"
 
 namespace seqtopo::cli {
@@ -28,7 +28,7 @@ struct MapRun {
   std::vector<SimilarityMatrix> matrices;             // their matrices, moved out of `similarities`
   std::vector<std::string> descriptor_names;
   mapping::MapResult result;
-  std::vector<metric::Pose2> odometry, ekf, pose_graph;
+  std::vector<Pose2> odometry, ekf, pose_graph;
   std::optional<evaluation::LoopClosureMetrics> metrics, baseline_metrics;
   std::string baseline_name;
   std::string baseline_skipped;  // why the baseline did not run (--streaming), when it did not

@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "command_registry.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/csv.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/strings/localization.hpp"
 #include "seqtopo/strings/strings_file.hpp"
 
@@ -28,7 +28,7 @@ struct MatchStringsOptions {
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw io::InputError(path, "cannot open file");
+  if (!in) throw InputError(path, "cannot open file");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -37,10 +37,10 @@ std::string read_text(const std::string& path) {
 std::vector<strings::StringRecord> read_strings(const std::string& path) {
   try {
     auto records = strings::parse_strings_tsv(read_text(path));
-    if (records.empty()) throw io::InputError(path, "no string record");
+    if (records.empty()) throw InputError(path, "no string record");
     return records;
   } catch (const strings::StringsFileError& e) {
-    throw io::InputError(fmt::format("{}:{}", path, e.line()), e.what());
+    throw InputError(fmt::format("{}:{}", path, e.line()), e.what());
   }
 }
 
@@ -86,12 +86,12 @@ void run(const MatchStringsOptions& o) {
   try {
     config.algorithm = strings::parse_algorithm(o.algorithm);
   } catch (const std::invalid_argument& e) {
-    throw io::InputError("--algorithm", e.what());
+    throw InputError("--algorithm", e.what());
   }
   try {
     config.costs = strings::preset_costs(o.preset);
   } catch (const std::invalid_argument& e) {
-    throw io::InputError("--preset", e.what());
+    throw InputError("--preset", e.what());
   }
   if (o.deletion) config.costs.deletion = *o.deletion;
   if (o.insertion) config.costs.insertion = *o.insertion;
@@ -101,11 +101,11 @@ void run(const MatchStringsOptions& o) {
   try {
     strings::validate(config.costs);
   } catch (const std::invalid_argument& e) {
-    throw io::InputError("--preset/--*-cost", e.what());
+    throw InputError("--preset/--*-cost", e.what());
   }
   if (o.k) config.k = *o.k;
   config.cyclic = o.cyclic;
-  if (o.window == 0) throw io::InputError("--window", "must be >= 1");
+  if (o.window == 0) throw InputError("--window", "must be >= 1");
 
   const auto db = read_strings(o.db_path);
   const auto queries = read_strings(o.queries_path);

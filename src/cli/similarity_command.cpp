@@ -7,9 +7,9 @@
 #include <memory>
 
 #include "command_registry.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/atomic_output.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
@@ -29,7 +29,8 @@ void run(const SimilarityOptions& o) {
   image::SimilarityConfig config;
   const auto kind = option_value("--input-kind", [&] { return image::parse_input_kind(o.input_kind); });
   config.descriptor = option_value("--descriptor", [&] { return image::parse_descriptor(o.descriptor); });
-  if (!o.metric.empty()) config.metric = option_value("--metric", [&] { return similarity::parse_metric(o.metric); });
+  if (!o.metric.empty())
+    config.distance = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
   if (o.kappa != "auto") {
     config.kappa = option_value("--kappa", [&] {
       std::size_t used = 0;
@@ -45,7 +46,7 @@ void run(const SimilarityOptions& o) {
       return k;
     });
   }
-  if (o.every == 0) throw io::InputError("--every", "must be at least 1");
+  if (o.every == 0) throw InputError("--every", "must be at least 1");
   config.threads = resolve_threads(o.threads);
   const bool interactive = isatty(STDERR_FILENO) != 0;
   config.note = [](std::string_view text) { std::cerr << "seqtopo similarity: " << text << "\n"; };
@@ -62,7 +63,7 @@ void run(const SimilarityOptions& o) {
     result = o.against.empty() ? image::compute_similarity(a, config)
                                : image::compute_similarity(a, image::SequenceInput{o.against, kind, o.every}, config);
   } catch (const std::invalid_argument& e) {
-    throw io::InputError(o.input, e.what());
+    throw InputError(o.input, e.what());
   }
 
   io::OutputDirectory out(o.out_dir);
@@ -79,7 +80,7 @@ void run(const SimilarityOptions& o) {
   }
   std::cerr << fmt::format(
       "seqtopo similarity: {} x {}{}, {}; descriptors {:.2f} s, matrix {:.2f} s -> {}\n", result.similarity.rows,
-      result.similarity.cols, result.metric ? fmt::format(" ({})", similarity::metric_name(*result.metric)) : "",
+      result.similarity.cols, result.distance ? fmt::format(" ({})", similarity::distance_name(*result.distance)) : "",
       kappa_text, result.seconds_descriptors, result.seconds_matrix, (out.dir() / "similarity.npy").string());
 }
 

@@ -10,10 +10,10 @@
 #include <stdexcept>
 
 #include "command_registry.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/plot/png.hpp"
-#include "seqtopo/sim/scenarios.hpp"
+#include "seqtopo/simulator/scenarios.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -34,7 +34,7 @@ struct SimulateOptions {
 
 std::string frame_name(std::size_t k) { return fmt::format("{:05d}.png", k); }
 
-std::string poses_csv(const std::vector<sim::Pose2>& poses) {
+std::string poses_csv(const std::vector<simulator::Pose2>& poses) {
   std::string text = "index,x,y,theta\n";
   for (std::size_t k = 0; k < poses.size(); ++k) {
     text += fmt::format("{},{:.6f},{:.6f},{:.6f}\n", k, poses[k].x, poses[k].y, poses[k].theta);
@@ -55,14 +55,14 @@ void write_images(io::OutputDirectory& out, const std::string& folder, const std
   for (std::size_t k = 0; k < images.size(); ++k) {
     std::ofstream file(dir / names[k], std::ios::binary | std::ios::trunc);
     file.write(encoded[k].data(), static_cast<std::streamsize>(encoded[k].size()));
-    if (!file) throw io::InputError((out.dir() / folder / names[k]).string(), "write failed");
+    if (!file) throw InputError((out.dir() / folder / names[k]).string(), "write failed");
   }
 }
 
 void list_scenarios() {
-  for (const auto& s : sim::scenarios()) {
-    std::cout << fmt::format("{:<17} {:<9} {}\n", s.name, s.kind == sim::ScenarioKind::sequence ? "sequence" : "survey",
-                             s.description);
+  for (const auto& s : simulator::scenarios()) {
+    std::cout << fmt::format("{:<17} {:<9} {}\n", s.name,
+                             s.kind == simulator::ScenarioKind::sequence ? "sequence" : "survey", s.description);
   }
 }
 
@@ -71,24 +71,24 @@ void run(const SimulateOptions& o) {
     list_scenarios();
     return;
   }
-  if (o.scenario.empty()) throw io::InputError("--scenario", "name a scenario (see --list)");
-  if (o.out.empty()) throw io::InputError("--out", "give an output directory");
+  if (o.scenario.empty()) throw InputError("--scenario", "name a scenario (see --list)");
+  if (o.out.empty()) throw InputError("--out", "give an output directory");
   bool known = false;
-  for (const auto& s : sim::scenarios()) known = known || s.name == o.scenario;
-  if (!known) throw io::InputError("--scenario", fmt::format("unknown scenario '{}' (see --list)", o.scenario));
-  if (o.interval && !(*o.interval > 0)) throw io::InputError("--interval", "must be > 0");
-  if (o.odometry_noise < 0) throw io::InputError("--odometry-noise", "must be >= 0");
-  if (o.pixel_noise < 0) throw io::InputError("--pixel-noise", "must be >= 0");
-  if (o.lighting_change < 0) throw io::InputError("--lighting-change", "must be >= 0");
+  for (const auto& s : simulator::scenarios()) known = known || s.name == o.scenario;
+  if (!known) throw InputError("--scenario", fmt::format("unknown scenario '{}' (see --list)", o.scenario));
+  if (o.interval && !(*o.interval > 0)) throw InputError("--interval", "must be > 0");
+  if (o.odometry_noise < 0) throw InputError("--odometry-noise", "must be >= 0");
+  if (o.pixel_noise < 0) throw InputError("--pixel-noise", "must be >= 0");
+  if (o.lighting_change < 0) throw InputError("--lighting-change", "must be >= 0");
   if (o.panorama_width < 8 || o.panorama_height < 2)
-    throw io::InputError("--panorama-width/--panorama-height", "too small");
-  if (o.image_width < 8 || o.image_height < 2) throw io::InputError("--image-width/--image-height", "too small");
-  if (o.supersample < 1 || o.supersample > 8) throw io::InputError("--supersample", "must be in 1..8");
-  if (!(o.place_length > 0)) throw io::InputError("--place-length", "must be > 0");
-  if (o.junction_radius < 0) throw io::InputError("--junction-radius", "must be >= 0");
-  if (!(o.gt_radius > 0)) throw io::InputError("--gt-radius", "must be > 0");
+    throw InputError("--panorama-width/--panorama-height", "too small");
+  if (o.image_width < 8 || o.image_height < 2) throw InputError("--image-width/--image-height", "too small");
+  if (o.supersample < 1 || o.supersample > 8) throw InputError("--supersample", "must be in 1..8");
+  if (!(o.place_length > 0)) throw InputError("--place-length", "must be > 0");
+  if (o.junction_radius < 0) throw InputError("--junction-radius", "must be >= 0");
+  if (!(o.gt_radius > 0)) throw InputError("--gt-radius", "must be > 0");
 
-  sim::SimulationConfig config;
+  simulator::SimulationConfig config;
   config.seed = o.seed;
   config.interval = o.interval;
   config.odometry_noise = o.odometry_noise;
@@ -111,13 +111,13 @@ void run(const SimulateOptions& o) {
   config.threads = threads;
 
   const auto started = std::chrono::steady_clock::now();
-  const sim::ScenarioSetup setup = sim::build_scenario(o.scenario, config);
-  const sim::SimulatedRun result = sim::simulate(setup, config);
+  const simulator::ScenarioSetup setup = simulator::build_scenario(o.scenario, config);
+  const simulator::SimulatedRun result = simulator::simulate(setup, config);
   const double render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   io::OutputDirectory out(o.out);
   std::string summary;
-  if (result.kind == sim::ScenarioKind::survey) {
+  if (result.kind == simulator::ScenarioKind::survey) {
     std::vector<std::string> names;
     std::string points = "id,role,x,y,place\n";
     for (const auto& p : result.points) {
@@ -153,7 +153,7 @@ void run(const SimulateOptions& o) {
     out.write("junctions.csv", junctions);
     const std::size_t band =
         o.gt_band.value_or(static_cast<std::size_t>(std::ceil(o.gt_band_metres / result.interval - 1e-9)));
-    const auto truth = sim::same_place_matrix(result, o.gt_radius, band);
+    const auto truth = simulator::same_place_matrix(result, o.gt_radius, band);
     RgbImage truth_image(static_cast<int>(n), static_cast<int>(n));
     for (std::size_t k = 0; k < truth.values.size(); ++k) {
       std::fill_n(truth_image.pixels.begin() + static_cast<std::ptrdiff_t>(3 * k), 3, truth.values[k]);

@@ -2,14 +2,14 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 
 namespace seqtopo::image {
 
 DenseMatrix<std::uint8_t> read_grey_matrix_image(const std::filesystem::path& path) {
-  if (!std::filesystem::is_regular_file(path)) throw io::InputError(path.string(), "no such file");
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path.string(), "no such file");
   const cv::Mat grey = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
-  if (grey.empty()) throw io::InputError(path.string(), "not a readable image");
+  if (grey.empty()) throw InputError(path.string(), "not a readable image");
   DenseMatrix<std::uint8_t> m(static_cast<std::size_t>(grey.rows), static_cast<std::size_t>(grey.cols));
   for (int r = 0; r < grey.rows; ++r) {
     const auto* row = grey.ptr<std::uint8_t>(r);

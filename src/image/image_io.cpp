@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 
 namespace seqtopo::image {
 
@@ -61,7 +61,7 @@ bool truncated_jpeg(const std::vector<std::uint8_t>& bytes) {
 
 void quiet_opencv() {
   static const bool once = [] {
-    // Every failure becomes an io::InputError naming the file, so the library's own reports are noise.
+    // Every failure becomes an InputError naming the file, so the library's own reports are noise.
     cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
     ::setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);  // AV_LOG_QUIET, unless the user asked for something else
     return true;
@@ -74,10 +74,10 @@ void quiet_opencv() {
 RgbImage load_image(const fs::path& path) {
   quiet_opencv();
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw io::InputError(path.string(), "cannot open image");
+  if (!in) throw InputError(path.string(), "cannot open image");
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.empty()) throw io::InputError(path.string(), "empty file, not an image");
-  if (truncated_jpeg(bytes)) throw io::InputError(path.string(), "corrupt image (truncated JPEG)");
+  if (bytes.empty()) throw InputError(path.string(), "empty file, not an image");
+  if (truncated_jpeg(bytes)) throw InputError(path.string(), "corrupt image (truncated JPEG)");
   cv::Mat decoded;
   try {
     decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
@@ -85,12 +85,12 @@ RgbImage load_image(const fs::path& path) {
     decoded.release();
   }
   if (decoded.empty() || decoded.cols <= 0 || decoded.rows <= 0) {
-    throw io::InputError(path.string(), "cannot decode image (corrupt or unsupported format)");
+    throw InputError(path.string(), "cannot decode image (corrupt or unsupported format)");
   }
   try {
     return to_rgb(decoded);
   } catch (const std::exception& e) {
-    throw io::InputError(path.string(), std::string("cannot convert image: ") + e.what());
+    throw InputError(path.string(), std::string("cannot convert image: ") + e.what());
   }
 }
 
@@ -99,7 +99,7 @@ namespace {
 cv::VideoCapture open_video(const fs::path& path) {
   quiet_opencv();
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw io::InputError(path.string(), "no such video file");
+  if (!fs::is_regular_file(path, ec)) throw InputError(path.string(), "no such video file");
   cv::VideoCapture capture;
   try {
     // File back-ends only, FFmpeg first: CAP_ANY would also probe camera back-ends (gphoto2, libdc1394)
@@ -107,8 +107,7 @@ cv::VideoCapture open_video(const fs::path& path) {
     if (!capture.open(path.string(), cv::CAP_FFMPEG)) capture.open(path.string(), cv::CAP_GSTREAMER);
   } catch (const cv::Exception&) {
   }
-  if (!capture.isOpened())
-    throw io::InputError(path.string(), "cannot open as a video (corrupt or unsupported format)");
+  if (!capture.isOpened()) throw InputError(path.string(), "cannot open as a video (corrupt or unsupported format)");
   return capture;
 }
 
@@ -130,14 +129,14 @@ void for_each_video_frame(const fs::path& path, std::size_t every,
   while (capture.grab()) {
     if (index % every == 0) {
       if (!capture.retrieve(frame) || frame.empty()) {
-        throw io::InputError(path.string(), "cannot decode frame " + std::to_string(index));
+        throw InputError(path.string(), "cannot decode frame " + std::to_string(index));
       }
       visit(index, to_rgb(frame));
       ++kept;
     }
     ++index;
   }
-  if (kept == 0) throw io::InputError(path.string(), "video holds no frame");
+  if (kept == 0) throw InputError(path.string(), "video holds no frame");
 }
 
 }  // namespace seqtopo::image

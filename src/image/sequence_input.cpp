@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 
 namespace seqtopo::image {
 
@@ -93,7 +93,7 @@ InputKind resolve_input_kind(const SequenceInput& input) {
   if (input.kind != InputKind::automatic) return input.kind;
   std::error_code ec;
   const auto status = fs::status(input.path, ec);
-  if (ec || !fs::exists(status)) throw io::InputError(input.path.string(), "no such file or directory");
+  if (ec || !fs::exists(status)) throw InputError(input.path.string(), "no such file or directory");
   if (fs::is_directory(status)) return InputKind::images;
   if (lower(input.path.extension().string()) == ".npy") {
     return lower(input.path.filename().string()).find("similarity") != std::string::npos ? InputKind::similarity
@@ -104,10 +104,10 @@ InputKind resolve_input_kind(const SequenceInput& input) {
 
 std::vector<fs::path> list_images(const fs::path& folder) {
   std::error_code ec;
-  if (!fs::is_directory(folder, ec)) throw io::InputError(folder.string(), "not a folder");
+  if (!fs::is_directory(folder, ec)) throw InputError(folder.string(), "not a folder");
   std::vector<fs::path> files;
   fs::directory_iterator it(folder, ec);
-  if (ec) throw io::InputError(folder.string(), "cannot list folder: " + ec.message());
+  if (ec) throw InputError(folder.string(), "cannot list folder: " + ec.message());
   for (const auto& entry : it) {
     const std::string name = entry.path().filename().string();
     if (name.empty() || name[0] == '.' || lower(name).rfind("ground_truth", 0) == 0) continue;
@@ -115,7 +115,7 @@ std::vector<fs::path> list_images(const fs::path& folder) {
     if (!entry.is_regular_file(ec)) continue;
     files.push_back(entry.path());
   }
-  if (files.empty()) throw io::InputError(folder.string(), "folder holds no image (png, jpg, bmp, tif, ...)");
+  if (files.empty()) throw InputError(folder.string(), "folder holds no image (png, jpg, bmp, tif, ...)");
   std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
     return natural_less(a.filename().string(), b.filename().string());
   });

@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/image_io.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/similarity/distance_matrix.hpp"
 #include "seqtopo/similarity/memory.hpp"
@@ -42,18 +42,18 @@ std::string_view descriptor_name(Descriptor descriptor) {
   return "?";
 }
 
-Metric default_metric(Descriptor descriptor) {
+Distance default_distance(Descriptor descriptor) {
   switch (descriptor) {
     case Descriptor::joint_histogram:
-      return Metric::chi2;
+      return Distance::chi2;
     case Descriptor::patch:
-      return Metric::sad;
+      return Distance::sad;
     case Descriptor::panorama:
-      return Metric::sad;
+      return Distance::sad;
     case Descriptor::npy:
-      return Metric::cosine;
+      return Distance::cosine;
   }
-  return Metric::chi2;
+  return Distance::chi2;
 }
 
 std::vector<float> dense_descriptor(const RgbImage& image, Descriptor descriptor, const SimilarityConfig& config) {
@@ -116,7 +116,7 @@ Source resolve(const SequenceInput& input) {
     case InputKind::descriptors:
     case InputKind::similarity: {
       const io::NpyHeader header = io::read_npy_header(input.path);
-      if (header.shape.size() != 2) throw io::InputError(input.path.string(), "expected a 2-D array");
+      if (header.shape.size() != 2) throw InputError(input.path.string(), "expected a 2-D array");
       s.count = header.shape[0];
       s.dimension = header.shape[1];
       break;
@@ -130,7 +130,7 @@ Source resolve(const SequenceInput& input) {
 Descriptor effective_descriptor(const Source& s, const SimilarityConfig& c) {
   if (s.kind == InputKind::descriptors) return Descriptor::npy;
   if (c.descriptor == Descriptor::npy) {
-    throw io::InputError(s.input.path.string(), "descriptor npy needs a descriptors .npy file as input");
+    throw InputError(s.input.path.string(), "descriptor npy needs a descriptors .npy file as input");
   }
   return c.descriptor;
 }
@@ -176,7 +176,7 @@ void check_memory(const Source& a, const Source* b, Descriptor d, const Similari
   try {
     similarity::check_fits(total, available, what);
   } catch (const similarity::MemoryError& e) {
-    throw io::InputError(a.input.path.string(), e.what());
+    throw InputError(a.input.path.string(), e.what());
   }
 }
 
@@ -239,7 +239,7 @@ Described describe_images(const Source& s, Descriptor d, const SimilarityConfig&
     try {
       describe_image(image, d, c, i, out);
     } catch (const std::invalid_argument& e) {
-      throw io::InputError(path.string(), e.what());
+      throw InputError(path.string(), e.what());
     }
     const std::size_t now = ++done;
     if (c.progress) {
@@ -274,7 +274,7 @@ Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& 
           rows[first + k] = dense_descriptor(batch[k], d, c);
         }
       } catch (const std::invalid_argument& e) {
-        throw io::InputError(s.input.path.string(), "frame " + std::to_string(indices[k]) + ": " + e.what());
+        throw InputError(s.input.path.string(), "frame " + std::to_string(indices[k]) + ": " + e.what());
       }
     });
     for (std::size_t index : indices) out.names.push_back("frame " + std::to_string(index));
@@ -315,7 +315,7 @@ Described describe(const Source& s, Descriptor d, const SimilarityConfig& c) {
     case InputKind::descriptors: {
       Described out;
       out.set = similarity::DescriptorSet::from_dense(io::read_npy_matrix<float>(s.input.path));
-      if (out.set.dense.empty()) throw io::InputError(s.input.path.string(), "no descriptors (empty array)");
+      if (out.set.dense.empty()) throw InputError(s.input.path.string(), "no descriptors (empty array)");
       out.names = row_names(out.set.dense.rows, "row");
       return out;
     }
@@ -328,11 +328,11 @@ Described describe(const Source& s, Descriptor d, const SimilarityConfig& c) {
 SimilarityResult from_similarity_file(const Source& s, bool square) {
   SimilarityResult r;
   r.similarity = io::read_npy_matrix<float>(s.input.path);
-  if (r.similarity.empty()) throw io::InputError(s.input.path.string(), "empty similarity matrix");
+  if (r.similarity.empty()) throw InputError(s.input.path.string(), "empty similarity matrix");
   if (square && !r.similarity.square()) {
-    throw io::InputError(s.input.path.string(), "similarity matrix of one sequence must be square, got " +
-                                                    std::to_string(r.similarity.rows) + " x " +
-                                                    std::to_string(r.similarity.cols));
+    throw InputError(s.input.path.string(), "similarity matrix of one sequence must be square, got " +
+                                                std::to_string(r.similarity.rows) + " x " +
+                                                std::to_string(r.similarity.cols));
   }
   r.kappa = std::numeric_limits<float>::quiet_NaN();
   r.frame_names = row_names(r.similarity.rows, "row");
@@ -348,14 +348,14 @@ SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b,
   if (input_b) {
     b = resolve(*input_b);
     if (b->kind == InputKind::similarity) {
-      throw io::InputError(b->input.path.string(), "a similarity matrix can only be the first input");
+      throw InputError(b->input.path.string(), "a similarity matrix can only be the first input");
     }
   }
   const Descriptor d = effective_descriptor(a, c);
   if (b && effective_descriptor(*b, c) != d) {
-    throw io::InputError(b->input.path.string(), "both sequences must have the same kind of descriptor");
+    throw InputError(b->input.path.string(), "both sequences must have the same kind of descriptor");
   }
-  const Metric metric = c.metric.value_or(default_metric(d));
+  const Distance metric = c.distance.value_or(default_distance(d));
   check_memory(a, b ? &*b : nullptr, d, c);
 
   SimilarityResult r;
@@ -375,9 +375,9 @@ SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b,
     distances =
         db ? similarity::distance_matrix(da.set, db->set, metric, mc) : similarity::distance_matrix(da.set, metric, mc);
   } catch (const similarity::MemoryError& e) {
-    throw io::InputError(a.input.path.string(), e.what());
+    throw InputError(a.input.path.string(), e.what());
   } catch (const std::invalid_argument& e) {
-    if (d == Descriptor::npy) throw io::InputError(a.input.path.string(), e.what());
+    if (d == Descriptor::npy) throw InputError(a.input.path.string(), e.what());
     throw;
   }
 
@@ -391,7 +391,7 @@ SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b,
   }
   r.similarity = similarity::similarity_from_distance(std::move(distances), r.kappa);
   r.seconds_matrix = seconds_since(t1);
-  r.metric = metric;
+  r.distance = metric;
   r.frame_names = std::move(da.names);
   r.column_names = db ? std::move(db->names) : r.frame_names;
   return r;
@@ -402,17 +402,17 @@ SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b,
 DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config) {
   const Source s = resolve(input);
   if (s.kind == InputKind::similarity) {
-    throw io::InputError(s.input.path.string(), "a similarity matrix has no descriptors");
+    throw InputError(s.input.path.string(), "a similarity matrix has no descriptors");
   }
   const Descriptor d = effective_descriptor(s, config);
   if (d == Descriptor::joint_histogram) {
-    throw io::InputError(s.input.path.string(), "the joint histogram is sparse and has no vector form");
+    throw InputError(s.input.path.string(), "the joint histogram is sparse and has no vector form");
   }
   DescriptorResult r;
   const auto t0 = Clock::now();
   Described described = describe(s, d, config);
   r.descriptors = std::move(described.set.dense);
-  if (r.descriptors.empty()) throw io::InputError(s.input.path.string(), "no images");
+  if (r.descriptors.empty()) throw InputError(s.input.path.string(), "no images");
   r.descriptor = d;
   r.frame_names = std::move(described.names);
   r.seconds_descriptors = seconds_since(t0);

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 
 namespace seqtopo::io {
 namespace fs = std::filesystem;

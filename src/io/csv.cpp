@@ -3,7 +3,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 
 namespace seqtopo::io {
 

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <limits>
 
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
-#include "seqtopo/io/input_error.hpp"
 
 static_assert(std::endian::native == std::endian::little, "the .npy reader assumes a little-endian machine");
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 
 namespace seqtopo::io {
 namespace {
@@ -95,24 +95,24 @@ PoseTable read_table(const std::filesystem::path& path, const std::vector<std::v
 
 }  // namespace
 
-std::vector<metric::Pose2> read_odometry_csv(const std::filesystem::path& path) {
+std::vector<Pose2> read_odometry_csv(const std::filesystem::path& path) {
   const PoseTable table = read_table(path, {{"index", "x", "y", "theta"}, {"index", "dx", "dy", "dtheta"}});
-  std::vector<metric::Pose2> poses;
+  std::vector<Pose2> poses;
   poses.reserve(table.rows.size());
   const bool increments = table.header[1] == "dx";
-  metric::Pose2 pose;  // the origin
+  Pose2 pose;  // the origin
   for (const auto& r : table.rows) {
-    pose = increments ? metric::compose(pose, {r[0], r[1], r[2]}) : metric::Pose2{r[0], r[1], metric::wrap_angle(r[2])};
+    pose = increments ? compose(pose, {r[0], r[1], r[2]}) : Pose2{r[0], r[1], wrap_angle(r[2])};
     poses.push_back(pose);
   }
   return poses;
 }
 
-std::vector<metric::Pose2> read_poses_csv(const std::filesystem::path& path) {
+std::vector<Pose2> read_poses_csv(const std::filesystem::path& path) {
   const PoseTable table = read_table(path, {{"index", "x", "y"}, {"index", "x", "y", "theta"}});
-  std::vector<metric::Pose2> poses;
+  std::vector<Pose2> poses;
   poses.reserve(table.rows.size());
-  for (const auto& r : table.rows) poses.push_back({r[0], r[1], r.size() > 2 ? metric::wrap_angle(r[2]) : 0.0});
+  for (const auto& r : table.rows) poses.push_back({r[0], r[1], r.size() > 2 ? wrap_angle(r[2]) : 0.0});
   return poses;
 }
 

@@ -3,8 +3,8 @@
 #include <charconv>
 #include <string>
 
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/csv.hpp"
-#include "seqtopo/io/input_error.hpp"
 
 namespace seqtopo::io {
 namespace {

@@ -52,13 +52,12 @@ align::AlignConfig align_config(const MapConfig& config) {
   return c;
 }
 
-MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config,
-                    std::span<const metric::Pose2> odometry) {
+MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config, std::span<const Pose2> odometry) {
   return build_map(std::vector<SimilarityMatrix>{similarity}, config, odometry);
 }
 
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
-                    std::span<const metric::Pose2> odometry) {
+                    std::span<const Pose2> odometry) {
   const auto start = std::chrono::steady_clock::now();
   SimilarityMatrix scores = alignment_scores(similarities, config);
   const double seconds_scores = seconds_since(start);
@@ -70,7 +69,7 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
 }
 
 MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config,
-                                std::span<const metric::Pose2> odometry) {
+                                std::span<const Pose2> odometry) {
   const std::size_t n = scores.rows();
   if (n == 0 || scores.cols() != n) {
     throw std::invalid_argument("score source must be square and non-empty, got " + std::to_string(n) + " x " +

@@ -7,7 +7,7 @@
 namespace seqtopo::mapping {
 
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
-                                           std::span<const metric::Pose2> odometry, const OdometryGate& gate) {
+                                           std::span<const Pose2> odometry, const OdometryGate& gate) {
   const auto bad = [](double v) { return std::isnan(v) || v < 0; };
   if (bad(gate.base) || bad(gate.drift) || bad(gate.min_consistent) || gate.min_consistent > 1) {
     throw std::invalid_argument("odometry gate: base and drift must be >= 0, min_consistent in [0, 1]");

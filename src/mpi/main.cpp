@@ -23,9 +23,9 @@
 #include <thread>
 #include <vector>
 
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/alignment_json.hpp"
 #include "seqtopo/io/atomic_output.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/scale/sparse_candidates.hpp"
@@ -132,7 +132,7 @@ int broadcast_status(int status) {
 
 // The one-line error of the seqtopo tools, from rank 0; returns the exit code.
 int report(const std::exception& e) {
-  if (const auto* input = dynamic_cast<const io::InputError*>(&e)) {
+  if (const auto* input = dynamic_cast<const InputError*>(&e)) {
     std::cerr << "seqtopo-mpi: error: " << input->subject() << ": " << input->what() << "\n";
   } else if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr) {
     std::cerr << "seqtopo-mpi: error: out of memory\n";
@@ -158,7 +158,7 @@ struct Prepared {
 Prepared prepare(const Options& opt) {
   const auto descriptors = io::read_npy_matrix<float>(opt.descriptors);
   if (descriptors.rows == 0 || descriptors.cols == 0) {
-    throw io::InputError(opt.descriptors, "no descriptors (empty array)");
+    throw InputError(opt.descriptors, "no descriptors (empty array)");
   }
   scale::StreamingConfig streaming;
   streaming.contrast_window = opt.map.contrast_window;
@@ -168,7 +168,7 @@ Prepared prepare(const Options& opt) {
     similarity =
         std::make_unique<scale::StreamingSimilarity>(descriptors.values, descriptors.rows, descriptors.cols, streaming);
   } catch (const std::invalid_argument& e) {
-    throw io::InputError(opt.descriptors, e.what());  // a zero or non-finite descriptor
+    throw InputError(opt.descriptors, e.what());  // a zero or non-finite descriptor
   }
   scale::CandidateConfig candidates;
   candidates.neighbours = opt.neighbours;
@@ -337,7 +337,7 @@ int main(int argc, char** argv) {
   int code = 0;
   try {
     app.parse(argc, argv);
-    if (!(opt.background < 0)) throw seqtopo::io::InputError("--background", "must be < 0");
+    if (!(opt.background < 0)) throw seqtopo::InputError("--background", "must be < 0");
     code = seqtopo::mpi::run(opt, rank, ranks);
   } catch (const CLI::ParseError& e) {
     // Every rank parses the same arguments and stops here; one of them speaks.
@@ -349,7 +349,7 @@ int main(int argc, char** argv) {
       }
     }
     code = e.get_exit_code() == 0 ? 0 : 2;
-  } catch (const seqtopo::io::InputError& e) {
+  } catch (const seqtopo::InputError& e) {
     if (rank == 0) std::cerr << "seqtopo-mpi: error: " << e.subject() << ": " << e.what() << "\n";
     code = 1;
   } catch (const std::exception& e) {

@@ -25,25 +25,25 @@ void check_dimensions(const SparseHistogram& a, const SparseHistogram& b) {
 
 }  // namespace
 
-std::string_view metric_name(Metric metric) {
+std::string_view distance_name(Distance metric) {
   switch (metric) {
-    case Metric::chi2:
+    case Distance::chi2:
       return "chi2";
-    case Metric::l1:
+    case Distance::l1:
       return "l1";
-    case Metric::cosine:
+    case Distance::cosine:
       return "cosine";
-    case Metric::sad:
+    case Distance::sad:
       return "sad";
   }
   return "?";
 }
 
-Metric parse_metric(std::string_view name) {
-  if (name == "chi2") return Metric::chi2;
-  if (name == "l1") return Metric::l1;
-  if (name == "cosine") return Metric::cosine;
-  if (name == "sad") return Metric::sad;
+Distance parse_distance(std::string_view name) {
+  if (name == "chi2") return Distance::chi2;
+  if (name == "l1") return Distance::l1;
+  if (name == "cosine") return Distance::cosine;
+  if (name == "sad") return Distance::sad;
   throw std::invalid_argument("unknown metric '" + std::string(name) + "' (expected chi2, l1, cosine or sad)");
 }
 
@@ -69,23 +69,23 @@ double sad_distance(std::span<const float> a, std::span<const float> b) {
   return a.empty() ? 0.0 : detail::dense_l1(a.data(), b.data(), a.size()) / static_cast<double>(a.size());
 }
 
-double distance(Metric metric, std::span<const float> a, std::span<const float> b) {
+double distance(Distance metric, std::span<const float> a, std::span<const float> b) {
   switch (metric) {
-    case Metric::chi2:
+    case Distance::chi2:
       return chi2_distance(a, b);
-    case Metric::l1:
+    case Distance::l1:
       return l1_distance(a, b);
-    case Metric::cosine:
+    case Distance::cosine:
       return cosine_distance(a, b);
-    case Metric::sad:
+    case Distance::sad:
       return sad_distance(a, b);
   }
   throw std::invalid_argument("unknown metric");
 }
 
-double chi2_distance(const SparseHistogram& a, const SparseHistogram& b) { return distance(Metric::chi2, a, b); }
+double chi2_distance(const SparseHistogram& a, const SparseHistogram& b) { return distance(Distance::chi2, a, b); }
 
-double distance(Metric metric, const SparseHistogram& a, const SparseHistogram& b) {
+double distance(Distance metric, const SparseHistogram& a, const SparseHistogram& b) {
   check_dimensions(a, b);
   // The matrix's kernel with A alone in row 0, so that both give the same value to the last bit.
   std::vector<float> a8(static_cast<std::size_t>(a.dimension) * detail::kRows, 0.0F);
@@ -93,15 +93,15 @@ double distance(Metric metric, const SparseHistogram& a, const SparseHistogram& 
   double sums[detail::kRows];
   const std::size_t n = b.bins.size();
   switch (metric) {
-    case Metric::chi2:
-    case Metric::l1:
-    case Metric::sad: {
-      detail::sparse_sums(metric == Metric::chi2 ? detail::SparseSum::chi2 : detail::SparseSum::l1, a8.data(),
+    case Distance::chi2:
+    case Distance::l1:
+    case Distance::sad: {
+      detail::sparse_sums(metric == Distance::chi2 ? detail::SparseSum::chi2 : detail::SparseSum::l1, a8.data(),
                           b.bins.data(), b.values.data(), n, sums);
       const double d = detail::sparse_sum(a.values.data(), a.values.size()) + sums[0];
-      return metric == Metric::sad ? (a.dimension == 0 ? 0.0 : d / a.dimension) : d;
+      return metric == Distance::sad ? (a.dimension == 0 ? 0.0 : d / a.dimension) : d;
     }
-    case Metric::cosine:
+    case Distance::cosine:
       detail::sparse_sums(detail::SparseSum::dot, a8.data(), b.bins.data(), b.values.data(), n, sums);
       return detail::cosine_from_dot(sums[0], detail::sparse_sum_squares(a.values.data(), a.values.size()),
                                      detail::sparse_sum_squares(b.values.data(), b.values.size()));

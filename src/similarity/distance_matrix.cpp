@@ -42,14 +42,14 @@ struct Prepared {
   std::vector<double> norm2;  // sum of squares (cosine)
 };
 
-void validate(const DescriptorSet& set, Metric metric, const char* which) {
+void validate(const DescriptorSet& set, Distance metric, const char* which) {
   if (set.is_sparse()) {
     const std::uint32_t dim = set.sparse.front().dimension;
     for (const auto& h : set.sparse) {
       h.validate();
       if (h.dimension != dim) throw std::invalid_argument(std::string(which) + ": histograms differ in dimension");
     }
-  } else if (metric == Metric::chi2) {
+  } else if (metric == Distance::chi2) {
     for (float v : set.dense.values) {
       if (!(v >= 0.0F)) {
         throw std::invalid_argument(
@@ -81,14 +81,14 @@ struct Tile {
   bool diagonal;  // symmetric case: the tile reaches the diagonal, only cells with col < row are filled
 };
 
-double finish(Metric metric, double sum, double sum_a, double dimension, double norm2_a, double norm2_b) {
+double finish(Distance metric, double sum, double sum_a, double dimension, double norm2_a, double norm2_b) {
   switch (metric) {
-    case Metric::chi2:
-    case Metric::l1:
+    case Distance::chi2:
+    case Distance::l1:
       return sum_a + sum;
-    case Metric::sad:
+    case Distance::sad:
       return dimension == 0 ? 0.0 : (sum_a + sum) / dimension;
-    case Metric::cosine:
+    case Distance::cosine:
       return detail::cosine_from_dot(sum, norm2_a, norm2_b);
   }
   return 0.0;
@@ -97,11 +97,11 @@ double finish(Metric metric, double sum, double sum_a, double dimension, double 
 // Sparse rows: groups of detail::kRows rows are scattered into `scratch` and compared with each column in
 // one pass (kernels.hpp). Cells past the diagonal that a group's pass computes anyway are not stored.
 void fill_sparse_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa, const DescriptorSet& b,
-                      const Prepared& pb, Metric metric, DenseMatrix<float>& out, std::vector<float>& scratch) {
+                      const Prepared& pb, Distance metric, DenseMatrix<float>& out, std::vector<float>& scratch) {
   constexpr std::size_t G = detail::kRows;
-  const auto kind = metric == Metric::chi2     ? detail::SparseSum::chi2
-                    : metric == Metric::cosine ? detail::SparseSum::dot
-                                               : detail::SparseSum::l1;
+  const auto kind = metric == Distance::chi2     ? detail::SparseSum::chi2
+                    : metric == Distance::cosine ? detail::SparseSum::dot
+                                                 : detail::SparseSum::l1;
   const double dim = static_cast<double>(a.dimension());
   for (std::size_t i0 = t.row_begin; i0 < t.row_end; i0 += G) {
     const std::size_t g = std::min(G, t.row_end - i0);
@@ -129,7 +129,7 @@ void fill_sparse_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa,
 }
 
 void fill_dense_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa, const DescriptorSet& b,
-                     const Prepared& pb, Metric metric, DenseMatrix<float>& out) {
+                     const Prepared& pb, Distance metric, DenseMatrix<float>& out) {
   for (std::size_t i = t.row_begin; i < t.row_end; ++i) {
     const std::size_t col_end = t.diagonal ? std::min(t.col_end, i) : t.col_end;
     const float* x = a.dense.row(i).data();
@@ -138,16 +138,16 @@ void fill_dense_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa, 
       const float* y = b.dense.row(j).data();
       double d = 0;
       switch (metric) {
-        case Metric::chi2:
+        case Distance::chi2:
           d = detail::dense_chi2(x, y, n);
           break;
-        case Metric::l1:
+        case Distance::l1:
           d = detail::dense_l1(x, y, n);
           break;
-        case Metric::sad:
+        case Distance::sad:
           d = n == 0 ? 0.0 : detail::dense_l1(x, y, n) / static_cast<double>(n);
           break;
-        case Metric::cosine:
+        case Distance::cosine:
           d = detail::cosine_from_dot(detail::dense_dot(x, y, n), pa.norm2[i], pb.norm2[j]);
           break;
       }
@@ -156,7 +156,7 @@ void fill_dense_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa, 
   }
 }
 
-DenseMatrix<float> compute(const DescriptorSet& a, const DescriptorSet& b, bool symmetric, Metric metric,
+DenseMatrix<float> compute(const DescriptorSet& a, const DescriptorSet& b, bool symmetric, Distance metric,
                            const MatrixConfig& config) {
   if (config.tile == 0) throw std::invalid_argument("distance matrix: tile size must be positive");
   const std::size_t rows = a.size(), cols = b.size();
@@ -252,11 +252,11 @@ DenseMatrix<float> compute(const DescriptorSet& a, const DescriptorSet& b, bool 
 
 }  // namespace
 
-DenseMatrix<float> distance_matrix(const DescriptorSet& items, Metric metric, const MatrixConfig& config) {
+DenseMatrix<float> distance_matrix(const DescriptorSet& items, Distance metric, const MatrixConfig& config) {
   return compute(items, items, true, metric, config);
 }
 
-DenseMatrix<float> distance_matrix(const DescriptorSet& a, const DescriptorSet& b, Metric metric,
+DenseMatrix<float> distance_matrix(const DescriptorSet& a, const DescriptorSet& b, Distance metric,
                                    const MatrixConfig& config) {
   return compute(a, b, false, metric, config);
 }

@@ -10,7 +10,7 @@
 
 #include "seqtopo/align/local_alignment.hpp"
 
-namespace seqtopo::testing {
+namespace seqtopo::test_support {
 
 struct NaiveProblem {
   std::vector<std::vector<float>> s;  // s[i][j], rows = A, cols = B
@@ -213,4 +213,4 @@ inline std::vector<align::LocalAlignment> naive_local_alignments(const NaiveProb
   return out;
 }
 
-}  // namespace seqtopo::testing
+}  // namespace seqtopo::test_support

@@ -6,7 +6,7 @@
 #include "naive_smith_waterman.hpp"
 #include "seqtopo/align/score_source.hpp"
 
-namespace seqtopo::testing {
+namespace seqtopo::test_support {
 
 struct RandomProblem {
   NaiveProblem naive;
@@ -62,4 +62,4 @@ inline RandomProblem random_problem(std::mt19937& rng, std::size_t max_size = 24
   return p;
 }
 
-}  // namespace seqtopo::testing
+}  // namespace seqtopo::test_support

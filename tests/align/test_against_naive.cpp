@@ -28,8 +28,8 @@ TEST(AgainstNaive, RandomSmallProblemsAllAlignments) {
   std::mt19937 rng(20261123);
   int compared_alignments = 0;
   for (int case_id = 0; case_id < 4000; ++case_id) {
-    const auto p = testing::random_problem(rng);
-    const auto want = testing::naive_local_alignments(p.naive);
+    const auto p = test_support::random_problem(rng);
+    const auto want = test_support::naive_local_alignments(p.naive);
     const auto got = align::local_alignments(p.source(), p.naive.config);
     expect_same(got, want, case_id);
     compared_alignments += static_cast<int>(want.size());
@@ -42,9 +42,10 @@ TEST(AgainstNaive, RandomSmallProblemsAllAlignments) {
 TEST(AgainstNaive, LargerProblemsWithMaxAlignments) {
   std::mt19937 rng(7);
   for (int case_id = 0; case_id < 150; ++case_id) {
-    auto p = testing::random_problem(rng, 70);
+    auto p = test_support::random_problem(rng, 70);
     p.naive.config.max_alignments = 1 + case_id % 12;
-    expect_same(align::local_alignments(p.source(), p.naive.config), testing::naive_local_alignments(p.naive), case_id);
+    expect_same(align::local_alignments(p.source(), p.naive.config), test_support::naive_local_alignments(p.naive),
+                case_id);
     if (::testing::Test::HasFailure()) return;
   }
 }
@@ -52,7 +53,7 @@ TEST(AgainstNaive, LargerProblemsWithMaxAlignments) {
 TEST(AgainstNaive, CallableSourceEqualsDenseSource) {
   std::mt19937 rng(11);
   for (int case_id = 0; case_id < 300; ++case_id) {
-    const auto p = testing::random_problem(rng);
+    const auto p = test_support::random_problem(rng);
     const auto callable =
         align::ScoreSource::function(p.rows, p.cols, [&p](std::size_t i, std::size_t j) { return p.naive.s[i][j]; });
     expect_same(align::local_alignments(callable, p.naive.config), align::local_alignments(p.source(), p.naive.config),

@@ -62,7 +62,7 @@ TEST(FastAlignment, RandomSmallProblemsEveryIsa) {
   const float scales[] = {0.0F, 1.0F, 2.0F, 8.0F, 64.0F};
   std::size_t compared = 0;
   for (int case_id = 0; case_id < 700; ++case_id) {
-    const auto p = testing::random_problem(rng, 40);
+    const auto p = test_support::random_problem(rng, 40);
     const float scale = align::fast_scale(p.naive.config, {scales[case_id % 5], 1, Isa::best});
     const auto want = scalar_on_quantized(p.source(), p.naive.config, scale);
     compared += want.size();
@@ -80,7 +80,7 @@ TEST(FastAlignment, LargerProblemsThreadsAndMaxAlignments) {
   std::mt19937 rng(77);
   for (int case_id = 0; case_id < 36; ++case_id) {
     const bool large = case_id % 3 == 0;
-    auto p = testing::random_problem(rng, large ? 1100 : 200);
+    auto p = test_support::random_problem(rng, large ? 1100 : 200);
     auto& c = p.naive.config;
     c.max_alignments =
         case_id % 4 == 1 && !large ? std::numeric_limits<std::size_t>::max() : 1 + case_id % (large ? 6 : 25);
@@ -260,7 +260,7 @@ TEST(FastAlignment, LetterScoresEqualTheirScoreSource) {
 TEST(FastAlignment, BestScoreIsTheFirstAlignmentsScore) {
   std::mt19937 rng(13);
   for (int case_id = 0; case_id < 300; ++case_id) {
-    auto p = testing::random_problem(rng, 60);
+    auto p = test_support::random_problem(rng, 60);
     p.naive.config.threshold = 0;
     const float scale = align::fast_scale(p.naive.config, {8.0F, 1, Isa::best});
     auto one = p.naive.config;

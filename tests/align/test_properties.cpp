@@ -16,7 +16,7 @@ using align::LocalAlignment;
 TEST(Properties, ScoresPositiveAboveThresholdAndBelowCap) {
   std::mt19937 rng(1);
   for (int k = 0; k < 500; ++k) {
-    const auto p = testing::random_problem(rng);
+    const auto p = test_support::random_problem(rng);
     const auto& c = p.naive.config;
     float previous = std::numeric_limits<float>::infinity();
     for (const auto& a : align::local_alignments(p.source(), c)) {
@@ -34,7 +34,7 @@ TEST(Properties, ScoresPositiveAboveThresholdAndBelowCap) {
 TEST(Properties, AlignmentsNeverShareAPairAndPairsAreMonotone) {
   std::mt19937 rng(2);
   for (int k = 0; k < 500; ++k) {
-    const auto p = testing::random_problem(rng);
+    const auto p = test_support::random_problem(rng);
     const auto& c = p.naive.config;
     std::set<std::pair<std::size_t, std::size_t>> seen;
     for (const auto& a : align::local_alignments(p.source(), c)) {
@@ -68,7 +68,7 @@ TEST(Properties, AlignmentsNeverShareAPairAndPairsAreMonotone) {
 TEST(Properties, CapAboveBestScoreChangesNothing) {
   std::mt19937 rng(3);
   for (int k = 0; k < 500; ++k) {
-    auto p = testing::random_problem(rng);
+    auto p = test_support::random_problem(rng);
     p.naive.config.cap.reset();
     const auto uncapped = align::local_alignments(p.source(), p.naive.config);
     if (uncapped.empty()) continue;
@@ -113,7 +113,7 @@ TEST(Properties, CapStopsSpillOverBetweenDistantMatches) {
 TEST(Properties, ReversePassOnReversedBEqualsForwardPass) {
   std::mt19937 rng(4);
   for (int k = 0; k < 500; ++k) {
-    auto p = testing::random_problem(rng);
+    auto p = test_support::random_problem(rng);
     auto config = p.naive.config;
     config.self = false;  // the reversed copy is no longer a self-similarity matrix
     config.direction = Direction::forward;
@@ -139,7 +139,7 @@ TEST(Properties, ReversePassOnReversedBEqualsForwardPass) {
 TEST(Properties, BothDirectionsDeterministicAcrossThreadCounts) {
   std::mt19937 rng(5);
   for (int k = 0; k < 200; ++k) {
-    const auto p = testing::random_problem(rng, 40);
+    const auto p = test_support::random_problem(rng, 40);
     const auto one = align::local_alignments_both(p.source(), p.naive.config, 1);
     const auto two = align::local_alignments_both(p.source(), p.naive.config, 2);
     const auto eight = align::local_alignments_both(p.source(), p.naive.config, 8);

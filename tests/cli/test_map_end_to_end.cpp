@@ -23,9 +23,9 @@ class MapCommand : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   int run(const std::string& args, std::string* err = nullptr) {
-    return seqtopo::testing::run_cli(args, dir_ / "stderr.txt", err);
+    return seqtopo::test_support::run_cli(args, dir_ / "stderr.txt", err);
   }
-  static std::string read(const fs::path& path) { return seqtopo::testing::read_file(path); }
+  static std::string read(const fs::path& path) { return seqtopo::test_support::read_file(path); }
   fs::path dir_;
 };
 

@@ -47,9 +47,9 @@ std::size_t true_place(std::size_t i, std::size_t n) {
 class MapStreaming : public ::testing::Test {
  protected:
   int run(const std::string& args, std::string* err = nullptr) {
-    return seqtopo::testing::run_cli(args, dir_.path / "stderr.txt", err);
+    return seqtopo::test_support::run_cli(args, dir_.path / "stderr.txt", err);
   }
-  static std::string read(const fs::path& path) { return seqtopo::testing::read_file(path); }
+  static std::string read(const fs::path& path) { return seqtopo::test_support::read_file(path); }
   // descriptors.npy of the walk, and the cosine matrix the streamed score starts from (float dot products
   // of the normalised rows, StreamingSimilarity::cosine) as a similarity.npy: the dense command on it
   // aligns enhance_contrast_symmetric(cosine), which the streamed score equals bit for bit.
@@ -74,7 +74,7 @@ class MapStreaming : public ::testing::Test {
   }
   std::string path(const std::string& name) const { return (dir_.path / name).string(); }
 
-  seqtopo::testing::TempDir dir_;
+  seqtopo::test_support::TempDir dir_;
 };
 
 TEST_F(MapStreaming, SameMapAsTheDenseCommandOnTheSameScores) {

@@ -27,7 +27,7 @@ std::size_t data_lines(const fs::path& path) {
 }
 
 TEST(SimulatedWorlds, RoomsThroughFingerprintsAndStringMatching) {
-  seqtopo::testing::TempDir dir;
+  seqtopo::test_support::TempDir dir;
   const std::string world = (dir.path / "rooms").string();
   ASSERT_EQ(run("simulate --scenario rooms --no-images --out " + world), 0);
   ASSERT_EQ(run("fingerprint " + world + "/panoramas --positions " + world + "/points.csv --role map --out " + world +
@@ -54,7 +54,7 @@ TEST(SimulatedWorlds, RoomsThroughFingerprintsAndStringMatching) {
 }
 
 TEST(SimulatedWorlds, FigureEightMapsWithOdometry) {
-  seqtopo::testing::TempDir dir;
+  seqtopo::test_support::TempDir dir;
   const std::string world = (dir.path / "eight").string();
   ASSERT_EQ(run("simulate --scenario figure-eight --no-images --interval 0.5 --panorama-width 120 --panorama-height 24 "
                 "--supersample 1 "
@@ -86,7 +86,7 @@ TEST(SimulatedWorlds, FigureEightMapsWithOdometry) {
 // facing the other way are found by the heading-invariant panorama descriptor; the map's places match the
 // true ones and the pose graph undoes most of the odometry's drift.
 TEST(SimulatedWorlds, CorridorWalkedBackIsFoundWithThePanoramaDescriptor) {
-  seqtopo::testing::TempDir dir;
+  seqtopo::test_support::TempDir dir;
   const std::string world = (dir.path / "corridor").string();
   ASSERT_EQ(run("simulate --scenario corridor-reverse --no-images --interval 0.5 --panorama-width 120 "
                 "--panorama-height 24 --supersample 1 --out " +

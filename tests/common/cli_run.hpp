@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-namespace seqtopo::testing {
+namespace seqtopo::test_support {
 
 inline std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -26,4 +26,4 @@ inline int run_cli(const std::string& args, const std::filesystem::path& stderr_
   return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
 }
 
-}  // namespace seqtopo::testing
+}  // namespace seqtopo::test_support

@@ -5,7 +5,7 @@
 #include <random>
 #include <string>
 
-namespace seqtopo::testing {
+namespace seqtopo::test_support {
 
 struct TempDir {
   std::filesystem::path path;
@@ -19,4 +19,4 @@ struct TempDir {
   void touch(const std::string& name) const { std::ofstream(path / name) << "x"; }
 };
 
-}  // namespace seqtopo::testing
+}  // namespace seqtopo::test_support

@@ -4,9 +4,9 @@
 #include <algorithm>
 
 #include "common/temp_dir.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/image/similarity_pipeline.hpp"
-#include "seqtopo/io/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 
 namespace seqtopo::image {
@@ -31,7 +31,7 @@ TEST(ComputeDescriptors, ImageFolderGivesOneDenseDescriptorPerImage) {
 }
 
 TEST(ComputeDescriptors, DescriptorsFileGivesItsRows) {
-  const testing::TempDir dir;
+  const test_support::TempDir dir;
   DenseMatrix<float> x(5, 3);
   for (std::size_t k = 0; k < x.values.size(); ++k) x.values[k] = static_cast<float>(k) + 0.5F;
   io::write_npy(dir.path / "d.npy", x);
@@ -42,10 +42,10 @@ TEST(ComputeDescriptors, DescriptorsFileGivesItsRows) {
 
 TEST(ComputeDescriptors, RefusesWhatHasNoVectorForm) {
   SimilarityConfig config;  // joint histogram
-  EXPECT_THROW(compute_descriptors({corridor}, config), io::InputError);
-  const testing::TempDir dir;
+  EXPECT_THROW(compute_descriptors({corridor}, config), InputError);
+  const test_support::TempDir dir;
   io::write_npy(dir.path / "s.npy", DenseMatrix<float>(4, 4, 0.5F));
-  EXPECT_THROW(compute_descriptors({dir.path / "s.npy", InputKind::similarity}), io::InputError);
+  EXPECT_THROW(compute_descriptors({dir.path / "s.npy", InputKind::similarity}), InputError);
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ TEST(Corridor, RevisitsAreCloserAndKappaAutoKeepsThemPositive) {
     histograms[static_cast<std::size_t>(k)] = joint_histogram(load_image(files[static_cast<std::size_t>(k)]));
   }
   const auto d =
-      similarity::distance_matrix(similarity::DescriptorSet::from_sparse(histograms), similarity::Metric::chi2);
+      similarity::distance_matrix(similarity::DescriptorSet::from_sparse(histograms), similarity::Distance::chi2);
   const similarity::KappaRule rule;
   const auto choice = similarity::choose_kappa(d, true, rule);
   const auto s = similarity::similarity_from_distance(d, choice.kappa);

@@ -8,22 +8,22 @@
 #include <random>
 
 #include "common/temp_dir.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/image_io.hpp"
-#include "seqtopo/io/input_error.hpp"
 
 namespace seqtopo::image {
 namespace {
 
 namespace fs = std::filesystem;
 
-using seqtopo::testing::TempDir;
+using seqtopo::test_support::TempDir;
 
 template <typename F>
 void expect_error_naming(const fs::path& file, F&& f) {
   try {
     f();
     FAIL() << "expected an error for " << file;
-  } catch (const io::InputError& e) {
+  } catch (const InputError& e) {
     EXPECT_EQ(e.subject(), file.string());
   }
 }

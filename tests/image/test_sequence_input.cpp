@@ -7,15 +7,15 @@
 #include <random>
 
 #include "common/temp_dir.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/sequence_input.hpp"
-#include "seqtopo/io/input_error.hpp"
 
 namespace seqtopo::image {
 namespace {
 
 namespace fs = std::filesystem;
 
-using seqtopo::testing::TempDir;
+using seqtopo::test_support::TempDir;
 
 TEST(NaturalSort, NumbersByValue) {
   std::vector<std::string> names{"10.jpg", "2.jpg", "1.jpg", "img-010.png", "img-9.png", "B.png", "a.png", "1.jpg.bak"};
@@ -48,10 +48,10 @@ TEST(ListImages, ErrorsNameTheFolder) {
   try {
     list_images(dir.path);
     FAIL();
-  } catch (const io::InputError& e) {
+  } catch (const InputError& e) {
     EXPECT_EQ(e.subject(), dir.path.string());
   }
-  EXPECT_THROW(list_images(dir.path / "missing"), io::InputError);
+  EXPECT_THROW(list_images(dir.path / "missing"), InputError);
 }
 
 TEST(InputKind, ParseAndResolve) {
@@ -68,7 +68,7 @@ TEST(InputKind, ParseAndResolve) {
   EXPECT_EQ(resolve_input_kind({dir.path / "descriptors.npy"}), InputKind::descriptors);
   EXPECT_EQ(resolve_input_kind({dir.path / "walk.mp4"}), InputKind::video);
   EXPECT_EQ(resolve_input_kind({dir.path / "walk.mp4", InputKind::descriptors}), InputKind::descriptors);
-  EXPECT_THROW(resolve_input_kind({dir.path / "missing.mp4"}), io::InputError);
+  EXPECT_THROW(resolve_input_kind({dir.path / "missing.mp4"}), InputError);
 }
 
 }  // namespace

@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/fasta.hpp"
-#include "seqtopo/io/input_error.hpp"
 
 namespace seqtopo::io {
 namespace {

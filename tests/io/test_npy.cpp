@@ -7,7 +7,7 @@
 #include <fstream>
 #include <random>
 
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 
 namespace seqtopo::io {

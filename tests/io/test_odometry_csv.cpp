@@ -6,14 +6,13 @@
 #include <random>
 #include <string>
 
-#include "seqtopo/io/input_error.hpp"
+#include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/odometry_csv.hpp"
 
 namespace seqtopo::io {
 namespace {
 
 namespace fs = std::filesystem;
-using metric::Pose2;
 
 class OdometryCsv : public ::testing::Test {
  protected:
@@ -76,11 +75,11 @@ TEST_F(OdometryCsv, IntegratedIncrementsEqualTheCumulativeForm) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> step(-0.3, 0.6), turn(-0.4, 0.4);
   std::vector<Pose2> truth{{0.2, -0.1, 0.3}};
-  for (int i = 1; i < 200; ++i) truth.push_back(metric::compose(truth.back(), {step(rng), step(rng) / 4, turn(rng)}));
+  for (int i = 1; i < 200; ++i) truth.push_back(compose(truth.back(), {step(rng), step(rng) / 4, turn(rng)}));
   std::string cumulative = "index,x,y,theta\n", increments = "index,dx,dy,dtheta\n";
   char buf[200];
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    const Pose2 d = i == 0 ? truth[0] : metric::between(truth[i - 1], truth[i]);
+    const Pose2 d = i == 0 ? truth[0] : between(truth[i - 1], truth[i]);
     std::snprintf(buf, sizeof buf, "%zu,%.17g,%.17g,%.17g\n", i, truth[i].x, truth[i].y, truth[i].theta);
     cumulative += buf;
     std::snprintf(buf, sizeof buf, "%zu,%.17g,%.17g,%.17g\n", i, d.x, d.y, d.theta);
@@ -93,7 +92,7 @@ TEST_F(OdometryCsv, IntegratedIncrementsEqualTheCumulativeForm) {
   for (std::size_t i = 0; i < truth.size(); ++i) {
     EXPECT_NEAR(a[i].x, b[i].x, 1e-9) << i;
     EXPECT_NEAR(a[i].y, b[i].y, 1e-9) << i;
-    EXPECT_NEAR(metric::wrap_angle(a[i].theta - b[i].theta), 0, 1e-9) << i;
+    EXPECT_NEAR(wrap_angle(a[i].theta - b[i].theta), 0, 1e-9) << i;
   }
 }
 

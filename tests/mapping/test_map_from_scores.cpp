@@ -26,8 +26,8 @@ SimilarityMatrix revisit_matrix(std::size_t n, unsigned seed) {
 
 // Odometry of a 45 m loop walked again and again (90 images per lap): the forward revisit 90 images back
 // agrees with it, the reverse one does not, so the gate has something to drop.
-std::vector<metric::Pose2> straight_odometry(std::size_t n) {
-  std::vector<metric::Pose2> poses(n);
+std::vector<Pose2> straight_odometry(std::size_t n) {
+  std::vector<Pose2> poses(n);
   for (std::size_t k = 0; k < n; ++k) poses[k] = {0.5 * static_cast<double>(k % 90), 0.0, 0.0};
   return poses;
 }
@@ -60,7 +60,7 @@ TEST(MapFromScores, EqualsBuildMapOnTheSameScores) {
       for (const bool with_odometry : {false, true}) {
         MapConfig config;
         config.engine = engine;
-        const auto odometry = with_odometry ? straight_odometry(n) : std::vector<metric::Pose2>{};
+        const auto odometry = with_odometry ? straight_odometry(n) : std::vector<Pose2>{};
         const MapResult dense = build_map(s, config, odometry);
         const SimilarityMatrix scores = alignment_scores({s}, config);
         ASSERT_EQ(dense.scores.values, scores.values);

@@ -12,8 +12,8 @@ namespace {
 
 // A 20 m corridor walked east and back west at 0.5 m per image (81 images, 0..40 out, 40..80 back),
 // with odometry that drifts sideways by 2 cm per metre.
-std::vector<metric::Pose2> out_and_back() {
-  std::vector<metric::Pose2> poses;
+std::vector<Pose2> out_and_back() {
+  std::vector<Pose2> poses;
   for (int k = 0; k <= 80; ++k) {
     const double along = k <= 40 ? 0.5 * k : 0.5 * (80 - k);
     poses.push_back({along, 0.02 * 0.5 * k, k <= 40 ? 0.0 : 3.14159});

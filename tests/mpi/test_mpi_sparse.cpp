@@ -51,7 +51,7 @@ MpiRun mpirun(int ranks, const std::string& args, const fs::path& dir, const std
 }
 
 TEST(SeqtopoMpi, TwoRanksWriteTheAlignmentsOfOneProcess) {
-  testing::TempDir dir;
+  test_support::TempDir dir;
   const std::size_t n = 4000, dim = 64;
   auto route = scale::synthetic_route(n, dim, 7);
   const fs::path descriptors = dir.path / "descriptors.npy";
@@ -93,7 +93,7 @@ TEST(SeqtopoMpi, TwoRanksWriteTheAlignmentsOfOneProcess) {
 }
 
 TEST(SeqtopoMpi, BadInputFailsOnEveryRankWithOneLine) {
-  testing::TempDir dir;
+  test_support::TempDir dir;
   const fs::path bad = dir.path / "bad.npy";
   std::ofstream(bad) << "not a numpy file";
   const fs::path out = dir.path / "alignments.json";

@@ -81,11 +81,11 @@ TEST(Distance, SparseL1SadCosineMatchDenseReference) {
     const auto a = random_histogram(rng, bins, (rng() % 100) / 100.0);
     const auto b = random_histogram(rng, bins, (rng() % 100) / 100.0);
     const auto sa = SparseHistogram::from_dense(a), sb = SparseHistogram::from_dense(b);
-    EXPECT_NEAR(distance(Metric::l1, sa, sb), reference_l1(a, b), 1e-6);
-    EXPECT_NEAR(distance(Metric::l1, a, b), reference_l1(a, b), 1e-6);
-    EXPECT_NEAR(distance(Metric::sad, sa, sb), reference_l1(a, b) / static_cast<double>(bins), 1e-6);
-    EXPECT_NEAR(distance(Metric::cosine, sa, sb), reference_cosine(a, b), 1e-6);
-    EXPECT_NEAR(distance(Metric::cosine, a, b), reference_cosine(a, b), 1e-6);
+    EXPECT_NEAR(distance(Distance::l1, sa, sb), reference_l1(a, b), 1e-6);
+    EXPECT_NEAR(distance(Distance::l1, a, b), reference_l1(a, b), 1e-6);
+    EXPECT_NEAR(distance(Distance::sad, sa, sb), reference_l1(a, b) / static_cast<double>(bins), 1e-6);
+    EXPECT_NEAR(distance(Distance::cosine, sa, sb), reference_cosine(a, b), 1e-6);
+    EXPECT_NEAR(distance(Distance::cosine, a, b), reference_cosine(a, b), 1e-6);
   }
 }
 
@@ -94,9 +94,9 @@ TEST(Distance, ZeroSelfDistanceExactly) {
   for (int trial = 0; trial < 100; ++trial) {
     const auto a = random_histogram(rng, 1 + rng() % 500, 0.3);
     const auto sa = SparseHistogram::from_dense(a);
-    for (Metric m : {Metric::chi2, Metric::l1, Metric::cosine, Metric::sad}) {
-      EXPECT_EQ(distance(m, sa, sa), 0.0) << metric_name(m);
-      EXPECT_EQ(distance(m, std::span<const float>(a), std::span<const float>(a)), 0.0) << metric_name(m);
+    for (Distance m : {Distance::chi2, Distance::l1, Distance::cosine, Distance::sad}) {
+      EXPECT_EQ(distance(m, sa, sa), 0.0) << distance_name(m);
+      EXPECT_EQ(distance(m, std::span<const float>(a), std::span<const float>(a)), 0.0) << distance_name(m);
     }
   }
 }
@@ -107,10 +107,10 @@ TEST(Distance, SymmetricAndNonNegative) {
     const std::size_t bins = 1 + rng() % 200;
     const auto a = random_histogram(rng, bins, 0.4), b = random_histogram(rng, bins, 0.2);
     const auto sa = SparseHistogram::from_dense(a), sb = SparseHistogram::from_dense(b);
-    for (Metric m : {Metric::chi2, Metric::l1, Metric::cosine, Metric::sad}) {
+    for (Distance m : {Distance::chi2, Distance::l1, Distance::cosine, Distance::sad}) {
       const double ab = distance(m, sa, sb), ba = distance(m, sb, sa);
       EXPECT_GE(ab, 0.0);
-      EXPECT_NEAR(ab, ba, 1e-6 * (1 + ab)) << metric_name(m);
+      EXPECT_NEAR(ab, ba, 1e-6 * (1 + ab)) << distance_name(m);
     }
   }
 }
@@ -130,13 +130,13 @@ TEST(Distance, DenseCosineOfSignedVectors) {
 
 TEST(Distance, MisuseThrows) {
   const std::vector<float> a{1, 2}, b{1, 2, 3};
-  EXPECT_THROW(distance(Metric::l1, a, b), std::invalid_argument);
+  EXPECT_THROW(distance(Distance::l1, a, b), std::invalid_argument);
   SparseHistogram x = SparseHistogram::from_dense(std::vector<float>{1, 0});
   SparseHistogram y = SparseHistogram::from_dense(std::vector<float>{1, 0, 0});
   EXPECT_THROW(chi2_distance(x, y), std::invalid_argument);
   EXPECT_THROW(SparseHistogram::from_dense(std::vector<float>{1, -1}), std::invalid_argument);
-  EXPECT_THROW(parse_metric("euclid"), std::invalid_argument);
-  EXPECT_EQ(parse_metric("sad"), Metric::sad);
+  EXPECT_THROW(parse_distance("euclid"), std::invalid_argument);
+  EXPECT_EQ(parse_distance("sad"), Distance::sad);
 }
 
 TEST(SparseHistogram, RoundTripAndValidation) {

@@ -34,7 +34,7 @@ DenseMatrix<float> random_rows(std::mt19937& rng, std::size_t n, std::size_t d, 
 TEST(DistanceMatrix, SparseCellsEqualPairwiseFunction) {
   std::mt19937 rng(21);
   const auto set = DescriptorSet::from_sparse(random_histograms(rng, 37, 300));
-  for (Metric m : {Metric::chi2, Metric::l1, Metric::cosine, Metric::sad}) {
+  for (Distance m : {Distance::chi2, Distance::l1, Distance::cosine, Distance::sad}) {
     const auto d = distance_matrix(set, m, {.threads = 2, .tile = 8, .progress = {}});
     ASSERT_EQ(d.rows, 37U);
     for (std::size_t i = 0; i < d.rows; ++i) {
@@ -51,7 +51,7 @@ TEST(DistanceMatrix, DenseRectangularCellsEqualPairwiseFunction) {
   std::mt19937 rng(22);
   const auto a = DescriptorSet::from_dense(random_rows(rng, 19, 33, true));
   const auto b = DescriptorSet::from_dense(random_rows(rng, 26, 33, true));
-  for (Metric m : {Metric::chi2, Metric::l1, Metric::cosine, Metric::sad}) {
+  for (Distance m : {Distance::chi2, Distance::l1, Distance::cosine, Distance::sad}) {
     const auto d = distance_matrix(a, b, m, {.threads = 3, .tile = 5, .progress = {}});
     ASSERT_EQ(d.rows, 19U);
     ASSERT_EQ(d.cols, 26U);
@@ -67,12 +67,14 @@ TEST(DistanceMatrix, BitIdenticalForAnyThreadCountAndTile) {
   std::mt19937 rng(23);
   const auto sparse = DescriptorSet::from_sparse(random_histograms(rng, 150, 500));
   const auto dense = DescriptorSet::from_dense(random_rows(rng, 90, 64, false));
-  const auto ref_sparse = distance_matrix(sparse, Metric::chi2, {.threads = 1, .tile = 64, .progress = {}});
-  const auto ref_dense = distance_matrix(dense, Metric::cosine, {.threads = 1, .tile = 64, .progress = {}});
+  const auto ref_sparse = distance_matrix(sparse, Distance::chi2, {.threads = 1, .tile = 64, .progress = {}});
+  const auto ref_dense = distance_matrix(dense, Distance::cosine, {.threads = 1, .tile = 64, .progress = {}});
   for (unsigned threads : {2U, 3U, 8U}) {
     for (std::size_t tile : {1U, 7U, 32U, 1000U}) {
-      EXPECT_EQ(distance_matrix(sparse, Metric::chi2, {.threads = threads, .tile = tile, .progress = {}}), ref_sparse);
-      EXPECT_EQ(distance_matrix(dense, Metric::cosine, {.threads = threads, .tile = tile, .progress = {}}), ref_dense);
+      EXPECT_EQ(distance_matrix(sparse, Distance::chi2, {.threads = threads, .tile = tile, .progress = {}}),
+                ref_sparse);
+      EXPECT_EQ(distance_matrix(dense, Distance::cosine, {.threads = threads, .tile = tile, .progress = {}}),
+                ref_dense);
     }
   }
 }
@@ -80,8 +82,8 @@ TEST(DistanceMatrix, BitIdenticalForAnyThreadCountAndTile) {
 TEST(DistanceMatrix, RectangularOfASetWithItselfAgreesWithSymmetric) {
   std::mt19937 rng(24);
   const auto set = DescriptorSet::from_sparse(random_histograms(rng, 40, 200));
-  const auto sym = distance_matrix(set, Metric::chi2);
-  const auto full = distance_matrix(set, set, Metric::chi2);
+  const auto sym = distance_matrix(set, Distance::chi2);
+  const auto full = distance_matrix(set, set, Distance::chi2);
   for (std::size_t i = 0; i < sym.rows; ++i) {
     EXPECT_EQ(full(i, i), 0.0F);
     for (std::size_t j = 0; j < sym.cols; ++j) EXPECT_NEAR(full(i, j), sym(i, j), 1e-6F * (1.0F + sym(i, j)));
@@ -98,7 +100,7 @@ TEST(DistanceMatrix, ProgressReachesTotal) {
                         total = all;
                         ++calls;
                       }};
-  distance_matrix(set, Metric::l1, config);
+  distance_matrix(set, Distance::l1, config);
   EXPECT_EQ(total, 50U * 49U / 2U);
   EXPECT_EQ(last, total);
   EXPECT_GT(calls, 1U);
@@ -107,13 +109,13 @@ TEST(DistanceMatrix, ProgressReachesTotal) {
 TEST(DistanceMatrix, MisuseThrows) {
   std::mt19937 rng(26);
   const auto signed_rows = DescriptorSet::from_dense(random_rows(rng, 4, 3, false));
-  EXPECT_THROW(distance_matrix(signed_rows, Metric::chi2), std::invalid_argument);
+  EXPECT_THROW(distance_matrix(signed_rows, Distance::chi2), std::invalid_argument);
   const auto other = DescriptorSet::from_dense(random_rows(rng, 4, 5, true));
-  EXPECT_THROW(distance_matrix(signed_rows, other, Metric::l1), std::invalid_argument);
+  EXPECT_THROW(distance_matrix(signed_rows, other, Distance::l1), std::invalid_argument);
   const auto sparse = DescriptorSet::from_sparse(random_histograms(rng, 3, 10));
-  EXPECT_THROW(distance_matrix(sparse, other, Metric::l1), std::invalid_argument);
-  EXPECT_THROW(distance_matrix(sparse, Metric::l1, {.threads = 1, .tile = 0, .progress = {}}), std::invalid_argument);
-  EXPECT_EQ(distance_matrix(DescriptorSet{}, Metric::l1).rows, 0U);
+  EXPECT_THROW(distance_matrix(sparse, other, Distance::l1), std::invalid_argument);
+  EXPECT_THROW(distance_matrix(sparse, Distance::l1, {.threads = 1, .tile = 0, .progress = {}}), std::invalid_argument);
+  EXPECT_EQ(distance_matrix(DescriptorSet{}, Distance::l1).rows, 0U);
 }
 
 TEST(Memory, EstimateAndRefusal) {

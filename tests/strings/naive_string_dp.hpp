@@ -11,7 +11,7 @@
 
 #include "seqtopo/strings/costs.hpp"
 
-namespace seqtopo::testing {
+namespace seqtopo::test_support {
 
 // Full-table weighted global alignment, lexicographic (cost, differences), optionally restricted to the
 // diagonals lo <= j - i <= hi. Returns {cost, differences}; cost = +inf when (n, m) is unreachable.
@@ -133,4 +133,4 @@ inline std::string mutate(std::mt19937& rng, std::string_view s, double rate, in
   return out;
 }
 
-}  // namespace seqtopo::testing
+}  // namespace seqtopo::test_support

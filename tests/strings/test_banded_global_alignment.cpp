@@ -10,8 +10,8 @@
 namespace seqtopo::strings {
 namespace {
 
-using testing::naive_global;
-using testing::random_fingerprint;
+using test_support::naive_global;
+using test_support::random_fingerprint;
 
 // The diagonals an alignment with <= k differences can use, found by testing every diagonal.
 std::pair<std::int64_t, std::int64_t> band_by_scan(std::size_t n, std::size_t m, std::size_t k) {
@@ -92,7 +92,7 @@ TEST(BandedGlobalAlignment, MatchesFullTableOnRandomStrings) {
   for (int trial = 0; trial < 3000; ++trial) {
     const std::string p = random_fingerprint(rng, 0, 30);
     const std::string t =
-        std::bernoulli_distribution(0.5)(rng) ? testing::mutate(rng, p, 0.3) : random_fingerprint(rng, 0, 30);
+        std::bernoulli_distribution(0.5)(rng) ? test_support::mutate(rng, p, 0.3) : random_fingerprint(rng, 0, 30);
     GlobalAlignmentConfig config;
     config.costs = tables[static_cast<std::size_t>(trial) % tables.size()];
     config.want_path = true;
@@ -125,8 +125,8 @@ TEST(BandedGlobalAlignment, UnitCostsAgreeWithEdlibGlobalMode) {
   std::mt19937 rng(77);
   for (int trial = 0; trial < 3000; ++trial) {
     const std::string p = random_fingerprint(rng, 1, 60, 15);
-    const std::string t =
-        std::bernoulli_distribution(0.6)(rng) ? testing::mutate(rng, p, 0.25, 15) : random_fingerprint(rng, 1, 60, 15);
+    const std::string t = std::bernoulli_distribution(0.6)(rng) ? test_support::mutate(rng, p, 0.25, 15)
+                                                                : random_fingerprint(rng, 1, 60, 15);
     if (t.empty()) continue;
     const int k = std::uniform_int_distribution<int>(0, 30)(rng);
     const EdlibAlignResult ref = edlibAlign(p.data(), static_cast<int>(p.size()), t.data(), static_cast<int>(t.size()),
@@ -141,7 +141,7 @@ TEST(BandedGlobalAlignment, UnitCostsAgreeWithEdlibGlobalMode) {
       EXPECT_EQ(got.differences, static_cast<std::size_t>(ref.editDistance));
     }
     // With no limit the result is the plain edit distance.
-    EXPECT_EQ(banded_global_alignment(p, t).cost, static_cast<double>(testing::naive_edit_distance(p, t)));
+    EXPECT_EQ(banded_global_alignment(p, t).cost, static_cast<double>(test_support::naive_edit_distance(p, t)));
     edlibFreeAlignResult(ref);
   }
 }

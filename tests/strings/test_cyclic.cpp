@@ -7,7 +7,7 @@
 namespace seqtopo::strings {
 namespace {
 
-using testing::random_fingerprint;
+using test_support::random_fingerprint;
 
 TEST(Cyclic, Rotate) {
   EXPECT_EQ(rotate("abcde", 2), "cdeab");
@@ -37,7 +37,7 @@ TEST(Cyclic, AlgorithmAEqualsEveryRotation) {
   for (int trial = 0; trial < 600; ++trial) {
     const std::string t = random_fingerprint(rng, 1, 24, 5);
     const std::string p =
-        testing::mutate(rng, rotate(t, std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng)), 0.3, 5);
+        test_support::mutate(rng, rotate(t, std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng)), 0.3, 5);
     GlobalAlignmentConfig config;
     config.costs = tables[static_cast<std::size_t>(trial) % tables.size()];
     if (trial % 2) config.k = std::uniform_int_distribution<std::size_t>(0, 10)(rng);
@@ -67,7 +67,7 @@ TEST(Cyclic, AlgorithmBEqualsEveryRotation) {
     const std::size_t k = std::uniform_int_distribution<std::size_t>(0, 5)(rng);
     const std::size_t len = std::uniform_int_distribution<std::size_t>(0, t.size() - std::min(t.size(), k))(rng);
     const std::size_t start = std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng);
-    std::string p = testing::mutate(rng, rotate(t, start).substr(0, len), 0.3, 4);
+    std::string p = test_support::mutate(rng, rotate(t, start).substr(0, len), 0.3, 4);
     if (p.size() + k > t.size())
       p.resize(t.size() > k ? t.size() - k : 0);  // the doubled text covers every occurrence then
     const auto got = cyclic_k_differences(p, t, {k});
@@ -96,13 +96,14 @@ TEST(Cyclic, AlgorithmCEqualsEveryRotation) {
   for (int trial = 0; trial < 800; ++trial) {
     const std::string t = random_fingerprint(rng, 0, 30, trial % 2 ? 2 : 8);
     const std::string p =
-        t.empty() ? random_fingerprint(rng, 0, 5)
-                  : testing::mutate(rng, rotate(t, std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng)),
-                                    0.4, trial % 2 ? 2 : 8);
+        t.empty()
+            ? random_fingerprint(rng, 0, 5)
+            : test_support::mutate(rng, rotate(t, std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng)),
+                                   0.4, trial % 2 ? 2 : 8);
     const auto got = cyclic_lcs_by_lis(p, t);
     std::size_t want = 0, want_r = 0;
     for (std::size_t r = 0; r < std::max<std::size_t>(t.size(), 1); ++r) {
-      const std::size_t len = testing::naive_lcs(p, rotate(t, r));
+      const std::size_t len = test_support::naive_lcs(p, rotate(t, r));
       if (len > want) want = len, want_r = r;
     }
     ASSERT_EQ(got.lcs.length, want) << p << " / " << t;

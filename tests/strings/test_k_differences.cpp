@@ -8,7 +8,7 @@
 namespace seqtopo::strings {
 namespace {
 
-using testing::random_fingerprint;
+using test_support::random_fingerprint;
 
 TEST(KDifferences, WorkedExample) {
   const auto r = k_differences("vAB", "CCvABvAAB", {1});
@@ -35,13 +35,13 @@ TEST(KDifferences, MatchesInfixDynamicProgramming) {
     if (!t.empty() && std::bernoulli_distribution(0.6)(rng)) {
       const std::size_t a = std::uniform_int_distribution<std::size_t>(0, t.size() - 1)(rng);
       const std::size_t len = std::uniform_int_distribution<std::size_t>(0, t.size() - a)(rng);
-      p = testing::mutate(rng, t.substr(a, len), 0.3, trial % 2 ? 3 : 8);
+      p = test_support::mutate(rng, t.substr(a, len), 0.3, trial % 2 ? 3 : 8);
     } else {
       p = random_fingerprint(rng, 0, 20, trial % 2 ? 3 : 8);
     }
     const std::size_t k = std::uniform_int_distribution<std::size_t>(0, 12)(rng);
     const auto got = k_differences(p, t, {k});
-    const auto table = testing::naive_infix(p, t);
+    const auto table = test_support::naive_infix(p, t);
     std::vector<Occurrence> want;
     for (std::size_t j = 0; j < table.size(); ++j) {
       if (table[j] <= k) want.push_back({j, table[j]});
@@ -61,7 +61,7 @@ TEST(KDifferences, AgreesWithEdlibInfixMode) {
   std::mt19937 rng(99);
   for (int trial = 0; trial < 3000; ++trial) {
     const std::string t = random_fingerprint(rng, 1, 80, 15);
-    const std::string p = testing::mutate(rng, t.substr(t.size() / 3, 1 + t.size() / 3), 0.3, 15);
+    const std::string p = test_support::mutate(rng, t.substr(t.size() / 3, 1 + t.size() / 3), 0.3, 15);
     if (p.empty()) continue;
     const int k = std::uniform_int_distribution<int>(0, 15)(rng);
     const EdlibAlignResult ref = edlibAlign(p.data(), static_cast<int>(p.size()), t.data(), static_cast<int>(t.size()),

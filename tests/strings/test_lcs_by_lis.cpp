@@ -46,12 +46,12 @@ TEST(LcsByLis, MatchesDynamicProgrammingAndIndelDistance) {
   std::mt19937 rng(31337);
   for (int trial = 0; trial < 3000; ++trial) {
     const int colours = trial % 3 == 0 ? 1 : 15;
-    const std::string p = testing::random_fingerprint(rng, 0, 50, colours);
-    const std::string t = std::bernoulli_distribution(0.5)(rng) ? testing::mutate(rng, p, 0.3, colours)
-                                                                : testing::random_fingerprint(rng, 0, 50, colours);
+    const std::string p = test_support::random_fingerprint(rng, 0, 50, colours);
+    const std::string t = std::bernoulli_distribution(0.5)(rng) ? test_support::mutate(rng, p, 0.3, colours)
+                                                                : test_support::random_fingerprint(rng, 0, 50, colours);
     const auto c = lcs_by_lis(p, t);
-    ASSERT_EQ(c.length, testing::naive_lcs(p, t)) << p << " / " << t;
-    const std::size_t indel = testing::naive_indel_distance(p, t);
+    ASSERT_EQ(c.length, test_support::naive_lcs(p, t)) << p << " / " << t;
+    const std::size_t indel = test_support::naive_indel_distance(p, t);
     ASSERT_EQ(c.length, (p.size() + t.size() - indel) / 2);
     EXPECT_EQ(c.indel_distance(p.size(), t.size()), indel);
     expect_common_subsequence(p, t, c);

@@ -27,8 +27,8 @@ TEST(SuffixArray, SortsSuffixes) {
 TEST(LongestCommonExtension, MatchesDirectComparison) {
   std::mt19937 rng(6);
   for (int trial = 0; trial < 400; ++trial) {
-    const std::string a = testing::random_fingerprint(rng, 0, 40, trial % 2 ? 1 : 4);
-    const std::string b = trial % 4 == 0 ? a + a : testing::random_fingerprint(rng, 0, 40, trial % 2 ? 1 : 4);
+    const std::string a = test_support::random_fingerprint(rng, 0, 40, trial % 2 ? 1 : 4);
+    const std::string b = trial % 4 == 0 ? a + a : test_support::random_fingerprint(rng, 0, 40, trial % 2 ? 1 : 4);
     const LongestCommonExtension lce(a, b);
     for (std::size_t i = 0; i <= a.size(); ++i) {
       for (std::size_t j = 0; j <= b.size(); ++j) {

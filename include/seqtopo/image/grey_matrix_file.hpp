@@ -7,7 +7,7 @@
 
 namespace seqtopo::image {
 
-// Colour images are converted to grey. Throws io::InputError naming the file if it cannot be read.
+// Colour images are converted to grey. Throws InputError naming the file if it cannot be read.
 DenseMatrix<std::uint8_t> read_grey_matrix_image(const std::filesystem::path& path);
 
 }  // namespace seqtopo::image

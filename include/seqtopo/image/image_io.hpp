@@ -9,15 +9,15 @@
 
 namespace seqtopo::image {
 
-// Decodes one image file (colour or grey, 8 or 16 bit) to 8-bit RGB. Throws io::InputError naming the file
+// Decodes one image file (colour or grey, 8 or 16 bit) to 8-bit RGB. Throws InputError naming the file
 // when it is missing, unreadable, corrupt or not an image.
 RgbImage load_image(const std::filesystem::path& path);
 
-// Frames the container announces (may be approximate or missing for some formats); throws io::InputError
+// Frames the container announces (may be approximate or missing for some formats); throws InputError
 // naming the file when it cannot be opened as a video.
 std::optional<std::size_t> video_frame_count(const std::filesystem::path& path);
 
-// Calls `visit(frame_index, image)` for frames 0, every, 2 * every, ... in order. Throws io::InputError
+// Calls `visit(frame_index, image)` for frames 0, every, 2 * every, ... in order. Throws InputError
 // naming the file when it cannot be opened or yields no frame, std::invalid_argument when every == 0.
 void for_each_video_frame(const std::filesystem::path& path, std::size_t every,
                           const std::function<void(std::size_t, const RgbImage&)>& visit);

@@ -9,7 +9,7 @@
 // band and channel (luma and two colour opponents) is normalised to mean 0 and standard deviation 1 around
 // the circle (removing the gain and tint of the lighting), and only the magnitudes of its discrete Fourier
 // transform along the circle are kept, harmonics 1..harmonics: a circular shift changes only the phases.
-// Compare signatures with Metric::l1 or sad.
+// Compare signatures with Distance::l1 or sad.
 #include <vector>
 
 #include "seqtopo/core/rgb_image.hpp"

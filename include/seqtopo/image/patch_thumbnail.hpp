@@ -3,7 +3,7 @@
 // sequence-based place recognition: the intensity image is reduced to a small thumbnail (area averaging),
 // then every patch of patch x patch pixels is normalised to mean 0 and standard deviation 1, which removes
 // most of the change in brightness and contrast between visits. Two thumbnails are compared by the mean
-// absolute difference of their pixels (Metric::sad).
+// absolute difference of their pixels (Distance::sad).
 #include <vector>
 
 #include "seqtopo/core/rgb_image.hpp"

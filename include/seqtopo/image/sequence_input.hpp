@@ -22,7 +22,7 @@ struct SequenceInput {
 
 // The kind `automatic` stands for: a folder holds images; a .npy file whose name contains "similarity" is a
 // similarity matrix, any other .npy holds descriptors; any other file is read as a video. Throws
-// io::InputError naming the path when it does not exist.
+// InputError naming the path when it does not exist.
 InputKind resolve_input_kind(const SequenceInput& input);
 
 // Natural order of file names: runs of digits compare by value ("2.jpg" < "10.jpg"), other characters
@@ -31,7 +31,7 @@ bool natural_less(std::string_view a, std::string_view b);
 
 // The image files of a folder (by extension: png, jpg, jpeg, bmp, tif, tiff, webp, pgm, ppm, pnm, jp2),
 // in natural order. Hidden files and files whose name starts with "ground_truth" are skipped: a
-// ground-truth matrix often sits beside the images and is not part of the sequence. Throws io::InputError
+// ground-truth matrix often sits beside the images and is not part of the sequence. Throws InputError
 // naming the folder when it cannot be read or holds no image.
 std::vector<std::filesystem::path> list_images(const std::filesystem::path& folder);
 

@@ -24,17 +24,17 @@ namespace seqtopo::image {
 
 // npy = rows of descriptors.npy; panorama = heading-invariant signature of 360-degree images
 enum class Descriptor { joint_histogram, patch, panorama, npy };
-using Metric = similarity::Metric;
+using Distance = similarity::Distance;
 
 // "joint-histogram", "patch", "panorama", "npy"; throws std::invalid_argument otherwise.
 Descriptor parse_descriptor(std::string_view name);
 std::string_view descriptor_name(Descriptor descriptor);
 // chi2 for histograms, sad for thumbnails and panorama signatures, cosine for external descriptors.
-Metric default_metric(Descriptor descriptor);
+Distance default_distance(Descriptor descriptor);
 
 struct SimilarityConfig {
   Descriptor descriptor = Descriptor::joint_histogram;  // a descriptors.npy input always uses its rows
-  std::optional<Metric> metric;                         // default by descriptor: default_metric()
+  std::optional<Distance> distance;                     // default by descriptor: default_distance()
   std::optional<float> kappa;                           // nullopt = auto (kappa_rule)
   unsigned threads = 0;                                 // 0 = all cores
   JointHistogramConfig joint_histogram;
@@ -55,14 +55,14 @@ struct SimilarityResult {
   float kappa = 0;              // the kappa used (NaN when the input was a similarity matrix)
   bool kappa_auto = false;
   double kappa_fraction = 0;              // kappa auto: the fraction p of candidate pairs given S > 0
-  std::optional<Metric> metric;           // nullopt when the input was a similarity matrix
+  std::optional<Distance> distance;       // nullopt when the input was a similarity matrix
   std::vector<std::string> frame_names;   // file names / "frame 17" / "row 17", one per row
   std::vector<std::string> column_names;  // one per column
   double seconds_descriptors = 0, seconds_matrix = 0;
 };
 
-// N x N of one sequence (symmetric). Bad input throws io::InputError naming the file, misuse
-// std::invalid_argument; a matrix that would not fit in memory is refused with io::InputError.
+// N x N of one sequence (symmetric). Bad input throws InputError naming the file, misuse
+// std::invalid_argument; a matrix that would not fit in memory is refused with InputError.
 SimilarityResult compute_similarity(const SequenceInput& input, const SimilarityConfig& config = {});
 // N x M between two sequences: rows = a, cols = b. For InputKind::similarity on `a`, `b` is ignored and the
 // N x M matrix is returned as is.
@@ -72,7 +72,7 @@ SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput&
 // The per-image vectors of one sequence, without any N x N matrix (for scores streamed from them,
 // scale/streaming_similarity.hpp): the rows of a descriptors.npy, or the patch / panorama descriptor of
 // every image or frame. A joint histogram has no vector form and a similarity.npy no descriptors: both
-// throw io::InputError naming the input, as bad input does; misuse throws std::invalid_argument.
+// throw InputError naming the input, as bad input does; misuse throws std::invalid_argument.
 struct DescriptorResult {
   DenseMatrix<float> descriptors;           // N x dim, one row per image
   Descriptor descriptor = Descriptor::npy;  // the one used (npy for a descriptors.npy input)

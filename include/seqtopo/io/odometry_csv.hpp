@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "seqtopo/metric/pose2.hpp"
+#include "seqtopo/core/pose2.hpp"
 
 namespace seqtopo::io {
 
@@ -14,10 +14,10 @@ namespace seqtopo::io {
 // Rows must have indices 0..N-1 in order. Blank lines and spaces around fields are ignored.
 // Throws InputError naming file:line on a bad header, a non-numeric or non-finite field, a wrong field
 // count or an index out of order, and naming the file when it cannot be opened or has no rows.
-std::vector<metric::Pose2> read_odometry_csv(const std::filesystem::path& path);
+std::vector<Pose2> read_odometry_csv(const std::filesystem::path& path);
 
 // Ground-truth poses: header `index,x,y` or `index,x,y,theta` [m, m, rad]; theta is 0 when absent.
 // Same rules and errors as read_odometry_csv.
-std::vector<metric::Pose2> read_poses_csv(const std::filesystem::path& path);
+std::vector<Pose2> read_poses_csv(const std::filesystem::path& path);
 
 }  // namespace seqtopo::io

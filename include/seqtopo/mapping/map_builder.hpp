@@ -57,20 +57,20 @@ struct MapResult {
 // Throws std::invalid_argument for a non-square or empty matrix, or odometry of another length.
 // `odometry` (one pose per image, or empty) feeds config.odometry_gate.
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config = {},
-                    std::span<const metric::Pose2> odometry = {});
+                    std::span<const Pose2> odometry = {});
 
 // Several sensors or descriptors of the same sequence, fused: each matrix is contrast-enhanced on its
 // own (so their scales need not agree) and the enhanced scores are averaged before the offset is
 // applied; without contrast enhancement the raw matrices are averaged. All must be N x N.
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config = {},
-                    std::span<const metric::Pose2> odometry = {});
+                    std::span<const Pose2> odometry = {});
 
 // The pipeline after the scores: `scores` is what is aligned as it is (contrast_window and contrast_offset
 // are not applied again). Throws std::invalid_argument for an empty or non-square source, or odometry of
 // another length. The exact engine fills an N x N table whatever the source; a source that is not held
 // in memory wants Engine::fast (1/8 byte per cell, docs/engine.md). seconds_align includes the reads of `scores`.
 MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config = {},
-                                std::span<const metric::Pose2> odometry = {});
+                                std::span<const Pose2> odometry = {});
 
 // The engine settings build_map aligns with: the config's gap, cap, threshold and min_separation, self.
 align::AlignConfig align_config(const MapConfig& config);

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
-#include "seqtopo/metric/pose2.hpp"
+#include "seqtopo/core/pose2.hpp"
 
 namespace seqtopo::mapping {
 
@@ -26,6 +26,6 @@ struct OdometryGate {
 // One flag per alignment: true = consistent with the odometry. Throws std::invalid_argument when a pair
 // indexes past the odometry or a setting is negative / NaN (min_consistent must be in [0, 1]).
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
-                                           std::span<const metric::Pose2> odometry, const OdometryGate& gate = {});
+                                           std::span<const Pose2> odometry, const OdometryGate& gate = {});
 
 }  // namespace seqtopo::mapping

@@ -8,7 +8,7 @@
 namespace seqtopo::plot {
 
 std::string encode_png(const RgbImage& image);
-// Atomic write (temp file + rename); throws io::InputError naming the path.
+// Atomic write (temp file + rename); throws InputError naming the path.
 void write_png(const std::filesystem::path& path, const RgbImage& image);
 
 }  // namespace seqtopo::plot

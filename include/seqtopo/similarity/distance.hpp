@@ -9,26 +9,26 @@
 
 namespace seqtopo::similarity {
 
-enum class Metric {
+enum class Distance {
   chi2,    // paper eq. (1): sum_k (a_k - b_k)^2 / (a_k + b_k), bins with a_k + b_k = 0 skipped. Needs a, b >= 0.
   l1,      // sum_k |a_k - b_k|
   cosine,  // 1 - a.b / (|a| |b|); 0 when both are zero vectors, 1 when only one is
   sad,     // SeqSLAM's sum of absolute differences, divided by the length so it is a per-element mean
 };
 
-std::string_view metric_name(Metric metric);
+std::string_view distance_name(Distance metric);
 // "chi2", "l1", "cosine", "sad"; throws std::invalid_argument otherwise.
-Metric parse_metric(std::string_view name);
+Distance parse_distance(std::string_view name);
 
 double chi2_distance(std::span<const float> a, std::span<const float> b);
 double l1_distance(std::span<const float> a, std::span<const float> b);
 double cosine_distance(std::span<const float> a, std::span<const float> b);
 double sad_distance(std::span<const float> a, std::span<const float> b);
 // One entry point for the dense form; throws std::invalid_argument when the lengths differ.
-double distance(Metric metric, std::span<const float> a, std::span<const float> b);
+double distance(Distance metric, std::span<const float> a, std::span<const float> b);
 
 // Sparse forms: only the stored bins are visited (the dimensions must agree).
 double chi2_distance(const SparseHistogram& a, const SparseHistogram& b);
-double distance(Metric metric, const SparseHistogram& a, const SparseHistogram& b);
+double distance(Distance metric, const SparseHistogram& a, const SparseHistogram& b);
 
 }  // namespace seqtopo::similarity

@@ -38,9 +38,9 @@ struct MatrixConfig {
 
 // N x N distances of one sequence. Throws std::invalid_argument when the metric does not apply (chi2 on
 // negative values) and MemoryError when the matrix would not fit in memory.
-DenseMatrix<float> distance_matrix(const DescriptorSet& items, Metric metric, const MatrixConfig& config = {});
+DenseMatrix<float> distance_matrix(const DescriptorSet& items, Distance metric, const MatrixConfig& config = {});
 // N x M distances: rows = a, columns = b. Both sets must be of the same kind and dimension.
-DenseMatrix<float> distance_matrix(const DescriptorSet& a, const DescriptorSet& b, Metric metric,
+DenseMatrix<float> distance_matrix(const DescriptorSet& a, const DescriptorSet& b, Distance metric,
                                    const MatrixConfig& config = {});
 
 }  // namespace seqtopo::similarity
