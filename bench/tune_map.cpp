@@ -19,9 +19,9 @@
 
 #include "seqtopo/baseline/seqslam.hpp"
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
+#include "seqtopo/formats/odometry_csv.hpp"
 #include "seqtopo/image/grey_matrix_file.hpp"
 #include "seqtopo/io/npy.hpp"
-#include "seqtopo/io/odometry_csv.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 
 using namespace seqtopo;
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   evaluation::SamePlace same_place;
   const std::string gt = argv[next++];
   if (gt.size() > 4 && gt.substr(gt.size() - 4) == ".csv") {
-    const auto poses = io::read_poses_csv(gt);
+    const auto poses = formats::read_poses_csv(gt);
     const double r = std::stod(argv[next++]);
     same_place = [poses, r](std::size_t i, std::size_t j) {
       return std::hypot(poses[i].x - poses[j].x, poses[i].y - poses[j].y) <= r;

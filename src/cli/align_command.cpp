@@ -7,7 +7,7 @@
 #include "command_registry.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/core/input_error.hpp"
-#include "seqtopo/io/alignment_json.hpp"
+#include "seqtopo/formats/alignment_json.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/fasta.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -66,7 +66,7 @@ void run(const AlignOptions& o) {
         [&a, &b, match, mismatch](std::size_t i, std::size_t j) { return a[i] == b[j] ? match : mismatch; }));
   }
 
-  const std::string text = io::alignments_to_json(alignments).dump(1) + "\n";
+  const std::string text = formats::alignments_to_json(alignments).dump(1) + "\n";
   if (o.json_path == "-") {
     std::cout << text;
   } else {

@@ -16,11 +16,11 @@
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
 #include "seqtopo/evaluation/topology_metrics.hpp"
+#include "seqtopo/formats/odometry_csv.hpp"
+#include "seqtopo/formats/places_csv.hpp"
 #include "seqtopo/image/grey_matrix_file.hpp"
 #include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/npy.hpp"
-#include "seqtopo/io/odometry_csv.hpp"
-#include "seqtopo/io/places_csv.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/plot/matrix_overview.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
@@ -161,7 +161,7 @@ evaluation::SamePlace load_ground_truth(const MapOptions& o, const std::string& 
   if (fs::path(path).extension() == ".csv") {
     if (!o.gt_radius || !(*o.gt_radius > 0))
       throw InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
-    const auto poses = io::read_poses_csv(path);
+    const auto poses = formats::read_poses_csv(path);
     if (poses.size() != images) {
       throw InputError(path, fmt::format("has {} poses, the sequence has {} images", poses.size(), images));
     }
@@ -356,7 +356,7 @@ void run(MapOptions o) {
     }
   }
   if (!o.odometry.empty()) {
-    run.odometry = io::read_odometry_csv(o.odometry);
+    run.odometry = formats::read_odometry_csv(o.odometry);
     if (expected && run.odometry.size() != *expected) {
       throw InputError(o.odometry,
                        fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), *expected));
@@ -441,12 +441,12 @@ void run(MapOptions o) {
     }
   }
   if (!o.gt_places.empty()) {
-    const auto places = io::read_places_csv(o.gt_places);
+    const auto places = formats::read_places_csv(o.gt_places);
     if (places.size() != n)
       throw InputError(o.gt_places, fmt::format("has {} rows, the sequence has {} images", places.size(), n));
     const fs::path junctions_file = fs::path(o.gt_places).parent_path() / "junctions.csv";
     const auto true_junctions =
-        fs::exists(junctions_file) ? io::read_junctions_csv(junctions_file) : std::vector<int>{};
+        fs::exists(junctions_file) ? formats::read_junctions_csv(junctions_file) : std::vector<int>{};
     // Merges of neighbouring true places that the loop-closure ground truth calls the same place are tolerated.
     const evaluation::Tolerated tolerated =
         o.ground_truth.empty() ? evaluation::Tolerated{} : load_ground_truth(o, o.ground_truth, n);
@@ -454,7 +454,7 @@ void run(MapOptions o) {
                                                  true_junctions, settings.map.min_separation, 2, tolerated);
   }
   if (!o.gt_poses.empty() && !run.odometry.empty()) {
-    const auto truth = io::read_poses_csv(o.gt_poses);
+    const auto truth = formats::read_poses_csv(o.gt_poses);
     if (truth.size() != n)
       throw InputError(o.gt_poses, fmt::format("has {} poses, the sequence has {} images", truth.size(), n));
     run.ate = {trajectory::absolute_trajectory_error(run.odometry, truth),

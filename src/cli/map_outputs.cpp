@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "seqtopo/core/input_error.hpp"
-#include "seqtopo/io/alignment_json.hpp"
+#include "seqtopo/formats/alignment_json.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
@@ -132,7 +132,7 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
   for (auto [p, q] : map.edges) edges.push_back({p, q});
   nlohmann::json segments = nlohmann::json::array();
   for (const auto& s : map.segments) segments.push_back(s.places);
-  const nlohmann::json alignments = io::alignments_to_json(result.alignments, &result.pruning.kept)["alignments"];
+  const nlohmann::json alignments = formats::alignments_to_json(result.alignments, &result.pruning.kept)["alignments"];
   const nlohmann::json map_json = {{"images", n},
                                    {"labels", map.labels},
                                    {"places", places},
@@ -143,7 +143,7 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
   out.write("map.json", map_json.dump(1) + "\n");
   out.write("alignments.json",
             nlohmann::json{{"alignments", alignments},
-                           {"rejected_by_odometry", io::alignments_to_json(result.rejected)["alignments"]}}
+                           {"rejected_by_odometry", formats::alignments_to_json(result.rejected)["alignments"]}}
                     .dump(1) +
                 "\n");
 

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "seqtopo/core/input_error.hpp"
-#include "seqtopo/io/alignment_json.hpp"
+#include "seqtopo/formats/alignment_json.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
@@ -280,7 +280,7 @@ int run(const Options& opt, int rank, int ranks) {
     try {
       const auto t_merge = Clock::now();
       const auto result = scale::merge_component_alignments_both(p.scores, config, p.components, std::move(all));
-      io::write_file_atomic(opt.out, io::alignments_to_json(result).dump(1) + "\n");
+      io::write_file_atomic(opt.out, formats::alignments_to_json(result).dump(1) + "\n");
       const double seconds_merge = seconds_since(t_merge);
       std::string components, cells, seconds;
       for (int r = 0; r < ranks; ++r) {

@@ -17,6 +17,11 @@ struct TempDir {
   TempDir(const TempDir&) = delete;
   TempDir& operator=(const TempDir&) = delete;
   void touch(const std::string& name) const { std::ofstream(path / name) << "x"; }
+  // Writes `text` to the file `name` in the folder and returns its path.
+  std::filesystem::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(path / name, std::ios::binary) << text;
+    return path / name;
+  }
 };
 
 }  // namespace seqtopo::test_support

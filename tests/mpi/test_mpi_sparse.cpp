@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/temp_dir.hpp"
-#include "seqtopo/io/alignment_json.hpp"
+#include "seqtopo/formats/alignment_json.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/scale/sparse_alignment.hpp"
@@ -78,7 +78,7 @@ TEST(SeqtopoMpi, TwoRanksWriteTheAlignmentsOfOneProcess) {
   candidates.exclude = map.min_separation;
   const auto scores = scale::sparse_map_scores(similarity, -1.0F, candidates);
   const auto expected = scale::sparse_local_alignments_both(scores, mapping::align_config(map), 2);
-  EXPECT_EQ(two_json, io::alignments_to_json(expected).dump(1) + "\n");
+  EXPECT_EQ(two_json, formats::alignments_to_json(expected).dump(1) + "\n");
   EXPECT_GE(expected.size(), 4U);  // the planted revisits, forward and backward
   bool reverse = false;
   for (const auto& a : expected) reverse = reverse || a.direction == align::Direction::reverse;

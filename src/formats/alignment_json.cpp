@@ -1,8 +1,8 @@
-#include "seqtopo/io/alignment_json.hpp"
+#include "seqtopo/formats/alignment_json.hpp"
 
 #include <stdexcept>
 
-namespace seqtopo::io {
+namespace seqtopo::formats {
 
 nlohmann::json to_json(const align::LocalAlignment& a) {
   nlohmann::json pairs = nlohmann::json::array();
@@ -41,4 +41,4 @@ std::vector<align::LocalAlignment> alignments_from_json(const nlohmann::json& do
   return out;
 }
 
-}  // namespace seqtopo::io
+}  // namespace seqtopo::formats

@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <vector>
 
-namespace seqtopo::io {
+namespace seqtopo::formats {
 
 std::vector<int> read_places_csv(const std::filesystem::path& path);
 std::vector<int> read_junctions_csv(const std::filesystem::path& path);
 
-}  // namespace seqtopo::io
+}  // namespace seqtopo::formats

@@ -6,7 +6,7 @@
 
 #include "seqtopo/core/pose2.hpp"
 
-namespace seqtopo::io {
+namespace seqtopo::formats {
 
 // Header `index,x,y,theta`: the cumulative odometry pose of each image [m, m, rad].
 // Header `index,dx,dy,dtheta`: the motion since the previous row, in the robot frame of the previous pose
@@ -20,4 +20,4 @@ std::vector<Pose2> read_odometry_csv(const std::filesystem::path& path);
 // Same rules and errors as read_odometry_csv.
 std::vector<Pose2> read_poses_csv(const std::filesystem::path& path);
 
-}  // namespace seqtopo::io
+}  // namespace seqtopo::formats

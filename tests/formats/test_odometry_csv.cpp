@@ -7,9 +7,9 @@
 #include <string>
 
 #include "seqtopo/core/input_error.hpp"
-#include "seqtopo/io/odometry_csv.hpp"
+#include "seqtopo/formats/odometry_csv.hpp"
 
-namespace seqtopo::io {
+namespace seqtopo::formats {
 namespace {
 
 namespace fs = std::filesystem;
@@ -153,4 +153,4 @@ TEST_F(OdometryCsv, MessagesSayWhatIsWrong) {
 }
 
 }  // namespace
-}  // namespace seqtopo::io
+}  // namespace seqtopo::formats

@@ -6,7 +6,7 @@
 
 #include "seqtopo/align/local_alignment.hpp"
 
-namespace seqtopo::io {
+namespace seqtopo::formats {
 
 nlohmann::json to_json(const align::LocalAlignment& alignment);
 // `kept`, when given, has one flag per alignment (the pruning verdict of the map pipeline).
@@ -14,4 +14,4 @@ nlohmann::json alignments_to_json(const std::vector<align::LocalAlignment>& alig
                                   const std::vector<bool>* kept = nullptr);
 std::vector<align::LocalAlignment> alignments_from_json(const nlohmann::json& document);
 
-}  // namespace seqtopo::io
+}  // namespace seqtopo::formats

@@ -1,4 +1,4 @@
-#include "seqtopo/io/odometry_csv.hpp"
+#include "seqtopo/formats/odometry_csv.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -9,7 +9,7 @@
 
 #include "seqtopo/core/input_error.hpp"
 
-namespace seqtopo::io {
+namespace seqtopo::formats {
 namespace {
 
 std::string_view trim(std::string_view s) {
@@ -116,4 +116,4 @@ std::vector<Pose2> read_poses_csv(const std::filesystem::path& path) {
   return poses;
 }
 
-}  // namespace seqtopo::io
+}  // namespace seqtopo::formats

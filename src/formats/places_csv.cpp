@@ -1,4 +1,4 @@
-#include "seqtopo/io/places_csv.hpp"
+#include "seqtopo/formats/places_csv.hpp"
 
 #include <charconv>
 #include <string>
@@ -6,10 +6,10 @@
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/csv.hpp"
 
-namespace seqtopo::io {
+namespace seqtopo::formats {
 namespace {
 
-int parse_int(const CsvRow& row, std::size_t field) {
+int parse_int(const io::CsvRow& row, std::size_t field) {
   const std::string& text = row.fields[field];
   int value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -22,7 +22,7 @@ int parse_int(const CsvRow& row, std::size_t field) {
 
 std::vector<int> read_places_csv(const std::filesystem::path& path) {
   std::vector<int> places;
-  for (const auto& row : read_csv(path, {"index", "place"})) {
+  for (const auto& row : io::read_csv(path, {"index", "place"})) {
     const int index = parse_int(row, 0);
     if (index != static_cast<int>(places.size())) {
       throw InputError(row.where, "index " + std::to_string(index) + " out of order (expected " +
@@ -36,8 +36,8 @@ std::vector<int> read_places_csv(const std::filesystem::path& path) {
 
 std::vector<int> read_junctions_csv(const std::filesystem::path& path) {
   std::vector<int> junctions;
-  for (const auto& row : read_csv(path, {"place"})) junctions.push_back(parse_int(row, 0));
+  for (const auto& row : io::read_csv(path, {"place"})) junctions.push_back(parse_int(row, 0));
   return junctions;
 }
 
-}  // namespace seqtopo::io
+}  // namespace seqtopo::formats
