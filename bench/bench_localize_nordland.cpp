@@ -19,10 +19,10 @@
 
 #include "seqtopo/baseline/seqslam.hpp"
 #include "seqtopo/evaluation/localization_metrics.hpp"
-#include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/localize/online_localizer.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
 
 namespace {
 
@@ -59,20 +59,20 @@ evaluation::LocalizationMetrics evaluate(const std::vector<localize::FrameMatch>
 }
 
 // With a cache folder the matrices are kept between runs (for tuning; their seconds then read 0).
-image::SimilarityResult compute_matrix(const std::filesystem::path& query, const std::filesystem::path& map,
-                                       image::Descriptor d, const std::filesystem::path& cache) {
+pipeline::SimilarityResult compute_matrix(const std::filesystem::path& query, const std::filesystem::path& map,
+                                          pipeline::Descriptor d, const std::filesystem::path& cache) {
   const auto cached = cache.empty() ? cache
                                     : cache / (query.filename().string() + "_x_" + map.filename().string() + "_" +
-                                               std::string(image::descriptor_name(d)) + ".npy");
+                                               std::string(pipeline::descriptor_name(d)) + ".npy");
   if (!cached.empty() && std::filesystem::exists(cached)) {
-    image::SimilarityResult r;
+    pipeline::SimilarityResult r;
     r.similarity = io::read_npy_matrix<float>(cached);
     return r;
   }
-  image::SimilarityConfig c;
+  pipeline::SimilarityConfig c;
   c.descriptor = d;
   c.threads = 1;
-  auto r = image::compute_similarity(image::SequenceInput{query}, image::SequenceInput{map}, c);
+  auto r = pipeline::compute_similarity(pipeline::SequenceInput{query}, pipeline::SequenceInput{map}, c);
   if (!cached.empty()) {
     std::filesystem::create_directories(cache);
     io::write_npy(cached, r.similarity);
@@ -140,15 +140,15 @@ int main(int argc, char** argv) {
     std::vector<Row> rows;
     const auto map_dir = data / map_name, query_dir = data / query_name;
     auto t = cpu_now();
-    const image::SimilarityResult patch = compute_matrix(query_dir, map_dir, image::Descriptor::patch, cache);
+    const pipeline::SimilarityResult patch = compute_matrix(query_dir, map_dir, pipeline::Descriptor::patch, cache);
     const double patch_seconds = seconds_since(t);
     const std::size_t m = patch.similarity.cols;
 
     double seqslam_seconds = 1;
     if (!skip_baselines) {
       t = cpu_now();
-      const image::SimilarityResult hist =
-          compute_matrix(query_dir, map_dir, image::Descriptor::joint_histogram, cache);
+      const pipeline::SimilarityResult hist =
+          compute_matrix(query_dir, map_dir, pipeline::Descriptor::joint_histogram, cache);
       auto frames = localize::single_frame_matches(hist.similarity);
       rows.push_back({"single frame, joint histogram (chi2)", evaluate(frames, m, tolerance), seconds_since(t)});
       t = cpu_now();

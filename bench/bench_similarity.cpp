@@ -24,7 +24,7 @@
 
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/image/joint_histogram.hpp"
-#include "seqtopo/image/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/similarity/distance_matrix.hpp"
 
 namespace {
@@ -60,7 +60,7 @@ Timing best_of(int repeat, F&& f) {
 
 std::vector<RgbImage> load_all(const fs::path& folder, std::size_t limit = 0) {
   std::vector<RgbImage> images;
-  for (const auto& file : seqtopo::image::list_images(folder)) {
+  for (const auto& file : seqtopo::pipeline::list_images(folder)) {
     images.push_back(seqtopo::image::load_image(file));
     if (limit && images.size() == limit) break;
   }

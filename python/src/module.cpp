@@ -21,9 +21,9 @@
 #include "bindings.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/core/input_error.hpp"
-#include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/similarity/distance_matrix.hpp"
 #include "seqtopo/similarity/memory.hpp"
 #include "seqtopo/similarity/similarity_from_distance.hpp"
@@ -170,7 +170,7 @@ py::dict localize(const py::handle& query_x_map, const localize::LocalizeConfig&
 
 // ---- similarity --------------------------------------------------------------------------------------
 
-py::dict similarity_result(image::SimilarityResult&& r) {
+py::dict similarity_result(pipeline::SimilarityResult&& r) {
   py::dict out;
   out["similarity"] = to_array(std::move(r.similarity));
   out["kappa"] = r.kappa;
@@ -193,11 +193,11 @@ py::dict similarity_of_descriptors(const py::handle& descriptors, const py::hand
                                    unsigned threads, const similarity::KappaRule& rule) {
   check_kappa(kappa);
   const similarity::Distance metric =
-      metric_name ? similarity::parse_distance(*metric_name) : image::default_distance(image::Descriptor::npy);
+      metric_name ? similarity::parse_distance(*metric_name) : pipeline::default_distance(pipeline::Descriptor::npy);
   const MatrixView a = matrix_view(descriptors, "descriptors");
   std::optional<MatrixView> b;
   if (!against.is_none()) b = matrix_view(against, "against");
-  image::SimilarityResult r;
+  pipeline::SimilarityResult r;
   {
     const py::gil_scoped_release release;
     const MatrixView* inputs[] = {&a, b ? &*b : nullptr};
@@ -215,7 +215,7 @@ py::dict similarity_of_descriptors(const py::handle& descriptors, const py::hand
     const auto set_a = similarity::DescriptorSet::from_dense(to_matrix(a));
     similarity::MatrixConfig mc;
     mc.threads = threads;
-    mc.tile = image::SimilarityConfig{}.tile;
+    mc.tile = pipeline::SimilarityConfig{}.tile;
     DenseMatrix<float> distances;
     if (b) {
       distances = similarity::distance_matrix(set_a, similarity::DescriptorSet::from_dense(to_matrix(*b)), metric, mc);
@@ -247,20 +247,20 @@ py::dict similarity_of_path(const std::filesystem::path& path, const std::option
                             const std::string& descriptor, const std::optional<std::string>& metric_name,
                             std::optional<float> kappa, const std::string& input_kind, std::size_t every,
                             unsigned threads, const similarity::KappaRule& rule) {
-  image::SimilarityConfig config;
-  config.descriptor = image::parse_descriptor(descriptor);
+  pipeline::SimilarityConfig config;
+  config.descriptor = pipeline::parse_descriptor(descriptor);
   if (metric_name) config.distance = similarity::parse_distance(*metric_name);
   check_kappa(kappa);
   config.kappa = kappa;
   config.threads = threads;
   config.kappa_rule = rule;
-  const auto kind = image::parse_input_kind(input_kind);
-  image::SimilarityResult r;
+  const auto kind = pipeline::parse_input_kind(input_kind);
+  pipeline::SimilarityResult r;
   {
     const py::gil_scoped_release release;
-    const image::SequenceInput a{path, kind, every};
-    r = against ? image::compute_similarity(a, image::SequenceInput{*against, kind, every}, config)
-                : image::compute_similarity(a, config);
+    const pipeline::SequenceInput a{path, kind, every};
+    r = against ? pipeline::compute_similarity(a, pipeline::SequenceInput{*against, kind, every}, config)
+                : pipeline::compute_similarity(a, config);
   }
   return similarity_result(std::move(r));
 }

@@ -11,9 +11,9 @@
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/fingerprint/fingerprint.hpp"
 #include "seqtopo/image/image_io.hpp"
-#include "seqtopo/image/sequence_input.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/csv.hpp"
+#include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/strings/strings_file.hpp"
 
 namespace seqtopo::cli {
@@ -55,7 +55,7 @@ void run(const FingerprintOptions& o) {
   std::vector<std::filesystem::path> files;
   for (const auto& input : o.inputs) {
     if (std::filesystem::is_directory(input)) {
-      const auto listed = image::list_images(input);
+      const auto listed = pipeline::list_images(input);
       files.insert(files.end(), listed.begin(), listed.end());
     } else if (std::filesystem::exists(input)) {
       files.emplace_back(input);

@@ -19,11 +19,11 @@
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/evaluation/localization_metrics.hpp"
 #include "seqtopo/image/image_io.hpp"
-#include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/localize/online_localizer.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
 #include "seqtopo/plot/pr_curve.hpp"
@@ -65,9 +65,9 @@ struct Run {
 
 // ---- offline ---------------------------------------------------------------------------------------
 
-image::SimilarityConfig similarity_config(const LocalizeOptions& o) {
-  image::SimilarityConfig c;
-  c.descriptor = option_value("--descriptor", [&] { return image::parse_descriptor(o.descriptor); });
+pipeline::SimilarityConfig similarity_config(const LocalizeOptions& o) {
+  pipeline::SimilarityConfig c;
+  c.descriptor = option_value("--descriptor", [&] { return pipeline::parse_descriptor(o.descriptor); });
   if (!o.metric.empty()) c.distance = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
   if (!o.kappa.empty() && o.kappa != "auto") {
     c.kappa = option_value("--kappa", [&] {
@@ -83,10 +83,10 @@ image::SimilarityConfig similarity_config(const LocalizeOptions& o) {
 }
 
 // The similarity file when one of --map/--query is an N x M similarity.npy (rows = query, columns = map).
-std::optional<fs::path> similarity_file(const LocalizeOptions& o, image::InputKind kind) {
+std::optional<fs::path> similarity_file(const LocalizeOptions& o, pipeline::InputKind kind) {
   auto is_similarity = [&](const std::string& path) {
     if (path.empty() || path == "-") return false;
-    return image::resolve_input_kind({path, kind, o.every}) == image::InputKind::similarity;
+    return pipeline::resolve_input_kind({path, kind, o.every}) == pipeline::InputKind::similarity;
   };
   const bool map_s = is_similarity(o.map_path), query_s = is_similarity(o.query_path);
   if (!map_s && !query_s) return std::nullopt;
@@ -132,16 +132,17 @@ Answer answer_of(const localize::FrameMatch& f) {
   return a;
 }
 
-void run_offline(const LocalizeOptions& o, const localize::LocalizeConfig& config, image::InputKind kind, Run& run) {
+void run_offline(const LocalizeOptions& o, const localize::LocalizeConfig& config, pipeline::InputKind kind, Run& run) {
   const auto t0 = Clock::now();
-  image::SimilarityResult s;
+  pipeline::SimilarityResult s;
   try {
     if (const auto file = similarity_file(o, kind)) {
-      s = image::compute_similarity(image::SequenceInput{*file, image::InputKind::similarity, 1},
-                                    image::SequenceInput{*file, image::InputKind::similarity, 1}, similarity_config(o));
+      s = pipeline::compute_similarity(pipeline::SequenceInput{*file, pipeline::InputKind::similarity, 1},
+                                       pipeline::SequenceInput{*file, pipeline::InputKind::similarity, 1},
+                                       similarity_config(o));
     } else {
-      s = image::compute_similarity(image::SequenceInput{o.query_path, kind, o.every},
-                                    image::SequenceInput{o.map_path, kind, o.every}, similarity_config(o));
+      s = pipeline::compute_similarity(pipeline::SequenceInput{o.query_path, kind, o.every},
+                                       pipeline::SequenceInput{o.map_path, kind, o.every}, similarity_config(o));
     }
   } catch (const std::invalid_argument& e) {
     throw InputError(o.query_path.empty() ? o.map_path : o.query_path, e.what());
@@ -164,11 +165,12 @@ void run_offline(const LocalizeOptions& o, const localize::LocalizeConfig& confi
 using FrameDescriptor = std::variant<std::vector<float>, similarity::SparseHistogram>;
 
 struct Describer {
-  image::Descriptor descriptor;
-  image::SimilarityConfig config;
+  pipeline::Descriptor descriptor;
+  pipeline::SimilarityConfig config;
   FrameDescriptor operator()(const RgbImage& image) const {
-    if (descriptor == image::Descriptor::joint_histogram) return image::joint_histogram(image, config.joint_histogram);
-    return image::dense_descriptor(image, descriptor, config);
+    if (descriptor == pipeline::Descriptor::joint_histogram)
+      return image::joint_histogram(image, config.joint_histogram);
+    return pipeline::dense_descriptor(image, descriptor, config);
   }
 };
 
@@ -182,7 +184,7 @@ double frame_distance(similarity::Distance metric, const FrameDescriptor& a, con
 
 // Calls visit(descriptor) for every frame of a sequence, in order, reading it lazily (a query folder is
 // listed first; a query of "-" reads one image path per line from standard input as the frames arrive).
-void for_each_frame(const std::string& path, image::InputKind kind, std::size_t every, const Describer& describe,
+void for_each_frame(const std::string& path, pipeline::InputKind kind, std::size_t every, const Describer& describe,
                     const std::function<void(FrameDescriptor)>& visit) {
   if (path == "-") {
     std::string line;
@@ -192,15 +194,15 @@ void for_each_frame(const std::string& path, image::InputKind kind, std::size_t 
     }
     return;
   }
-  const image::SequenceInput input{path, kind, every};
-  switch (image::resolve_input_kind(input)) {
-    case image::InputKind::images:
-      for (const auto& file : image::list_images(path)) visit(describe(image::load_image(file)));
+  const pipeline::SequenceInput input{path, kind, every};
+  switch (pipeline::resolve_input_kind(input)) {
+    case pipeline::InputKind::images:
+      for (const auto& file : pipeline::list_images(path)) visit(describe(image::load_image(file)));
       return;
-    case image::InputKind::video:
+    case pipeline::InputKind::video:
       image::for_each_video_frame(path, every, [&](std::size_t, const RgbImage& frame) { visit(describe(frame)); });
       return;
-    case image::InputKind::descriptors: {
+    case pipeline::InputKind::descriptors: {
       const auto rows = io::read_npy_matrix<float>(path);
       if (rows.empty()) throw InputError(path, "no descriptors (empty array)");
       for (std::size_t i = 0; i < rows.rows; ++i) visit(std::vector<float>(rows.row(i).begin(), rows.row(i).end()));
@@ -212,7 +214,7 @@ void for_each_frame(const std::string& path, image::InputKind kind, std::size_t 
   throw InputError(path, "expected an image folder, a video or descriptors.npy");
 }
 
-void run_online(const LocalizeOptions& o, const localize::LocalizeConfig& config, image::InputKind kind, Run& run) {
+void run_online(const LocalizeOptions& o, const localize::LocalizeConfig& config, pipeline::InputKind kind, Run& run) {
   std::cout << "query,map,confidence,latency_ms\n";
   auto report = [&](const localize::OnlineEstimate& e, double seconds) {
     Answer a;
@@ -246,12 +248,13 @@ void run_online(const LocalizeOptions& o, const localize::LocalizeConfig& config
   // descriptor and one row of distances. The rows are contrast-enhanced, so S = 1 - kappa * D needs no kappa
   // (any kappa > 0 gives the same scores).
   const auto sc = similarity_config(o);
-  const image::InputKind map_kind = image::resolve_input_kind({o.map_path, kind, o.every});
-  const image::Descriptor d = map_kind == image::InputKind::descriptors ? image::Descriptor::npy : sc.descriptor;
-  if (d == image::Descriptor::npy && map_kind != image::InputKind::descriptors) {
+  const pipeline::InputKind map_kind = pipeline::resolve_input_kind({o.map_path, kind, o.every});
+  const pipeline::Descriptor d =
+      map_kind == pipeline::InputKind::descriptors ? pipeline::Descriptor::npy : sc.descriptor;
+  if (d == pipeline::Descriptor::npy && map_kind != pipeline::InputKind::descriptors) {
     throw InputError("--descriptor", "npy needs descriptors .npy files as input");
   }
-  const similarity::Distance metric = sc.distance.value_or(image::default_distance(d));
+  const similarity::Distance metric = sc.distance.value_or(pipeline::default_distance(d));
   const Describer describe{d, sc};
   const auto t0 = Clock::now();
   std::vector<FrameDescriptor> map;
@@ -312,7 +315,7 @@ std::string read_file(const fs::path& path) {
 
 void run(const LocalizeOptions& o) {
   if (o.map_path.empty() && o.query_path.empty()) throw InputError("--map", "give --map and --query");
-  const auto kind = option_value("--input-kind", [&] { return image::parse_input_kind(o.input_kind); });
+  const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
   if (o.every == 0) throw InputError("--every", "must be at least 1");
   const auto config = localize_config(o);
   const bool have_matrix = [&] {

@@ -19,9 +19,9 @@
 #include "seqtopo/formats/odometry_csv.hpp"
 #include "seqtopo/formats/places_csv.hpp"
 #include "seqtopo/image/grey_matrix_file.hpp"
-#include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/plot/matrix_overview.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
 #include "seqtopo/trajectory/ekf_map.hpp"
@@ -54,9 +54,9 @@ struct MapOptions {
 
 // The preset fixes the defaults; every explicit option overrides them.
 struct Settings {
-  image::SimilarityConfig similarity;
+  pipeline::SimilarityConfig similarity;
   // One similarity matrix per descriptor; several are fused (mapping::build_map).
-  std::vector<image::Descriptor> descriptors{image::Descriptor::joint_histogram, image::Descriptor::patch};
+  std::vector<pipeline::Descriptor> descriptors{pipeline::Descriptor::joint_histogram, pipeline::Descriptor::patch};
   mapping::MapConfig map;
   bool paper_metric = false;  // the paper's EKF is the metric picture (else the pose graph)
 };
@@ -64,8 +64,8 @@ struct Settings {
 Settings resolve_settings(const MapOptions& o) {
   Settings s;
   if (o.preset == "paper") {
-    s.descriptors = {image::Descriptor::joint_histogram};
-    s.similarity.distance = image::Distance::chi2;
+    s.descriptors = {pipeline::Descriptor::joint_histogram};
+    s.similarity.distance = pipeline::Distance::chi2;
     s.paper_metric = true;
     s.map.contrast_window = 0;                                             // the paper aligns S = 1 - kappa D as it is
     s.map.pruning.rank = mapping::PruningConfig::Rank::length_then_score;  // "the longest matching subsequence"
@@ -79,9 +79,9 @@ Settings resolve_settings(const MapOptions& o) {
   }
   if (o.descriptor) {
     s.descriptors = option_value("--descriptor", [&] {
-      std::vector<image::Descriptor> list;
+      std::vector<pipeline::Descriptor> list;
       std::stringstream names(*o.descriptor);
-      for (std::string name; std::getline(names, name, ',');) list.push_back(image::parse_descriptor(name));
+      for (std::string name; std::getline(names, name, ',');) list.push_back(pipeline::parse_descriptor(name));
       if (list.empty()) throw std::invalid_argument("no descriptor given");
       return list;
     });
@@ -189,7 +189,7 @@ void report_map(MapRun& run) {
 
 // --streaming aligns contrast-enhanced cosine scores of one vector descriptor per image, computed on the
 // fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
-void check_streaming(const MapOptions& o, const Settings& s, image::InputKind kind) {
+void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind kind) {
   if (o.preset == "paper") {
     throw InputError("--preset",
                      "paper aligns the raw S = 1 - kappa D, whose kappa needs the whole distance matrix; "
@@ -198,7 +198,7 @@ void check_streaming(const MapOptions& o, const Settings& s, image::InputKind ki
   if (s.map.engine != mapping::MapConfig::Engine::fast) {
     throw InputError("--engine", "exact fills an N x N table; --streaming needs the fast engine (its default)");
   }
-  if (kind == image::InputKind::similarity) {
+  if (kind == pipeline::InputKind::similarity) {
     throw InputError("--streaming",
                      "needs descriptors (descriptors.npy, or images with one vector descriptor), "
                      "not a similarity matrix");
@@ -209,7 +209,7 @@ void check_streaming(const MapOptions& o, const Settings& s, image::InputKind ki
                      "matrix; --streaming aligns contrast-enhanced scores (window >= 1)");
   }
   if (o.kappa) throw InputError("--kappa", "has no effect with --streaming: the contrast enhancement removes kappa");
-  if (o.metric_name && s.similarity.distance != image::Distance::cosine) {
+  if (o.metric_name && s.similarity.distance != pipeline::Distance::cosine) {
     throw InputError("--metric", "--streaming scores by cosine similarity only, got '" + *o.metric_name + "'");
   }
   if (o.descriptor && s.descriptors.size() != 1) {
@@ -217,23 +217,23 @@ void check_streaming(const MapOptions& o, const Settings& s, image::InputKind ki
                                                  "matrix per descriptor)",
                                                  s.descriptors.size()));
   }
-  if (kind != image::InputKind::descriptors) {  // images or a video: the descriptor is computed
+  if (kind != pipeline::InputKind::descriptors) {  // images or a video: the descriptor is computed
     if (!o.descriptor) {
       throw InputError("--descriptor",
                        "--streaming needs one vector descriptor for images (patch or panorama, with "
                        "--metric cosine); the default fuses joint-histogram and patch");
     }
-    if (s.descriptors.front() == image::Descriptor::npy) {
+    if (s.descriptors.front() == pipeline::Descriptor::npy) {
       throw InputError("--descriptor", "npy needs a descriptors.npy input");
     }
-    if (s.descriptors.front() == image::Descriptor::joint_histogram) {
+    if (s.descriptors.front() == pipeline::Descriptor::joint_histogram) {
       throw InputError("--descriptor",
                        "joint-histogram is a sparse histogram without a vector form; --streaming "
                        "needs patch or panorama (with --metric cosine)");
     }
     if (!o.metric_name) {
       throw InputError("--metric", "--streaming scores by cosine similarity: give --metric cosine (" +
-                                       std::string(image::descriptor_name(s.descriptors.front())) +
+                                       std::string(pipeline::descriptor_name(s.descriptors.front())) +
                                        " defaults to sad)");
     }
   }
@@ -250,16 +250,16 @@ void check_streaming(const MapOptions& o, const Settings& s, image::InputKind ki
 
 // The streamed replacement of stages 1 and 2: descriptors, then the map on scores computed when the engine
 // reads them. Leaves run.result.scores empty and fills run.overview for similarity.png.
-void map_streamed(const MapOptions& o, const Settings& settings, const image::SequenceInput& input, MapRun& run) {
+void map_streamed(const MapOptions& o, const Settings& settings, const pipeline::SequenceInput& input, MapRun& run) {
   progress("[1/4] descriptors (--streaming: the similarity is computed on the fly, never N x N)");
   auto t = std::chrono::steady_clock::now();
   auto config = settings.similarity;
   config.descriptor = settings.descriptors.front();
-  image::DescriptorResult described = image::compute_descriptors(input, config);
+  pipeline::DescriptorResult described = pipeline::compute_descriptors(input, config);
   const std::size_t n = described.descriptors.rows, dim = described.descriptors.cols;
-  run.descriptor_names.emplace_back(described.descriptor == image::Descriptor::npy
+  run.descriptor_names.emplace_back(described.descriptor == pipeline::Descriptor::npy
                                         ? "descriptors.npy"
-                                        : std::string(image::descriptor_name(described.descriptor)));
+                                        : std::string(pipeline::descriptor_name(described.descriptor)));
   progress(fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
   if (n < 2) throw InputError(o.input, "needs at least 2 images");
   if (!run.odometry.empty() && run.odometry.size() != n) {
@@ -293,21 +293,22 @@ void map_streamed(const MapOptions& o, const Settings& settings, const image::Se
 }
 
 // Stages 1 and 2 with the N x N matrices: one similarity matrix per descriptor, fused and aligned.
-void map_dense(const MapOptions& o, const Settings& settings, const image::SequenceInput& input, image::InputKind kind,
-               MapRun& run) {
+void map_dense(const MapOptions& o, const Settings& settings, const pipeline::SequenceInput& input,
+               pipeline::InputKind kind, MapRun& run) {
   auto descriptors = settings.descriptors;
   // A descriptors.npy or similarity.npy input is one matrix, whatever descriptors were asked for.
-  if (kind == image::InputKind::descriptors || kind == image::InputKind::similarity) descriptors.resize(1);
+  if (kind == pipeline::InputKind::descriptors || kind == pipeline::InputKind::similarity) descriptors.resize(1);
   progress("[1/4] similarity matrix");
   auto t = std::chrono::steady_clock::now();
   auto& matrices = run.matrices;
   for (auto descriptor : descriptors) {
     auto config = settings.similarity;
     config.descriptor = descriptor;
-    run.similarities.push_back(image::compute_similarity(input, config));
-    run.descriptor_names.emplace_back(kind == image::InputKind::similarity    ? "similarity.npy"
-                                      : kind == image::InputKind::descriptors ? "descriptors.npy"
-                                                                              : image::descriptor_name(descriptor));
+    run.similarities.push_back(pipeline::compute_similarity(input, config));
+    run.descriptor_names.emplace_back(kind == pipeline::InputKind::similarity ? "similarity.npy"
+                                      : kind == pipeline::InputKind::descriptors
+                                          ? "descriptors.npy"
+                                          : pipeline::descriptor_name(descriptor));
     matrices.push_back(std::move(run.similarities.back().similarity));  // kept once, in run.matrices
     progress(fmt::format("      {}: {} images, kappa {:.4g}", run.descriptor_names.back(), matrices.back().rows,
                          run.similarities.back().kappa));
@@ -342,16 +343,16 @@ void run(MapOptions o) {
   for (const auto* path : {&o.odometry, &o.ground_truth, &o.gt_poses, &o.gt_places}) {
     if (!path->empty() && !fs::exists(*path)) throw InputError(*path, "no such file");
   }
-  image::SequenceInput input{o.input, image::parse_input_kind(o.input_kind), o.every};
-  const auto kind = image::resolve_input_kind(input);
+  pipeline::SequenceInput input{o.input, pipeline::parse_input_kind(o.input_kind), o.every};
+  const auto kind = pipeline::resolve_input_kind(input);
   if (o.streaming) check_streaming(o, settings, kind);
   // The number of images, where it is known without decoding anything (not for a video).
   std::optional<std::size_t> expected;
-  if (kind == image::InputKind::images) expected = image::list_images(o.input).size();
-  if (kind == image::InputKind::descriptors || kind == image::InputKind::similarity) {
+  if (kind == pipeline::InputKind::images) expected = pipeline::list_images(o.input).size();
+  if (kind == pipeline::InputKind::descriptors || kind == pipeline::InputKind::similarity) {
     const auto header = io::read_npy_header(o.input);
     if (!header.shape.empty()) expected = header.shape[0];
-    if (kind == image::InputKind::similarity && (header.shape.size() != 2 || header.shape[0] != header.shape[1])) {
+    if (kind == pipeline::InputKind::similarity && (header.shape.size() != 2 || header.shape[0] != header.shape[1])) {
       throw InputError(o.input, "a similarity matrix for map must be square (N x N)");
     }
   }

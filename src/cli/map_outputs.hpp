@@ -9,9 +9,9 @@
 #include "seqtopo/core/pose2.hpp"
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
 #include "seqtopo/evaluation/topology_metrics.hpp"
-#include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/plot/matrix_overview.hpp"
 
 namespace seqtopo::cli {
@@ -24,8 +24,8 @@ struct MapRun {
   std::string input, preset;
   mapping::MapConfig map_config;
   bool paper_metric = false;
-  std::vector<image::SimilarityResult> similarities;  // one per descriptor (kappa, names, timings)
-  std::vector<SimilarityMatrix> matrices;             // their matrices, moved out of `similarities`
+  std::vector<pipeline::SimilarityResult> similarities;  // one per descriptor (kappa, names, timings)
+  std::vector<SimilarityMatrix> matrices;                // their matrices, moved out of `similarities`
   std::vector<std::string> descriptor_names;
   mapping::MapResult result;
   std::vector<Pose2> odometry, ekf, pose_graph;

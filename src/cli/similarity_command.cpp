@@ -8,9 +8,9 @@
 
 #include "command_registry.hpp"
 #include "seqtopo/core/input_error.hpp"
-#include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
 
@@ -26,9 +26,9 @@ struct SimilarityOptions {
 };
 
 void run(const SimilarityOptions& o) {
-  image::SimilarityConfig config;
-  const auto kind = option_value("--input-kind", [&] { return image::parse_input_kind(o.input_kind); });
-  config.descriptor = option_value("--descriptor", [&] { return image::parse_descriptor(o.descriptor); });
+  pipeline::SimilarityConfig config;
+  const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
+  config.descriptor = option_value("--descriptor", [&] { return pipeline::parse_descriptor(o.descriptor); });
   if (!o.metric.empty())
     config.distance = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
   if (o.kappa != "auto") {
@@ -57,11 +57,12 @@ void run(const SimilarityOptions& o) {
     };
   }
 
-  const image::SequenceInput a{o.input, kind, o.every};
-  image::SimilarityResult result;
+  const pipeline::SequenceInput a{o.input, kind, o.every};
+  pipeline::SimilarityResult result;
   try {
-    result = o.against.empty() ? image::compute_similarity(a, config)
-                               : image::compute_similarity(a, image::SequenceInput{o.against, kind, o.every}, config);
+    result = o.against.empty()
+                 ? pipeline::compute_similarity(a, config)
+                 : pipeline::compute_similarity(a, pipeline::SequenceInput{o.against, kind, o.every}, config);
   } catch (const std::invalid_argument& e) {
     throw InputError(o.input, e.what());
   }

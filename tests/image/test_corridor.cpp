@@ -8,7 +8,7 @@
 
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/image/joint_histogram.hpp"
-#include "seqtopo/image/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/similarity/distance_matrix.hpp"
 #include "seqtopo/similarity/similarity_from_distance.hpp"
 
@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 TEST(Corridor, RevisitsAreCloserAndKappaAutoKeepsThemPositive) {
   const fs::path folder = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";  // bundled copy
-  const auto files = list_images(folder);
+  const auto files = pipeline::list_images(folder);
   ASSERT_EQ(files.size(), 84U);
   EXPECT_EQ(files.front().filename(), "1.jpg");
   EXPECT_EQ(files.back().filename(), "84.jpg");

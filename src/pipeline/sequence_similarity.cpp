@@ -1,4 +1,4 @@
-#include "seqtopo/image/similarity_pipeline.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
 
 #include <omp.h>
 
@@ -17,7 +17,15 @@
 #include "seqtopo/similarity/distance_matrix.hpp"
 #include "seqtopo/similarity/memory.hpp"
 
-namespace seqtopo::image {
+namespace seqtopo::pipeline {
+
+using image::for_each_video_frame;
+using image::joint_histogram;
+using image::JointHistogramConfig;
+using image::load_image;
+using image::panorama_signature;
+using image::patch_thumbnail;
+using image::video_frame_count;
 
 Descriptor parse_descriptor(std::string_view name) {
   if (name == "joint-histogram" || name == "joint_histogram") return Descriptor::joint_histogram;
@@ -427,4 +435,4 @@ SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput&
   return run(a, &b, config);
 }
 
-}  // namespace seqtopo::image
+}  // namespace seqtopo::pipeline

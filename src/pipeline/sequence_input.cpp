@@ -1,4 +1,4 @@
-#include "seqtopo/image/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_input.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,7 +7,7 @@
 
 #include "seqtopo/core/input_error.hpp"
 
-namespace seqtopo::image {
+namespace seqtopo::pipeline {
 
 namespace fs = std::filesystem;
 
@@ -122,4 +122,4 @@ std::vector<fs::path> list_images(const fs::path& folder) {
   return files;
 }
 
-}  // namespace seqtopo::image
+}  // namespace seqtopo::pipeline

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-namespace seqtopo::image {
+namespace seqtopo::pipeline {
 
 enum class InputKind { automatic, images, video, descriptors, similarity };
 
@@ -35,4 +35,4 @@ bool natural_less(std::string_view a, std::string_view b);
 // naming the folder when it cannot be read or holds no image.
 std::vector<std::filesystem::path> list_images(const std::filesystem::path& folder);
 
-}  // namespace seqtopo::image
+}  // namespace seqtopo::pipeline

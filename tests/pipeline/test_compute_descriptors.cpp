@@ -6,10 +6,10 @@
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/image_io.hpp"
-#include "seqtopo/image/similarity_pipeline.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
 
-namespace seqtopo::image {
+namespace seqtopo::pipeline {
 namespace {
 
 const std::filesystem::path corridor = std::filesystem::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
@@ -24,7 +24,7 @@ TEST(ComputeDescriptors, ImageFolderGivesOneDenseDescriptorPerImage) {
   EXPECT_EQ(r.descriptor, Descriptor::patch);
   EXPECT_EQ(r.frame_names.size(), images.size());
   for (const std::size_t i : {std::size_t{0}, images.size() / 2, images.size() - 1}) {
-    const auto expected = dense_descriptor(load_image(images[i]), Descriptor::patch, config);
+    const auto expected = dense_descriptor(image::load_image(images[i]), Descriptor::patch, config);
     const auto row = r.descriptors.row(i);
     EXPECT_TRUE(std::equal(row.begin(), row.end(), expected.begin(), expected.end())) << i;
   }
@@ -49,4 +49,4 @@ TEST(ComputeDescriptors, RefusesWhatHasNoVectorForm) {
 }
 
 }  // namespace
-}  // namespace seqtopo::image
+}  // namespace seqtopo::pipeline

@@ -8,9 +8,9 @@
 
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
-#include "seqtopo/image/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_input.hpp"
 
-namespace seqtopo::image {
+namespace seqtopo::pipeline {
 namespace {
 
 namespace fs = std::filesystem;
@@ -72,4 +72,4 @@ TEST(InputKind, ParseAndResolve) {
 }
 
 }  // namespace
-}  // namespace seqtopo::image
+}  // namespace seqtopo::pipeline

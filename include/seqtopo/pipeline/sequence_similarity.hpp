@@ -4,7 +4,7 @@
 // image_io.hpp and sequence_input.hpp (reading), joint_histogram.hpp and patch_thumbnail.hpp (descriptors),
 // seqtopo/similarity/* (distances, matrix, kappa).
 //
-//   auto result = seqtopo::image::compute_similarity({"data/rtabmap-corridor"});
+//   auto result = seqtopo::pipeline::compute_similarity({"data/rtabmap-corridor"});
 //   // result.similarity: 84 x 84, result.kappa chosen by the rule in similarity_from_distance.hpp
 #include <functional>
 #include <optional>
@@ -16,11 +16,11 @@
 #include "seqtopo/image/joint_histogram.hpp"
 #include "seqtopo/image/panorama_signature.hpp"
 #include "seqtopo/image/patch_thumbnail.hpp"
-#include "seqtopo/image/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/similarity/distance.hpp"
 #include "seqtopo/similarity/similarity_from_distance.hpp"
 
-namespace seqtopo::image {
+namespace seqtopo::pipeline {
 
 // npy = rows of descriptors.npy; panorama = heading-invariant signature of 360-degree images
 enum class Descriptor { joint_histogram, patch, panorama, npy };
@@ -37,9 +37,9 @@ struct SimilarityConfig {
   std::optional<Distance> distance;                     // default by descriptor: default_distance()
   std::optional<float> kappa;                           // nullopt = auto (kappa_rule)
   unsigned threads = 0;                                 // 0 = all cores
-  JointHistogramConfig joint_histogram;
-  PatchConfig patch;
-  PanoramaConfig panorama;
+  image::JointHistogramConfig joint_histogram;
+  image::PatchConfig patch;
+  image::PanoramaConfig panorama;
   similarity::KappaRule kappa_rule;
   std::size_t tile = 64;  // matrix tile side [cells]
 
@@ -86,4 +86,4 @@ DescriptorResult compute_descriptors(const SequenceInput& input, const Similarit
 std::vector<float> dense_descriptor(const RgbImage& image, Descriptor descriptor, const SimilarityConfig& config);
 std::size_t dense_dimension(Descriptor descriptor, const SimilarityConfig& config);
 
-}  // namespace seqtopo::image
+}  // namespace seqtopo::pipeline
