@@ -11,22 +11,10 @@
 #include <sstream>
 
 #include "command_registry.hpp"
-#include "map_outputs.hpp"
-#include "seqtopo/baseline/seqslam.hpp"
 #include "seqtopo/core/input_error.hpp"
-#include "seqtopo/evaluation/loop_closure_metrics.hpp"
-#include "seqtopo/evaluation/topology_metrics.hpp"
-#include "seqtopo/formats/odometry_csv.hpp"
-#include "seqtopo/formats/places_csv.hpp"
-#include "seqtopo/image/grey_matrix_file.hpp"
-#include "seqtopo/io/npy.hpp"
-#include "seqtopo/mapping/map_builder.hpp"
-#include "seqtopo/pipeline/sequence_similarity.hpp"
-#include "seqtopo/plot/matrix_overview.hpp"
-#include "seqtopo/scale/streaming_similarity.hpp"
-#include "seqtopo/trajectory/ekf_map.hpp"
-#include "seqtopo/trajectory/pose_graph.hpp"
-#include "seqtopo/trajectory/trajectory_error.hpp"
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/outputs/map_outputs.hpp"
+#include "seqtopo/pipeline/map_pipeline.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -52,31 +40,11 @@ struct MapOptions {
   std::string config_file;
 };
 
-// The preset fixes the defaults; every explicit option overrides them.
-struct Settings {
-  pipeline::SimilarityConfig similarity;
-  // One similarity matrix per descriptor; several are fused (mapping::build_map).
-  std::vector<pipeline::Descriptor> descriptors{pipeline::Descriptor::joint_histogram, pipeline::Descriptor::patch};
-  mapping::MapConfig map;
-  bool paper_metric = false;  // the paper's EKF is the metric picture (else the pose graph)
-};
+using Settings = pipeline::MapSettings;
 
+// The preset fixes the defaults; every explicit option overrides them.
 Settings resolve_settings(const MapOptions& o) {
-  Settings s;
-  if (o.preset == "paper") {
-    s.descriptors = {pipeline::Descriptor::joint_histogram};
-    s.similarity.distance = pipeline::Distance::chi2;
-    s.paper_metric = true;
-    s.map.contrast_window = 0;                                             // the paper aligns S = 1 - kappa D as it is
-    s.map.pruning.rank = mapping::PruningConfig::Rank::length_then_score;  // "the longest matching subsequence"
-    // Raw S lives on another scale than enhanced scores; these were tuned on the corridor with kappa
-    // auto (bench/tune_map.cpp): F1 0.872, AUC 0.773.
-    s.map.gap = 0.3F;
-    s.map.cap = 8.0F;
-    s.map.threshold = 3.0F;
-  } else if (o.preset != "default") {
-    throw InputError("--preset", "unknown preset '" + o.preset + "' (paper or default)");
-  }
+  Settings s = option_value("--preset", [&] { return pipeline::map_preset(o.preset); });
   if (o.descriptor) {
     s.descriptors = option_value("--descriptor", [&] {
       std::vector<pipeline::Descriptor> list;
@@ -156,37 +124,6 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 void progress(const std::string& text) { std::cerr << "seqtopo map: " << text << std::endl; }
 
-// The same-place relation of the ground truth, from an N x N image or from poses and a radius.
-evaluation::SamePlace load_ground_truth(const MapOptions& o, const std::string& path, std::size_t images) {
-  if (fs::path(path).extension() == ".csv") {
-    if (!o.gt_radius || !(*o.gt_radius > 0))
-      throw InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
-    const auto poses = formats::read_poses_csv(path);
-    if (poses.size() != images) {
-      throw InputError(path, fmt::format("has {} poses, the sequence has {} images", poses.size(), images));
-    }
-    const double r2 = *o.gt_radius * *o.gt_radius;
-    return [poses, r2](std::size_t i, std::size_t j) {
-      const double dx = poses[i].x - poses[j].x, dy = poses[i].y - poses[j].y;
-      return dx * dx + dy * dy <= r2;
-    };
-  }
-  auto m = std::make_shared<DenseMatrix<std::uint8_t>>(image::read_grey_matrix_image(path));
-  if (m->rows != images || m->cols != images) {
-    throw InputError(path, fmt::format("is {} x {}, the sequence has {} images", m->rows, m->cols, images));
-  }
-  return [m](std::size_t i, std::size_t j) { return (*m)(i, j) != 0 || (*m)(j, i) != 0; };
-}
-
-// The timing and the one progress line of the map stage, the same for both paths.
-void report_map(MapRun& run) {
-  run.timings.emplace_back("pruning + labels + topology", run.result.seconds_prune_label);
-  progress(fmt::format("      {} alignments ({} contradicted by odometry), {} kept, {} places, {} junctions",
-                       run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),
-                       std::count(run.result.pruning.kept.begin(), run.result.pruning.kept.end(), true),
-                       run.result.map.places.size(), run.result.map.junctions.size()));
-}
-
 // --streaming aligns contrast-enhanced cosine scores of one vector descriptor per image, computed on the
 // fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
 void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind kind) {
@@ -248,90 +185,13 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
   }
 }
 
-// The streamed replacement of stages 1 and 2: descriptors, then the map on scores computed when the engine
-// reads them. Leaves run.result.scores empty and fills run.overview for similarity.png.
-void map_streamed(const MapOptions& o, const Settings& settings, const pipeline::SequenceInput& input, MapRun& run) {
-  progress("[1/4] descriptors (--streaming: the similarity is computed on the fly, never N x N)");
-  auto t = std::chrono::steady_clock::now();
-  auto config = settings.similarity;
-  config.descriptor = settings.descriptors.front();
-  pipeline::DescriptorResult described = pipeline::compute_descriptors(input, config);
-  const std::size_t n = described.descriptors.rows, dim = described.descriptors.cols;
-  run.descriptor_names.emplace_back(described.descriptor == pipeline::Descriptor::npy
-                                        ? "descriptors.npy"
-                                        : std::string(pipeline::descriptor_name(described.descriptor)));
-  progress(fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
-  if (n < 2) throw InputError(o.input, "needs at least 2 images");
-  if (!run.odometry.empty() && run.odometry.size() != n) {
-    throw InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
-  }
-  std::optional<scale::StreamingSimilarity> streamed;
-  try {
-    streamed.emplace(described.descriptors.values, n, dim,
-                     scale::StreamingConfig{.contrast_window = settings.map.contrast_window,
-                                            .contrast_offset = settings.map.contrast_offset});
-  } catch (const std::invalid_argument& e) {
-    throw InputError(o.input, e.what());  // e.g. an all-zero descriptor has no direction
-  }
-  described.descriptors = {};  // the streamed similarity keeps its own normalised copy
-  run.timings.emplace_back("descriptors", seconds_since(t));
-
-  progress("[2/4] alignments (fast engine on streamed scores), pruning, labels, topology");
-  run.result = mapping::build_map_from_scores(streamed->source(), settings.map, run.odometry);
-  run.timings.emplace_back("alignment (similarity streamed)", run.result.seconds_align);
-  report_map(run);
-
-  const auto stats = streamed->stats();
-  run.streamed_cells = stats.cells_computed;
-  run.streamed_cache_bytes = stats.cache_bytes;
-
-  progress("      similarity overview for similarity.png (one more streamed pass over the lower triangle)");
-  t = std::chrono::steady_clock::now();
-  // The streamed scores are 0.5 (E + E^T) - offset, symmetric bit for bit: half the reads suffice.
-  run.overview = plot::matrix_overview(streamed->source(), {.max_side = 2048, .symmetric = true});
-  run.timings.emplace_back("similarity overview (streamed)", seconds_since(t));
-}
-
-// Stages 1 and 2 with the N x N matrices: one similarity matrix per descriptor, fused and aligned.
-void map_dense(const MapOptions& o, const Settings& settings, const pipeline::SequenceInput& input,
-               pipeline::InputKind kind, MapRun& run) {
-  auto descriptors = settings.descriptors;
-  // A descriptors.npy or similarity.npy input is one matrix, whatever descriptors were asked for.
-  if (kind == pipeline::InputKind::descriptors || kind == pipeline::InputKind::similarity) descriptors.resize(1);
-  progress("[1/4] similarity matrix");
-  auto t = std::chrono::steady_clock::now();
-  auto& matrices = run.matrices;
-  for (auto descriptor : descriptors) {
-    auto config = settings.similarity;
-    config.descriptor = descriptor;
-    run.similarities.push_back(pipeline::compute_similarity(input, config));
-    run.descriptor_names.emplace_back(kind == pipeline::InputKind::similarity ? "similarity.npy"
-                                      : kind == pipeline::InputKind::descriptors
-                                          ? "descriptors.npy"
-                                          : pipeline::descriptor_name(descriptor));
-    matrices.push_back(std::move(run.similarities.back().similarity));  // kept once, in run.matrices
-    progress(fmt::format("      {}: {} images, kappa {:.4g}", run.descriptor_names.back(), matrices.back().rows,
-                         run.similarities.back().kappa));
-  }
-  run.timings.emplace_back("similarity", seconds_since(t));
-  const std::size_t n = matrices.front().rows;
-  if (n < 2) throw InputError(o.input, "needs at least 2 images");
-
-  progress("[2/4] alignments, pruning, labels, topology");
-  if (!o.odometry.empty() && run.odometry.size() != n) {
-    throw InputError(o.odometry, fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), n));
-  }
-  run.result = mapping::build_map(matrices, settings.map, run.odometry);
-  run.timings.emplace_back("alignment", run.result.seconds_align);
-  report_map(run);
-}
-
 void run(MapOptions o) {
   const auto total_start = std::chrono::steady_clock::now();
-  MapRun run;
   // Everything the user gave is checked before the long computation starts (and before any progress
   // output), so a mistake costs one line and no time.
-  const Settings settings = resolve_settings(o);
+  pipeline::MapRequest request;
+  request.settings = resolve_settings(o);
+  request.preset = o.preset;
   const bool bundled_default = o.input.empty();
   if (bundled_default) {
     const fs::path bundled = fs::path(SEQTOPO_DATA_DIR) / "rtabmap-corridor";
@@ -339,134 +199,22 @@ void run(MapOptions o) {
     // Its ground truth is an N x N image, which --streaming refuses.
     if (o.ground_truth.empty() && !o.streaming) o.ground_truth = (fs::path(o.input) / "ground_truth.bmp").string();
   }
-  if (!fs::exists(o.input)) throw InputError(o.input, "no such file or folder");
-  for (const auto* path : {&o.odometry, &o.ground_truth, &o.gt_poses, &o.gt_places}) {
-    if (!path->empty() && !fs::exists(*path)) throw InputError(*path, "no such file");
-  }
-  pipeline::SequenceInput input{o.input, pipeline::parse_input_kind(o.input_kind), o.every};
-  const auto kind = pipeline::resolve_input_kind(input);
-  if (o.streaming) check_streaming(o, settings, kind);
-  // The number of images, where it is known without decoding anything (not for a video).
-  std::optional<std::size_t> expected;
-  if (kind == pipeline::InputKind::images) expected = pipeline::list_images(o.input).size();
-  if (kind == pipeline::InputKind::descriptors || kind == pipeline::InputKind::similarity) {
-    const auto header = io::read_npy_header(o.input);
-    if (!header.shape.empty()) expected = header.shape[0];
-    if (kind == pipeline::InputKind::similarity && (header.shape.size() != 2 || header.shape[0] != header.shape[1])) {
-      throw InputError(o.input, "a similarity matrix for map must be square (N x N)");
-    }
-  }
-  if (!o.odometry.empty()) {
-    run.odometry = formats::read_odometry_csv(o.odometry);
-    if (expected && run.odometry.size() != *expected) {
-      throw InputError(o.odometry,
-                       fmt::format("has {} poses, the sequence has {} images", run.odometry.size(), *expected));
-    }
-  }
-  run.preset = o.preset;
-  run.input = o.input;
-  run.map_config = settings.map;
-  run.paper_metric = settings.paper_metric;
-  run.streaming = o.streaming;
+  request.input = {o.input, option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); }),
+                   o.every};
+  request.odometry = o.odometry;
+  request.truth = {o.ground_truth, o.gt_radius, o.gt_places, o.gt_poses};
+  request.streaming = o.streaming;
+  const pipeline::MapJob job(request);
+  if (o.streaming) check_streaming(o, request.settings, job.input_kind());
   io::OutputDirectory out(o.out);
   if (bundled_default) progress("no input given: mapping the bundled corridor data " + o.input);
   if (bundled_default && o.streaming) progress("its ground truth is an N x N image, which --streaming does not read");
-  if (o.streaming) {
-    map_streamed(o, settings, input, run);
-  } else {
-    map_dense(o, settings, input, kind, run);
-  }
-  const std::size_t n = run.result.map.labels.size();
-  const auto& matrices = run.matrices;
+  pipeline::MapRun run = job.run({.progress = [](std::string_view text) { progress(std::string(text)); }});
 
-  auto t = std::chrono::steady_clock::now();
-  if (!o.odometry.empty()) {
-    progress("[3/4] metric picture (EKF and pose graph)");
-    run.ekf = trajectory::ekf_map(run.odometry, run.result.map.labels).images;
-    std::vector<std::pair<std::size_t, std::size_t>> loops;
-    for (const auto& p : run.result.pruning.pairs) loops.emplace_back(p.i, p.j);
-    run.pose_graph = trajectory::pose_graph(run.odometry, loops);
-    run.timings.emplace_back("metric picture", seconds_since(t));
-  }
-
-  if (!o.ground_truth.empty()) {
-    progress("[4/4] accuracy against the ground truth");
-    const auto same_place = load_ground_truth(o, o.ground_truth, n);
-    std::vector<evaluation::ScoredPair> pairs;
-    for (const auto& p : run.result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
-    run.metrics = evaluation::evaluate_loop_closures(pairs, n, same_place, settings.map.min_separation);
-    if (o.streaming)
-      run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
-    // With --streaming no matrix was kept, so the list below is empty and the baseline does not run.
-
-    // The baseline runs on every matrix seqtopo saw (each descriptor's S and the fused, enhanced
-    // scores) and the one with the best AUC is reported, at its best-F1 threshold: the most generous
-    // reading of a single-threshold sequence matcher.
-    baseline::SeqSlamConfig seqslam;
-    seqslam.self = true;
-    seqslam.min_separation = settings.map.min_separation;
-    seqslam.threads = o.threads;
-    std::vector<std::pair<std::string, const SimilarityMatrix*>> sources;
-    for (std::size_t k = 0; k < matrices.size(); ++k) sources.emplace_back(run.descriptor_names[k], &matrices[k]);
-    if (!o.streaming && (matrices.size() > 1 || settings.map.contrast_window > 0)) {
-      sources.emplace_back("seqtopo's fused scores", &run.result.scores);
-    }
-    for (const auto& [name, matrix] : sources) {
-      std::vector<evaluation::ScoredPair> pairs;
-      for (const auto& m : baseline::seqslam_matches(*matrix, seqslam)) {
-        if (m.valid) pairs.push_back({m.query, m.match, m.score});
-      }
-      auto metrics = evaluation::evaluate_loop_closures(pairs, n, same_place, settings.map.min_separation);
-      if (run.baseline_metrics && metrics.auc <= run.baseline_metrics->auc) continue;
-      float best_threshold = 0;
-      double best_f1 = -1;
-      for (const auto& p : metrics.curve) {
-        const double f1 = p.precision + p.recall > 0 ? 2 * p.precision * p.recall / (p.precision + p.recall) : 0.0;
-        if (f1 > best_f1) {
-          best_f1 = f1;
-          best_threshold = p.threshold;
-        }
-      }
-      std::erase_if(pairs, [&](const evaluation::ScoredPair& p) { return p.score < best_threshold; });
-      const auto at_threshold = evaluation::evaluate_loop_closures(pairs, n, same_place, settings.map.min_separation);
-      metrics.tp = at_threshold.tp;
-      metrics.fp = at_threshold.fp;
-      metrics.fn = at_threshold.fn;
-      metrics.precision = at_threshold.precision;
-      metrics.recall = at_threshold.recall;
-      metrics.f1 = at_threshold.f1;
-      run.baseline_metrics = metrics;
-      run.baseline_name =
-          fmt::format("SeqSLAM-style on {} (sequence {}, velocities {}-{}, best-F1 threshold {:.3g})", name,
-                      seqslam.sequence_length, seqslam.min_velocity, seqslam.max_velocity, best_threshold);
-    }
-  }
-  if (!o.gt_places.empty()) {
-    const auto places = formats::read_places_csv(o.gt_places);
-    if (places.size() != n)
-      throw InputError(o.gt_places, fmt::format("has {} rows, the sequence has {} images", places.size(), n));
-    const fs::path junctions_file = fs::path(o.gt_places).parent_path() / "junctions.csv";
-    const auto true_junctions =
-        fs::exists(junctions_file) ? formats::read_junctions_csv(junctions_file) : std::vector<int>{};
-    // Merges of neighbouring true places that the loop-closure ground truth calls the same place are tolerated.
-    const evaluation::Tolerated tolerated =
-        o.ground_truth.empty() ? evaluation::Tolerated{} : load_ground_truth(o, o.ground_truth, n);
-    run.topology = evaluation::evaluate_topology(run.result.map.labels, run.result.map.junctions, places,
-                                                 true_junctions, settings.map.min_separation, 2, tolerated);
-  }
-  if (!o.gt_poses.empty() && !run.odometry.empty()) {
-    const auto truth = formats::read_poses_csv(o.gt_poses);
-    if (truth.size() != n)
-      throw InputError(o.gt_poses, fmt::format("has {} poses, the sequence has {} images", truth.size(), n));
-    run.ate = {trajectory::absolute_trajectory_error(run.odometry, truth),
-               trajectory::absolute_trajectory_error(run.ekf, truth),
-               trajectory::absolute_trajectory_error(run.pose_graph, truth)};
-  }
-
-  t = std::chrono::steady_clock::now();
-  write_map_outputs(run, out);
+  const auto t = std::chrono::steady_clock::now();
+  outputs::write_map_outputs(run, out);
   run.timings.emplace_back("figures and report", seconds_since(t));
-  write_report(run, out);
+  outputs::write_map_report(run, out);
   const auto written = out.commit();
   progress(fmt::format("wrote {} files to {} in {:.2f} s", written.size(), o.out, seconds_since(total_start)));
   if (run.metrics) {

@@ -1,4 +1,4 @@
-#include "map_outputs.hpp"
+#include "seqtopo/outputs/map_outputs.hpp"
 
 #include <fmt/format.h>
 
@@ -16,7 +16,7 @@
 #include "seqtopo/plot/trajectory_map.hpp"
 #include "seqtopo/report/html_report.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::outputs {
 namespace {
 
 std::string read_file(const std::filesystem::path& path) {
@@ -84,7 +84,7 @@ void render_svg(const std::filesystem::path& dot_file, const std::filesystem::pa
 
 // Alignments in the coordinates of the drawn matrix: the scores themselves (block 1) or an overview of
 // block x block cells per pixel (--streaming).
-std::vector<plot::Polyline> alignment_overlays(const MapRun& run, std::size_t block) {
+std::vector<plot::Polyline> alignment_overlays(const pipeline::MapRun& run, std::size_t block) {
   const auto at = [block](std::size_t i, std::size_t j) {
     return std::pair{plot::overview_coordinate(static_cast<double>(i), block),
                      plot::overview_coordinate(static_cast<double>(j), block)};
@@ -121,7 +121,7 @@ std::vector<plot::Polyline> alignment_overlays(const MapRun& run, std::size_t bl
 
 }  // namespace
 
-void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
+void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
   const auto& result = run.result;
   const auto& map = result.map;
   const std::size_t n = map.labels.size();
@@ -168,7 +168,7 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
     std::vector<std::pair<std::size_t, std::size_t>> loops;
     for (const auto& p : result.pruning.pairs) loops.emplace_back(p.i, p.j);
     std::vector<plot::TrajectoryPanel> panels{{"(a) cumulative odometry", run.odometry}};
-    if (run.paper_metric) {
+    if (run.paper_trajectory) {
       panels.push_back({"(b) topological map with odometry (EKF)", run.ekf});
     } else {
       panels.push_back({"(b) topological map with odometry (pose graph)", run.pose_graph});
@@ -222,7 +222,7 @@ void write_map_outputs(const MapRun& run, io::OutputDirectory& out) {
   }
 }
 
-void write_report(const MapRun& run, io::OutputDirectory& out) {
+void write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out) {
   report::HtmlReport html("seqtopo map: " + run.input);
   const auto& result = run.result;
   const auto kept = std::count(result.pruning.kept.begin(), result.pruning.kept.end(), true);
@@ -328,4 +328,4 @@ void write_report(const MapRun& run, io::OutputDirectory& out) {
   out.write("report.html", html.html());
 }
 
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::outputs

@@ -1,0 +1,16 @@
+#pragma once
+// How a map run is written (INTERFACE.md, `seqtopo map` outputs): map.json, alignments.json,
+// loop_closures.csv, similarity.npy, scores.npy, similarity.png, topology.dot/.svg, metric_map.png,
+// pr_curve.png, metrics.json (each when it applies; streamed runs have no similarity.npy nor scores.npy),
+// and report.html over them.
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/pipeline/map_pipeline.hpp"
+
+namespace seqtopo::outputs {
+
+// Every file but the report, staged in `out`.
+void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out);
+// report.html from the staged files.
+void write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out);
+
+}  // namespace seqtopo::outputs

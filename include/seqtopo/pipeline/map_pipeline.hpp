@@ -1,0 +1,122 @@
+#pragma once
+// `seqtopo map` as one library call; the command line and the Python module are thin over it.
+//
+//   sequence (image folder, video, descriptors.npy, similarity.npy)
+//     -> similarity matrices (one per descriptor)            sequence_similarity.hpp
+//     -> fused, contrast-enhanced scores -> alignments -> pruning -> places -> topology   mapping/map_builder.hpp
+//     -> trajectory picture (EKF, pose graph) with odometry  trajectory/
+//     -> accuracy against the ground truth, and the SeqSLAM-style baseline on the same matrices
+//
+//   pipeline::MapRequest request;
+//   request.input = {"data/rtabmap-corridor"};
+//   request.truth.same_place = "data/rtabmap-corridor/ground_truth.bmp";
+//   pipeline::MapRun run = pipeline::map_sequence(request);   // run.result.map, run.metrics->f1
+//
+// In memory (arrays from Python or another sensor): map_similarities() takes the matrices and the truth.
+// Writing the results (map.json, figures, report) is the outputs module's job (outputs/map_outputs.hpp).
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "seqtopo/core/pose2.hpp"
+#include "seqtopo/evaluation/loop_closure_metrics.hpp"
+#include "seqtopo/evaluation/topology_metrics.hpp"
+#include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/pipeline/presets.hpp"
+#include "seqtopo/pipeline/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
+#include "seqtopo/plot/matrix_overview.hpp"
+
+namespace seqtopo::pipeline {
+
+// The ground truth a map is scored against, in memory; every part is optional.
+struct MapTruth {
+  evaluation::SamePlace same_place;  // loop closures
+  std::vector<int> places;           // true place of every image (topology)
+  std::vector<int> junctions;        // true junction places
+  std::vector<Pose2> poses;          // true poses (trajectory error, with odometry)
+};
+
+// The same, as the files users give (ground_truth.hpp reads them).
+struct MapTruthFiles {
+  std::filesystem::path same_place;  // N x N image, or poses.csv with `radius`
+  std::optional<double> radius;      // [m]
+  std::filesystem::path places;      // places.csv (junctions.csv beside it)
+  std::filesystem::path poses;       // poses.csv
+};
+
+struct MapRequest {
+  SequenceInput input;
+  std::string preset = "default";  // the name of `settings` (for the report)
+  MapSettings settings = map_preset("default");
+  std::filesystem::path odometry;  // odometry CSV, or empty
+  MapTruthFiles truth;
+  // Never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor, computed when the
+  // engine reads them (scale/streaming_similarity.hpp). Needs the fast engine.
+  bool streaming = false;
+};
+
+struct TrajectoryErrors {
+  double odometry = 0, ekf = 0, pose_graph = 0;  // [m]
+};
+
+// Everything one map run computed.
+struct MapRun {
+  std::string input, preset;
+  mapping::MapConfig map_config;
+  bool paper_trajectory = false;
+  std::vector<SimilarityResult> similarities;  // one per descriptor (kappa, names, timings)
+  std::vector<SimilarityMatrix> matrices;      // their matrices, moved out of `similarities`
+  std::vector<std::string> descriptor_names;
+  mapping::MapResult result;
+  std::vector<Pose2> odometry, ekf, pose_graph;
+  std::optional<evaluation::LoopClosureMetrics> metrics, baseline_metrics;
+  std::string baseline_name;
+  std::string baseline_skipped;  // why the baseline did not run (streaming), when it did not
+  std::optional<TrajectoryErrors> ate;
+  std::optional<evaluation::TopologyMetrics> topology;
+  std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+  // Streaming: no matrix is held (`matrices` and result.scores are empty); similarity.png draws this
+  // block-max overview of the aligned scores instead, and the report states what the streaming cost.
+  bool streaming = false;
+  plot::MatrixOverview overview;
+  std::uint64_t streamed_cells = 0;      // similarity cells computed by the alignment, recomputations included
+  std::size_t streamed_cache_bytes = 0;  // the tile cache's capacity [bytes]
+};
+
+// Lines about the work as it goes (stages, sizes, memory estimates); the library never prints.
+struct MapObserver {
+  std::function<void(std::string_view)> progress;
+};
+
+// A checked request: the constructor reads what is small (the odometry, the number of images where it is
+// known without decoding) and throws InputError on anything wrong, before any long work; run() does the work.
+class MapJob {
+ public:
+  explicit MapJob(MapRequest request);
+  MapRun run(const MapObserver& observer = {}) const;
+  InputKind input_kind() const { return kind_; }
+
+ private:
+  MapRequest request_;
+  InputKind kind_;
+  std::vector<Pose2> odometry_;
+};
+
+// MapJob(request).run(observer).
+MapRun map_sequence(const MapRequest& request, const MapObserver& observer = {});
+
+// The pipeline from similarity matrices already in memory (one per descriptor, all N x N; several are fused),
+// named for the report (`names`, one per matrix, may be empty). `odometry` has one pose per image or is empty.
+// Throws std::invalid_argument on sizes that disagree.
+MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<std::string> names,
+                        const MapSettings& settings, std::span<const Pose2> odometry = {},
+                        const MapTruth& truth = {}, const MapObserver& observer = {});
+
+}  // namespace seqtopo::pipeline

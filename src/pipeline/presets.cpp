@@ -1,0 +1,27 @@
+#include "seqtopo/pipeline/presets.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace seqtopo::pipeline {
+
+MapSettings map_preset(std::string_view name) {
+  MapSettings s;
+  if (name == "default") return s;
+  if (name != "paper") throw std::invalid_argument("unknown preset '" + std::string(name) + "' (paper or default)");
+  s.descriptors = {Descriptor::joint_histogram};
+  s.similarity.distance = Distance::chi2;
+  s.paper_trajectory = true;
+  s.map.contrast_window = 0;                                               // the paper aligns S = 1 - kappa D as it is
+  s.map.pruning.rank = mapping::PruningConfig::Rank::length_then_score;  // "the longest matching subsequence"
+  // Raw S lives on another scale than enhanced scores; these were tuned on the corridor with kappa auto
+  // (bench/tune_map.cpp): F1 0.872, AUC 0.773.
+  s.map.gap = 0.3F;
+  s.map.cap = 8.0F;
+  s.map.threshold = 3.0F;
+  return s;
+}
+
+std::vector<std::string_view> map_preset_names() { return {"default", "paper"}; }
+
+}  // namespace seqtopo::pipeline
