@@ -51,10 +51,10 @@ std::optional<LoopClosureBaseline> seqslam_loop_closure_baseline(
     metrics.precision = at_threshold.precision;
     metrics.recall = at_threshold.recall;
     metrics.f1 = at_threshold.f1;
-    best = LoopClosureBaseline{std::move(metrics),
-                               fmt::format("SeqSLAM-style on {} (sequence {}, velocities {}-{}, best-F1 threshold {:.3g})",
-                                           name, seqslam.sequence_length, seqslam.min_velocity, seqslam.max_velocity,
-                                           threshold)};
+    best = LoopClosureBaseline{
+        std::move(metrics),
+        fmt::format("SeqSLAM-style on {} (sequence {}, velocities {}-{}, best-F1 threshold {:.3g})", name,
+                    seqslam.sequence_length, seqslam.min_velocity, seqslam.max_velocity, threshold)};
   }
   return best;
 }

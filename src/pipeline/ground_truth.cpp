@@ -51,8 +51,7 @@ TruePlaces load_true_places(const fs::path& places_csv, std::size_t images) {
 std::vector<Pose2> load_true_poses(const fs::path& poses_csv, std::size_t images) {
   auto truth = formats::read_poses_csv(poses_csv);
   if (truth.size() != images) {
-    throw InputError(poses_csv.string(),
-                     fmt::format("has {} poses, the sequence has {} images", truth.size(), images));
+    throw InputError(poses_csv.string(), fmt::format("has {} poses, the sequence has {} images", truth.size(), images));
   }
   return truth;
 }

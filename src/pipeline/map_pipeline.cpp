@@ -85,9 +85,8 @@ void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry,
   config.descriptor = settings.descriptors.front();
   DescriptorResult described = compute_descriptors(request.input, config);
   const std::size_t n = described.descriptors.rows, dim = described.descriptors.cols;
-  run.descriptor_names.emplace_back(described.descriptor == Descriptor::npy
-                                        ? "descriptors.npy"
-                                        : std::string(descriptor_name(described.descriptor)));
+  run.descriptor_names.emplace_back(
+      described.descriptor == Descriptor::npy ? "descriptors.npy" : std::string(descriptor_name(described.descriptor)));
   say(observer, fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
   if (n < 2) throw InputError(request.input.path.string(), "needs at least 2 images");
   check_odometry(odometry, n, request.odometry.string());
@@ -142,7 +141,8 @@ void trajectory_and_accuracy(const MapSettings& settings, const MapTruth& truth,
     } else {
       // The baseline runs on every matrix seqtopo saw (each descriptor's S and the fused, enhanced scores).
       std::vector<std::pair<std::string, const SimilarityMatrix*>> sources;
-      for (std::size_t k = 0; k < run.matrices.size(); ++k) sources.emplace_back(run.descriptor_names[k], &run.matrices[k]);
+      for (std::size_t k = 0; k < run.matrices.size(); ++k)
+        sources.emplace_back(run.descriptor_names[k], &run.matrices[k]);
       if (run.matrices.size() > 1 || settings.map.contrast_window > 0) {
         sources.emplace_back("seqtopo's fused scores", &run.result.scores);
       }
@@ -156,7 +156,8 @@ void trajectory_and_accuracy(const MapSettings& settings, const MapTruth& truth,
   if (!truth.places.empty()) {
     if (truth.places.size() != n) throw std::invalid_argument("true places: one per image expected");
     // Merges of neighbouring true places that the loop-closure ground truth calls the same place are tolerated.
-    const evaluation::Tolerated tolerated = truth.same_place ? evaluation::Tolerated(truth.same_place) : evaluation::Tolerated{};
+    const evaluation::Tolerated tolerated =
+        truth.same_place ? evaluation::Tolerated(truth.same_place) : evaluation::Tolerated{};
     run.topology = evaluation::evaluate_topology(run.result.map.labels, run.result.map.junctions, truth.places,
                                                  truth.junctions, settings.map.min_separation, 2, tolerated);
   }
@@ -183,8 +184,8 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
   if (!std::filesystem::exists(request_.input.path)) {
     throw InputError(request_.input.path.string(), "no such file or folder");
   }
-  for (const auto* path : {&request_.odometry, &request_.truth.same_place, &request_.truth.poses,
-                           &request_.truth.places}) {
+  for (const auto* path :
+       {&request_.odometry, &request_.truth.same_place, &request_.truth.poses, &request_.truth.places}) {
     if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
   }
   kind_ = resolve_input_kind(request_.input);

@@ -12,7 +12,7 @@ MapSettings map_preset(std::string_view name) {
   s.descriptors = {Descriptor::joint_histogram};
   s.similarity.distance = Distance::chi2;
   s.paper_trajectory = true;
-  s.map.contrast_window = 0;                                               // the paper aligns S = 1 - kappa D as it is
+  s.map.contrast_window = 0;                                             // the paper aligns S = 1 - kappa D as it is
   s.map.pruning.rank = mapping::PruningConfig::Rank::length_then_score;  // "the longest matching subsequence"
   // Raw S lives on another scale than enhanced scores; these were tuned on the corridor with kappa auto
   // (bench/tune_map.cpp): F1 0.872, AUC 0.773.

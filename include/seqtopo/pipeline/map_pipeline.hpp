@@ -116,7 +116,7 @@ MapRun map_sequence(const MapRequest& request, const MapObserver& observer = {})
 // named for the report (`names`, one per matrix, may be empty). `odometry` has one pose per image or is empty.
 // Throws std::invalid_argument on sizes that disagree.
 MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<std::string> names,
-                        const MapSettings& settings, std::span<const Pose2> odometry = {},
-                        const MapTruth& truth = {}, const MapObserver& observer = {});
+                        const MapSettings& settings, std::span<const Pose2> odometry = {}, const MapTruth& truth = {},
+                        const MapObserver& observer = {});
 
 }  // namespace seqtopo::pipeline

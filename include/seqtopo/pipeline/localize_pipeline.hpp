@@ -1,0 +1,84 @@
+#pragma once
+// `seqtopo localize` as a library call: where in a mapped traverse is the robot? The query x map similarity is
+// aligned offline (localize/localize.hpp), or the query frames are taken one at a time (online,
+// localize/online_localizer.hpp); with ground truth, the answers are scored next to the single-frame and the
+// SeqSLAM baselines on the same matrix (baselines.hpp). Writing the results is outputs/localize_outputs.hpp.
+//
+//   pipeline::LocalizeRequest request;
+//   request.map = {"summer"};
+//   request.query = {"winter"};
+//   pipeline::LocalizeRun run = pipeline::localize_sequences(request);   // run.answers[q].map
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/evaluation/localization_metrics.hpp"
+#include "seqtopo/localize/localize.hpp"
+#include "seqtopo/pipeline/ground_truth.hpp"
+#include "seqtopo/pipeline/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
+
+namespace seqtopo::pipeline {
+
+struct LocalizeSettings {
+  SimilarityConfig similarity = [] {
+    SimilarityConfig c;
+    c.descriptor = Descriptor::patch;  // localization's default descriptor
+    return c;
+  }();
+  localize::LocalizeConfig localize;
+};
+
+struct LocalizeRequest {
+  SequenceInput map, query;  // the query's path "-" (online only): image paths from next_query_path
+  // A query x map similarity.npy instead of the two sequences (rows = query frames, columns = map frames).
+  std::optional<std::filesystem::path> similarity_file;
+  LocalizeSettings settings;
+  bool online = false;
+};
+
+// One query frame's answer, whichever mode produced it.
+struct FrameAnswer {
+  std::optional<std::size_t> map;       // nullopt = "not in the map"
+  float score = 0;                      // higher = more confident
+  std::vector<std::size_t> candidates;  // best first
+};
+
+struct LocalizeRun {
+  bool online = false;
+  std::string inputs;         // "QUERY in MAP", or the similarity file (for the report)
+  LocalizeSettings settings;  // what ran
+  SimilarityMatrix similarity;  // query x map (offline, or the rows seen online)
+  std::size_t queries = 0, maps = 0;
+  std::vector<FrameAnswer> answers;
+  std::vector<align::LocalAlignment> alignments;  // offline
+  std::vector<double> latencies;                  // [s] per frame, online
+  std::vector<std::pair<std::string, double>> timings;
+  double seconds = 0;  // the localization's wall time
+  // With ground truth (evaluate_localization_run):
+  std::optional<evaluation::LocalizationMetrics> metrics, single_frame, seqslam;
+  std::size_t tolerance = 0;
+};
+
+// Online: called after every query frame with its index, answer and latency [s].
+using OnlineFrameCallback = std::function<void(std::size_t query, const FrameAnswer& answer, double latency)>;
+// The next image path of a query given as "-" (nullopt at the end).
+using NextPath = std::function<std::optional<std::string>()>;
+
+// Throws InputError on unreadable or inconsistent inputs, std::invalid_argument on misuse.
+LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineFrameCallback& on_frame = {},
+                               const NextPath& next_query_path = {});
+
+// Scores the answers against the truth (within +-tolerance map frames) and runs the single-frame and SeqSLAM
+// baselines on the same matrix.
+void evaluate_localization_run(LocalizeRun& run, const evaluation::LocalizationTruth& truth, std::size_t tolerance,
+                               unsigned threads);
+
+std::vector<evaluation::LocalizationPrediction> predictions(const std::vector<FrameAnswer>& answers);
+
+}  // namespace seqtopo::pipeline

@@ -1,0 +1,205 @@
+#include "seqtopo/pipeline/localize_pipeline.hpp"
+
+#include <chrono>
+#include <stdexcept>
+#include <variant>
+
+#include "seqtopo/core/input_error.hpp"
+#include "seqtopo/image/image_io.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/localize/online_localizer.hpp"
+#include "seqtopo/pipeline/baselines.hpp"
+#include "seqtopo/similarity/distance.hpp"
+
+namespace seqtopo::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+FrameAnswer answer_of(const localize::FrameMatch& f) {
+  FrameAnswer a;
+  if (f.covered) a.map = f.map;
+  a.score = f.score;
+  a.candidates = f.candidates;
+  return a;
+}
+
+void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
+  const auto t0 = Clock::now();
+  SimilarityResult s;
+  try {
+    if (request.similarity_file) {
+      const SequenceInput file{*request.similarity_file, InputKind::similarity, 1};
+      s = compute_similarity(file, file, request.settings.similarity);
+    } else {
+      s = compute_similarity(request.query, request.map, request.settings.similarity);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw InputError(request.query.path.empty() ? request.map.path.string() : request.query.path.string(), e.what());
+  }
+  run.timings.emplace_back("similarity matrix", seconds_since(t0));
+  run.similarity = std::move(s.similarity);
+  run.queries = run.similarity.rows;
+  run.maps = run.similarity.cols;
+
+  const auto t1 = Clock::now();
+  const auto result = localize::localize_sequence(run.similarity, request.settings.localize);
+  run.timings.emplace_back("alignment (forward and reverse)", seconds_since(t1));
+  run.alignments = result.alignments;
+  for (const auto& f : result.frames) run.answers.push_back(answer_of(f));
+}
+
+// A descriptor of one frame: dense (thumbnail, external descriptor) or a sparse joint histogram.
+using FrameDescriptor = std::variant<std::vector<float>, similarity::SparseHistogram>;
+
+struct Describer {
+  Descriptor descriptor;
+  SimilarityConfig config;
+  FrameDescriptor operator()(const RgbImage& image) const {
+    if (descriptor == Descriptor::joint_histogram) return image::joint_histogram(image, config.joint_histogram);
+    return dense_descriptor(image, descriptor, config);
+  }
+};
+
+double frame_distance(similarity::Distance metric, const FrameDescriptor& a, const FrameDescriptor& b) {
+  if (a.index() != b.index()) throw std::invalid_argument("both sequences must have the same kind of descriptor");
+  if (const auto* x = std::get_if<std::vector<float>>(&a))
+    return similarity::distance(metric, *x, std::get<std::vector<float>>(b));
+  return similarity::distance(metric, std::get<similarity::SparseHistogram>(a),
+                              std::get<similarity::SparseHistogram>(b));
+}
+
+// Calls visit(descriptor) for every frame of a sequence, in order, reading it lazily (a query folder is
+// listed first; a query of "-" takes one image path at a time from next_path as the frames arrive).
+void for_each_frame(const SequenceInput& input, const Describer& describe, const NextPath& next_path,
+                    const std::function<void(FrameDescriptor)>& visit) {
+  if (input.path == "-") {
+    if (!next_path) throw std::invalid_argument("a query of '-' needs a source of image paths");
+    while (const auto line = next_path()) {
+      if (line->empty()) continue;
+      visit(describe(image::load_image(*line)));
+    }
+    return;
+  }
+  switch (resolve_input_kind(input)) {
+    case InputKind::images:
+      for (const auto& file : list_images(input.path)) visit(describe(image::load_image(file)));
+      return;
+    case InputKind::video:
+      image::for_each_video_frame(input.path, input.every,
+                                  [&](std::size_t, const RgbImage& frame) { visit(describe(frame)); });
+      return;
+    case InputKind::descriptors: {
+      const auto rows = io::read_npy_matrix<float>(input.path);
+      if (rows.empty()) throw InputError(input.path.string(), "no descriptors (empty array)");
+      for (std::size_t i = 0; i < rows.rows; ++i) visit(std::vector<float>(rows.row(i).begin(), rows.row(i).end()));
+      return;
+    }
+    default:
+      break;
+  }
+  throw InputError(input.path.string(), "expected an image folder, a video or descriptors.npy");
+}
+
+void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_frame, const NextPath& next_path,
+                LocalizeRun& run) {
+  const auto& config = request.settings.localize;
+  auto report = [&](const localize::OnlineEstimate& e, double seconds) {
+    FrameAnswer a;
+    if (e.in_map) a.map = e.map;
+    a.score = e.confidence;
+    a.candidates = {e.map};
+    run.answers.push_back(a);
+    run.latencies.push_back(seconds);
+    if (on_frame) on_frame(e.query, run.answers.back(), seconds);
+  };
+
+  if (request.similarity_file) {
+    // The rows of a precomputed matrix arrive one by one.
+    const auto s = io::read_npy_matrix<float>(*request.similarity_file);
+    if (s.empty()) throw InputError(request.similarity_file->string(), "empty similarity matrix");
+    localize::OnlineLocalizer localizer(s.cols, config);
+    for (std::size_t i = 0; i < s.rows; ++i) {
+      const auto t = Clock::now();
+      const auto e = localizer.feed(s.row(i));
+      report(e, seconds_since(t));
+    }
+    run.similarity = s;
+    run.queries = s.rows;
+    run.maps = s.cols;
+    return;
+  }
+
+  // Image, video or descriptor inputs: the map is described once; each query frame then costs one
+  // descriptor and one row of distances. The rows are contrast-enhanced, so S = 1 - kappa * D needs no kappa
+  // (any kappa > 0 gives the same scores).
+  const auto& sc = request.settings.similarity;
+  const InputKind map_kind = resolve_input_kind(request.map);
+  const Descriptor d = map_kind == InputKind::descriptors ? Descriptor::npy : sc.descriptor;
+  if (d == Descriptor::npy && map_kind != InputKind::descriptors) {
+    throw InputError("--descriptor", "npy needs descriptors .npy files as input");
+  }
+  const similarity::Distance metric = sc.distance.value_or(default_distance(d));
+  const Describer describe{d, sc};
+  const auto t0 = Clock::now();
+  std::vector<FrameDescriptor> map;
+  for_each_frame(request.map, describe, next_path, [&](FrameDescriptor f) { map.push_back(std::move(f)); });
+  run.timings.emplace_back("map descriptors", seconds_since(t0));
+  run.maps = map.size();
+  localize::OnlineLocalizer localizer(map.size(), config);
+  std::vector<float> row(map.size());
+  std::vector<float> kept;
+  auto t = Clock::now();  // a frame's latency runs from the end of the previous frame: reading it counts
+  for_each_frame(request.query, describe, next_path, [&](FrameDescriptor q) {
+    try {
+      for (std::size_t j = 0; j < map.size(); ++j) row[j] = static_cast<float>(-frame_distance(metric, q, map[j]));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(request.query.path.string(), e.what());
+    }
+    const auto e = localizer.feed(row);
+    kept.insert(kept.end(), row.begin(), row.end());
+    report(e, seconds_since(t));
+    t = Clock::now();
+  });
+  run.queries = run.answers.size();
+  if (run.queries == 0) throw InputError(request.query.path.string(), "no query frame");
+  run.similarity = SimilarityMatrix(run.queries, run.maps, std::move(kept));
+}
+
+}  // namespace
+
+LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineFrameCallback& on_frame,
+                               const NextPath& next_query_path) {
+  localize::validate(request.settings.localize);
+  LocalizeRun run;
+  run.online = request.online;
+  run.settings = request.settings;
+  run.inputs = request.similarity_file ? request.similarity_file->string()
+                                       : request.query.path.string() + " in " + request.map.path.string();
+  const auto t0 = Clock::now();
+  if (request.online) {
+    run_online(request, on_frame, next_query_path, run);
+  } else {
+    run_offline(request, run);
+  }
+  run.seconds = seconds_since(t0);
+  return run;
+}
+
+std::vector<evaluation::LocalizationPrediction> predictions(const std::vector<FrameAnswer>& answers) {
+  std::vector<evaluation::LocalizationPrediction> p;
+  for (const auto& a : answers) p.push_back({a.map, a.score, a.candidates});
+  return p;
+}
+
+void evaluate_localization_run(LocalizeRun& run, const evaluation::LocalizationTruth& truth, std::size_t tolerance,
+                               unsigned threads) {
+  run.tolerance = tolerance;
+  run.metrics = evaluation::evaluate_localization(predictions(run.answers), truth, tolerance);
+  run.single_frame = evaluation::evaluate_localization(single_frame_localization(run.similarity), truth, tolerance);
+  run.seqslam = evaluation::evaluate_localization(
+      seqslam_localization(run.similarity, localization_seqslam_config(threads)), truth, tolerance);
+}
+
+}  // namespace seqtopo::pipeline
