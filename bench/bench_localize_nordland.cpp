@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
     else if (a == "--tolerance")
       tolerance = std::stoul(next());
     else if (a == "--offset")
-      config.offset = std::stof(next());
+      config.contrast_offset = std::stof(next());
     else if (a == "--gap")
       config.gap = std::stof(next());
     else if (a == "--cap") {
@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
     } else if (a == "--threshold")
       config.threshold = std::stof(next());
     else if (a == "--window")
-      config.enhancement_window = std::stoul(next());
+      config.contrast_window = std::stoul(next());
     else if (a == "--score-window")
       config.score_window = std::stoul(next());
     else if (a == "--online")
@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
   seqslam.min_velocity = 0.9F;
   seqslam.max_velocity = 1.6F;
   seqslam.velocity_steps = 8;
-  seqslam.enhancement_window = 10;
+  seqslam.contrast_window = 10;
   seqslam.threads = 1;
 
   std::printf("| map | query | method | R@1 (+-%zu) | R@5 | AUC | R@100P | seconds | vs SeqSLAM |\n", tolerance);

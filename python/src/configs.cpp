@@ -171,16 +171,16 @@ void bind_localize(py::module_& m) {
   py::class_<LocalizeConfig> c(
       m, "LocalizeConfig",
       "Settings of localize (C++ seqtopo::localize::LocalizeConfig), same names and defaults.\n\n"
-      "enhancement_window [map frames] (0: whole row), enhance, offset [standard deviations], gap,\n"
+      "contrast_window [map frames] (0: whole row), enhance, contrast_offset [standard deviations], gap,\n"
       "cap (None: none), threshold (minimum alignment score that covers frames), reverse,\n"
       "max_alignments, score_window [query frames], candidates (kept per frame), threads.");
-  c.def(py::init([](std::size_t enhancement_window, bool enhance, float offset, float gap, std::optional<float> cap,
-                    float threshold, bool reverse, std::size_t max_alignments, std::size_t score_window,
-                    std::size_t candidates, unsigned threads) {
+  c.def(py::init([](std::size_t contrast_window, bool enhance, float contrast_offset, float gap,
+                    std::optional<float> cap, float threshold, bool reverse, std::size_t max_alignments,
+                    std::size_t score_window, std::size_t candidates, unsigned threads) {
           LocalizeConfig config;
-          config.enhancement_window = enhancement_window;
+          config.contrast_window = contrast_window;
           config.enhance = enhance;
-          config.offset = offset;
+          config.contrast_offset = contrast_offset;
           config.gap = gap;
           config.cap = cap;
           config.threshold = threshold;
@@ -191,14 +191,14 @@ void bind_localize(py::module_& m) {
           config.threads = threads;
           return config;
         }),
-        py::kw_only(), py::arg("enhancement_window") = d.enhancement_window, py::arg("enhance") = d.enhance,
-        py::arg("offset") = d.offset, py::arg("gap") = d.gap, py::arg("cap") = d.cap,
+        py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("enhance") = d.enhance,
+        py::arg("contrast_offset") = d.contrast_offset, py::arg("gap") = d.gap, py::arg("cap") = d.cap,
         py::arg("threshold") = d.threshold, py::arg("reverse") = d.reverse,
         py::arg("max_alignments") = d.max_alignments, py::arg("score_window") = d.score_window,
         py::arg("candidates") = d.candidates, py::arg("threads") = d.threads)
-      .def_readwrite("enhancement_window", &LocalizeConfig::enhancement_window)
+      .def_readwrite("contrast_window", &LocalizeConfig::contrast_window)
       .def_readwrite("enhance", &LocalizeConfig::enhance)
-      .def_readwrite("offset", &LocalizeConfig::offset)
+      .def_readwrite("contrast_offset", &LocalizeConfig::contrast_offset)
       .def_readwrite("gap", &LocalizeConfig::gap)
       .def_readwrite("cap", &LocalizeConfig::cap)
       .def_readwrite("threshold", &LocalizeConfig::threshold)
@@ -208,7 +208,7 @@ void bind_localize(py::module_& m) {
       .def_readwrite("candidates", &LocalizeConfig::candidates)
       .def_readwrite("threads", &LocalizeConfig::threads);
   add_repr(c, "LocalizeConfig",
-           {"enhancement_window", "enhance", "offset", "gap", "cap", "threshold", "reverse", "max_alignments",
+           {"contrast_window", "enhance", "contrast_offset", "gap", "cap", "threshold", "reverse", "max_alignments",
             "score_window", "candidates", "threads"});
 }
 

@@ -143,8 +143,8 @@ def test_localize_with_options_equals_cli(cli, tmp_path):
     s = seqtopo.similarity(query, map_d[::-1].copy()).similarity  # the map driven the other way
     np.save(tmp_path / "qm_similarity.npy", s)
     run_cli(cli, "localize", "--map", tmp_path / "qm_similarity.npy", "--out", tmp_path / "out", "--gap", 1.5,
-            "--threshold", 6, "--offset", 0.5, "--window", 6, "--score-window", 4, "--cap", 30)
-    result = seqtopo.localize(s, seqtopo.LocalizeConfig(gap=1.5, threshold=6.0, offset=0.5, enhancement_window=6,
+            "--threshold", 6, "--contrast-offset", 0.5, "--contrast-window", 6, "--score-window", 4, "--cap", 30)
+    result = seqtopo.localize(s, seqtopo.LocalizeConfig(gap=1.5, threshold=6.0, contrast_offset=0.5, contrast_window=6,
                                                          score_window=4, cap=30.0, threads=2))
     assert "reverse" in set(result.direction[result.covered])
     with open(tmp_path / "out" / "matches.csv", newline="") as f:

@@ -16,7 +16,7 @@ std::vector<SequenceMatch> seqslam_matches(const SimilarityMatrix& similarity, c
     throw std::invalid_argument("velocities must satisfy 0 < min <= max, with at least one step");
   }
   if (config.self && !similarity.square()) throw std::invalid_argument("self mode needs a square similarity matrix");
-  const SimilarityMatrix e = similarity::enhance_contrast(similarity, config.enhancement_window);
+  const SimilarityMatrix e = similarity::enhance_contrast(similarity, config.contrast_window);
   std::vector<float> velocities;
   for (std::size_t v = 0; v < config.velocity_steps; ++v) {
     const float t =

@@ -78,8 +78,8 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o) {
   c.gap = o.gap;
   c.cap = o.cap;
   c.threshold = o.threshold;
-  c.offset = o.offset;
-  c.enhancement_window = o.window;
+  c.contrast_offset = o.offset;
+  c.contrast_window = o.window;
   c.score_window = o.score_window;
   c.reverse = !o.no_reverse;
   c.threads = std::min(2U, resolve_threads(o.threads));
@@ -88,9 +88,9 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o) {
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
     const char* option = "--threshold";
-    for (const char* name : {"gap", "cap", "offset"}) {
+    for (const char* name : {"gap", "cap", "contrast_offset"}) {
       if (what.rfind(name, 0) == 0)
-        option = name == std::string("gap") ? "--gap" : name == std::string("cap") ? "--cap" : "--offset";
+        option = name == std::string("gap") ? "--gap" : name == std::string("cap") ? "--cap" : "--contrast-offset";
     }
     throw InputError(option, what);
   }
@@ -181,9 +181,11 @@ const RegisterCommand registered{
        app.add_option("--cap", o->cap, "upper bound on the cumulative score (default: none)");
        app.add_option("--threshold", o->threshold, "minimum alignment score (online: minimum confidence)")
            ->capture_default_str();
-       app.add_option("--offset", o->offset, "subtracted from the contrast-enhanced similarity [standard deviations]")
+       app.add_option("--contrast-offset,--offset", o->offset,
+                      "subtracted from the contrast-enhanced similarity [standard deviations] (--offset: old name)")
            ->capture_default_str();
-       app.add_option("--window", o->window, "contrast enhancement: +-W map frames (0 = whole row)")
+       app.add_option("--contrast-window,--window", o->window,
+                      "contrast enhancement: +-W map frames (0 = whole row; --window: old name)")
            ->capture_default_str();
        app.add_option("--score-window", o->score_window, "per-frame score: +-W query frames of the alignment")
            ->capture_default_str();

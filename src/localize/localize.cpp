@@ -8,6 +8,7 @@
 #include <string>
 
 #include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::localize {
 
@@ -22,14 +23,11 @@ void check_matrix(const SimilarityMatrix& s) {
   }
 }
 
-// Smallest standard deviation a row window may have: a flat window gives z-scores of 0, not infinities.
-constexpr double kMinDeviation = 1e-9;
-
 }  // namespace
 
 void validate(const LocalizeConfig& c) {
   if (!std::isfinite(c.gap) || c.gap < 0) throw std::invalid_argument("gap must be a finite number >= 0");
-  if (!std::isfinite(c.offset)) throw std::invalid_argument("offset must be a finite number");
+  if (!std::isfinite(c.contrast_offset)) throw std::invalid_argument("contrast_offset must be a finite number");
   if (c.cap && !(std::isfinite(*c.cap) && *c.cap > 0)) throw std::invalid_argument("cap must be a finite number > 0");
   if (!std::isfinite(c.threshold)) throw std::invalid_argument("threshold must be a finite number");
   if (c.max_alignments == 0) throw std::invalid_argument("max_alignments must be >= 1");
@@ -38,25 +36,11 @@ void validate(const LocalizeConfig& c) {
 
 void score_row(const float* row, std::size_t cols, const LocalizeConfig& c, float* out) {
   if (!c.enhance) {
-    for (std::size_t j = 0; j < cols; ++j) out[j] = row[j] - c.offset;
+    for (std::size_t j = 0; j < cols; ++j) out[j] = row[j] - c.contrast_offset;
     return;
   }
-  // Prefix sums make every window O(1); doubles keep the sums exact enough for rows of any length.
-  std::vector<double> sum(cols + 1, 0.0), sum2(cols + 1, 0.0);
-  for (std::size_t j = 0; j < cols; ++j) {
-    sum[j + 1] = sum[j] + row[j];
-    sum2[j + 1] = sum2[j] + static_cast<double>(row[j]) * row[j];
-  }
-  const std::size_t w = c.enhancement_window == 0 ? cols : c.enhancement_window;
-  for (std::size_t j = 0; j < cols; ++j) {
-    const std::size_t lo = j > w ? j - w : 0;
-    const std::size_t hi = std::min(cols, j + w + 1);
-    const double n = static_cast<double>(hi - lo);
-    const double mean = (sum[hi] - sum[lo]) / n;
-    const double var = std::max(0.0, (sum2[hi] - sum2[lo]) / n - mean * mean);
-    const double sd = std::max(std::sqrt(var), kMinDeviation);
-    out[j] = static_cast<float>((row[j] - mean) / sd) - c.offset;
-  }
+  similarity::enhance_row(row, cols, c.contrast_window == 0 ? cols : c.contrast_window, out);
+  for (std::size_t j = 0; j < cols; ++j) out[j] -= c.contrast_offset;
 }
 
 SimilarityMatrix score_matrix(const SimilarityMatrix& s, const LocalizeConfig& c) {

@@ -148,8 +148,8 @@ std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDir
                    {"gap", fmt::format("{}", config.gap)},
                    {"cap", config.cap ? fmt::format("{}", *config.cap) : "none"},
                    {"threshold", fmt::format("{}", config.threshold)},
-                   {"offset [sd]", fmt::format("{}", config.offset)},
-                   {"enhancement window [frames]", std::to_string(config.enhancement_window)},
+                   {"offset [sd]", fmt::format("{}", config.contrast_offset)},
+                   {"enhancement window [frames]", std::to_string(config.contrast_window)},
                    {"score window [frames]", std::to_string(config.score_window)},
                    {"reverse pass", config.reverse ? "yes" : "no"}});
   if (!r.timings.empty()) {

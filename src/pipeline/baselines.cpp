@@ -65,7 +65,7 @@ baseline::SeqSlamConfig localization_seqslam_config(unsigned threads) {
   c.min_velocity = 0.9F;
   c.max_velocity = 1.6F;
   c.velocity_steps = 8;
-  c.enhancement_window = 10;
+  c.contrast_window = 10;
   c.threads = threads;
   return c;
 }

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "seqtopo/align/fast_alignment.hpp"
+#include "seqtopo/similarity/contrast_enhancement.hpp"
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -18,13 +19,6 @@ namespace seqtopo::scale {
 namespace {
 
 using TilePtr = std::shared_ptr<const std::vector<float>>;
-
-// The dense path's arithmetic (enhance_contrast): window sums in double, in index order.
-float enhanced(float v, double sum, double sum2, double count) {
-  const double mean = sum / count;
-  const double sd = std::sqrt(std::max(0.0, sum2 / count - mean * mean));
-  return static_cast<float>((v - mean) / std::max(sd, 1e-9));
-}
 
 float combine(float e_ij, float e_ji, float offset) { return 0.5F * (e_ij + e_ji) - offset; }
 
@@ -102,60 +96,12 @@ void dot_block(float* out, std::size_t out_stride, const float* x, std::size_t r
   dot_block_portable(out, out_stride, x, rows, xt, stride, dim, count);
 }
 
-// sum[b] and sum2[b] over first[t * stride + b] for t = 0 .. terms - 1, in that order, in double: the
-// window sums of `count` cells (the dense path's operations per cell; no fused multiply-add).
-void window_sums_portable(double* sum, double* sum2, const float* first, std::size_t stride, std::size_t terms,
-                          std::size_t count) {
-  for (std::size_t b = 0; b < count; ++b) {
-    double s = 0, s2 = 0;
-    for (std::size_t t = 0; t < terms; ++t) {
-      const float v = first[t * stride + b];
-      s += v;
-      s2 += static_cast<double>(v) * v;
-    }
-    sum[b] = s;
-    sum2[b] = s2;
-  }
-}
-
-#if defined(__x86_64__)
-// Eight cells at a time with their sums in registers across the terms.
-[[gnu::target("avx2")]] void window_sums_avx2(double* sum, double* sum2, const float* first, std::size_t stride,
-                                              std::size_t terms, std::size_t count) {
-  std::size_t b = 0;
-  for (; b + 8 <= count; b += 8) {
-    __m256d s_lo = _mm256_setzero_pd(), s_hi = s_lo, q_lo = s_lo, q_hi = s_lo;
-    for (std::size_t t = 0; t < terms; ++t) {
-      const __m256 v = _mm256_loadu_ps(first + t * stride + b);
-      const __m256d lo = _mm256_cvtps_pd(_mm256_castps256_ps128(v)), hi = _mm256_cvtps_pd(_mm256_extractf128_ps(v, 1));
-      s_lo = _mm256_add_pd(s_lo, lo);
-      s_hi = _mm256_add_pd(s_hi, hi);
-      q_lo = _mm256_add_pd(q_lo, _mm256_mul_pd(lo, lo));
-      q_hi = _mm256_add_pd(q_hi, _mm256_mul_pd(hi, hi));
-    }
-    _mm256_storeu_pd(sum + b, s_lo);
-    _mm256_storeu_pd(sum + b + 4, s_hi);
-    _mm256_storeu_pd(sum2 + b, q_lo);
-    _mm256_storeu_pd(sum2 + b + 4, q_hi);
-  }
-  window_sums_portable(sum + b, sum2 + b, first + b, stride, terms, count - b);
-}
-#endif
-
-void window_sums(double* sum, double* sum2, const float* first, std::size_t stride, std::size_t terms,
-                 std::size_t count) {
-#if defined(__x86_64__)
-  if (has_avx2()) return window_sums_avx2(sum, sum2, first, stride, terms, count);
-#endif
-  window_sums_portable(sum, sum2, first, stride, terms, count);
-}
-
 [[gnu::target_clones("avx2", "default")]] void finish(float* out, const float* v, const double* rs, const double* rs2,
                                                       const double* row_count, const double* cs, const double* cs2,
                                                       double col_count, float offset, std::size_t count) {
   for (std::size_t b = 0; b < count; ++b) {
-    const float e_ij = enhanced(v[b], rs[b], rs2[b], row_count[b]);
-    const float e_ji = enhanced(v[b], cs[b], cs2[b], col_count);
+    const float e_ij = similarity::contrast_score(v[b], rs[b], rs2[b], row_count[b]);
+    const float e_ji = similarity::contrast_score(v[b], cs[b], cs2[b], col_count);
     out[b] = combine(e_ij, e_ji, offset);
   }
 }
@@ -226,7 +172,7 @@ float StreamingSimilarity::score(std::size_t i, std::size_t j) const {
       sum += r;
       sum2 += static_cast<double>(r) * r;
     }
-    return enhanced(v, sum, sum2, static_cast<double>(hi - lo));
+    return similarity::contrast_score(v, sum, sum2, static_cast<double>(hi - lo));
   };
   // E(i, j): row i around column j; E(j, i): row j around column i.
   return combine(window_stats(i, j), window_stats(j, i), config_.contrast_offset);
@@ -265,17 +211,17 @@ std::vector<float> StreamingSimilarity::compute_tile(std::size_t tile_row, std::
     // (j in [w, n - w)) the window of cell j starts at row[j - w - ec0], one further for each cell.
     const std::size_t in_lo = std::clamp(w, c0, c1), in_hi = std::clamp(n_ - std::min(n_, w), in_lo, c1);
     if (in_hi > in_lo) {
-      kernels::window_sums(rs.data() + (in_lo - c0), rs2.data() + (in_lo - c0), row + (in_lo - w - ec0), 1, 2 * w + 1,
-                           in_hi - in_lo);
+      similarity::window_sums(rs.data() + (in_lo - c0), rs2.data() + (in_lo - c0), row + (in_lo - w - ec0), 1,
+                              2 * w + 1, in_hi - in_lo);
     }
     for (std::size_t j = c0; j < c1; ++j) {
       if (j >= in_lo && j < in_hi) continue;
       const std::size_t lo = j > w ? j - w : 0, hi = std::min(n_, j + w + 1);
-      kernels::window_sums(rs.data() + (j - c0), rs2.data() + (j - c0), row + (lo - ec0), 1, hi - lo, 1);
+      similarity::window_sums(rs.data() + (j - c0), rs2.data() + (j - c0), row + (lo - ec0), 1, hi - lo, 1);
     }
     // Column j around row i (= row j around column i): rows i - w .. i + w, clipped.
     const std::size_t klo = i > w ? i - w : 0, khi = std::min(n_, i + w + 1);
-    kernels::window_sums(cs.data(), cs2.data(), raw.data() + (klo - er0) * ew + (c0 - ec0), ew, khi - klo, tw);
+    similarity::window_sums(cs.data(), cs2.data(), raw.data() + (klo - er0) * ew + (c0 - ec0), ew, khi - klo, tw);
     kernels::finish(out, row + (c0 - ec0), rs.data(), rs2.data(), row_count.data(), cs.data(), cs2.data(),
                     static_cast<double>(khi - klo), config_.contrast_offset, tw);
   }

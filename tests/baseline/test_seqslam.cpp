@@ -40,7 +40,7 @@ TEST(SeqSlam, EqualsBruteForceDefinition) {
     config.self = true;
     config.min_separation = 3;
     config.sequence_length = 4;
-    config.enhancement_window = 0;
+    config.contrast_window = 0;
     config.velocity_steps = 3;
     const auto got = seqslam_matches(s, config);
     for (std::size_t q = 0; q < n; ++q) {

@@ -29,7 +29,7 @@ std::size_t distance(std::size_t a, std::size_t b) { return a > b ? a - b : b - 
 LocalizeConfig plain_config() {
   LocalizeConfig c;
   c.enhance = false;
-  c.offset = 0.6F;
+  c.contrast_offset = 0.6F;
   c.gap = 0.5F;
   c.threshold = 3.0F;
   return c;
@@ -139,7 +139,7 @@ TEST(Localize, BridgesAShortBadStretch) {
     if (q < 35 || q >= 40) s(q, q + 10) = 1.0F;
   }
   auto config = plain_config();
-  config.offset = 0.45F;  // noise costs less, so a few frames without evidence do not break the alignment
+  config.contrast_offset = 0.45F;  // noise costs less, so a few frames without evidence do not break the alignment
   const auto r = localize_sequence(s, config);
   for (std::size_t q = 0; q < nq; ++q) {
     ASSERT_TRUE(r.frames[q].covered) << q;
@@ -156,7 +156,7 @@ TEST(Localize, FrameMatchesFollowTheAlignmentsWithWindowedScores) {
     for (auto& v : s.values) v = u(rng);
     LocalizeConfig c;
     c.enhance = false;
-    c.offset = -0.2F;
+    c.contrast_offset = -0.2F;
     c.gap = 0.7F;
     c.threshold = 1.0F;
     c.score_window = rng() % 4;
@@ -212,8 +212,8 @@ TEST(Localize, ScoreRowIsTheWindowedZScoreMinusOffset) {
   for (auto& v : s.values) v = u(rng);
   for (std::size_t window : {0U, 1U, 5U, 100U}) {
     LocalizeConfig c;
-    c.enhancement_window = window;
-    c.offset = 0.25F;
+    c.contrast_window = window;
+    c.contrast_offset = 0.25F;
     const auto out = score_matrix(s, c);
     for (std::size_t i = 0; i < s.rows; ++i) {
       for (std::size_t j = 0; j < s.cols; ++j) {

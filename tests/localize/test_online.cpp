@@ -44,7 +44,7 @@ TEST(Online, EqualsNaiveTablesOnTheFramesSeenSoFar) {
     const auto s = random_matrix(5 + rng() % 25, 3 + rng() % 30, rng);
     LocalizeConfig c;
     c.enhance = round % 2 == 0;
-    c.offset = c.enhance ? 0.8F : -0.1F;
+    c.contrast_offset = c.enhance ? 0.8F : -0.1F;
     c.gap = 0.3F + 0.1F * static_cast<float>(rng() % 10);
     if (round % 3 == 0) c.cap = 2.5F;
     c.threshold = 1.0F;
@@ -102,7 +102,7 @@ TEST(Online, BestConfidenceSoFarIsTheEnginesBestAlignmentScore) {
     const auto s = random_matrix(4 + rng() % 20, 4 + rng() % 20, rng);
     LocalizeConfig c;
     c.enhance = false;
-    c.offset = -0.15F;
+    c.contrast_offset = -0.15F;
     c.gap = 0.6F;
     c.reverse = round % 2 == 0;
     if (round % 4 == 1) c.cap = 1.5F;
@@ -133,7 +133,7 @@ TEST(Online, FollowsPlantedPathsInBothDirections) {
   for (std::size_t q = 40; q < 80; ++q) s(q, 159 - q) = 1.0F;  // then backwards along map 119..80
   LocalizeConfig c;
   c.enhance = false;
-  c.offset = 0.6F;
+  c.contrast_offset = 0.6F;
   c.gap = 0.5F;
   c.threshold = 2.0F;
   c.cap = 5.0F;  // the cap lets the forward evidence fade quickly after the turn

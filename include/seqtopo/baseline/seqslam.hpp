@@ -16,7 +16,7 @@ struct SeqSlamConfig {
   float min_velocity = 0.8F;         // database frames per query frame
   float max_velocity = 1.25F;
   std::size_t velocity_steps = 5;
-  std::size_t enhancement_window = 10;  // [frames] half-width of the contrast-enhancement window (0 = none)
+  std::size_t contrast_window = 10;  // [frames] half-width of the contrast-enhancement window (0 = none)
   // Self mode (loop closure in one sequence): only database frames j <= i - min_separation.
   bool self = false;
   std::size_t min_separation = 10;

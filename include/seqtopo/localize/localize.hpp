@@ -12,8 +12,8 @@
 //   LocalizeResult r = localize_sequence(s);        // r.frames[q].map, .score, .covered
 //
 // Scores. Each row is first contrast-enhanced (score_matrix): every cell becomes its z-score against the
-// cells of the same row within +-enhancement_window map frames, minus `offset`. The alignment then rewards a
-// cell that stands out of its neighbourhood by more than `offset` standard deviations and penalises the
+// cells of the same row within +-contrast_window map frames, minus `contrast_offset`. The alignment then rewards a
+// cell that stands out of its neighbourhood by more than `contrast_offset` standard deviations and penalises the
 // rest, whatever the scale of the similarity (kappa drops out). Row-local, so the online localizer can do
 // the same with one row at a time.
 //
@@ -38,14 +38,15 @@
 namespace seqtopo::localize {
 
 struct LocalizeConfig {
-  // Row contrast enhancement: z-score against +-window map frames (0 = the whole row; see score_matrix).
-  std::size_t enhancement_window = 10;
-  bool enhance = true;       // false: the similarity is used as given (minus offset)
-  float offset = 0.75F;      // subtracted after enhancement [standard deviations]
-  float gap = 2.0F;          // gap penalty, both directions [score units]
-  std::optional<float> cap;  // upper bound on the cumulative score (mapping paper); nullopt = none
-  float threshold = 10.0F;   // minimum alignment score for an alignment to cover frames
-  bool reverse = true;       // also search the map driven backwards
+  // Row contrast enhancement (similarity/contrast_enhancement.hpp): z-score against +-contrast_window map
+  // frames (0 = the whole row; see score_matrix).
+  std::size_t contrast_window = 10;
+  bool enhance = true;            // false: the similarity is used as given (minus contrast_offset)
+  float contrast_offset = 0.75F;  // subtracted after enhancement [standard deviations]
+  float gap = 2.0F;               // gap penalty, both directions [score units]
+  std::optional<float> cap;       // upper bound on the cumulative score (mapping paper); nullopt = none
+  float threshold = 10.0F;        // minimum alignment score for an alignment to cover frames
+  bool reverse = true;            // also search the map driven backwards
   std::size_t max_alignments = 1000;
   std::size_t score_window = 10;  // [query frames] half-width of the per-frame score window
   std::size_t candidates = 5;     // best map frames kept per query frame (for recall@k)
@@ -65,7 +66,7 @@ struct LocalizeResult {
   std::vector<align::LocalAlignment> alignments;  // every alignment found, best first (a = query, b = map)
 };
 
-// The matrix the alignment scores: contrast-enhanced rows minus the offset (see above). Throws
+// The matrix the alignment scores: contrast-enhanced rows minus the contrast offset (see above). Throws
 // std::invalid_argument on an empty matrix or non-finite values.
 SimilarityMatrix score_matrix(const SimilarityMatrix& query_x_map, const LocalizeConfig& config = {});
 // One row of it (the online localizer's path); identical to the matrix version's row.

@@ -51,8 +51,8 @@ struct FrameAnswer {
 
 struct LocalizeRun {
   bool online = false;
-  std::string inputs;         // "QUERY in MAP", or the similarity file (for the report)
-  LocalizeSettings settings;  // what ran
+  std::string inputs;           // "QUERY in MAP", or the similarity file (for the report)
+  LocalizeSettings settings;    // what ran
   SimilarityMatrix similarity;  // query x map (offline, or the rows seen online)
   std::size_t queries = 0, maps = 0;
   std::vector<FrameAnswer> answers;

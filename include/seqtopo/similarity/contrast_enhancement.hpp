@@ -1,19 +1,36 @@
 #pragma once
-// Local contrast enhancement of a similarity matrix (as in SeqSLAM, Milford & Wyeth 2012).
+// Local contrast enhancement of a similarity matrix (as in SeqSLAM, Milford & Wyeth 2012): the one
+// implementation behind `seqtopo map` (dense and streamed), `seqtopo localize` and the SeqSLAM baseline.
 //
 // Why: a raw similarity matrix has strong row and column structure - some frames (dark, blurred,
 // featureless) are similar to everything, others to nothing - so one global threshold S > 0
 // rewards aliasing in some rows and misses true revisits in others. Normalising every cell by the
 // mean and standard deviation of its row within +-window columns turns it into "how many standard
 // deviations better than its neighbours", which is comparable across the whole matrix.
+//
+// Arithmetic (fixed, so that every caller gets the same bits): the window's sum and sum of squares are
+// accumulated in double, in index order, from the float cells; then
+//   z = (v - mean) / max(sd, 1e-9),  mean = sum / count,  sd = sqrt(max(0, sum2 / count - mean^2))
+// in double, rounded to float once. Windows are clipped at the matrix's edges.
 #include <cstddef>
 
 #include "seqtopo/core/dense_matrix.hpp"
 
 namespace seqtopo::similarity {
 
-// Each cell minus the mean of its row within +-window columns, divided by their standard deviation.
-// window = 0 returns the matrix unchanged.
+// The z-score of v in a window of `count` cells with these sums.
+float contrast_score(float v, double sum, double sum2, double count);
+
+// sum[b] and sum2[b] over first[t * stride + b] for t = 0 .. terms - 1, in that order, for b < count: the
+// window sums of `count` consecutive cells at once (vectorised across b; the same bits as one cell at a time).
+void window_sums(double* sum, double* sum2, const float* first, std::size_t stride, std::size_t terms,
+                 std::size_t count);
+
+// One row: out[c] = contrast_score of row[c] within columns [c - window, c + window] (clipped). window >= cols
+// uses the whole row for every cell. `out` may not alias `row`.
+void enhance_row(const float* row, std::size_t cols, std::size_t window, float* out);
+
+// Every row enhanced (enhance_row). window = 0 returns the matrix unchanged.
 SimilarityMatrix enhance_contrast(const SimilarityMatrix& similarity, std::size_t window);
 
 // For a square (self-similarity) matrix: 0.5 (E + E^T) - offset, with E = enhance_contrast(S, window).
