@@ -10,6 +10,9 @@ function(seqtopo_add_module name)
   add_library(seqtopo::${name} ALIAS seqtopo_${name})
   target_include_directories(seqtopo_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
   target_link_libraries(seqtopo_${name} PUBLIC seqtopo_options ${M_DEPS})
+  if(NOT name STREQUAL "core")
+    target_link_libraries(seqtopo_${name} PUBLIC seqtopo_core)  # every module may use the vocabulary
+  endif()
   set_property(GLOBAL APPEND PROPERTY SEQTOPO_MODULES seqtopo_${name})
 endfunction()
 

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/alignment_json.hpp"
@@ -38,9 +39,6 @@ void run(const AlignOptions& o) {
   config.threshold = o.threshold;
   config.max_alignments = o.max_alignments == 0 ? std::numeric_limits<std::size_t>::max() : o.max_alignments;
   config.min_separation = o.min_separation;
-  if (config.gap_a < 0 || config.gap_b < 0) throw InputError("--gap", "must be >= 0");
-  if (o.cap && *o.cap <= 0) throw InputError("--cap", "must be > 0");
-  if (o.min_separation == 0) throw InputError("--min-separation", "must be >= 1");
 
   std::vector<align::LocalAlignment> alignments;
   auto run_engine = [&](const align::ScoreSource& source) {
@@ -85,20 +83,20 @@ const RegisterCommand registered{
        app.add_option("--b", o->b_path, "FASTA file with sequence B (first record)")->check(CLI::ExistingFile);
        app.add_option("--scores", o->scores_path, "score matrix S.npy (float32/float64, rows = A, columns = B)")
            ->check(CLI::ExistingFile);
-       app.add_option("--match", o->match, "score of two equal symbols (FASTA input)")->capture_default_str();
-       app.add_option("--mismatch", o->mismatch, "score of two different symbols (FASTA input)")->capture_default_str();
-       app.add_option("--gap", o->gap, "linear gap penalty: a gap of length L costs L*G")->capture_default_str();
-       app.add_option("--gap-a", o->gap_a, "gap penalty for skipping an element of A (default: --gap)");
-       app.add_option("--gap-b", o->gap_b, "gap penalty for skipping an element of B (default: --gap)");
-       app.add_option("--cap", o->cap, "upper bound on the cumulative score (default: none, classical Smith-Waterman)");
-       app.add_option("--threshold", o->threshold, "minimum alignment score reported (always > 0)")
-           ->capture_default_str();
-       app.add_option("--max-alignments", o->max_alignments, "at most this many alignments, best first (0 = all)")
-           ->capture_default_str();
+       add_number(app, "--match", o->match, kAnyFinite, "score of two equal symbols (FASTA input)");
+       add_number(app, "--mismatch", o->mismatch, kAnyFinite, "score of two different symbols (FASTA input)");
+       add_number(app, "--gap", o->gap, kNonNegative, "linear gap penalty: a gap of length L costs L*G");
+       add_number(app, "--gap-a", o->gap_a, kNonNegative, "gap penalty for skipping an element of A (default: --gap)");
+       add_number(app, "--gap-b", o->gap_b, kNonNegative, "gap penalty for skipping an element of B (default: --gap)");
+       add_number(app, "--cap", o->cap, kPositive,
+                  "upper bound on the cumulative score (default: none, classical Smith-Waterman)");
+       add_number(app, "--threshold", o->threshold, kNonNegative, "minimum alignment score reported (always > 0)");
+       add_number(app, "--max-alignments", o->max_alignments, kNonNegative,
+                  "at most this many alignments, best first (0 = all)");
        app.add_flag("--reverse", o->reverse, "also search reverse alignments (A against B read backwards)");
        app.add_flag("--self", o->self, "A and B are the same sequence: search one triangle, skip the diagonal band");
-       app.add_option("--min-separation", o->min_separation, "self alignment: pairs (i, j) count only if i - j >= F")
-           ->capture_default_str();
+       add_number(app, "--min-separation", o->min_separation, kAtLeastOne,
+                  "self alignment: pairs (i, j) count only if i - j >= F");
        app.add_option("--json", o->json_path, "output alignments.json ('-' = standard output)")->capture_default_str();
        app.callback([o] { run(*o); });
      }}};

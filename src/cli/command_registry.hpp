@@ -41,7 +41,8 @@ auto option_value(const char* option, F&& parse) {
   }
 }
 
-// Number of worker threads to use: `requested`, or every core when 0.
+// Number of worker threads to use: `requested`, or every core when 0; never more than the cores (results do not
+// depend on the thread count, and more threads than cores only cost time).
 unsigned resolve_threads(unsigned requested);
 
 }  // namespace seqtopo::cli

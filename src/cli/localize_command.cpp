@@ -15,6 +15,7 @@
 #include <variant>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/localize_outputs.hpp"
@@ -27,7 +28,9 @@ namespace {
 namespace fs = std::filesystem;
 
 struct LocalizeOptions {
-  std::string map_path, query_path, out_dir = "seqtopo-out", input_kind = "auto", descriptor = "patch", metric, kappa;
+  std::string map_path, query_path, out_dir = "seqtopo-out", input_kind = "auto", descriptor = "patch", metric;
+  std::optional<float> kappa;
+  bool kappa_auto = false;
   std::string gt;
   std::size_t tolerance = 2, every = 1, window = 10, score_window = 10;
   float gap = 2.0F, threshold = 10.0F, offset = 0.75F;
@@ -42,15 +45,7 @@ pipeline::SimilarityConfig similarity_config(const LocalizeOptions& o) {
   pipeline::SimilarityConfig c;
   c.descriptor = option_value("--descriptor", [&] { return pipeline::parse_descriptor(o.descriptor); });
   if (!o.metric.empty()) c.distance = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
-  if (!o.kappa.empty() && o.kappa != "auto") {
-    c.kappa = option_value("--kappa", [&] {
-      std::size_t used = 0;
-      const float k = std::stof(o.kappa, &used);
-      if (used != o.kappa.size() || !(k > 0) || !std::isfinite(k))
-        throw std::invalid_argument("expected a number > 0 or auto");
-      return k;
-    });
-  }
+  c.kappa = o.kappa;
   c.threads = resolve_threads(o.threads);
   return c;
 }
@@ -169,34 +164,32 @@ const RegisterCommand registered{
            "query traverse of the same kind ('-' with --online: image paths on standard input, one per line)");
        app.add_option("--out", o->out_dir, "output folder")->capture_default_str();
        app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
-       app.add_option("--every", o->every, "video: keep every K-th frame")->capture_default_str();
+       add_number(app, "--every", o->every, kAtLeastOne, "video: keep every K-th frame");
        app.add_option("--descriptor", o->descriptor,
                       "patch|joint-histogram|panorama|npy (descriptors.npy inputs use their rows)")
            ->capture_default_str();
        app.add_option("--metric", o->metric, "chi2|l1|cosine|sad (default: by descriptor)");
-       app.add_option("--kappa", o->kappa,
-                      "K > 0 in S = 1 - K * D, or auto (rows are contrast-enhanced, so it rarely matters)");
-       app.add_option("--gap", o->gap, "gap penalty per skipped frame [score units = standard deviations]")
-           ->capture_default_str();
-       app.add_option("--cap", o->cap, "upper bound on the cumulative score (default: none)");
-       app.add_option("--threshold", o->threshold, "minimum alignment score (online: minimum confidence)")
-           ->capture_default_str();
-       app.add_option("--contrast-offset,--offset", o->offset,
-                      "subtracted from the contrast-enhanced similarity [standard deviations] (--offset: old name)")
-           ->capture_default_str();
-       app.add_option("--contrast-window,--window", o->window,
-                      "contrast enhancement: +-W map frames (0 = whole row; --window: old name)")
-           ->capture_default_str();
-       app.add_option("--score-window", o->score_window, "per-frame score: +-W query frames of the alignment")
-           ->capture_default_str();
+       add_number_or(app, "--kappa", o->kappa, "auto", o->kappa_auto, kPositive,
+                     "K > 0 in S = 1 - K * D, or auto (rows are contrast-enhanced, so it rarely matters)");
+       add_number(app, "--gap", o->gap, kNonNegative,
+                  "gap penalty per skipped frame [score units = standard deviations]");
+       add_number(app, "--cap", o->cap, kPositive, "upper bound on the cumulative score (default: none)");
+       add_number(app, "--threshold", o->threshold, kAnyFinite, "minimum alignment score (online: minimum confidence)");
+       add_number(app, "--contrast-offset,--offset", o->offset, kAnyFinite,
+                  "subtracted from the contrast-enhanced similarity [standard deviations] (--offset: old name)");
+       add_number(app, "--contrast-window,--window", o->window, kNonNegative,
+                  "contrast enhancement: +-W map frames (0 = whole row; --window: old name)");
+       add_number(app, "--score-window", o->score_window, kNonNegative,
+                  "per-frame score: +-W query frames of the alignment");
        app.add_flag("--no-reverse", o->no_reverse, "do not search the map driven backwards");
        app.add_option("--gt", o->gt,
                       "ground truth: same-index (query k is map k) or a CSV file of query,map pairs; "
                       "also scores the single-frame and SeqSLAM baselines on the same matrix");
-       app.add_option("--tolerance", o->tolerance, "a match within +-T map frames of the truth is correct")
-           ->capture_default_str();
+       add_number(app, "--tolerance", o->tolerance, kNonNegative,
+                  "a match within +-T map frames of the truth is correct");
        app.add_flag("--online", o->online, "take query frames one at a time; print the best map frame after each");
-       app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
+       add_number(app, "--threads", o->threads, kThreads,
+                  "worker threads (0 = all cores; more than the cores are not used)");
        app.callback([o] { run(*o); });
      }}};
 

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 
 namespace seqtopo::cli {
@@ -16,8 +17,32 @@ std::vector<CommandSpec>& command_registry() {
 }
 
 unsigned resolve_threads(unsigned requested) {
-  if (requested > 0) return requested;
-  return std::max(1U, std::thread::hardware_concurrency());
+  const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
+  return requested > 0 ? std::min(requested, cores) : cores;
+}
+
+void check_all_numeric_options(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    try {
+      (void)option->get_validator("number");  // registered by add_number with its own limits
+      continue;
+    } catch (const CLI::OptionNotFound&) {
+    }
+    const std::string type = option->get_type_name();
+    // "FLOAT", "UINT:POSITIVE", ...; not "FLOAT|none" (add_number_or parses its own text).
+    const auto is = [&](const std::string& name) {
+      return type.rfind(name, 0) == 0 &&
+             (type.size() == name.size() || type[name.size()] == ':' || type[name.size()] == ' ');
+    };
+    if (is("FLOAT")) {
+      option->check(number_check<double>({}));
+    } else if (is("UINT")) {
+      option->check(number_check<unsigned long long>({}));
+    } else if (is("INT")) {
+      option->check(number_check<long>({}));
+    }
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) check_all_numeric_options(*sub);
 }
 
 namespace {
@@ -91,6 +116,7 @@ int main(int argc, char** argv) {
   auto commands = seqtopo::cli::command_registry();
   std::sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
   for (const auto& command : commands) command.setup(*app.add_subcommand(command.name, command.description));
+  seqtopo::cli::check_all_numeric_options(app);
 
   try {
     std::vector<std::string> args(argv, argv + argc);
@@ -105,7 +131,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "seqtopo: error: " << e.what() << " (see seqtopo --help)\n";
+    // Point to the help of the subcommand that was being parsed ("seqtopo map --help").
+    std::string help = "seqtopo";
+    for (const CLI::App* sub = &app; sub != nullptr;) {
+      const auto parsed = sub->get_subcommands();
+      sub = parsed.empty() ? nullptr : parsed.front();
+      if (sub) help += " " + sub->get_name();
+    }
+    std::cerr << "seqtopo: error: " << e.what() << " (see " << help << " --help)\n";
     return 2;
   } catch (const seqtopo::InputError& e) {
     std::cerr << "seqtopo: error: " << e.subject() << ": " << e.what() << "\n";

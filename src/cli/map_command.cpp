@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
@@ -26,9 +27,10 @@ struct MapOptions {
   std::string input_kind = "auto";
   std::size_t every = 1;
   std::string preset = "default";
-  std::optional<std::string> descriptor, metric_name, kappa;
-  std::optional<float> gap, threshold;
-  std::optional<std::string> cap, odometry_gate;
+  std::optional<std::string> descriptor, metric_name;
+  std::optional<float> kappa, gap, threshold, cap;
+  bool kappa_auto = false, no_cap = false;
+  std::optional<std::string> odometry_gate;
   std::optional<std::string> engine;  // default exact, fast with --streaming
   std::optional<std::size_t> min_separation, contrast_window;
   std::optional<float> contrast_offset;
@@ -56,36 +58,13 @@ Settings resolve_settings(const MapOptions& o) {
   }
   if (o.metric_name)
     s.similarity.distance = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });
-  if (o.kappa && *o.kappa != "auto") {
-    try {
-      s.similarity.kappa = std::stof(*o.kappa);
-    } catch (const std::exception&) {
-      throw InputError("--kappa", "expected a number or 'auto', got '" + *o.kappa + "'");
-    }
-    if (!(*s.similarity.kappa > 0)) throw InputError("--kappa", "must be > 0");
-  }
-  s.similarity.threads = o.threads;
+  if (o.kappa) s.similarity.kappa = *o.kappa;
+  s.similarity.threads = resolve_threads(o.threads);
   s.similarity.note = [](std::string_view text) { std::cerr << "seqtopo map: " << text << "\n"; };
-  if (o.gap) {
-    if (!(*o.gap >= 0)) throw InputError("--gap", "must be >= 0");
-    s.map.gap = *o.gap;
-  }
-  if (o.threshold) {
-    if (!(*o.threshold > 0)) throw InputError("--threshold", "must be > 0");
-    s.map.threshold = *o.threshold;
-  }
-  if (o.cap) {
-    if (*o.cap == "none") {
-      s.map.cap.reset();
-    } else {
-      try {
-        s.map.cap = std::stof(*o.cap);
-      } catch (const std::exception&) {
-        throw InputError("--cap", "expected a number or 'none', got '" + *o.cap + "'");
-      }
-      if (!(*s.map.cap > 0)) throw InputError("--cap", "must be > 0");
-    }
-  }
+  if (o.gap) s.map.gap = *o.gap;
+  if (o.threshold) s.map.threshold = *o.threshold;
+  if (o.no_cap) s.map.cap.reset();
+  if (o.cap) s.map.cap = *o.cap;
   const std::string engine = o.engine.value_or(o.streaming ? "fast" : "exact");
   if (engine == "fast") {
     s.map.engine = mapping::MapConfig::Engine::fast;
@@ -93,24 +72,23 @@ Settings resolve_settings(const MapOptions& o) {
     throw InputError("--engine", "expected exact or fast, got '" + engine + "'");
   }
   if (o.odometry_gate) {
-    s.map.odometry_gate = option_value("--odometry-gate", [&]() -> std::optional<mapping::OdometryGate> {
-      if (*o.odometry_gate == "none") return std::nullopt;
-      mapping::OdometryGate gate;
-      char comma = 0;
-      std::istringstream in(*o.odometry_gate);
-      if (!(in >> gate.base >> comma >> gate.drift) || comma != ',' || !in.eof() || !(gate.base >= 0) ||
-          !(gate.drift >= 0)) {
-        throw std::invalid_argument(
-            "expected BASE,DRIFT (metres, metres per metre travelled, both >= 0) or none, got '" + *o.odometry_gate +
-            "'");
+    if (*o.odometry_gate == "none") {
+      s.map.odometry_gate.reset();
+    } else {
+      const auto comma = o.odometry_gate->find(',');
+      if (comma == std::string::npos) {
+        throw InputError("--odometry-gate",
+                         "expected BASE,DRIFT (metres, metres per metre travelled, both >= 0) or "
+                         "none, got '" +
+                             *o.odometry_gate + "'");
       }
-      return gate;
-    });
+      mapping::OdometryGate gate;
+      gate.base = parse_number<double>("--odometry-gate", o.odometry_gate->substr(0, comma), kNonNegative);
+      gate.drift = parse_number<double>("--odometry-gate", o.odometry_gate->substr(comma + 1), kNonNegative);
+      s.map.odometry_gate = gate;
+    }
   }
-  if (o.min_separation) {
-    if (*o.min_separation == 0) throw InputError("--min-separation", "must be >= 1");
-    s.map.min_separation = *o.min_separation;
-  }
+  if (o.min_separation) s.map.min_separation = *o.min_separation;
   if (o.contrast_window) s.map.contrast_window = *o.contrast_window;
   if (o.contrast_offset) s.map.contrast_offset = *o.contrast_offset;
   s.map.reverse = !o.no_reverse;
@@ -145,7 +123,8 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
                      "0 aligns the raw S = 1 - kappa D, whose kappa needs the whole distance "
                      "matrix; --streaming aligns contrast-enhanced scores (window >= 1)");
   }
-  if (o.kappa) throw InputError("--kappa", "has no effect with --streaming: the contrast enhancement removes kappa");
+  if (o.kappa || o.kappa_auto)
+    throw InputError("--kappa", "has no effect with --streaming: the contrast enhancement removes kappa");
   if (o.metric_name && s.similarity.distance != pipeline::Distance::cosine) {
     throw InputError("--metric", "--streaming scores by cosine similarity only, got '" + *o.metric_name + "'");
   }
@@ -233,14 +212,16 @@ const RegisterCommand registered{
        app.add_option("input", o->input, "image folder, video, descriptors.npy or similarity.npy");
        app.add_option("--out", o->out, "output folder")->capture_default_str();
        app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
-       app.add_option("--every", o->every, "video: use every K-th frame")->capture_default_str();
+       add_number(app, "--every", o->every, kAtLeastOne, "video: use every K-th frame");
        app.add_option("--preset", o->preset, "paper (joint histogram, chi2, EKF) or default")->capture_default_str();
        app.add_option("--descriptor", o->descriptor,
                       "joint-histogram|patch|panorama, or several separated by commas to fuse them "
                       "(default joint-histogram,patch; paper preset joint-histogram)");
        app.add_option("--metric", o->metric_name, "chi2|l1|cosine|sad (default: by descriptor)");
-       app.add_option("--kappa", o->kappa, "S = 1 - kappa * D: a number, or auto (from the sequence's own distances)");
-       app.add_option("--gap", o->gap, fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
+       add_number_or(app, "--kappa", o->kappa, "auto", o->kappa_auto, kPositive,
+                     "S = 1 - kappa * D: a number > 0, or auto (from the sequence's own distances)");
+       add_number(app, "--gap", o->gap, kNonNegative,
+                  fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
        app.add_option("--engine", o->engine,
                       "exact (scalar reference, N x N table) or fast (vectorized, no N x N table, scores quantized "
                       "to 1/512); default exact, fast with --streaming");
@@ -253,29 +234,30 @@ const RegisterCommand registered{
            fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
                        "(metres travelled between them) apart, as BASE,DRIFT, or none (default {},{})",
                        mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift));
-       app.add_option("--cap", o->cap,
-                      fmt::format("cap on the cumulative score, or none (default {})", *mapping::MapConfig{}.cap));
-       app.add_option("--threshold", o->threshold,
-                      fmt::format("minimum alignment score of a revisit (default {})", mapping::MapConfig{}.threshold));
-       app.add_option("--min-separation", o->min_separation,
-                      fmt::format("frames around the diagonal that never count (default {})",
-                                  mapping::MapConfig{}.min_separation));
-       app.add_option("--contrast-window", o->contrast_window,
-                      fmt::format("local contrast enhancement before alignment, half-width in frames; 0 = off "
-                                  "(default {}, paper preset 0)",
-                                  mapping::MapConfig{}.contrast_window));
-       app.add_option("--contrast-offset", o->contrast_offset,
-                      fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
-                                  mapping::MapConfig{}.contrast_offset));
+       add_number_or(app, "--cap", o->cap, "none", o->no_cap, kPositive,
+                     fmt::format("cap on the cumulative score, or none (default {})", *mapping::MapConfig{}.cap));
+       add_number(app, "--threshold", o->threshold, kPositive,
+                  fmt::format("minimum alignment score of a revisit (default {})", mapping::MapConfig{}.threshold));
+       add_number(app, "--min-separation", o->min_separation, kAtLeastOne,
+                  fmt::format("frames around the diagonal that never count (default {})",
+                              mapping::MapConfig{}.min_separation));
+       add_number(app, "--contrast-window", o->contrast_window, kNonNegative,
+                  fmt::format("local contrast enhancement before alignment, half-width in frames; 0 = off "
+                              "(default {}, paper preset 0)",
+                              mapping::MapConfig{}.contrast_window));
+       add_number(app, "--contrast-offset", o->contrast_offset, kAnyFinite,
+                  fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
+                              mapping::MapConfig{}.contrast_offset));
        app.add_flag("--no-reverse", o->no_reverse, "do not look for paths revisited in the opposite direction");
        app.add_option("--odometry", o->odometry, "odometry CSV: index,x,y,theta (cumulative) or index,dx,dy,dtheta");
        app.add_option("--ground-truth", o->ground_truth, "N x N same-place image, or poses.csv with --gt-radius");
-       app.add_option("--gt-radius", o->gt_radius, "same place when closer than this [m] (poses.csv ground truth)");
+       add_number(app, "--gt-radius", o->gt_radius, kPositive,
+                  "same place when closer than this [m] (poses.csv ground truth)");
        app.add_option("--gt-places", o->gt_places, "places.csv (index,place) for topological scores");
        app.add_option("--gt-poses", o->gt_poses,
                       "poses.csv (index,x,y[,theta]) for the metric error (with --odometry)");
-       app.add_option("--threads", o->threads, "worker threads (0 = all cores); results do not depend on it")
-           ->capture_default_str();
+       add_number(app, "--threads", o->threads, kThreads,
+                  "worker threads (0 = all cores; more than the cores are not used); results do not depend on it");
        // Expanded by main() before parsing; declared here so that --help lists it.
        app.add_option("--config", o->config_file,
                       "options from a file of `name: value` lines (a flat YAML subset); "

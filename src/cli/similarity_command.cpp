@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -19,7 +20,9 @@ namespace {
 
 struct SimilarityOptions {
   std::string input, against, out_dir = "seqtopo-out", input_kind = "auto", descriptor = "joint-histogram";
-  std::string metric, kappa = "auto";
+  std::string metric;
+  std::optional<float> kappa;
+  bool kappa_auto = false;
   std::size_t every = 1;
   unsigned threads = 0;
   bool descriptor_given = false;
@@ -31,22 +34,7 @@ void run(const SimilarityOptions& o) {
   config.descriptor = option_value("--descriptor", [&] { return pipeline::parse_descriptor(o.descriptor); });
   if (!o.metric.empty())
     config.distance = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
-  if (o.kappa != "auto") {
-    config.kappa = option_value("--kappa", [&] {
-      std::size_t used = 0;
-      float k = 0;
-      try {
-        k = std::stof(o.kappa, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != o.kappa.size() || !(k > 0) || !std::isfinite(k)) {
-        throw std::invalid_argument("expected a positive number or auto, got '" + o.kappa + "'");
-      }
-      return k;
-    });
-  }
-  if (o.every == 0) throw InputError("--every", "must be at least 1");
+  config.kappa = o.kappa;
   config.threads = resolve_threads(o.threads);
   const bool interactive = isatty(STDERR_FILENO) != 0;
   config.note = [](std::string_view text) { std::cerr << "seqtopo similarity: " << text << "\n"; };
@@ -97,16 +85,16 @@ const RegisterCommand registered{
        app.add_option("--out", o->out_dir, "output folder for similarity.npy and similarity.png")
            ->capture_default_str();
        app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
-       app.add_option("--every", o->every, "video: keep every K-th frame")->capture_default_str();
+       add_number(app, "--every", o->every, kAtLeastOne, "video: keep every K-th frame");
        app.add_option("--descriptor", o->descriptor,
                       "joint-histogram|patch|panorama|npy (a descriptors.npy input uses its rows)")
            ->capture_default_str();
        app.add_option(
            "--metric", o->metric,
            "chi2|l1|cosine|sad (default: chi2 for joint-histogram, sad for patch and panorama, cosine for npy)");
-       app.add_option("--kappa", o->kappa, "K > 0 in S = 1 - K * D, or auto (see docs/similarity.md)")
-           ->capture_default_str();
-       app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
+       add_number_or(app, "--kappa", o->kappa, "auto", o->kappa_auto, kPositive,
+                     "K > 0 in S = 1 - K * D, or auto (the default; see docs/similarity.md)");
+       add_number(app, "--threads", o->threads, kThreads, "worker threads (0 = all cores)");
        app.callback([o] { run(*o); });
      }}};
 
