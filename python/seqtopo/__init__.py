@@ -75,6 +75,10 @@ __all__ = [
     "align",
     "build_map",
     "build_map_from_images",
+    "MapRun",
+    "map_preset",
+    "map_sequence",
+    "write_report",
     "localize",
     "match_strings",
     "preset_costs",
@@ -342,38 +346,95 @@ def build_map_from_images(
     path: PathLike,
     config: Optional[MapConfig] = None,
     *,
-    descriptors: Sequence[str] = ("joint-histogram", "patch"),
+    descriptors: Optional[Sequence[str]] = None,
     metric: Optional[str] = None,
     kappa: Optional[float] = None,
     input_kind: str = "auto",
     every: int = 1,
     threads: int = 0,
+    preset: str = "default",
     **overrides,
 ) -> MapResult:
     """``seqtopo map INPUT`` without the files: an image folder, video, ``descriptors.npy`` or
-    ``similarity.npy`` in, a :class:`MapResult` out.
+    ``similarity.npy`` in, a :class:`MapResult` out (``map_sequence(...).map``).
 
     ``descriptors``: one similarity matrix per descriptor (the names ``seqtopo map --descriptor`` takes:
-    ``"joint-histogram"``, ``"patch"``, ...), fused as in :func:`build_map`; the default is the
-    command's default preset. A ``.npy`` input is one matrix
-    whatever is asked for. ``metric``, ``kappa``, ``input_kind``, ``every``, ``threads``: as the
-    command's options. Keyword arguments override fields of ``config``. The similarity matrices are in
-    ``result.similarities``.
+    ``"joint-histogram"``, ``"patch"``, ...), fused as in :func:`build_map`; default: the preset's. A ``.npy``
+    input is one matrix whatever is asked for. ``metric``, ``kappa``, ``input_kind``, ``every``, ``threads``,
+    ``preset``: as the command's options. Keyword arguments override fields of ``config`` (default: the
+    preset's). The similarity matrices are in ``result.similarities``.
     """
+    return map_sequence(path, config, descriptors=descriptors, metric=metric, kappa=kappa, input_kind=input_kind,
+                        every=every, threads=threads, preset=preset, **overrides).map
+
+
+def map_preset(name: str = "default") -> dict:
+    """The settings ``seqtopo map --preset NAME`` starts from: ``{"config": MapConfig, "descriptors": [...],
+    "metric": str or None}`` (``"default"`` or ``"paper"``, the mapping paper's own pipeline)."""
+    return _core.map_preset(name)
+
+
+class MapRun:
+    """Everything one :func:`map_sequence` computed: the map (``.map``, a :class:`MapResult`), the accuracy
+    against the ground truth (``.metrics``, and the SeqSLAM-style ``.baseline`` on the same matrices),
+    ``.topology`` and ``.trajectory_errors`` (with places or poses), ``.timings`` (stage, seconds).
+    :func:`write_report` writes it as ``seqtopo map`` does."""
+
+    def __init__(self, raw):
+        self._raw = raw
+        self.map = _map_result(raw.result, [SimilarityResult(**r) for r in raw.similarities])
+        self.metrics = raw.metrics
+        self.baseline = raw.baseline
+        self.topology = raw.topology
+        self.trajectory_errors = raw.trajectory_errors
+        self.timings = list(raw.timings)
+        self.descriptor_names = list(raw.descriptor_names)
+        self.input = raw.input
+        self.preset = raw.preset
+
+
+def map_sequence(
+    path: PathLike,
+    config: Optional[MapConfig] = None,
+    *,
+    preset: str = "default",
+    descriptors: Optional[Sequence[str]] = None,
+    metric: Optional[str] = None,
+    kappa: Optional[float] = None,
+    input_kind: str = "auto",
+    every: int = 1,
+    threads: int = 0,
+    odometry: Optional[PathLike] = None,
+    ground_truth: Optional[PathLike] = None,
+    gt_radius: Optional[float] = None,
+    gt_places: Optional[PathLike] = None,
+    gt_poses: Optional[PathLike] = None,
+    streaming: bool = False,
+    **overrides,
+) -> "MapRun":
+    """``seqtopo map`` as one call, on the same library pipeline: the sequence at ``path``, the ``preset``'s
+    settings (``config`` and keyword overrides replace its :class:`MapConfig`), optional odometry and ground
+    truth files (the command's ``--odometry``, ``--ground-truth`` / ``--gt-radius``, ``--gt-places``,
+    ``--gt-poses``). Returns a :class:`MapRun`; :func:`write_report` writes its files."""
+    if config is None:
+        config = map_preset(preset)["config"]
     config = _config(config, MapConfig, overrides)
     if isinstance(descriptors, str):
         descriptors = descriptors.split(",")
-    if not descriptors:
+    if descriptors is not None and not descriptors:
         raise ValueError("no descriptor given")
-    results = []
-    for descriptor in descriptors:
-        results.append(similarity(path, metric=metric, kappa=kappa, threads=threads, descriptor=descriptor,
-                                  input_kind=input_kind, every=every))
-        if results[-1].frame_names[:1] == ["row 0"]:
-            break  # a descriptors.npy or similarity.npy input is one matrix, whatever was asked for
-    if results[0].similarity.shape[0] < 2:
-        raise _input_error(os.fspath(path), "needs at least 2 images")
-    return _map_result(_core.build_map([r.similarity for r in results], config), results)
+    def fs(p):
+        return "" if p is None else os.fspath(p)
+    raw = _core.map_sequence(os.fspath(path), preset, config, list(descriptors or []), metric, kappa, input_kind,
+                             every, threads, fs(odometry), fs(ground_truth), gt_radius, fs(gt_places), fs(gt_poses),
+                             streaming)
+    return MapRun(raw)
+
+
+def write_report(run: "MapRun", folder: PathLike) -> None:
+    """Writes ``run`` into ``folder`` as ``seqtopo map --out folder`` does (map.json, figures, report.html),
+    replacing the folder's previous outputs as a whole."""
+    _core.write_map_outputs(run._raw, os.fspath(folder))
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

@@ -21,10 +21,12 @@
 #include "bindings.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/outputs/map_outputs.hpp"
+#include "seqtopo/pipeline/map_pipeline.hpp"
 #include "seqtopo/pipeline/sequence_similarity.hpp"
-#include "seqtopo/similarity/distance_matrix.hpp"
 #include "seqtopo/similarity/memory.hpp"
 #include "seqtopo/similarity/similarity_from_distance.hpp"
 #include "seqtopo/strings/localization.hpp"
@@ -191,53 +193,21 @@ void check_kappa(const std::optional<float>& kappa) {
 py::dict similarity_of_descriptors(const py::handle& descriptors, const py::handle& against,
                                    const std::optional<std::string>& metric_name, std::optional<float> kappa,
                                    unsigned threads, const similarity::KappaRule& rule) {
+  pipeline::SimilarityConfig config;
+  if (metric_name) config.distance = similarity::parse_distance(*metric_name);
   check_kappa(kappa);
-  const similarity::Distance metric =
-      metric_name ? similarity::parse_distance(*metric_name) : pipeline::default_distance(pipeline::Descriptor::npy);
+  config.kappa = kappa;
+  config.threads = threads;
+  config.kappa_rule = rule;
   const MatrixView a = matrix_view(descriptors, "descriptors");
   std::optional<MatrixView> b;
   if (!against.is_none()) b = matrix_view(against, "against");
   pipeline::SimilarityResult r;
   {
     const py::gil_scoped_release release;
-    const MatrixView* inputs[] = {&a, b ? &*b : nullptr};
-    for (const MatrixView* v : inputs) {
-      if (v == nullptr) continue;
-      const char* name = v == &a ? "descriptors" : "against";
-      if (v->size() == 0) throw std::invalid_argument(std::string(name) + ": no descriptors (empty array)");
-      require_finite(*v, name);
-    }
-    const std::size_t cols = b ? b->rows : a.rows;
-    const std::size_t bytes = similarity::matrix_bytes(a.rows, cols) + (a.size() + (b ? b->size() : 0)) * sizeof(float);
-    similarity::check_fits(
-        bytes, similarity::available_memory_bytes(),
-        "the " + std::to_string(a.rows) + " x " + std::to_string(cols) + " similarity matrix with its descriptors");
-    const auto set_a = similarity::DescriptorSet::from_dense(to_matrix(a));
-    similarity::MatrixConfig mc;
-    mc.threads = threads;
-    mc.tile = pipeline::SimilarityConfig{}.tile;
-    DenseMatrix<float> distances;
-    if (b) {
-      distances = similarity::distance_matrix(set_a, similarity::DescriptorSet::from_dense(to_matrix(*b)), metric, mc);
-    } else {
-      distances = similarity::distance_matrix(set_a, metric, mc);
-    }
-    if (kappa) {
-      r.kappa = *kappa;
-    } else {
-      const auto choice = similarity::choose_kappa(distances, !b, rule);
-      r.kappa = choice.kappa;
-      r.kappa_auto = true;
-      r.kappa_fraction = choice.fraction;
-    }
-    r.similarity = similarity::similarity_from_distance(std::move(distances), r.kappa);
-    r.distance = metric;
-  }
-  for (std::size_t i = 0; i < a.rows; ++i) r.frame_names.push_back("row " + std::to_string(i));
-  if (b) {
-    for (std::size_t i = 0; i < b->rows; ++i) r.column_names.push_back("row " + std::to_string(i));
-  } else {
-    r.column_names = r.frame_names;
+    const SimilarityMatrix ma = to_matrix(a);
+    const std::optional<SimilarityMatrix> mb = b ? std::optional(to_matrix(*b)) : std::nullopt;
+    r = pipeline::similarity_of_descriptors(ma, mb ? &*mb : nullptr, config);
   }
   return similarity_result(std::move(r));
 }
@@ -263,6 +233,132 @@ py::dict similarity_of_path(const std::filesystem::path& path, const std::option
                 : pipeline::compute_similarity(a, config);
   }
   return similarity_result(std::move(r));
+}
+
+// ---- map_sequence: the pipeline of `seqtopo map` -----------------------------------------------------
+
+py::dict loop_closure_metrics(const evaluation::LoopClosureMetrics& m) {
+  py::dict d;
+  d["tp"] = m.tp;
+  d["fp"] = m.fp;
+  d["fn"] = m.fn;
+  d["precision"] = m.precision;
+  d["recall"] = m.recall;
+  d["f1"] = m.f1;
+  d["auc"] = m.auc;
+  d["recall_at_100_precision"] = m.recall_at_100_precision;
+  py::list curve;
+  for (const auto& p : m.curve) curve.append(py::make_tuple(p.threshold, p.precision, p.recall));
+  d["pr_curve"] = curve;
+  return d;
+}
+
+// The preset's settings as the Python module shows them.
+py::dict map_preset(const std::string& name) {
+  const auto s = pipeline::map_preset(name);
+  py::dict d;
+  d["config"] = s.map;
+  py::list descriptors;
+  for (auto x : s.descriptors) descriptors.append(std::string(pipeline::descriptor_name(x)));
+  d["descriptors"] = descriptors;
+  d["metric"] = s.similarity.distance
+                    ? py::object(py::str(std::string(similarity::distance_name(*s.similarity.distance))))
+                    : py::object(py::none());
+  return d;
+}
+
+// pipeline::map_sequence from the command line's inputs; the run stays a C++ object (MapRun) that Python reads
+// and writes out (write_map_outputs).
+pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::string& preset,
+                              const mapping::MapConfig& config, const std::vector<std::string>& descriptors,
+                              const std::optional<std::string>& metric, std::optional<float> kappa,
+                              const std::string& input_kind, std::size_t every, unsigned threads,
+                              const std::filesystem::path& odometry, const std::filesystem::path& ground_truth,
+                              std::optional<double> gt_radius, const std::filesystem::path& gt_places,
+                              const std::filesystem::path& gt_poses, bool streaming) {
+  pipeline::MapRequest request;
+  request.preset = preset;
+  request.settings = pipeline::map_preset(preset);
+  request.settings.map = config;
+  if (!descriptors.empty()) {
+    request.settings.descriptors.clear();
+    for (const auto& d : descriptors) request.settings.descriptors.push_back(pipeline::parse_descriptor(d));
+  }
+  if (metric) request.settings.similarity.distance = similarity::parse_distance(*metric);
+  check_kappa(kappa);
+  if (kappa) request.settings.similarity.kappa = kappa;
+  if (every == 0) throw std::invalid_argument("every must be >= 1");
+  request.settings.similarity.threads = threads;
+  request.input = {path, pipeline::parse_input_kind(input_kind), every};
+  request.odometry = odometry;
+  request.truth = {ground_truth, gt_radius, gt_places, gt_poses};
+  request.streaming = streaming;
+  const py::gil_scoped_release release;
+  return pipeline::map_sequence(request);
+}
+
+void write_map_outputs(const pipeline::MapRun& run, const std::filesystem::path& folder) {
+  const py::gil_scoped_release release;
+  io::OutputDirectory out(folder);
+  outputs::write_map_outputs(run, out);
+  outputs::write_map_report(run, out);
+  out.commit();
+}
+
+void bind_map_run(py::module_& m) {
+  py::class_<pipeline::MapRun>(m, "MapRun")
+      .def_property_readonly("result",
+                             [](const pipeline::MapRun& r) {
+                               mapping::MapResult copy = r.result;
+                               return map_result(std::move(copy));
+                             })
+      .def_property_readonly("similarities",
+                             [](const pipeline::MapRun& r) {
+                               py::list out;
+                               for (std::size_t k = 0; k < r.similarities.size(); ++k) {
+                                 pipeline::SimilarityResult s = r.similarities[k];
+                                 if (k < r.matrices.size()) s.similarity = r.matrices[k];
+                                 out.append(similarity_result(std::move(s)));
+                               }
+                               return out;
+                             })
+      .def_readonly("descriptor_names", &pipeline::MapRun::descriptor_names)
+      .def_readonly("input", &pipeline::MapRun::input)
+      .def_readonly("preset", &pipeline::MapRun::preset)
+      .def_readonly("timings", &pipeline::MapRun::timings)
+      .def_property_readonly("metrics",
+                             [](const pipeline::MapRun& r) {
+                               return r.metrics ? py::object(loop_closure_metrics(*r.metrics)) : py::object(py::none());
+                             })
+      .def_property_readonly("baseline",
+                             [](const pipeline::MapRun& r) {
+                               if (!r.baseline_metrics) return py::object(py::none());
+                               py::dict d = loop_closure_metrics(*r.baseline_metrics);
+                               d["method"] = r.baseline_name;
+                               return py::object(d);
+                             })
+      .def_property_readonly("topology",
+                             [](const pipeline::MapRun& r) {
+                               if (!r.topology) return py::object(py::none());
+                               const auto& t = *r.topology;
+                               py::dict d;
+                               d["adjusted_rand_index"] = t.adjusted_rand_index;
+                               d["adjusted_rand_index_frames"] = t.adjusted_rand_index_frames;
+                               d["false_merges"] = t.false_merges;
+                               d["missed_merges"] = t.missed_merges;
+                               d["junctions_true"] = t.junctions_true;
+                               d["junctions_found"] = t.junctions_found;
+                               d["junctions_matched"] = t.junctions_matched;
+                               return py::object(d);
+                             })
+      .def_property_readonly("trajectory_errors", [](const pipeline::MapRun& r) {
+        if (!r.ate) return py::object(py::none());
+        py::dict d;
+        d["odometry"] = r.ate->odometry;
+        d["ekf"] = r.ate->ekf;
+        d["pose_graph"] = r.ate->pose_graph;
+        return py::object(d);
+      });
 }
 
 // ---- match_strings -----------------------------------------------------------------------------------
@@ -326,6 +422,13 @@ PYBIND11_MODULE(_core, m) {
 
   m.def("align", &align_scores, py::arg("scores"), py::arg("config"), py::arg("reverse"), py::arg("threads"));
   m.def("build_map", &build_map, py::arg("similarities"), py::arg("config"));
+  bind_map_run(m);
+  m.def("map_preset", &map_preset, py::arg("name"));
+  m.def("map_sequence", &map_sequence, py::arg("path"), py::arg("preset"), py::arg("config"), py::arg("descriptors"),
+        py::arg("metric"), py::arg("kappa"), py::arg("input_kind"), py::arg("every"), py::arg("threads"),
+        py::arg("odometry"), py::arg("ground_truth"), py::arg("gt_radius"), py::arg("gt_places"), py::arg("gt_poses"),
+        py::arg("streaming"));
+  m.def("write_map_outputs", &write_map_outputs, py::arg("run"), py::arg("folder"));
   m.def("localize", &localize, py::arg("similarity"), py::arg("config"));
   m.def("similarity_of_descriptors", &similarity_of_descriptors, py::arg("descriptors"), py::arg("against"),
         py::arg("metric"), py::arg("kappa"), py::arg("threads"), py::arg("kappa_rule"));

@@ -230,3 +230,30 @@ def test_match_strings_equals_cli(cli, tmp_path, algorithm, extra):
             mine.append(row)
     assert mine == expected
     assert len(mine) > 0
+
+
+def test_map_sequence_and_write_report_equal_cli(cli, tmp_path):
+    # The bundled corridor with its ground truth, through the same library pipeline as `seqtopo map`.
+    corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
+    run_cli(cli, "map", corridor, "--ground-truth", corridor / "ground_truth.bmp", "--out", tmp_path / "cli")
+    run = seqtopo.map_sequence(corridor, ground_truth=corridor / "ground_truth.bmp")
+    with open(tmp_path / "cli" / "metrics.json") as f:
+        metrics = json.load(f)
+    for key in ("tp", "fp", "fn", "precision", "recall", "f1", "auc", "recall_at_100_precision"):
+        assert run.metrics[key] == metrics["loop_closure"][key], key
+        assert run.baseline[key] == metrics["baseline"][key], key
+    assert run.baseline["method"] == metrics["baseline"]["method"]
+    assert_map_equal(run.map, tmp_path / "cli")
+    seqtopo.write_report(run, tmp_path / "py")
+    for name in ("map.json", "alignments.json", "loop_closures.csv", "metrics.json", "scores.npy", "similarity.npy"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert (tmp_path / "py" / "report.html").stat().st_size > 0
+
+
+def test_paper_preset_from_python_equals_cli(cli, tmp_path):
+    corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
+    run_cli(cli, "map", corridor, "--preset", "paper", "--out", tmp_path / "cli")
+    preset = seqtopo.map_preset("paper")
+    assert preset["descriptors"] == ["joint-histogram"] and preset["metric"] == "chi2"
+    result = seqtopo.build_map_from_images(corridor, preset="paper")
+    assert_map_equal(result, tmp_path / "cli")

@@ -92,12 +92,13 @@ CLI::Option* add_number_or(CLI::App& app, const std::string& names, std::optiona
           help)
       ->type_name(detail::number_type_name<T>() + "|" + keyword)
       ->check(CLI::Validator(
-                  [keyword, limits](std::string& text) -> std::string {
-                    if (text == keyword) return {};
-                    const std::string error = number_check<T>(limits)(text);
-                    return error.empty() ? error : error.substr(0, error.rfind(", got")) + " or '" + keyword + "', got '" + text + "'";
-                  },
-                  "", "number"));
+          [keyword, limits](std::string& text) -> std::string {
+            if (text == keyword) return {};
+            const std::string error = number_check<T>(limits)(text);
+            return error.empty() ? error
+                                 : error.substr(0, error.rfind(", got")) + " or '" + keyword + "', got '" + text + "'";
+          },
+          "", "number"));
 }
 
 // Every option of `app` and its subcommands whose type is a number (FLOAT, INT, UINT, also in lists) gets the

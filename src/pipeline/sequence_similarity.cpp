@@ -348,8 +348,25 @@ SimilarityResult from_similarity_file(const Source& s, bool square) {
   return r;
 }
 
-SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b, const SimilarityConfig& c) {
+// S = 1 - kappa D, with kappa given or chosen from the distances (symmetric: one sequence against itself).
+void similarity_from(DenseMatrix<float> distances, bool symmetric, const SimilarityConfig& c, SimilarityResult& r) {
+  if (c.kappa) {
+    r.kappa = *c.kappa;
+  } else {
+    const auto choice = similarity::choose_kappa(distances, symmetric, c.kappa_rule);
+    r.kappa = choice.kappa;
+    r.kappa_auto = true;
+    r.kappa_fraction = choice.fraction;
+  }
+  r.similarity = similarity::similarity_from_distance(std::move(distances), r.kappa);
+}
+
+void check_kappa(const SimilarityConfig& c) {
   if (c.kappa && (!(*c.kappa > 0) || !std::isfinite(*c.kappa))) throw std::invalid_argument("kappa must be positive");
+}
+
+SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b, const SimilarityConfig& c) {
+  check_kappa(c);
   const Source a = resolve(input_a);
   if (a.kind == InputKind::similarity) return from_similarity_file(a, input_b == nullptr);
   std::optional<Source> b;
@@ -389,15 +406,7 @@ SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b,
     throw;
   }
 
-  if (c.kappa) {
-    r.kappa = *c.kappa;
-  } else {
-    const auto choice = similarity::choose_kappa(distances, !db, c.kappa_rule);
-    r.kappa = choice.kappa;
-    r.kappa_auto = true;
-    r.kappa_fraction = choice.fraction;
-  }
-  r.similarity = similarity::similarity_from_distance(std::move(distances), r.kappa);
+  similarity_from(std::move(distances), !db, c, r);
   r.seconds_matrix = seconds_since(t1);
   r.distance = metric;
   r.frame_names = std::move(da.names);
@@ -424,6 +433,42 @@ DescriptorResult compute_descriptors(const SequenceInput& input, const Similarit
   r.descriptor = d;
   r.frame_names = std::move(described.names);
   r.seconds_descriptors = seconds_since(t0);
+  return r;
+}
+
+SimilarityResult similarity_of_descriptors(const DenseMatrix<float>& a, const DenseMatrix<float>* b,
+                                           const SimilarityConfig& c) {
+  check_kappa(c);
+  for (const auto* m : {&a, b}) {
+    if (m == nullptr) continue;
+    const char* name = m == &a ? "descriptors" : "against";
+    if (m->empty()) throw std::invalid_argument(std::string(name) + ": no descriptors (empty array)");
+    for (std::size_t k = 0; k < m->values.size(); ++k) {
+      if (!std::isfinite(m->values[k])) {
+        throw std::invalid_argument(std::string(name) + ": non-finite value at row " + std::to_string(k / m->cols) +
+                                    ", column " + std::to_string(k % m->cols));
+      }
+    }
+  }
+  const std::size_t cols = b ? b->rows : a.rows;
+  const std::size_t bytes =
+      similarity::matrix_bytes(a.rows, cols) + (a.values.size() + (b ? b->values.size() : 0)) * sizeof(float);
+  similarity::check_fits(
+      bytes, similarity::available_memory_bytes(),
+      "the " + std::to_string(a.rows) + " x " + std::to_string(cols) + " similarity matrix with its descriptors");
+  const Distance metric = c.distance.value_or(default_distance(Descriptor::npy));
+  similarity::MatrixConfig mc;
+  mc.threads = c.threads;
+  mc.tile = c.tile;
+  const auto set_a = similarity::DescriptorSet::from_dense(a);
+  DenseMatrix<float> distances =
+      b ? similarity::distance_matrix(set_a, similarity::DescriptorSet::from_dense(*b), metric, mc)
+        : similarity::distance_matrix(set_a, metric, mc);
+  SimilarityResult r;
+  similarity_from(std::move(distances), b == nullptr, c, r);
+  r.distance = metric;
+  r.frame_names = row_names(a.rows, "row");
+  r.column_names = b ? row_names(b->rows, "row") : r.frame_names;
   return r;
 }
 

@@ -69,6 +69,12 @@ SimilarityResult compute_similarity(const SequenceInput& input, const Similarity
 SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b,
                                     const SimilarityConfig& config = {});
 
+// The same computation on descriptors already in memory (rows = images, as a descriptors.npy input; default
+// distance cosine): N x N, or N x M against `against` (rows = `descriptors`). Throws std::invalid_argument
+// on empty or non-finite rows, similarity::MemoryError when the matrix would not fit.
+SimilarityResult similarity_of_descriptors(const DenseMatrix<float>& descriptors, const DenseMatrix<float>* against,
+                                           const SimilarityConfig& config = {});
+
 // The per-image vectors of one sequence, without any N x N matrix (for scores streamed from them,
 // scale/streaming_similarity.hpp): the rows of a descriptors.npy, or the patch / panorama descriptor of
 // every image or frame. A joint histogram has no vector form and a similarity.npy no descriptors: both
