@@ -22,6 +22,7 @@
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/localize/online_localizer.hpp"
+#include "seqtopo/pipeline/baselines.hpp"
 #include "seqtopo/pipeline/sequence_similarity.hpp"
 
 namespace {
@@ -126,14 +127,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  baseline::SeqSlamConfig seqslam;
-  seqslam.sequence_length = 30;
-  seqslam.min_velocity = 0.9F;
-  seqslam.max_velocity = 1.6F;
-  seqslam.velocity_steps = 8;
-  seqslam.contrast_window = 10;
-  seqslam.threads = 1;
-
+  const baseline::SeqSlamConfig seqslam = pipeline::localization_seqslam_config(1);
   std::printf("| map | query | method | R@1 (+-%zu) | R@5 | AUC | R@100P | seconds | vs SeqSLAM |\n", tolerance);
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& [map_name, query_name] : {std::pair{"summer", "winter"}, std::pair{"winter", "summer"}}) {
@@ -149,37 +143,22 @@ int main(int argc, char** argv) {
       t = cpu_now();
       const pipeline::SimilarityResult hist =
           compute_matrix(query_dir, map_dir, pipeline::Descriptor::joint_histogram, cache);
-      auto frames = localize::single_frame_matches(hist.similarity);
-      rows.push_back({"single frame, joint histogram (chi2)", evaluate(frames, m, tolerance), seconds_since(t)});
+      const evaluation::LocalizationTruth truth = evaluation::LocalizationTruth::same_index(m, m);
+      rows.push_back(
+          {"single frame, joint histogram (chi2)",
+           evaluation::evaluate_localization(pipeline::single_frame_localization(hist.similarity), truth, tolerance),
+           seconds_since(t)});
       t = cpu_now();
-      frames = localize::single_frame_matches(patch.similarity);
-      rows.push_back({"single frame, patch-normalised 64x32 (SAD)", evaluate(frames, m, tolerance),
-                      seconds_since(t) + patch_seconds});
-
+      const auto single = pipeline::single_frame_localization(patch.similarity);
+      rows.push_back({"single frame, patch-normalised 64x32 (SAD)",
+                      evaluation::evaluate_localization(single, truth, tolerance), seconds_since(t) + patch_seconds});
+      // SeqSLAM as `seqtopo localize --gt` runs it (pipeline/baselines.hpp): a query frame without a whole
+      // sequence behind it is not matched.
       t = cpu_now();
-      const auto seq = baseline::seqslam_matches(patch.similarity, seqslam);
+      const auto seq = pipeline::seqslam_localization(patch.similarity, seqslam);
       seqslam_seconds = seconds_since(t);
-      std::vector<localize::FrameMatch> seq_frames(seq.size());
-      for (std::size_t q = 0; q < seq.size(); ++q) {
-        seq_frames[q].covered = seq[q].valid;
-        seq_frames[q].map = seq[q].match;
-        seq_frames[q].score = seq[q].score;
-        seq_frames[q].candidates = {seq[q].match};
-      }
-      rows.push_back({"SeqSLAM (len 30, v 0.9-1.6, 8 steps)", evaluate(seq_frames, m, tolerance), seqslam_seconds});
-      // The usual protocol: a query frame without a whole sequence of 30 frames behind it is not matched
-      // (the search above still answers them, from shorter sequences, with inflated scores).
-      for (std::size_t q = 0; q + 1 < seqslam.sequence_length && q < seq_frames.size(); ++q)
-        seq_frames[q].covered = false;
-      rows.push_back({"SeqSLAM, full sequences only", evaluate(seq_frames, m, tolerance), seqslam_seconds});
-      // Where SeqSLAM is most confident (explains its recall at 100% precision).
-      std::vector<std::size_t> order(seq.size());
-      for (std::size_t q = 0; q < order.size(); ++q) order[q] = q;
-      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return seq[a].score > seq[b].score; });
-      for (std::size_t k = 0; k < 3 && k < order.size(); ++k) {
-        std::fprintf(stderr, "SeqSLAM top %zu: query %zu -> map %zu, score %.3f\n", k + 1, order[k],
-                     seq[order[k]].match, static_cast<double>(seq[order[k]].score));
-      }
+      rows.push_back({"SeqSLAM (len 30, v 0.9-1.6, 8 steps)", evaluation::evaluate_localization(seq, truth, tolerance),
+                      seqslam_seconds});
     }
 
     t = cpu_now();

@@ -19,10 +19,10 @@
 
 #include "seqtopo/baseline/seqslam.hpp"
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
-#include "seqtopo/formats/odometry_csv.hpp"
-#include "seqtopo/image/grey_matrix_file.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/pipeline/baselines.hpp"
+#include "seqtopo/pipeline/ground_truth.hpp"
 
 using namespace seqtopo;
 
@@ -50,18 +50,11 @@ int main(int argc, char** argv) {
   const auto base = io::read_npy_matrix<float>(argv[1]);
   const std::size_t n = base.rows;
   int next = 2;
-  evaluation::SamePlace same_place;
   const std::string gt = argv[next++];
-  if (gt.size() > 4 && gt.substr(gt.size() - 4) == ".csv") {
-    const auto poses = formats::read_poses_csv(gt);
-    const double r = std::stod(argv[next++]);
-    same_place = [poses, r](std::size_t i, std::size_t j) {
-      return std::hypot(poses[i].x - poses[j].x, poses[i].y - poses[j].y) <= r;
-    };
-  } else {
-    auto m = std::make_shared<DenseMatrix<std::uint8_t>>(image::read_grey_matrix_image(gt));
-    same_place = [m](std::size_t i, std::size_t j) { return (*m)(i, j) != 0 || (*m)(j, i) != 0; };
-  }
+  const std::optional<double> radius = gt.size() > 4 && gt.substr(gt.size() - 4) == ".csv"
+                                           ? std::optional<double>(std::stod(argv[next++]))
+                                           : std::nullopt;
+  const evaluation::SamePlace same_place = pipeline::load_same_place(gt, radius, n);
   const auto multipliers = argc > next ? parse_list(argv[next]) : std::vector<double>{1.0};
   const auto gaps = std::getenv("GAPS") ? parse_list(std::getenv("GAPS")) : std::vector<double>{0.3, 1, 2};
   const auto caps = std::getenv("CAPS") ? parse_list(std::getenv("CAPS")) : std::vector<double>{2, 4, 8, 0};
@@ -91,16 +84,10 @@ int main(int argc, char** argv) {
       sc.min_separation = static_cast<std::size_t>(sep);
       for (std::size_t len : {5, 10, 20}) {
         sc.sequence_length = len;
-        std::vector<evaluation::ScoredPair> pairs;
-        for (const auto& m : baseline::seqslam_matches(s, sc)) {
-          if (m.valid) pairs.push_back({m.query, m.match, m.score});
-        }
         // the baseline's operating point: the best F1 over its threshold sweep
-        const auto all = evaluation::evaluate_loop_closures(pairs, n, same_place, sc.min_separation);
-        double best_f1 = 0;
-        for (const auto& p : all.curve)
-          best_f1 = std::max(best_f1,
-                             p.precision + p.recall > 0 ? 2 * p.precision * p.recall / (p.precision + p.recall) : 0.0);
+        const auto all = evaluation::evaluate_loop_closures(pipeline::seqslam_loop_closures(s, sc), n, same_place,
+                                                            sc.min_separation);
+        const double best_f1 = pipeline::best_f1_threshold(all.curve).second;
         baseline_rows.push_back({best_f1, all.auc, all.recall_at_100_precision, 0, 0,
                                  fmt::format("seqslam len {} sep {} kmult {}", len, sep, mult)});
       }

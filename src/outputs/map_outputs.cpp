@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "seqtopo/core/input_error.hpp"
-#include "seqtopo/formats/alignment_json.hpp"
+#include "seqtopo/formats/map_json.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
@@ -124,32 +124,10 @@ std::vector<plot::Polyline> alignment_overlays(const pipeline::MapRun& run, std:
 void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
   const auto& result = run.result;
   const auto& map = result.map;
-  const std::size_t n = map.labels.size();
 
-  nlohmann::json places = nlohmann::json::array();
-  for (const auto& p : map.places) places.push_back({{"id", p.id}, {"images", p.images}});
-  nlohmann::json edges = nlohmann::json::array();
-  for (auto [p, q] : map.edges) edges.push_back({p, q});
-  nlohmann::json segments = nlohmann::json::array();
-  for (const auto& s : map.segments) segments.push_back(s.places);
-  const nlohmann::json alignments = formats::alignments_to_json(result.alignments, &result.pruning.kept)["alignments"];
-  const nlohmann::json map_json = {{"images", n},
-                                   {"labels", map.labels},
-                                   {"places", places},
-                                   {"edges", edges},
-                                   {"junctions", map.junctions},
-                                   {"segments", segments},
-                                   {"alignments", alignments}};
-  out.write("map.json", map_json.dump(1) + "\n");
-  out.write("alignments.json",
-            nlohmann::json{{"alignments", alignments},
-                           {"rejected_by_odometry", formats::alignments_to_json(result.rejected)["alignments"]}}
-                    .dump(1) +
-                "\n");
-
-  std::string csv = "i,j,score\n";
-  for (const auto& p : result.pruning.pairs) csv += fmt::format("{},{},{}\n", p.i, p.j, p.score);
-  out.write("loop_closures.csv", csv);
+  out.write("map.json", formats::map_json(result));
+  out.write("alignments.json", formats::alignments_json(result));
+  out.write("loop_closures.csv", formats::loop_closures_csv(result.pruning));
 
   if (run.streaming) {
     out.write("similarity.png",
