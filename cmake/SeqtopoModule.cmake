@@ -1,19 +1,45 @@
-# One static library per concept: src/<name>/*.cpp with public headers in include/seqtopo/<name>/.
-# A module whose folder has no sources yet is skipped, so layers can be added one at a time.
+# One library per concept: src/<name>/*.cpp with public headers in include/seqtopo/<name>/ (header-only when
+# the folder has no sources), exported as seqtopo::<name>.
+#
+# A module is built only when every target in DEPS exists: the seqtopo::<x> modules it needs, built earlier,
+# and the third-party targets found by the top-level CMakeLists.txt. Otherwise it is skipped with one status
+# line, and so is every module that needs it; the alignment engine, for one, needs only the standard library.
+include(GNUInstallDirs)
+
 function(seqtopo_add_module name)
   cmake_parse_arguments(M "" "" "DEPS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${name}/*.cpp)
-  if(NOT sources)
+  set(missing)
+  foreach(dep IN LISTS M_DEPS)
+    if(NOT TARGET ${dep})
+      list(APPEND missing ${dep})
+    endif()
+  endforeach()
+  if(missing)
+    message(STATUS "seqtopo: module ${name} not built (missing ${missing})")
     return()
   endif()
-  add_library(seqtopo_${name} STATIC ${sources})
-  add_library(seqtopo::${name} ALIAS seqtopo_${name})
-  target_include_directories(seqtopo_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
-  target_link_libraries(seqtopo_${name} PUBLIC seqtopo_options ${M_DEPS})
-  if(NOT name STREQUAL "core")
-    target_link_libraries(seqtopo_${name} PUBLIC seqtopo_core)  # every module may use the vocabulary
+  file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${name}/*.cpp)
+  if(sources)
+    add_library(seqtopo_${name} STATIC ${sources})
+    set(scope PUBLIC)
+    # The project's warnings and floating-point flags apply to its own sources, not to its users'.
+    target_link_libraries(seqtopo_${name} PRIVATE $<BUILD_INTERFACE:seqtopo_options>)
+  else()
+    add_library(seqtopo_${name} INTERFACE)
+    set(scope INTERFACE)
   endif()
+  add_library(seqtopo::${name} ALIAS seqtopo_${name})
+  set_target_properties(seqtopo_${name} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(seqtopo_${name} ${scope} $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                                      $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  if(NOT name STREQUAL "core")
+    target_link_libraries(seqtopo_${name} ${scope} seqtopo_core)  # every module may use the vocabulary
+  endif()
+  target_link_libraries(seqtopo_${name} ${scope} ${M_DEPS})
+  install(TARGETS seqtopo_${name} EXPORT seqtopoTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/seqtopo/${name} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/seqtopo)
   set_property(GLOBAL APPEND PROPERTY SEQTOPO_MODULES seqtopo_${name})
+  set_property(GLOBAL APPEND PROPERTY SEQTOPO_MODULE_NAMES ${name})
 endfunction()
 
 # Every tests/<module>/test_*.cpp is one GoogleTest executable linked to its module and to LIBS.

@@ -27,8 +27,9 @@
 //    optimal, else its leftmost possible pair. (With tie-free scores, e.g. real-valued similarities,
 //    all of this yields the unique optimal alignment.)
 //
-// Worked example (match +2, mismatch -1, gap 1), A = "abedx", B = "ecdab":
-//   the best alignment is A[2..4) = "ed" with B[0..3) = "ecd": e-e (+2), gap over c (-1), d-d (+2) = 3.
+// Worked example (match +2, mismatch -1, gap 1), A = "abedx", B = "ecdab": the best alignment is
+// A[0..2) = "ab" with B[3..5) = "ab" (+2 +2 = 4); the next one that shares no pair with it is A[2..4) = "ed"
+// with B[0..3) = "ecd": e-e (+2), gap over c (-1), d-d (+2) = 3.
 // Memory: one float per cell and one byte per cell for the used pairs, plus one byte per cell of the
 // alignment's rectangle while its path is recovered. Time: one full fill, then per alignment work
 // proportional to the changed region and to its rectangle.

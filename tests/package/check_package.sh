@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# seqtopo as other C++ projects use it:
+#  1. `cmake --install` of this build into a fresh prefix; examples/cpp configured outside the tree with
+#     find_package(seqtopo CONFIG), built, and every example run (02 maps the installed corridor data);
+#  2. the same source configured with every optional dependency disabled: the alignment engine still builds
+#     with the standard library alone, installs, and a consumer of seqtopo::align builds and runs.
+# Usage: tests/package/check_package.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1
+source=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+
+cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
+cmake -S "$source/examples/cpp" -B "$tmp/examples" "${generator[@]}" -DCMAKE_PREFIX_PATH="$tmp/prefix" \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-Wall -Wextra -Werror" >/dev/null
+cmake --build "$tmp/examples" >/dev/null
+"$tmp/examples/01_similarity_to_map"
+"$tmp/examples/03_localize"
+corridor="$tmp/prefix/share/seqtopo/rtabmap-corridor"
+"$tmp/examples/02_images_to_map" "$corridor" "$corridor/ground_truth.bmp" "$tmp/corridor-map" 2>/dev/null
+for f in map.json alignments.json report.html; do test -s "$tmp/corridor-map/$f"; done
+
+disabled=()
+for p in OpenMP OpenCV Eigen3 Ceres CLI11 nlohmann_json fmt faiss; do
+  disabled+=(-DCMAKE_DISABLE_FIND_PACKAGE_$p=ON)
+done
+cmake -S "$source" -B "$tmp/minimal" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DSEQTOPO_BUILD_TESTS=OFF \
+  -DSEQTOPO_BUILD_BENCH=OFF -DSEQTOPO_BUILD_PYTHON=OFF -DSEQTOPO_BUILD_MPI=OFF "${disabled[@]}" >"$tmp/minimal.log" 2>&1
+cat "$tmp/minimal.log" | grep "seqtopo:" || true
+grep -q "module align not built" "$tmp/minimal.log" && { echo "align was skipped"; exit 1; }
+cmake --build "$tmp/minimal" >/dev/null
+cmake --install "$tmp/minimal" --prefix "$tmp/minimal-prefix" >/dev/null
+test -f "$tmp/minimal-prefix/lib/libseqtopo_align.a"
+test ! -e "$tmp/minimal-prefix/lib/libseqtopo_image.a"
+cmake -S "$source/tests/package/align_only" -B "$tmp/align-only" "${generator[@]}" \
+  -DCMAKE_PREFIX_PATH="$tmp/minimal-prefix" >/dev/null
+cmake --build "$tmp/align-only" >/dev/null
+"$tmp/align-only/align_only"
+echo "package: examples and the standard-library-only engine built and ran"
