@@ -24,10 +24,10 @@ int main(int argc, char** argv) {
   request.settings = pipeline::map_preset("default");
   if (argc > 2) request.truth.same_place = argv[2];
   try {
-    const pipeline::MapRun run = pipeline::map_sequence(request, {.progress = [](std::string_view line) {
-                                                            std::fprintf(stderr, "%.*s\n", static_cast<int>(line.size()),
-                                                                         line.data());
-                                                          }});
+    const pipeline::MapRun run =
+        pipeline::map_sequence(request, {.progress = [](std::string_view line) {
+                                 std::fprintf(stderr, "%.*s\n", static_cast<int>(line.size()), line.data());
+                               }});
     std::printf("%zu images, %zu places, %zu junctions, %zu loop-closure pairs\n", run.result.map.labels.size(),
                 run.result.map.places.size(), run.result.map.junctions.size(), run.result.pruning.pairs.size());
     if (run.metrics) {

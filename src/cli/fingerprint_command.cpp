@@ -9,6 +9,7 @@
 
 #include "command_registry.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/parse_number.hpp"
 #include "seqtopo/fingerprint/fingerprint.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/atomic_output.hpp"
@@ -36,14 +37,8 @@ std::map<std::string, PointRow> read_points(const std::string& path) {
   for (const auto& r : io::read_csv(path, {"id", "role", "x", "y", "place"})) {
     const auto& f = r.fields;
     PointRow row{f[1], f[4]};
-    try {
-      std::size_t used_x = 0, used_y = 0;
-      row.x = std::stod(f[2], &used_x);
-      row.y = std::stod(f[3], &used_y);
-      if (used_x != f[2].size() || used_y != f[3].size()) throw std::invalid_argument("trailing characters");
-    } catch (const std::exception&) {
-      throw InputError(r.where, "x and y must be numbers");
-    }
+    row.x = parse_number<double>(r.where + " (x)", f[2]);
+    row.y = parse_number<double>(r.where + " (y)", f[3]);
     if (f[0].empty() || row.place.empty()) throw InputError(r.where, "empty id or place");
     if (!rows.emplace(f[0], row).second) throw InputError(r.where, "repeated id '" + f[0] + "'");
   }

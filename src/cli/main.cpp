@@ -21,30 +21,6 @@ unsigned resolve_threads(unsigned requested) {
   return requested > 0 ? std::min(requested, cores) : cores;
 }
 
-void check_all_numeric_options(CLI::App& app) {
-  for (CLI::Option* option : app.get_options()) {
-    try {
-      (void)option->get_validator("number");  // registered by add_number with its own limits
-      continue;
-    } catch (const CLI::OptionNotFound&) {
-    }
-    const std::string type = option->get_type_name();
-    // "FLOAT", "UINT:POSITIVE", ...; not "FLOAT|none" (add_number_or parses its own text).
-    const auto is = [&](const std::string& name) {
-      return type.rfind(name, 0) == 0 &&
-             (type.size() == name.size() || type[name.size()] == ':' || type[name.size()] == ' ');
-    };
-    if (is("FLOAT")) {
-      option->check(number_check<double>({}));
-    } else if (is("UINT")) {
-      option->check(number_check<unsigned long long>({}));
-    } else if (is("INT")) {
-      option->check(number_check<long>({}));
-    }
-  }
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) check_all_numeric_options(*sub);
-}
-
 namespace {
 
 // `--config FILE` becomes the options it lists, placed before the command line's own options so that

@@ -104,7 +104,29 @@ CLI::Option* add_number_or(CLI::App& app, const std::string& names, std::optiona
 // Every option of `app` and its subcommands whose type is a number (FLOAT, INT, UINT, also in lists) gets the
 // parser's checks (finite, whole text, no sign on an unsigned type) unless it already has them: the net under
 // options registered with plain app.add_option.
-void check_all_numeric_options(CLI::App& app);
+inline void check_all_numeric_options(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    try {
+      (void)option->get_validator("number");  // registered by add_number with its own limits
+      continue;
+    } catch (const CLI::OptionNotFound&) {
+    }
+    const std::string type = option->get_type_name();
+    // "FLOAT", "UINT:POSITIVE", ...; not "FLOAT|none" (add_number_or parses its own text).
+    const auto is = [&](const std::string& name) {
+      return type.rfind(name, 0) == 0 &&
+             (type.size() == name.size() || type[name.size()] == ':' || type[name.size()] == ' ');
+    };
+    if (is("FLOAT")) {
+      option->check(number_check<double>({}));
+    } else if (is("UINT")) {
+      option->check(number_check<unsigned long long>({}));
+    } else if (is("INT")) {
+      option->check(number_check<long>({}));
+    }
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) check_all_numeric_options(*sub);
+}
 
 // Limits used by many options.
 inline constexpr NumberLimits kPositive{.min = 0, .min_exclusive = true};

@@ -23,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli/number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/alignment_json.hpp"
 #include "seqtopo/io/atomic_output.hpp"
@@ -336,6 +337,7 @@ int main(int argc, char** argv) {
   sparse->add_option("--threads", opt.threads, "rank 0: threads for the two passes' fills (1 or 2)");
   int code = 0;
   try {
+    seqtopo::cli::check_all_numeric_options(app);
     app.parse(argc, argv);
     if (!(opt.background < 0)) throw seqtopo::InputError("--background", "must be < 0");
     code = seqtopo::mpi::run(opt, rank, ranks);

@@ -9,6 +9,7 @@ namespace seqtopo {
 // T_world_robot: the robot's position [m, m] and heading [rad] in the world frame.
 struct Pose2 {
   double x = 0, y = 0, theta = 0;
+  friend bool operator==(const Pose2&, const Pose2&) = default;
 };
 
 // Angle in [-pi, pi) [rad].

@@ -2,7 +2,8 @@
 // 2-D points and poses of the simulated floor plan. World frame: x east, y north [m]; angles
 // counter-clockwise from +x [rad].
 #include <cmath>
-#include <numbers>
+
+#include "seqtopo/core/pose2.hpp"
 
 namespace seqtopo::simulator {
 
@@ -19,19 +20,9 @@ inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
 inline double distance(Vec2 a, Vec2 b) { return norm(a - b); }
 
-// T_world_robot in 2-D: position [m] and heading [rad].
-struct Pose2 {
-  double x = 0.0;
-  double y = 0.0;
-  double theta = 0.0;
-  friend bool operator==(const Pose2&, const Pose2&) = default;
-};
-
-// Angle wrapped to (-pi, pi].
-inline double wrap_angle(double a) {
-  a = std::remainder(a, 2.0 * std::numbers::pi);
-  return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
-}
+// Poses and angle wrapping are the tree's own (core/pose2.hpp).
+using seqtopo::Pose2;
+using seqtopo::wrap_angle;
 
 // Axis-aligned rectangle [x0, x1] x [y0, y1] [m].
 struct Rect {
