@@ -1,0 +1,320 @@
+// The fill's striped kernels (fast_kernels.hpp: StripedJob; the body is fast_striped_body.hpp): SSE4.1
+// and AVX2, int16 and int8 lanes, compiled for their instruction set through function attributes and
+// chosen at run time. Each traits type gives the body its vector type and the handful of operations it
+// uses; saturating arithmetic everywhere, so values far below 0 clip harmlessly (the max with 0 or
+// with T >= 0 discards them).
+#include <algorithm>
+
+#include "fast_kernels.hpp"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+
+namespace seqtopo::align::detail {
+namespace {
+
+#define SEQTOPO_SSE41 [[gnu::target("sse4.1"), gnu::always_inline]] static inline
+#define SEQTOPO_AVX2 [[gnu::target("avx2"), gnu::always_inline]] static inline
+
+// Largest of values >= 0 in int16 lanes: 32767 minus the unsigned minimum of 32767 - v.
+SEQTOPO_SSE41 int hmax16(__m128i v) {
+  return 32767 - _mm_extract_epi16(_mm_minpos_epu16(_mm_sub_epi16(_mm_set1_epi16(32767), v)), 0);
+}
+
+struct Sse41x16 {
+  using E = std::int16_t;
+  using V = __m128i;
+  static constexpr std::size_t kLanes = 8;
+  static constexpr int kMin = -32768, kMax = 32767;
+  SEQTOPO_SSE41 V load(const E* p) { return _mm_loadu_si128(reinterpret_cast<const V*>(p)); }
+  SEQTOPO_SSE41 void store(E* p, V v) { _mm_storeu_si128(reinterpret_cast<V*>(p), v); }
+  SEQTOPO_SSE41 V set1(int v) { return _mm_set1_epi16(static_cast<std::int16_t>(v)); }
+  SEQTOPO_SSE41 V zero() { return _mm_setzero_si128(); }
+  SEQTOPO_SSE41 V adds(V a, V b) { return _mm_adds_epi16(a, b); }
+  SEQTOPO_SSE41 V subs(V a, V b) { return _mm_subs_epi16(a, b); }
+  SEQTOPO_SSE41 V subs_u(V a, V b) { return _mm_subs_epu16(a, b); }  // max(0, a - b) for a, b >= 0
+  SEQTOPO_SSE41 V max(V a, V b) { return _mm_max_epi16(a, b); }
+  SEQTOPO_SSE41 V min(V a, V b) { return _mm_min_epi16(a, b); }
+  SEQTOPO_SSE41 V cmpgt(V a, V b) { return _mm_cmpgt_epi16(a, b); }
+  SEQTOPO_SSE41 V and_(V a, V b) { return _mm_and_si128(a, b); }
+  SEQTOPO_SSE41 V andnot(V a, V b) { return _mm_andnot_si128(a, b); }
+  SEQTOPO_SSE41 bool any(V m) { return !_mm_testz_si128(m, m); }
+  // lane l <- lane l - 1, lane 0 <- first
+  SEQTOPO_SSE41 V shift_up(V x, int first) { return _mm_insert_epi16(_mm_slli_si128(x, 2), first, 0); }
+  // lane l <- lane l - K, 0 into lanes < K
+  template <int K>
+  SEQTOPO_SSE41 V shift(V x) {
+    return _mm_slli_si128(x, 2 * K);
+  }
+  SEQTOPO_SSE41 V lane_index() { return _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7); }
+  SEQTOPO_SSE41 void widen_store(std::int16_t* out, V v) { store(out, v); }
+  SEQTOPO_SSE41 void widen_max(std::int16_t* acc, V v) { store(acc, max(load(acc), v)); }
+  SEQTOPO_SSE41 int hmax(V v) { return hmax16(v); }
+};
+
+struct Sse41x8 {
+  using E = std::int8_t;
+  using V = __m128i;
+  static constexpr std::size_t kLanes = 16;
+  static constexpr int kMin = -128, kMax = 127;
+  SEQTOPO_SSE41 V load(const E* p) { return _mm_loadu_si128(reinterpret_cast<const V*>(p)); }
+  SEQTOPO_SSE41 void store(E* p, V v) { _mm_storeu_si128(reinterpret_cast<V*>(p), v); }
+  SEQTOPO_SSE41 V set1(int v) { return _mm_set1_epi8(static_cast<char>(v)); }
+  SEQTOPO_SSE41 V zero() { return _mm_setzero_si128(); }
+  SEQTOPO_SSE41 V adds(V a, V b) { return _mm_adds_epi8(a, b); }
+  SEQTOPO_SSE41 V subs(V a, V b) { return _mm_subs_epi8(a, b); }
+  SEQTOPO_SSE41 V subs_u(V a, V b) { return _mm_subs_epu8(a, b); }
+  SEQTOPO_SSE41 V max(V a, V b) { return _mm_max_epi8(a, b); }
+  SEQTOPO_SSE41 V min(V a, V b) { return _mm_min_epi8(a, b); }
+  SEQTOPO_SSE41 V cmpgt(V a, V b) { return _mm_cmpgt_epi8(a, b); }
+  SEQTOPO_SSE41 V and_(V a, V b) { return _mm_and_si128(a, b); }
+  SEQTOPO_SSE41 V andnot(V a, V b) { return _mm_andnot_si128(a, b); }
+  SEQTOPO_SSE41 bool any(V m) { return !_mm_testz_si128(m, m); }
+  SEQTOPO_SSE41 V shift_up(V x, int first) { return _mm_insert_epi8(_mm_slli_si128(x, 1), first, 0); }
+  template <int K>
+  SEQTOPO_SSE41 V shift(V x) {
+    return _mm_slli_si128(x, K);
+  }
+  SEQTOPO_SSE41 V lane_index() { return _mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15); }
+  SEQTOPO_SSE41 void widen_store(std::int16_t* out, V v) {
+    Sse41x16::store(out, _mm_cvtepi8_epi16(v));
+    Sse41x16::store(out + 8, _mm_cvtepi8_epi16(_mm_srli_si128(v, 8)));
+  }
+  SEQTOPO_SSE41 void widen_max(std::int16_t* acc, V v) {
+    Sse41x16::widen_max(acc, _mm_cvtepi8_epi16(v));
+    Sse41x16::widen_max(acc + 8, _mm_cvtepi8_epi16(_mm_srli_si128(v, 8)));
+  }
+  SEQTOPO_SSE41 int hmax(V v) {
+    return hmax16(_mm_max_epi16(_mm_cvtepi8_epi16(v), _mm_cvtepi8_epi16(_mm_srli_si128(v, 8))));
+  }
+};
+
+struct Avx2x16 {
+  using E = std::int16_t;
+  using V = __m256i;
+  static constexpr std::size_t kLanes = 16;
+  static constexpr int kMin = -32768, kMax = 32767;
+  SEQTOPO_AVX2 V load(const E* p) { return _mm256_loadu_si256(reinterpret_cast<const V*>(p)); }
+  SEQTOPO_AVX2 void store(E* p, V v) { _mm256_storeu_si256(reinterpret_cast<V*>(p), v); }
+  SEQTOPO_AVX2 V set1(int v) { return _mm256_set1_epi16(static_cast<std::int16_t>(v)); }
+  SEQTOPO_AVX2 V zero() { return _mm256_setzero_si256(); }
+  SEQTOPO_AVX2 V adds(V a, V b) { return _mm256_adds_epi16(a, b); }
+  SEQTOPO_AVX2 V subs(V a, V b) { return _mm256_subs_epi16(a, b); }
+  SEQTOPO_AVX2 V subs_u(V a, V b) { return _mm256_subs_epu16(a, b); }
+  SEQTOPO_AVX2 V max(V a, V b) { return _mm256_max_epi16(a, b); }
+  SEQTOPO_AVX2 V min(V a, V b) { return _mm256_min_epi16(a, b); }
+  SEQTOPO_AVX2 V cmpgt(V a, V b) { return _mm256_cmpgt_epi16(a, b); }
+  SEQTOPO_AVX2 V and_(V a, V b) { return _mm256_and_si256(a, b); }
+  SEQTOPO_AVX2 V andnot(V a, V b) { return _mm256_andnot_si256(a, b); }
+  SEQTOPO_AVX2 bool any(V m) { return !_mm256_testz_si256(m, m); }
+  // (0, low half) then a byte alignment across the halves: every lane moves up by one, 0 enters lane 0
+  SEQTOPO_AVX2 V shift_up(V x, int first) {
+    return _mm256_insert_epi16(_mm256_alignr_epi8(x, _mm256_permute2x128_si256(x, x, 0x08), 14), first, 0);
+  }
+  template <int K>
+  SEQTOPO_AVX2 V shift(V x) {
+    if constexpr (K == 8) {
+      return _mm256_permute2x128_si256(x, x, 0x08);
+    } else {
+      return _mm256_alignr_epi8(x, _mm256_permute2x128_si256(x, x, 0x08), 16 - 2 * K);
+    }
+  }
+  SEQTOPO_AVX2 V lane_index() { return _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15); }
+  SEQTOPO_AVX2 void widen_store(std::int16_t* out, V v) { store(out, v); }
+  SEQTOPO_AVX2 void widen_max(std::int16_t* acc, V v) { store(acc, max(load(acc), v)); }
+  SEQTOPO_AVX2 int hmax(V v) {
+    return hmax16(_mm_max_epi16(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1)));
+  }
+};
+
+struct Avx2x8 {
+  using E = std::int8_t;
+  using V = __m256i;
+  static constexpr std::size_t kLanes = 32;
+  static constexpr int kMin = -128, kMax = 127;
+  SEQTOPO_AVX2 V load(const E* p) { return _mm256_loadu_si256(reinterpret_cast<const V*>(p)); }
+  SEQTOPO_AVX2 void store(E* p, V v) { _mm256_storeu_si256(reinterpret_cast<V*>(p), v); }
+  SEQTOPO_AVX2 V set1(int v) { return _mm256_set1_epi8(static_cast<char>(v)); }
+  SEQTOPO_AVX2 V zero() { return _mm256_setzero_si256(); }
+  SEQTOPO_AVX2 V adds(V a, V b) { return _mm256_adds_epi8(a, b); }
+  SEQTOPO_AVX2 V subs(V a, V b) { return _mm256_subs_epi8(a, b); }
+  SEQTOPO_AVX2 V subs_u(V a, V b) { return _mm256_subs_epu8(a, b); }
+  SEQTOPO_AVX2 V max(V a, V b) { return _mm256_max_epi8(a, b); }
+  SEQTOPO_AVX2 V min(V a, V b) { return _mm256_min_epi8(a, b); }
+  SEQTOPO_AVX2 V cmpgt(V a, V b) { return _mm256_cmpgt_epi8(a, b); }
+  SEQTOPO_AVX2 V and_(V a, V b) { return _mm256_and_si256(a, b); }
+  SEQTOPO_AVX2 V andnot(V a, V b) { return _mm256_andnot_si256(a, b); }
+  SEQTOPO_AVX2 bool any(V m) { return !_mm256_testz_si256(m, m); }
+  SEQTOPO_AVX2 V shift_up(V x, int first) {
+    return _mm256_insert_epi8(_mm256_alignr_epi8(x, _mm256_permute2x128_si256(x, x, 0x08), 15), first, 0);
+  }
+  template <int K>
+  SEQTOPO_AVX2 V shift(V x) {
+    if constexpr (K == 16) {
+      return _mm256_permute2x128_si256(x, x, 0x08);
+    } else {
+      return _mm256_alignr_epi8(x, _mm256_permute2x128_si256(x, x, 0x08), 16 - K);
+    }
+  }
+  SEQTOPO_AVX2 V lane_index() {
+    return _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24,
+                            25, 26, 27, 28, 29, 30, 31);
+  }
+  SEQTOPO_AVX2 V low16(V v) { return _mm256_cvtepi8_epi16(_mm256_castsi256_si128(v)); }
+  SEQTOPO_AVX2 V high16(V v) { return _mm256_cvtepi8_epi16(_mm256_extracti128_si256(v, 1)); }
+  SEQTOPO_AVX2 void widen_store(std::int16_t* out, V v) {
+    Avx2x16::store(out, low16(v));
+    Avx2x16::store(out + 16, high16(v));
+  }
+  SEQTOPO_AVX2 void widen_max(std::int16_t* acc, V v) {
+    Avx2x16::widen_max(acc, low16(v));
+    Avx2x16::widen_max(acc + 16, high16(v));
+  }
+  SEQTOPO_AVX2 int hmax(V v) { return Avx2x16::hmax(_mm256_max_epi16(low16(v), high16(v))); }
+};
+
+namespace sse41 {
+#define SEQTOPO_STRIPED_ISA "sse4.1"
+#include "fast_striped_body.hpp"
+#undef SEQTOPO_STRIPED_ISA
+}  // namespace sse41
+
+namespace avx2 {
+#define SEQTOPO_STRIPED_ISA "avx2"
+#include "fast_striped_body.hpp"
+#undef SEQTOPO_STRIPED_ISA
+}  // namespace avx2
+
+// Transposes 8 x 8 int16 in each 128-bit half of a[0..7] (a[r] = row r): a[c] becomes column c. A macro
+// over the unpack operations of the struct it is expanded in (a template would lose the target).
+#define SEQTOPO_TRANSPOSE8                                                                            \
+  const V b0 = lo16(a[0], a[1]), b1 = hi16(a[0], a[1]), b2 = lo16(a[2], a[3]), b3 = hi16(a[2], a[3]); \
+  const V b4 = lo16(a[4], a[5]), b5 = hi16(a[4], a[5]), b6 = lo16(a[6], a[7]), b7 = hi16(a[6], a[7]); \
+  const V c0 = lo32(b0, b2), c1 = hi32(b0, b2), c2 = lo32(b1, b3), c3 = hi32(b1, b3);                 \
+  const V c4 = lo32(b4, b6), c5 = hi32(b4, b6), c6 = lo32(b5, b7), c7 = hi32(b5, b7);                 \
+  a[0] = lo64(c0, c4);                                                                                \
+  a[1] = hi64(c0, c4);                                                                                \
+  a[2] = lo64(c1, c5);                                                                                \
+  a[3] = hi64(c1, c5);                                                                                \
+  a[4] = lo64(c2, c6);                                                                                \
+  a[5] = hi64(c2, c6);                                                                                \
+  a[6] = lo64(c3, c7);                                                                                \
+  a[7] = hi64(c3, c7);
+
+struct SseUnpack {
+  using V = __m128i;
+  SEQTOPO_SSE41 V lo16(V a, V b) { return _mm_unpacklo_epi16(a, b); }
+  SEQTOPO_SSE41 V hi16(V a, V b) { return _mm_unpackhi_epi16(a, b); }
+  SEQTOPO_SSE41 V lo32(V a, V b) { return _mm_unpacklo_epi32(a, b); }
+  SEQTOPO_SSE41 V hi32(V a, V b) { return _mm_unpackhi_epi32(a, b); }
+  SEQTOPO_SSE41 V lo64(V a, V b) { return _mm_unpacklo_epi64(a, b); }
+  SEQTOPO_SSE41 V hi64(V a, V b) { return _mm_unpackhi_epi64(a, b); }
+  SEQTOPO_SSE41 void transpose8(V* a) { SEQTOPO_TRANSPOSE8 }
+};
+struct AvxUnpack {
+  using V = __m256i;
+  SEQTOPO_AVX2 V lo16(V a, V b) { return _mm256_unpacklo_epi16(a, b); }
+  SEQTOPO_AVX2 V hi16(V a, V b) { return _mm256_unpackhi_epi16(a, b); }
+  SEQTOPO_AVX2 V lo32(V a, V b) { return _mm256_unpacklo_epi32(a, b); }
+  SEQTOPO_AVX2 V hi32(V a, V b) { return _mm256_unpackhi_epi32(a, b); }
+  SEQTOPO_AVX2 V lo64(V a, V b) { return _mm256_unpacklo_epi64(a, b); }
+  SEQTOPO_AVX2 V hi64(V a, V b) { return _mm256_unpackhi_epi64(a, b); }
+  SEQTOPO_AVX2 void transpose8(V* a) { SEQTOPO_TRANSPOSE8 }
+};
+#undef SEQTOPO_TRANSPOSE8
+#undef SEQTOPO_SSE41
+#undef SEQTOPO_AVX2
+
+// Columns c0 .. c0 + 7 of tiles t0 .. t0 + 7 of a natural block (tile t at in + 32 t): out[c] = column c0 + c,
+// one int16 per tile.
+[[gnu::target("sse4.1")]] inline void columns8_sse41(const std::int16_t* in, std::size_t t0, std::size_t c0,
+                                                     __m128i* out) {
+  for (std::size_t t = 0; t < 8; ++t) {
+    out[t] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + kTileSide * (t0 + t) + c0));
+  }
+  SseUnpack::transpose8(out);
+}
+
+// Columns c0 .. c0 + 15 of tiles t0 .. t0 + 15: 16 x 16 as four 8 x 8 (rows t and t + 8 share a vector).
+[[gnu::target("avx2")]] inline void columns16_avx2(const std::int16_t* in, std::size_t t0, std::size_t c0,
+                                                   __m256i* out) {
+  __m256i r[16];
+  for (std::size_t t = 0; t < 16; ++t) {
+    r[t] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(in + kTileSide * (t0 + t) + c0));
+  }
+  for (std::size_t t = 0; t < 8; ++t) {  // low halves: columns 0-7, high halves: 8-15; tiles t and t + 8
+    out[t] = _mm256_permute2x128_si256(r[t], r[t + 8], 0x20);
+    out[t + 8] = _mm256_permute2x128_si256(r[t], r[t + 8], 0x31);
+  }
+  AvxUnpack::transpose8(out);
+  AvxUnpack::transpose8(out + 8);
+}
+
+}  // namespace
+
+// Natural scores of one block -> its striped layout (striped_index): out[s * lanes + l] = in[32 l + s].
+[[gnu::target("sse4.1")]] void stripe16_sse41(const std::int16_t* in, std::int16_t* out) {
+  __m128i c[8];
+  for (std::size_t c0 = 0; c0 < kTileSide; c0 += 8) {
+    columns8_sse41(in, 0, c0, c);
+    for (std::size_t s = 0; s < 8; ++s) _mm_storeu_si128(reinterpret_cast<__m128i*>(out + (c0 + s) * 8), c[s]);
+  }
+}
+[[gnu::target("sse4.1")]] void stripe8_sse41(const std::int16_t* in, std::int8_t* out) {
+  __m128i a[8], b[8];
+  for (std::size_t c0 = 0; c0 < kTileSide; c0 += 8) {
+    columns8_sse41(in, 0, c0, a);
+    columns8_sse41(in, 8, c0, b);
+    for (std::size_t s = 0; s < 8; ++s) {
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + (c0 + s) * 16), _mm_packs_epi16(a[s], b[s]));
+    }
+  }
+}
+[[gnu::target("avx2")]] void stripe16_avx2(const std::int16_t* in, std::int16_t* out) {
+  __m256i c[16];
+  for (std::size_t c0 = 0; c0 < kTileSide; c0 += 16) {
+    columns16_avx2(in, 0, c0, c);
+    for (std::size_t s = 0; s < 16; ++s) _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + (c0 + s) * 16), c[s]);
+  }
+}
+[[gnu::target("avx2")]] void stripe8_avx2(const std::int16_t* in, std::int8_t* out) {
+  __m256i a[16], b[16];
+  for (std::size_t c0 = 0; c0 < kTileSide; c0 += 16) {
+    columns16_avx2(in, 0, c0, a);
+    columns16_avx2(in, 16, c0, b);
+    for (std::size_t s = 0; s < 16; ++s) {  // packs works per half: tiles 0-7, 16-23 | 8-15, 24-31
+      const __m256i packed = _mm256_permute4x64_epi64(_mm256_packs_epi16(a[s], b[s]), 0xD8);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + (c0 + s) * 32), packed);
+    }
+  }
+}
+
+[[gnu::target("sse4.1")]] std::int16_t striped16_sse41(const StripedJob& job) {
+  return sse41::striped_row<Sse41x16>(job);
+}
+[[gnu::target("sse4.1")]] std::int16_t striped8_sse41(const StripedJob& job) {
+  return sse41::striped_row<Sse41x8>(job);
+}
+[[gnu::target("avx2")]] std::int16_t striped16_avx2(const StripedJob& job) { return avx2::striped_row<Avx2x16>(job); }
+[[gnu::target("avx2")]] std::int16_t striped8_avx2(const StripedJob& job) { return avx2::striped_row<Avx2x8>(job); }
+
+}  // namespace seqtopo::align::detail
+
+#else
+// Other CPUs: best_isa() reports scalar and the fill never asks for these; they exist so the tables link.
+#include <stdexcept>
+
+namespace seqtopo::align::detail {
+namespace {
+std::int16_t unavailable(const StripedJob&) { throw std::logic_error("no striped kernel on this CPU"); }
+}  // namespace
+std::int16_t striped16_sse41(const StripedJob& job) { return unavailable(job); }
+std::int16_t striped8_sse41(const StripedJob& job) { return unavailable(job); }
+std::int16_t striped16_avx2(const StripedJob& job) { return unavailable(job); }
+std::int16_t striped8_avx2(const StripedJob& job) { return unavailable(job); }
+void stripe16_sse41(const std::int16_t*, std::int16_t*) { throw std::logic_error("no striped kernel on this CPU"); }
+void stripe8_sse41(const std::int16_t*, std::int8_t*) { throw std::logic_error("no striped kernel on this CPU"); }
+void stripe16_avx2(const std::int16_t*, std::int16_t*) { throw std::logic_error("no striped kernel on this CPU"); }
+void stripe8_avx2(const std::int16_t*, std::int8_t*) { throw std::logic_error("no striped kernel on this CPU"); }
+}  // namespace seqtopo::align::detail
+#endif
