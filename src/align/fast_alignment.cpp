@@ -183,6 +183,16 @@ struct Scratch {
 
 std::int8_t saturate8(Step v) { return static_cast<std::int8_t>(std::clamp<int>(v, -128, 127)); }
 
+// Whether every score fits in an int8 row.
+bool fits_int8(const Step* p, std::size_t count) {
+  Step lo = 0, hi = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    lo = std::min(lo, p[k]);
+    hi = std::max(hi, p[k]);
+  }
+  return lo >= -128 && hi <= 127;
+}
+
 // Scores p[j] of pass columns j in [a, b] into the striped layout of a strip that starts at column lo:
 // out[striped_index(j - lo, lanes)], saturated to int8 for an int8 row. Whole blocks go through the
 // vector block striper if there is one, the ends of the range element by element.
@@ -225,8 +235,9 @@ class RowScores {
   // return `steps` (a row buffer); `floats` has room for a row of the source.
   virtual const Step* row(std::size_t i, std::size_t lo, std::size_t hi, Step* steps, float* floats) const = 0;
   // The same scores over [a, b] for the striped fill, in the striped layout (int8 if `bytes`) of the strip
-  // that starts at column lo (lo - 1 a multiple of Kernels::unit()); elements outside [a, b] unspecified.
-  // May fill and return the scratch's striped buffer of that width (whole blocks over the strip).
+  // that starts at column lo (lo - 1 a multiple of Kernels::unit()); elements outside [a, b] unspecified,
+  // <= 0 past the strip's end. May fill and return the scratch's striped buffer of that width (whole
+  // blocks over the strip). For int8, nullptr if a score is outside [-128, 127].
   virtual const void* striped(std::size_t i, std::size_t lo, std::size_t a, std::size_t b, bool bytes,
                               Scratch& scratch) const = 0;
 };
@@ -255,6 +266,7 @@ class SourceRows final : public RowScores {
   const void* striped(std::size_t i, std::size_t lo, std::size_t a, std::size_t b, bool bytes,
                       Scratch& scratch) const override {
     const Step* p = row(i, a, b, scratch.steps.data(), scratch.floats.data());
+    if (bytes && !fits_int8(p + a, b - a + 1)) return nullptr;
     if (bytes) {
       stripe(p, lo, a, b, kernels_.lanes8, scratch.striped8.data(), kernels_.stripe8);
       return scratch.striped8.data();
@@ -298,6 +310,7 @@ class LetterRows final : public RowScores {
         stripe(profile_.data() + x * stride_, 1, 1, n, kernels.lanes8, striped8_.data() + x * striped_stride_,
                kernels.stripe8);
       }
+      fits_int8_ = fits_int8(matrix.data(), matrix.size());
     }
   }
   const Step* row(std::size_t i, std::size_t, std::size_t, Step*, float*) const override {
@@ -306,7 +319,7 @@ class LetterRows final : public RowScores {
   // Strips start at a block boundary of both layouts, so a strip's row is a piece of the whole row's.
   const void* striped(std::size_t i, std::size_t lo, std::size_t, std::size_t, bool bytes, Scratch&) const override {
     const std::size_t at = a_[i - 1] * striped_stride_ + (lo - 1);
-    if (bytes) return striped8_.data() + at;
+    if (bytes) return fits_int8_ ? striped8_.data() + at : nullptr;
     return striped16_.data() + at;
   }
 
@@ -315,6 +328,7 @@ class LetterRows final : public RowScores {
   std::size_t stride_;
   std::vector<Step> profile_;
   std::size_t striped_stride_ = 0;
+  bool fits_int8_ = false;
   std::vector<std::int16_t> striped16_;
   std::vector<std::int8_t> striped8_;
 };
@@ -494,9 +508,10 @@ class FastPass {
 
   // The striped fill: strips of whole units (Kernels::unit(): a block of either width), each with its own
   // two rows in the striped layout; strip k passes its last column to strip k + 1 through a ring. A strip
-  // computes in int8 lanes while that is exact (always if the cap fits in int8; otherwise while no row
-  // reaches 127, fast_kernels.hpp) and from the first row that might have saturated on in int16, that
-  // row included. Every cell's value is the same for any strip count and either width.
+  // computes in int8 lanes (H - 128, fast_kernels.hpp) while that is exact: gaps <= 127, the row's scores
+  // in [-128, 127], and the cap below 255 or else no row reaching 255; from the first row that breaks a
+  // rule it goes on in int16, that row included. Every cell's value is the same for any strip count and
+  // either width.
   Step fill_striped(bool keep) {
     const std::size_t unit = kernels_.unit(), units = (n_ + unit - 1) / unit;
     const std::size_t strips = std::max<std::size_t>(1, std::min({std::size_t{threads_}, units, n_ / 512}));
@@ -517,8 +532,8 @@ class FastPass {
                  Step* edges, std::size_t ring, Step& best)
         : pass_(pass),
           keep_(keep),
-          exact8_(pass.st_.capped && pass.st_.cap <= detail::kInt8Limit),
-          bytes_(true),
+          exact8_(pass.st_.capped && pass.st_.cap < detail::kInt8Limit),
+          bytes_(pass.st_.gap_a <= detail::kInt8Gap && pass.st_.gap_b <= detail::kInt8Gap),
           k_(k),
           strips_(strips),
           lo_(lo),
@@ -529,9 +544,14 @@ class FastPass {
           edges_(edges),
           best_(best),
           scratch_(pass.n_),
-          rows8_(2 * padded_, 0),
+          rows8_(2 * padded_, static_cast<std::int8_t>(-detail::kInt8Offset)),  // H = 0
           tiles_(padded_ / kTile, 0) {
-      scratch_.striped8.assign(padded_, 0);
+      if (bytes_) {
+        scratch_.striped8.assign(padded_, 0);
+      } else {  // gaps beyond int8: int16 from the start
+        rows16_.assign(2 * padded_, 0);
+        scratch_.striped16.assign(padded_, 0);
+      }
     }
 
     void operator()(std::size_t i) {
@@ -554,15 +574,23 @@ class FastPass {
                                p.st_.gap_b,
                                p.st_.cap,
                                tiles_.data(),
-                               keep_ ? pass_.columns_.data() + i * p.column_stride_ + (lo_ - 1) / kTile + 1 : nullptr};
+                               keep_ ? pass_.columns_.data() + i * p.column_stride_ + (lo_ - 1) / kTile + 1 : nullptr,
+                               &carry_};
         Step v = 0;
         if (bytes_ && !exact8_ && std::max(left, diag_left) >= detail::kInt8Limit) to_int16();
         if (bytes_) {
+          job.score = p.scores_.striped(i, lo_, a, b, true, scratch_);
+          if (!job.score) to_int16();  // a score outside int8
+        }
+        if (bytes_) {
           job.prev = rows8_.data() + prev_ * padded_;
           job.cur = rows8_.data() + (1 - prev_) * padded_;
-          job.score = p.scores_.striped(i, lo_, a, b, true, scratch_);
+          if (!exact8_) saved_tiles_ = tiles_;  // a row that may saturate may also leave maxima too high
           v = p.kernels_.striped8(job);
-          if (!exact8_ && v >= detail::kInt8Limit) to_int16();  // and redo the row
+          if (!exact8_ && v >= detail::kInt8Limit) {                              // redo the row in int16
+            std::copy(saved_tiles_.begin(), saved_tiles_.end(), tiles_.begin());  // job.tile_max stays valid
+            to_int16();
+          }
         }
         if (!bytes_) {
           job.prev = rows16_.data() + prev_ * padded_;
@@ -592,7 +620,8 @@ class FastPass {
     // H of the previous row at strip column rel.
     Step value(std::size_t rel) const {
       const std::size_t at = prev_ * padded_;
-      if (bytes_) return rows8_[at + detail::striped_index(rel, pass_.kernels_.lanes8)];
+      if (bytes_)
+        return static_cast<Step>(rows8_[at + detail::striped_index(rel, pass_.kernels_.lanes8)] + detail::kInt8Offset);
       return rows16_[at + detail::striped_index(rel, pass_.kernels_.lanes16)];
     }
 
@@ -613,10 +642,12 @@ class FastPass {
     Step* edges_;
     Step& best_;
     Scratch scratch_;
-    std::size_t prev_ = 0;  // which of the two rows holds the previous row
+    std::size_t prev_ = 0;     // which of the two rows holds the previous row
+    detail::CarryHint carry_;  // the kernels' hint (StripedJob)
     std::vector<std::int8_t> rows8_;
     std::vector<Step> rows16_;
-    std::vector<Step> tiles_;  // the tiles' maxima over the band so far
+    std::vector<Step> tiles_;        // the tiles' maxima over the band so far
+    std::vector<Step> saved_tiles_;  // the same before an int8 row that may saturate
   };
 
   // Without a cap, a cell at 32767 steps may have saturated: a clear error, never a wrong alignment.

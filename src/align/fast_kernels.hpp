@@ -53,9 +53,15 @@ inline std::size_t striped_index(std::size_t rel, std::size_t lanes) {
 // over the touched blocks. tile_max[t] = max(tile_max[t], H(i, column of tile t)) for the tiles of the
 // touched blocks (natural order, int16); columns, if set, gets H(i, lo - 1 + 32 (q + 1)) for every tile q
 // of a touched block that is whole (lo - 1 + 32 (q + 1) <= lo - 1 + width). Returns the row's maximum.
-// The int8 kernels compute in [-128, 127] with gaps and cap clipped to 127 and scores saturated to int8:
-// exact if cap <= 127, and otherwise exact whenever the row's maximum (the result) is below 127 and
-// left, diag_left are too; the fill then redoes the row in int16.
+// Scores past the strip's end (padding up to the whole block) must be <= 0.
+//
+// int16 rows hold H. int8 rows hold H - 128 (so 0 is -128, which is where a row starts), for H in
+// [0, 255]: signed saturation at -128 is exactly the floor at H = 0. They are exact for scores in
+// [-128, 127] (scores are saturated to int8) and gaps <= kInt8Gap, if the cap is below kInt8Limit;
+// otherwise, with the cap clipped to 255, whenever the row's maximum (the result), left and diag_left
+// are below kInt8Limit. The fill redoes a row that is not in int16, and goes on in int16; nothing such
+// a row wrote (cells, tile maxima, columns) can be kept, as it may be above the true values too.
+struct CarryHint;
 struct StripedJob {
   const void* prev;
   void* cur;
@@ -66,9 +72,19 @@ struct StripedJob {
   std::int16_t gap_a, gap_b, cap;
   std::int16_t* tile_max;
   std::int16_t* columns = nullptr;
+  struct CarryHint* carry = nullptr;  // kept from row to row by the caller (speed only; 8 steps if not set)
+};
+
+// How many vectors of a block the kernel's lazy-F pass writes without testing whether they improve:
+// doubled when more than a quarter of the blocks needed more, halved when fewer than 1 in 32 did
+// (counted over at least 256 blocks, between 2 and 16 steps). Only the speed depends on it.
+struct CarryHint {
+  std::size_t steps = 8, blocks = 0, further = 0;
 };
 using StripedKernel = std::int16_t (*)(const StripedJob&);
-inline constexpr int kInt8Limit = 127;  // an int8 row whose maximum reaches this may have saturated
+inline constexpr int kInt8Limit = 255;   // an int8 row whose maximum reaches this may have saturated
+inline constexpr int kInt8Gap = 127;     // the largest gap an int8 row takes
+inline constexpr int kInt8Offset = 128;  // int8 rows hold H - 128
 
 // One whole block of scores from natural order into the striped layout: out[s * lanes + l] = in[32 l + s]
 // (saturated to int8 by the int8 ones). lanes: 8 / 16 (sse4.1 int16 / int8), 16 / 32 (avx2).

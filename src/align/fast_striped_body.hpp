@@ -19,9 +19,10 @@
 // the column is searched, 0 elsewhere, applied to H in both passes, so such columns are exactly 0 as
 // the row kernel leaves them. Columns past the strip's end (the last block's padding) need no mask.
 
-// What the row's gaps cost in the cross-lane scan: decay[r] = (2^r) x 32 x gap_b (a step of 2^r lanes),
-// entry[l] = gap_b + 32 x gap_b x l (from the block's left edge to vector 0 of lane l), each saturated
-// at the element's maximum.
+// The row's gaps and cap as vectors, and what gaps cost in the cross-lane scan (in unsigned lanes of H,
+// where one saturating subtraction takes anything up to kMax): decay[r] = (2^r) x 32 x gap_b (a step of
+// 2^r lanes), entry[l] = gap_b + 32 x gap_b x l (from the block's left edge to vector 0 of lane l), both
+// saturated at kMax.
 template <class W>
 struct StripedGaps {
   typename W::V gap_a, gap_b, cap, entry;
@@ -29,82 +30,93 @@ struct StripedGaps {
   int gap_b_value;
 };
 
-// Pass 1 over a block: every cell from the row above and from F inside its own tile. F starts at 0,
-// which is as good as -inf since every H >= 0, and stays >= 0 (unsigned saturating subtraction), so
-// H = max(min(cap, T), F) needs no separate max with 0. Returns the block's maximum so far.
-template <class W, bool kMasked>
-[[gnu::target(SEQTOPO_STRIPED_ISA), gnu::always_inline]] inline typename W::V first_pass(
-    const typename W::E* prev, typename W::E* cur, const typename W::E* score, const typename W::E* mask, int diag_left,
-    const StripedGaps<W>& g) {
+// Pass 1 over N consecutive blocks (1, or 2 interleaved: two independent F chains in one loop, since
+// one block's loop is longer than the out-of-order window and its chain is the bound): every cell from
+// the row above and from F inside its own tile. F starts at 0, which is as good as -inf since every
+// H >= 0, and stays >= 0 (floor_sub), so H = max(min(cap, T), F) needs no separate max with 0; without
+// a cap below kMax the min is saturation's already. diag_left[n] is a rep. best[n] gets each block's
+// maximum so far.
+template <class W, bool kMasked, bool kCapped, int N>
+[[gnu::target(SEQTOPO_STRIPED_ISA), gnu::always_inline]] inline void first_pass(
+    const typename W::E* prev, typename W::E* cur, const typename W::E* score, const typename W::E* mask,
+    const int* diag_left, const StripedGaps<W>& g, typename W::V* best) {
   using V = typename W::V;
-  constexpr std::size_t L = W::kLanes, S = kTileSide;
-  V best = W::zero();
-  V f = W::zero();
-  V diag = W::shift_up(W::load(prev + (S - 1) * L), diag_left);
-  for (std::size_t s = 0; s < S; ++s) {
-    const V up = W::load(prev + s * L);
-    const V t = W::max(W::adds(diag, W::load(score + s * L)), W::subs(up, g.gap_a));
-    V h;
-    if constexpr (kMasked) {
-      h = W::min(W::max(t, f), W::load(mask + s * L));
-    } else {
-      h = W::max(W::min(t, g.cap), f);
-    }
-    W::store(cur + s * L, h);
-    best = W::max(best, h);
-    f = W::subs_u(h, g.gap_b);
-    diag = up;
+  constexpr std::size_t L = W::kLanes, S = kTileSide, B = L * S;
+  V f[N], diag[N];
+  for (int n = 0; n < N; ++n) {
+    best[n] = W::zero();
+    f[n] = W::zero();
+    diag[n] = W::shift_up(W::load(prev + n * B + (S - 1) * L), diag_left[n]);
   }
-  return best;
+  for (std::size_t s = 0; s < S; ++s) {
+    for (int n = 0; n < N; ++n) {
+      const std::size_t at = n * B + s * L;
+      const V up = W::load(prev + at);
+      const V t = W::max(W::adds(diag[n], W::load(score + at)), W::subs(up, g.gap_a));
+      V h;
+      if constexpr (kMasked) {
+        h = W::min(W::max(t, f[n]), W::load(mask + s * L));
+      } else if constexpr (kCapped) {
+        h = W::max(W::min(t, g.cap), f[n]);
+      } else {
+        h = W::max(t, f[n]);
+      }
+      W::store(cur + at, h);
+      best[n] = W::max(best[n], h);
+      f[n] = W::floor_sub(h, g.gap_b);
+      diag[n] = up;
+    }
+  }
 }
 
-// A decayed running maximum over the lanes of x >= 0: x(l) = max over l' <= l of x(l') - 32 gap_b (l - l')
-// (floored at 0), in log2(lanes) shift steps; the lanes shifted in are 0.
+// A decayed running maximum over the lanes of u (H in unsigned lanes): u(l) = max over l' <= l of
+// u(l') - 32 gap_b (l - l') (floored at 0), in log2(lanes) shift steps; the lanes shifted in are 0.
 template <class W>
-[[gnu::target(SEQTOPO_STRIPED_ISA), gnu::always_inline]] inline typename W::V lane_scan(typename W::V x,
+[[gnu::target(SEQTOPO_STRIPED_ISA), gnu::always_inline]] inline typename W::V lane_scan(typename W::V u,
                                                                                         const StripedGaps<W>& g) {
   constexpr std::size_t L = W::kLanes;
-  x = W::max(x, W::subs_u(W::template shift<1>(x), g.decay[0]));
-  x = W::max(x, W::subs_u(W::template shift<2>(x), g.decay[1]));
-  x = W::max(x, W::subs_u(W::template shift<4>(x), g.decay[2]));
-  if constexpr (L > 8) x = W::max(x, W::subs_u(W::template shift<8>(x), g.decay[3]));
-  if constexpr (L > 16) x = W::max(x, W::subs_u(W::template shift<16>(x), g.decay[4]));
-  return x;
+  u = W::umax(u, W::usub(W::template shift<1>(u), g.decay[0]));
+  u = W::umax(u, W::usub(W::template shift<2>(u), g.decay[1]));
+  u = W::umax(u, W::usub(W::template shift<4>(u), g.decay[2]));
+  if constexpr (L > 8) u = W::umax(u, W::usub(W::template shift<8>(u), g.decay[3]));
+  if constexpr (L > 16) u = W::umax(u, W::usub(W::template shift<16>(u), g.decay[4]));
+  return u;
 }
-
-// Vectors of pass 2 written without a test; later ones only while some lane still improves.
-inline constexpr std::size_t kCarrySteps = 8;
 
 // Pass 2 over a whole block (not masked), once the block on its left is final (left = H(i, b0 - 1)).
 // Pass 1 left, in every lane, H(s) = the best path that enters the tile from above; the true H(s) is
 // max(that, F - s gap_b) with F the gap_b path entering the lane at vector 0 from the left:
 // F(l) = max(H(31, l - 1) - gap_b, F(l - 1) - 32 gap_b), F(0) = left - gap_b, where H(31, l - 1) is
 // pass 1's value (the final one is max(it, F(l - 1) - 31 gap_b), already in the second term). That
-// recursion is the lane scan; then vector s of lane l gets F - s gap_b: always for s < kCarrySteps,
-// beyond only until no lane improves (every later cell already holds at least that, as pass 1 put
-// H(s + 1) >= H(s) - gap_b in every lane). Returns the maximum of the cells it touched.
+// recursion is the lane scan; then vector s of lane l gets F - s gap_b: always for s < steps (a branch
+// there would be mispredicted), beyond only until no lane improves (every later cell already holds at
+// least that, as pass 1 put H(s + 1) >= H(s) - gap_b in every lane). Returns the maximum of the cells it
+// touched; `further` counts the blocks where F still raised a cell after the first `steps` vectors.
 template <class W>
 [[gnu::target(SEQTOPO_STRIPED_ISA), gnu::always_inline]] inline typename W::V carry(typename W::E* cur, int left,
-                                                                                    const StripedGaps<W>& g) {
+                                                                                    const StripedGaps<W>& g,
+                                                                                    std::size_t steps,
+                                                                                    std::size_t& further) {
   using V = typename W::V;
   constexpr std::size_t L = W::kLanes, S = kTileSide;
   V best = W::zero();
-  V f = W::max(lane_scan<W>(W::template shift<1>(W::subs_u(W::load(cur + (S - 1) * L), g.gap_b)), g),
-               W::subs_u(W::set1(left), g.entry));
+  const V from_lanes = lane_scan<W>(W::template shift<1>(W::usub(W::to_h(W::load(cur + (S - 1) * L)), g.gap_b)), g);
+  V f = W::from_h(W::umax(from_lanes, W::usub(W::set1(left), g.entry)));
   std::size_t s = 0;
-  for (; s < kCarrySteps; ++s) {
+  for (; s < steps; ++s) {
     const V h = W::max(W::load(cur + s * L), f);
     W::store(cur + s * L, h);
     best = W::max(best, h);
-    f = W::subs_u(f, g.gap_b);
+    f = W::floor_sub(f, g.gap_b);
   }
-  for (; s < S; ++s) {
+  for (bool first = true; s < S; ++s, first = false) {
     V h = W::load(cur + s * L);
     if (!W::any(W::cmpgt(f, h))) break;
+    further += first;
     h = W::max(h, f);
     W::store(cur + s * L, h);
     best = W::max(best, h);
-    f = W::subs_u(f, g.gap_b);
+    f = W::floor_sub(f, g.gap_b);
   }
   return best;
 }
@@ -120,7 +132,7 @@ template <class W>
   using V = typename W::V;
   constexpr std::size_t L = W::kLanes, S = kTileSide;
   V best = W::zero();
-  V f = W::shift_up(W::subs_u(W::load(cur + (S - 1) * L), g.gap_b), std::max(left - g.gap_b_value, 0));
+  V f = W::shift_up(W::floor_sub(W::load(cur + (S - 1) * L), g.gap_b), std::max(left - g.gap_b_value, 0) - W::kOffset);
   for (;;) {
     for (std::size_t s = 0; s < S; ++s) {
       f = W::min(f, W::load(mask + s * L));
@@ -129,9 +141,9 @@ template <class W>
       h = W::max(h, f);
       W::store(cur + s * L, h);
       best = W::max(best, h);
-      f = W::subs_u(f, g.gap_b);
+      f = W::floor_sub(f, g.gap_b);
     }
-    f = W::shift_up(f, 0);
+    f = W::shift_up(f, -W::kOffset);
   }
 }
 
@@ -146,8 +158,9 @@ template <class W>
   const V below_lo[2] = {W::cmpgt(W::set1(lo / S + 1), lane), W::cmpgt(W::set1(lo / S), lane)};
   const V below_hi[2] = {W::cmpgt(W::set1(hi / S + 1), lane), W::cmpgt(W::set1(hi / S), lane)};
   for (int s = 0; s < S; ++s) {
-    const V in = W::andnot(below_lo[s >= lo % S], below_hi[s >= hi % S]);
-    W::store(mask + static_cast<std::size_t>(s) * W::kLanes, W::and_(in, cap));
+    // searched: not below lo, and below hi
+    const V searched = W::select(below_hi[s >= hi % S], cap, W::zero());
+    W::store(mask + static_cast<std::size_t>(s) * W::kLanes, W::select(below_lo[s >= lo % S], W::zero(), searched));
   }
 }
 
@@ -163,11 +176,12 @@ template <class W>
   E* const cur = static_cast<E*>(job.cur);
   const E* const score = static_cast<const E*>(job.score);
   StripedGaps<W> g;
-  const long gap_b = std::min<int>(job.gap_b, W::kMax), tile_gap = static_cast<long>(S) * gap_b;
-  g.gap_a = W::set1(std::min<int>(job.gap_a, W::kMax));
+  const long gap_b = std::min<int>(job.gap_b, W::kStep), tile_gap = static_cast<long>(S) * gap_b;
+  g.gap_a = W::set1(std::min<int>(job.gap_a, W::kStep));
   g.gap_b = W::set1(static_cast<int>(gap_b));
   g.gap_b_value = static_cast<int>(gap_b);
-  g.cap = W::set1(std::min<int>(job.cap, W::kMax));
+  g.cap = W::set1(std::min<int>(job.cap, W::kMax) - W::kOffset);
+  const bool capped = job.cap < W::kMax;
   for (std::size_t r = 0; r < 5; ++r) g.decay[r] = W::set1(static_cast<int>(std::min<long>(tile_gap << r, W::kMax)));
   alignas(32) E entry[L];
   for (std::size_t l = 0; l < L; ++l) {
@@ -193,23 +207,42 @@ template <class W>
   }
   V row_best = W::zero();
   V partial_best = W::zero();  // pass 1's maximum of the strip's last block if it is partial
-  for (std::size_t k = first; k < end; ++k) {
-    const std::size_t b0 = k * B;
-    // H(i - 1, b0 - 1): the last lane of the block on the left (0 if it was not touched)
-    const int diag_left = k == 0 ? std::min<int>(job.diag_left, W::kMax) : prev[b0 - 1];
-    const V best = masked(k) ? first_pass<W, true>(prev + b0, cur + b0, score + b0, mask_of(k), diag_left, g)
-                             : first_pass<W, false>(prev + b0, cur + b0, score + b0, nullptr, diag_left, g);
-    row_best = W::max(row_best, best);
-    if (b0 + B <= width) {
-      W::widen_max(tile_max + k * L, best);
+  for (std::size_t k = first; k < end;) {
+    // rep(H(i - 1, b0 - 1)): the last lane of the block on the left (rep(0) if it was not touched)
+    const int diag_left[2] = {k == 0 ? std::min<int>(job.diag_left, W::kMax) - W::kOffset : prev[k * B - 1],
+                              prev[(k + 1) * B - 1]};
+    V best[2];
+    int blocks = 1;
+    if (masked(k)) {
+      first_pass<W, true, true, 1>(prev + k * B, cur + k * B, score + k * B, mask_of(k), diag_left, g, best);
+    } else if (k + 1 < end && !masked(k + 1)) {
+      blocks = 2;
+      if (capped) {
+        first_pass<W, false, true, 2>(prev + k * B, cur + k * B, score + k * B, nullptr, diag_left, g, best);
+      } else {
+        first_pass<W, false, false, 2>(prev + k * B, cur + k * B, score + k * B, nullptr, diag_left, g, best);
+      }
+    } else if (capped) {
+      first_pass<W, false, true, 1>(prev + k * B, cur + k * B, score + k * B, nullptr, diag_left, g, best);
     } else {
-      partial_best = best;  // its tiles are maxed after pass 2
+      first_pass<W, false, false, 1>(prev + k * B, cur + k * B, score + k * B, nullptr, diag_left, g, best);
+    }
+    for (int n = 0; n < blocks; ++n, ++k) {
+      row_best = W::max(row_best, best[n]);
+      if ((k + 1) * B <= width) {
+        W::widen_max(tile_max + k * L, best[n]);
+      } else {
+        partial_best = best[n];  // its tiles are maxed after pass 2
+      }
     }
   }
+  const std::size_t steps = job.carry ? job.carry->steps : 8;  // pass 2's unconditional steps
+  std::size_t further = 0;
   for (std::size_t k = first; k < end; ++k) {
     const std::size_t b0 = k * B;
-    const int left = k == 0 ? std::min<int>(job.left, W::kMax) : cur[b0 - 1];
-    const V best = masked(k) ? carry_masked<W>(cur + b0, mask_of(k), left, g) : carry<W>(cur + b0, left, g);
+    const int left = k == 0 ? std::min<int>(job.left, W::kMax) : cur[b0 - 1] + W::kOffset;  // H(i, b0 - 1)
+    const V best =
+        masked(k) ? carry_masked<W>(cur + b0, mask_of(k), left, g) : carry<W>(cur + b0, left, g, steps, further);
     row_best = W::max(row_best, best);
     if (b0 + B <= width) {
       W::widen_max(tile_max + k * L, best);
@@ -224,11 +257,22 @@ template <class W>
     for (std::size_t l = 0; l < whole; ++l) tile_max[k * L + l] = std::max(tile_max[k * L + l], lanes[l]);
     if (real % S != 0) {
       std::int16_t& m = tile_max[k * L + whole];
-      for (std::size_t c = 0; c < real % S; ++c) m = std::max<std::int16_t>(m, cur[b0 + c * L + whole]);
+      for (std::size_t c = 0; c < real % S; ++c) {
+        m = std::max(m, static_cast<std::int16_t>(cur[b0 + c * L + whole] + W::kOffset));
+      }
     }
     if (columns) {
       W::widen_store(lanes, W::load(cur + b0 + (S - 1) * L));
       std::copy(lanes, lanes + whole, columns + k * L);
+    }
+  }
+  if (CarryHint* hint = job.carry) {
+    hint->blocks += end - first;
+    hint->further += further;
+    if (hint->blocks >= 256) {
+      if (hint->further * 4 > hint->blocks && hint->steps < 16) hint->steps *= 2;
+      if (hint->further * 32 < hint->blocks && hint->steps > 2) hint->steps /= 2;
+      hint->blocks = hint->further = 0;
     }
   }
   return static_cast<std::int16_t>(W::hmax(row_best));

@@ -1,8 +1,7 @@
 // The fill's striped kernels (fast_kernels.hpp: StripedJob; the body is fast_striped_body.hpp): SSE4.1
 // and AVX2, int16 and int8 lanes, compiled for their instruction set through function attributes and
 // chosen at run time. Each traits type gives the body its vector type and the handful of operations it
-// uses; saturating arithmetic everywhere, so values far below 0 clip harmlessly (the max with 0 or
-// with T >= 0 discards them).
+// uses; saturating arithmetic everywhere, so values below 0 clip harmlessly (every H >= 0).
 #include <algorithm>
 
 #include "fast_kernels.hpp"
@@ -21,30 +20,46 @@ SEQTOPO_SSE41 int hmax16(__m128i v) {
   return 32767 - _mm_extract_epi16(_mm_minpos_epu16(_mm_sub_epi16(_mm_set1_epi16(32767), v)), 0);
 }
 
+// What every traits type gives the body:
+//  * E, V, kLanes; a value H in [0, kMax] is held as rep(H) = H - kOffset: int16 lanes hold H itself,
+//    int8 lanes H - 128, so that [0, 255] fits and signed saturation at -128 is exactly the floor at
+//    H = 0 (every H >= 0, so clipping there changes nothing);
+//  * zero(): rep(0) in every lane; set1(x): x in every lane (a rep, or a gap for floor_sub);
+//  * adds, subs, max, min, cmpgt: signed saturating, on reps (order-preserving);
+//  * floor_sub(h, g): rep(max(0, H - g)) for a gap 0 <= g <= kStep;
+//  * shift_up(x, first): lane l <- lane l - 1, lane 0 <- first (a rep);
+//  * to_h(x), from_h(u): reps to H itself in unsigned lanes and back (int16: nothing to do); on those,
+//    usub(u, d) = max(0, u - d) for any d <= kMax, umax, and shift<K>(u): lanes move up by K, 0 (H = 0)
+//    into lanes < K;
+//  * select(m, a, b), any(m), lane_index() (lane numbers, for comparisons with small ints);
+//  * widen_store(out, x), widen_max(acc, x): int16 values H of the lanes (stored, or maxed into acc);
+//    hmax(x): the largest H.
+
 struct Sse41x16 {
   using E = std::int16_t;
   using V = __m128i;
   static constexpr std::size_t kLanes = 8;
-  static constexpr int kMin = -32768, kMax = 32767;
+  static constexpr int kMax = 32767, kStep = 32767, kOffset = 0;
   SEQTOPO_SSE41 V load(const E* p) { return _mm_loadu_si128(reinterpret_cast<const V*>(p)); }
   SEQTOPO_SSE41 void store(E* p, V v) { _mm_storeu_si128(reinterpret_cast<V*>(p), v); }
   SEQTOPO_SSE41 V set1(int v) { return _mm_set1_epi16(static_cast<std::int16_t>(v)); }
   SEQTOPO_SSE41 V zero() { return _mm_setzero_si128(); }
   SEQTOPO_SSE41 V adds(V a, V b) { return _mm_adds_epi16(a, b); }
   SEQTOPO_SSE41 V subs(V a, V b) { return _mm_subs_epi16(a, b); }
-  SEQTOPO_SSE41 V subs_u(V a, V b) { return _mm_subs_epu16(a, b); }  // max(0, a - b) for a, b >= 0
+  SEQTOPO_SSE41 V floor_sub(V h, V g) { return _mm_subs_epu16(h, g); }  // h, g >= 0
   SEQTOPO_SSE41 V max(V a, V b) { return _mm_max_epi16(a, b); }
   SEQTOPO_SSE41 V min(V a, V b) { return _mm_min_epi16(a, b); }
   SEQTOPO_SSE41 V cmpgt(V a, V b) { return _mm_cmpgt_epi16(a, b); }
-  SEQTOPO_SSE41 V and_(V a, V b) { return _mm_and_si128(a, b); }
-  SEQTOPO_SSE41 V andnot(V a, V b) { return _mm_andnot_si128(a, b); }
+  SEQTOPO_SSE41 V select(V m, V a, V b) { return _mm_blendv_epi8(b, a, m); }
   SEQTOPO_SSE41 bool any(V m) { return !_mm_testz_si128(m, m); }
-  // lane l <- lane l - 1, lane 0 <- first
   SEQTOPO_SSE41 V shift_up(V x, int first) { return _mm_insert_epi16(_mm_slli_si128(x, 2), first, 0); }
-  // lane l <- lane l - K, 0 into lanes < K
+  SEQTOPO_SSE41 V to_h(V x) { return x; }
+  SEQTOPO_SSE41 V from_h(V u) { return u; }
+  SEQTOPO_SSE41 V usub(V u, V d) { return _mm_subs_epu16(u, d); }
+  SEQTOPO_SSE41 V umax(V a, V b) { return _mm_max_epu16(a, b); }
   template <int K>
-  SEQTOPO_SSE41 V shift(V x) {
-    return _mm_slli_si128(x, 2 * K);
+  SEQTOPO_SSE41 V shift(V u) {
+    return _mm_slli_si128(u, 2 * K);
   }
   SEQTOPO_SSE41 V lane_index() { return _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7); }
   SEQTOPO_SSE41 void widen_store(std::int16_t* out, V v) { store(out, v); }
@@ -56,69 +71,74 @@ struct Sse41x8 {
   using E = std::int8_t;
   using V = __m128i;
   static constexpr std::size_t kLanes = 16;
-  static constexpr int kMin = -128, kMax = 127;
+  static constexpr int kMax = 255, kStep = 127, kOffset = 128;
   SEQTOPO_SSE41 V load(const E* p) { return _mm_loadu_si128(reinterpret_cast<const V*>(p)); }
   SEQTOPO_SSE41 void store(E* p, V v) { _mm_storeu_si128(reinterpret_cast<V*>(p), v); }
   SEQTOPO_SSE41 V set1(int v) { return _mm_set1_epi8(static_cast<char>(v)); }
-  SEQTOPO_SSE41 V zero() { return _mm_setzero_si128(); }
+  SEQTOPO_SSE41 V zero() { return _mm_set1_epi8(-128); }
   SEQTOPO_SSE41 V adds(V a, V b) { return _mm_adds_epi8(a, b); }
   SEQTOPO_SSE41 V subs(V a, V b) { return _mm_subs_epi8(a, b); }
-  SEQTOPO_SSE41 V subs_u(V a, V b) { return _mm_subs_epu8(a, b); }
+  SEQTOPO_SSE41 V floor_sub(V h, V g) { return _mm_subs_epi8(h, g); }
   SEQTOPO_SSE41 V max(V a, V b) { return _mm_max_epi8(a, b); }
   SEQTOPO_SSE41 V min(V a, V b) { return _mm_min_epi8(a, b); }
   SEQTOPO_SSE41 V cmpgt(V a, V b) { return _mm_cmpgt_epi8(a, b); }
-  SEQTOPO_SSE41 V and_(V a, V b) { return _mm_and_si128(a, b); }
-  SEQTOPO_SSE41 V andnot(V a, V b) { return _mm_andnot_si128(a, b); }
+  SEQTOPO_SSE41 V select(V m, V a, V b) { return _mm_blendv_epi8(b, a, m); }
   SEQTOPO_SSE41 bool any(V m) { return !_mm_testz_si128(m, m); }
   SEQTOPO_SSE41 V shift_up(V x, int first) { return _mm_insert_epi8(_mm_slli_si128(x, 1), first, 0); }
+  SEQTOPO_SSE41 V to_h(V x) { return _mm_xor_si128(x, zero()); }  // H - 128 + 128, modulo 256
+  SEQTOPO_SSE41 V from_h(V u) { return _mm_xor_si128(u, zero()); }
+  SEQTOPO_SSE41 V usub(V u, V d) { return _mm_subs_epu8(u, d); }
+  SEQTOPO_SSE41 V umax(V a, V b) { return _mm_max_epu8(a, b); }
   template <int K>
-  SEQTOPO_SSE41 V shift(V x) {
-    return _mm_slli_si128(x, K);
+  SEQTOPO_SSE41 V shift(V u) {
+    return _mm_slli_si128(u, K);
   }
   SEQTOPO_SSE41 V lane_index() { return _mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15); }
+  SEQTOPO_SSE41 V low16(V v) { return _mm_add_epi16(_mm_cvtepi8_epi16(v), _mm_set1_epi16(128)); }
+  SEQTOPO_SSE41 V high16(V v) { return low16(_mm_srli_si128(v, 8)); }
   SEQTOPO_SSE41 void widen_store(std::int16_t* out, V v) {
-    Sse41x16::store(out, _mm_cvtepi8_epi16(v));
-    Sse41x16::store(out + 8, _mm_cvtepi8_epi16(_mm_srli_si128(v, 8)));
+    Sse41x16::store(out, low16(v));
+    Sse41x16::store(out + 8, high16(v));
   }
   SEQTOPO_SSE41 void widen_max(std::int16_t* acc, V v) {
-    Sse41x16::widen_max(acc, _mm_cvtepi8_epi16(v));
-    Sse41x16::widen_max(acc + 8, _mm_cvtepi8_epi16(_mm_srli_si128(v, 8)));
+    Sse41x16::widen_max(acc, low16(v));
+    Sse41x16::widen_max(acc + 8, high16(v));
   }
-  SEQTOPO_SSE41 int hmax(V v) {
-    return hmax16(_mm_max_epi16(_mm_cvtepi8_epi16(v), _mm_cvtepi8_epi16(_mm_srli_si128(v, 8))));
-  }
+  SEQTOPO_SSE41 int hmax(V v) { return hmax16(_mm_max_epi16(low16(v), high16(v))); }
 };
 
 struct Avx2x16 {
   using E = std::int16_t;
   using V = __m256i;
   static constexpr std::size_t kLanes = 16;
-  static constexpr int kMin = -32768, kMax = 32767;
+  static constexpr int kMax = 32767, kStep = 32767, kOffset = 0;
   SEQTOPO_AVX2 V load(const E* p) { return _mm256_loadu_si256(reinterpret_cast<const V*>(p)); }
   SEQTOPO_AVX2 void store(E* p, V v) { _mm256_storeu_si256(reinterpret_cast<V*>(p), v); }
   SEQTOPO_AVX2 V set1(int v) { return _mm256_set1_epi16(static_cast<std::int16_t>(v)); }
   SEQTOPO_AVX2 V zero() { return _mm256_setzero_si256(); }
   SEQTOPO_AVX2 V adds(V a, V b) { return _mm256_adds_epi16(a, b); }
   SEQTOPO_AVX2 V subs(V a, V b) { return _mm256_subs_epi16(a, b); }
-  SEQTOPO_AVX2 V subs_u(V a, V b) { return _mm256_subs_epu16(a, b); }
+  SEQTOPO_AVX2 V floor_sub(V h, V g) { return _mm256_subs_epu16(h, g); }
   SEQTOPO_AVX2 V max(V a, V b) { return _mm256_max_epi16(a, b); }
   SEQTOPO_AVX2 V min(V a, V b) { return _mm256_min_epi16(a, b); }
   SEQTOPO_AVX2 V cmpgt(V a, V b) { return _mm256_cmpgt_epi16(a, b); }
-  SEQTOPO_AVX2 V and_(V a, V b) { return _mm256_and_si256(a, b); }
-  SEQTOPO_AVX2 V andnot(V a, V b) { return _mm256_andnot_si256(a, b); }
+  SEQTOPO_AVX2 V select(V m, V a, V b) { return _mm256_blendv_epi8(b, a, m); }
   SEQTOPO_AVX2 bool any(V m) { return !_mm256_testz_si256(m, m); }
-  // (0, low half) then a byte alignment across the halves: every lane moves up by one, 0 enters lane 0
-  SEQTOPO_AVX2 V shift_up(V x, int first) {
-    return _mm256_insert_epi16(_mm256_alignr_epi8(x, _mm256_permute2x128_si256(x, x, 0x08), 14), first, 0);
-  }
+  // (0, low half) then a byte alignment across the halves: every lane moves up
   template <int K>
-  SEQTOPO_AVX2 V shift(V x) {
+  SEQTOPO_AVX2 V shift(V u) {
+    const V low_up = _mm256_permute2x128_si256(u, u, 0x08);
     if constexpr (K == 8) {
-      return _mm256_permute2x128_si256(x, x, 0x08);
+      return low_up;
     } else {
-      return _mm256_alignr_epi8(x, _mm256_permute2x128_si256(x, x, 0x08), 16 - 2 * K);
+      return _mm256_alignr_epi8(u, low_up, 16 - 2 * K);
     }
   }
+  SEQTOPO_AVX2 V shift_up(V x, int first) { return _mm256_insert_epi16(shift<1>(x), first, 0); }
+  SEQTOPO_AVX2 V to_h(V x) { return x; }
+  SEQTOPO_AVX2 V from_h(V u) { return u; }
+  SEQTOPO_AVX2 V usub(V u, V d) { return _mm256_subs_epu16(u, d); }
+  SEQTOPO_AVX2 V umax(V a, V b) { return _mm256_max_epu16(a, b); }
   SEQTOPO_AVX2 V lane_index() { return _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15); }
   SEQTOPO_AVX2 void widen_store(std::int16_t* out, V v) { store(out, v); }
   SEQTOPO_AVX2 void widen_max(std::int16_t* acc, V v) { store(acc, max(load(acc), v)); }
@@ -131,37 +151,43 @@ struct Avx2x8 {
   using E = std::int8_t;
   using V = __m256i;
   static constexpr std::size_t kLanes = 32;
-  static constexpr int kMin = -128, kMax = 127;
+  static constexpr int kMax = 255, kStep = 127, kOffset = 128;
   SEQTOPO_AVX2 V load(const E* p) { return _mm256_loadu_si256(reinterpret_cast<const V*>(p)); }
   SEQTOPO_AVX2 void store(E* p, V v) { _mm256_storeu_si256(reinterpret_cast<V*>(p), v); }
   SEQTOPO_AVX2 V set1(int v) { return _mm256_set1_epi8(static_cast<char>(v)); }
-  SEQTOPO_AVX2 V zero() { return _mm256_setzero_si256(); }
+  SEQTOPO_AVX2 V zero() { return _mm256_set1_epi8(-128); }
   SEQTOPO_AVX2 V adds(V a, V b) { return _mm256_adds_epi8(a, b); }
   SEQTOPO_AVX2 V subs(V a, V b) { return _mm256_subs_epi8(a, b); }
-  SEQTOPO_AVX2 V subs_u(V a, V b) { return _mm256_subs_epu8(a, b); }
+  SEQTOPO_AVX2 V floor_sub(V h, V g) { return _mm256_subs_epi8(h, g); }
   SEQTOPO_AVX2 V max(V a, V b) { return _mm256_max_epi8(a, b); }
   SEQTOPO_AVX2 V min(V a, V b) { return _mm256_min_epi8(a, b); }
   SEQTOPO_AVX2 V cmpgt(V a, V b) { return _mm256_cmpgt_epi8(a, b); }
-  SEQTOPO_AVX2 V and_(V a, V b) { return _mm256_and_si256(a, b); }
-  SEQTOPO_AVX2 V andnot(V a, V b) { return _mm256_andnot_si256(a, b); }
+  SEQTOPO_AVX2 V select(V m, V a, V b) { return _mm256_blendv_epi8(b, a, m); }
   SEQTOPO_AVX2 bool any(V m) { return !_mm256_testz_si256(m, m); }
-  SEQTOPO_AVX2 V shift_up(V x, int first) {
-    return _mm256_insert_epi8(_mm256_alignr_epi8(x, _mm256_permute2x128_si256(x, x, 0x08), 15), first, 0);
-  }
   template <int K>
-  SEQTOPO_AVX2 V shift(V x) {
+  SEQTOPO_AVX2 V shift(V u) {
+    const V low_up = _mm256_permute2x128_si256(u, u, 0x08);
     if constexpr (K == 16) {
-      return _mm256_permute2x128_si256(x, x, 0x08);
+      return low_up;
     } else {
-      return _mm256_alignr_epi8(x, _mm256_permute2x128_si256(x, x, 0x08), 16 - K);
+      return _mm256_alignr_epi8(u, low_up, 16 - K);
     }
   }
+  SEQTOPO_AVX2 V shift_up(V x, int first) { return _mm256_insert_epi8(shift<1>(x), first, 0); }
+  SEQTOPO_AVX2 V to_h(V x) { return _mm256_xor_si256(x, zero()); }
+  SEQTOPO_AVX2 V from_h(V u) { return _mm256_xor_si256(u, zero()); }
+  SEQTOPO_AVX2 V usub(V u, V d) { return _mm256_subs_epu8(u, d); }
+  SEQTOPO_AVX2 V umax(V a, V b) { return _mm256_max_epu8(a, b); }
   SEQTOPO_AVX2 V lane_index() {
     return _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24,
                             25, 26, 27, 28, 29, 30, 31);
   }
-  SEQTOPO_AVX2 V low16(V v) { return _mm256_cvtepi8_epi16(_mm256_castsi256_si128(v)); }
-  SEQTOPO_AVX2 V high16(V v) { return _mm256_cvtepi8_epi16(_mm256_extracti128_si256(v, 1)); }
+  SEQTOPO_AVX2 V low16(V v) {
+    return _mm256_add_epi16(_mm256_cvtepi8_epi16(_mm256_castsi256_si128(v)), _mm256_set1_epi16(128));
+  }
+  SEQTOPO_AVX2 V high16(V v) {
+    return _mm256_add_epi16(_mm256_cvtepi8_epi16(_mm256_extracti128_si256(v, 1)), _mm256_set1_epi16(128));
+  }
   SEQTOPO_AVX2 void widen_store(std::int16_t* out, V v) {
     Avx2x16::store(out, low16(v));
     Avx2x16::store(out + 16, high16(v));
@@ -172,18 +198,6 @@ struct Avx2x8 {
   }
   SEQTOPO_AVX2 int hmax(V v) { return Avx2x16::hmax(_mm256_max_epi16(low16(v), high16(v))); }
 };
-
-namespace sse41 {
-#define SEQTOPO_STRIPED_ISA "sse4.1"
-#include "fast_striped_body.hpp"
-#undef SEQTOPO_STRIPED_ISA
-}  // namespace sse41
-
-namespace avx2 {
-#define SEQTOPO_STRIPED_ISA "avx2"
-#include "fast_striped_body.hpp"
-#undef SEQTOPO_STRIPED_ISA
-}  // namespace avx2
 
 // Transposes 8 x 8 int16 in each 128-bit half of a[0..7] (a[r] = row r): a[c] becomes column c. A macro
 // over the unpack operations of the struct it is expanded in (a template would lose the target).
@@ -249,6 +263,18 @@ struct AvxUnpack {
   AvxUnpack::transpose8(out);
   AvxUnpack::transpose8(out + 8);
 }
+
+namespace sse41 {
+#define SEQTOPO_STRIPED_ISA "sse4.1"
+#include "fast_striped_body.hpp"
+#undef SEQTOPO_STRIPED_ISA
+}  // namespace sse41
+
+namespace avx2 {
+#define SEQTOPO_STRIPED_ISA "avx2"
+#include "fast_striped_body.hpp"
+#undef SEQTOPO_STRIPED_ISA
+}  // namespace avx2
 
 }  // namespace
 

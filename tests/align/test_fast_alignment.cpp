@@ -471,17 +471,18 @@ TEST(FastAlignment, FarReachingHorizontalGapsAndGapZero) {
   }
 }
 
-// The int8 lanes: exact while the cap fits in int8 (<= 127 steps), else until a row reaches 127 steps,
-// from which the strip goes on in int16. Best values right at 126, 127, 128 and beyond, caps at the
-// int8 limit, scores and gaps outside int8, and strips of which only one saturates (its neighbour
-// then sees left values beyond int8).
+// The int8 lanes (H - 128 in int8, so H in [0, 255]): exact while the cap is below 255 steps, else until
+// a row reaches 255 steps, and only for gaps <= 127 steps and scores in [-128, 127]; a strip goes on in
+// int16 from the first row that breaks a rule. Best values right at the limit and beyond, caps at it,
+// scores and gaps beyond int8, and strips of which only one saturates (its neighbour then sees left
+// values beyond int8).
 TEST(FastAlignment, Int8LanesAtTheirLimits) {
-  const std::size_t m = 300, n = 3100;
+  const std::size_t m = 270, n = 2100;
   int case_id = 0;
-  for (std::size_t run : {126U, 127U, 128U, 129U, 260U}) {
+  for (std::size_t run : {127U, 254U, 255U, 256U, 260U}) {
     for (int layout = 0; layout < 4; ++layout, ++case_id) {
       // a diagonal run of +1 (best = run length) in the left strip, the right strip, across all, or
-      // ending at the last column of the first strip (1024 with 3 threads, for both ISAs' units)
+      // ending at the last column of the first strip (1024 with 2 threads, for both ISAs' units)
       std::vector<float> s(m * n, -3.0F);
       const std::size_t j0 = layout == 0 ? 10 : (layout == 1 ? n - 280 : (layout == 2 ? 1000 : 1024 - run));
       for (std::size_t k = 0; k < run; ++k) s[k * n + j0 + k] = 1.0F;  // run < m
@@ -490,18 +491,20 @@ TEST(FastAlignment, Int8LanesAtTheirLimits) {
         s[6 * n + 2001] = -200.0F;  // and one below it
       }
       const auto source = ScoreSource::dense(s, m, n);
-      for (int config = 0; config < 4; ++config) {
+      for (int config = 0; config < 6; ++config) {
         AlignConfig c;
-        c.gap_a = c.gap_b = config == 3 ? 150.0F : (config == 2 ? 4.0F : 1.0F);  // 150: beyond int8
-        if (config == 1) c.cap = static_cast<float>(126 + case_id % 3);          // 126, 127, 128 steps at scale 1
+        const float gaps[] = {1.0F, 1.0F, 4.0F, 150.0F, 127.0F, 128.0F};  // steps at scale 1
+        c.gap_a = c.gap_b = gaps[config];
+        if (config == 1) c.cap = static_cast<float>(254 + case_id % 3);  // 254, 255, 256
         if (config == 3) c.cap = 100.0F;
+        if (config == 4) c.cap = 250.0F;
         c.threshold = 1.0F;
         c.max_alignments = 4;
         const auto want = scalar_on_quantized(source, c, 1.0F);
         ASSERT_FALSE(want.empty());
         for (Isa isa : isas()) {
-          for (unsigned threads : {1U, 3U}) {
-            const auto what = describe(case_id * 4 + config, c, 1.0F, isa, threads) + ", run " + std::to_string(run);
+          for (unsigned threads : {1U, 2U}) {
+            const auto what = describe(case_id * 6 + config, c, 1.0F, isa, threads) + ", run " + std::to_string(run);
             expect_same(align::fast_local_alignments(source, c, {1.0F, threads, isa}), want, what);
             EXPECT_EQ(align::fast_best_score(source, c, {1.0F, threads, isa}), want.front().score) << what;
           }

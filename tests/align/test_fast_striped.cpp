@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -89,8 +90,8 @@ StripCase random_case(std::mt19937& rng, std::size_t width, std::size_t rows, in
   const Step gaps[] = {0, 1, 2, 3, 7, 50, 127, 128, 200, 32767};
   c.gap_a = gaps[rng() % 10];
   c.gap_b = rng() % 3 == 0 ? c.gap_a : gaps[rng() % 7];  // mostly small: F reaches far
-  const Step caps[] = {1, 6, 100, 126, 127, 128, 255, 1000, 30000, 32767};
-  c.cap = caps[rng() % 10];
+  const Step caps[] = {1, 6, 100, 126, 127, 128, 254, 255, 256, 1000, 30000, 32767};
+  c.cap = caps[rng() % 12];
   c.region = static_cast<StripCase::Region>(rng() % 3);
   // kind 0: small scores (many ties, long F); 1: a planted diagonal on a poor background; 2: extremes
   std::uniform_int_distribution<int> small(-3, 3), extreme(-32768, 32767);
@@ -100,7 +101,8 @@ StripCase random_case(std::mt19937& rng, std::size_t width, std::size_t rows, in
     for (std::size_t j = 0; j < width; ++j) {
       int v = small(rng);
       if (kind == 1) v = j == i + offset ? 40 : small(rng) - 2;
-      if (kind == 2 && rng() % 4 == 0) v = rng() % 2 ? extreme(rng) : (rng() % 2 ? -32768 : 32767);
+      if (kind == 2 && rng() % 4 == 0) v = rng() % 2 ? extreme(rng) % 200 : (rng() % 2 ? -32768 : 32767);
+      if (kind == 2 && i % 2 == 0) v = std::clamp(v, -128, 127);  // rows an int8 kernel takes
       c.scores[i][j] = static_cast<Step>(v);
     }
   }
@@ -144,15 +146,18 @@ std::vector<std::vector<Step>> reference(const StripCase& c) {
   return h;
 }
 
-// Runs the striped kernel on the case; returns false once an int8 row may have saturated (the fill
-// would redo it in int16 and go on in int16), after checking everything up to there.
+// Runs the striped kernel on the case and checks every row, up to the first that an int8 kernel may not
+// take exactly (the fill would redo it in int16 and go on in int16). Counts the rows checked.
 template <typename E>
-void check_striped(const StripCase& c, const StripedIsa& isa, bool bytes, const std::string& what) {
+void check_striped(const StripCase& c, const StripedIsa& isa, bool bytes, const std::string& what,
+                   std::size_t& checked) {
   const std::size_t lanes = bytes ? isa.lanes8 : isa.lanes16, block = kTileSide * lanes;
   const std::size_t padded = (c.width + block - 1) / block * block, tiles = padded / kTileSide;
-  const bool exact8 = c.cap <= align::detail::kInt8Limit;
+  const bool exact8 = c.cap < align::detail::kInt8Limit;
+  if (bytes && std::max(c.gap_a, c.gap_b) > align::detail::kInt8Gap) return;
+  const int offset = bytes ? align::detail::kInt8Offset : 0;  // int8 rows hold H - 128
   const auto want = reference(c);
-  std::vector<E> rows(2 * padded, 0), score(padded, 0);
+  std::vector<E> rows(2 * padded, static_cast<E>(-offset)), score(padded, 0);
   std::vector<Step> tile_max(tiles, 0), want_tiles(tiles, 0),
       columns(tiles + 1, 0);  // 0 as the fill starts: untouched blocks write nothing
   int running = 0;
@@ -163,6 +168,9 @@ void check_striped(const StripCase& c, const StripedIsa& isa, bool bytes, const 
       score[striped_index(rel, lanes)] = static_cast<E>(bytes ? saturate8(v) : v);
     }
     const auto [rlo, rhi] = c.searched[i - 1];
+    const auto [low, high] = std::minmax_element(c.scores[i].begin() + static_cast<std::ptrdiff_t>(rlo),
+                                                 c.scores[i].begin() + static_cast<std::ptrdiff_t>(rhi));
+    if (bytes && (*low < -128 || *high > 127)) return;
     StripedJob job{rows.data() + prev * padded,
                    rows.data() + (1 - prev) * padded,
                    score.data(),
@@ -180,11 +188,12 @@ void check_striped(const StripCase& c, const StripedIsa& isa, bool bytes, const 
     const Step got_max = bytes ? isa.striped8(job) : isa.striped16(job);
     if (bytes && !exact8 && got_max >= align::detail::kInt8Limit) return;
     prev = 1 - prev;
+    ++checked;
     const E* h = rows.data() + prev * padded;
     int row_max = 0;
     for (std::size_t rel = 0; rel < c.width; ++rel) {
       const Step expected = want[i][rel + 1];
-      ASSERT_EQ(static_cast<int>(h[striped_index(rel, lanes)]), expected)
+      ASSERT_EQ(h[striped_index(rel, lanes)] + offset, expected)
           << what << ": row " << i << " column " << rel << " of " << c.width;
       row_max = std::max<int>(row_max, expected);
       Step& t = want_tiles[rel / kTileSide];
@@ -211,8 +220,8 @@ TEST(FastStriped, KernelsEqualTheScalarRowKernel) {
   std::mt19937 rng(2026);
   const std::size_t widths[] = {1,   2,   7,   8,   15,  16,  17,   31,   32,   33,   63,   64,   65,
                                 255, 256, 257, 511, 512, 513, 1023, 1024, 1025, 1100, 2047, 2048, 2049};
-  std::size_t cases = 0;
-  for (int round = 0; round < 6; ++round) {
+  std::size_t cases = 0, rows16 = 0, rows8 = 0, rows8_high = 0;
+  for (int round = 0; round < 8; ++round) {
     for (std::size_t width : widths) {
       const std::size_t rows = 1 + rng() % 70;
       const StripCase c = random_case(rng, width, rows, round % 3);
@@ -223,9 +232,12 @@ TEST(FastStriped, KernelsEqualTheScalarRowKernel) {
                                    std::to_string(c.gap_b) + ", cap " + std::to_string(c.cap) + ", region " +
                                    std::to_string(static_cast<int>(c.region)) + ", kind " + std::to_string(round % 3);
           if (bytes) {
-            check_striped<std::int8_t>(c, isa, true, what);
+            std::size_t checked = 0;
+            check_striped<std::int8_t>(c, isa, true, what, checked);
+            rows8 += checked;
+            if (c.cap > 127) rows8_high += checked;  // values past signed int8
           } else {
-            check_striped<std::int16_t>(c, isa, false, what);
+            check_striped<std::int16_t>(c, isa, false, what, rows16);
           }
           if (::testing::Test::HasFailure()) return;
           ++cases;
@@ -234,8 +246,12 @@ TEST(FastStriped, KernelsEqualTheScalarRowKernel) {
     }
   }
   if (!striped_isas().empty()) {
-    EXPECT_GT(cases, 300U);
+    EXPECT_GT(cases, 400U);
+    EXPECT_GT(rows16, 5000U);
+    EXPECT_GT(rows8, 2500U);
+    EXPECT_GT(rows8_high, 500U);
   }
+  std::printf("rows checked: int16 %zu, int8 %zu (%zu with a cap beyond 127)\n", rows16, rows8, rows8_high);
 }
 
 // F that must travel: one cell at the cap (or a high value) at the strip's left, mismatches everywhere,
@@ -243,7 +259,7 @@ TEST(FastStriped, KernelsEqualTheScalarRowKernel) {
 TEST(FastStriped, FarTravellingFAcrossLanesAndBlocks) {
   for (const auto& isa : striped_isas()) {
     for (Step gap_b : {Step{0}, Step{1}, Step{2}}) {
-      for (Step cap : {Step{100}, Step{3000}}) {
+      for (Step cap : {Step{100}, Step{250}, Step{3000}}) {
         for (bool from_left : {false, true}) {
           StripCase c;
           c.width = 3001;
@@ -258,17 +274,22 @@ TEST(FastStriped, FarTravellingFAcrossLanesAndBlocks) {
             if (from_left) {
               c.left[i] = cap;  // from the strip on the left
             } else {
-              c.scores[i][i % 5] = cap;  // a peak near the left edge
+              c.scores[i][i % 5] = std::min<Step>(cap, 127);  // a peak near the left edge
+              if (i > 1) c.scores[i][i % 5 + 1] = 127;        // on a short diagonal
             }
           }
           for (bool bytes : {false, true}) {
             const std::string what = std::string(isa.name) + (bytes ? " int8" : " int16") + ", gap_b " +
                                      std::to_string(gap_b) + ", cap " + std::to_string(cap) +
                                      (from_left ? ", from the left column" : ", from a peak");
+            std::size_t checked = 0;
             if (bytes) {
-              check_striped<std::int8_t>(c, isa, true, what);
+              check_striped<std::int8_t>(c, isa, true, what, checked);
             } else {
-              check_striped<std::int16_t>(c, isa, false, what);
+              check_striped<std::int16_t>(c, isa, false, what, checked);
+            }
+            if (!bytes || cap < align::detail::kInt8Limit || !from_left) {
+              EXPECT_GT(checked, 0U) << what;  // a left column beyond int8 is for int16 rows only
             }
           }
         }
