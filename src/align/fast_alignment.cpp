@@ -81,6 +81,8 @@ struct Kernels {
   detail::StripedKernel striped16 = nullptr, striped8 = nullptr;
   detail::BlockStriper16 stripe16 = nullptr;
   detail::BlockStriper8 stripe8 = nullptr;
+  detail::BlockDestriper16 destripe16 = nullptr;
+  detail::BlockDestriper8 destripe8 = nullptr;
   std::size_t lanes16 = 0, lanes8 = 0;
   // Columns of the striped fill's strips come in whole units: a block of either width (lanes8 = 2 lanes16).
   std::size_t unit() const { return kTile * lanes8; }
@@ -90,28 +92,25 @@ Kernels kernels_for(Isa wanted) {
   const Isa have = best_isa();
   // An ISA the CPU lacks falls back to the best one it has (the order of the enum is the order of power).
   const Isa isa = wanted == Isa::best || static_cast<int>(wanted) > static_cast<int>(have) ? have : wanted;
-  switch (isa) {
-    case Isa::avx2:
-      return {detail::row_avx2,
-              detail::quantize_avx2,
-              detail::striped16_avx2,
-              detail::striped8_avx2,
-              detail::stripe16_avx2,
-              detail::stripe8_avx2,
-              16,
-              32};
-    case Isa::sse41:
-      return {detail::row_sse41,
-              detail::quantize_sse41,
-              detail::striped16_sse41,
-              detail::striped8_sse41,
-              detail::stripe16_sse41,
-              detail::stripe8_sse41,
-              8,
-              16};
-    default:
-      return {detail::row_scalar, detail::quantize_scalar};
+  Kernels k{detail::row_scalar, detail::quantize_scalar};
+  if (isa == Isa::avx2) {
+    k = {detail::row_avx2, detail::quantize_avx2, detail::striped16_avx2, detail::striped8_avx2};
+    k.stripe16 = detail::stripe16_avx2;
+    k.stripe8 = detail::stripe8_avx2;
+    k.destripe16 = detail::destripe16_avx2;
+    k.destripe8 = detail::destripe8_avx2;
+    k.lanes16 = 16;
+    k.lanes8 = 32;
+  } else if (isa == Isa::sse41) {
+    k = {detail::row_sse41, detail::quantize_sse41, detail::striped16_sse41, detail::striped8_sse41};
+    k.stripe16 = detail::stripe16_sse41;
+    k.stripe8 = detail::stripe8_sse41;
+    k.destripe16 = detail::destripe16_sse41;
+    k.destripe8 = detail::destripe8_sse41;
+    k.lanes16 = 8;
+    k.lanes8 = 16;
   }
+  return k;
 }
 
 void validate(std::size_t rows, std::size_t cols, const AlignConfig& config) {
@@ -604,7 +603,7 @@ class FastPass {
       prev_ = 1 - prev_;  // row i is now the previous row
       if (keep_ && i % kTile == 0) {
         Step* out = pass_.checkpoints_.data() + (i / kTile) * p.stride_ + lo_;
-        for (std::size_t rel = 0; rel < width_; ++rel) out[rel] = value(rel);
+        destripe(out);
       }
       if (keep_ && (i % kTile == 0 || i == p.m_)) {
         const std::size_t count = (width_ + kTile - 1) / kTile;
@@ -625,12 +624,35 @@ class FastPass {
       return rows16_[at + detail::striped_index(rel, pass_.kernels_.lanes16)];
     }
 
+    // H of the previous row in natural order: out[rel] for rel < width_, block by block (the last one,
+    // partial, through a buffer).
+    void destripe(Step* out) const {
+      const Kernels& k = pass_.kernels_;
+      const std::size_t block = kTile * (bytes_ ? k.lanes8 : k.lanes16);
+      std::vector<Step> tail;
+      for (std::size_t b0 = 0; b0 < width_; b0 += block) {
+        Step* to = out + b0;
+        if (b0 + block > width_) {
+          tail.resize(block);
+          to = tail.data();
+        }
+        if (bytes_) {
+          k.destripe8(rows8_.data() + prev_ * padded_ + b0, to);
+        } else {
+          k.destripe16(rows16_.data() + prev_ * padded_ + b0, to);
+        }
+        if (to != out + b0) std::copy(tail.begin(), tail.begin() + static_cast<std::ptrdiff_t>(width_ - b0), out + b0);
+      }
+    }
+
     // From int8 to int16 rows: the previous row (exact) is converted, the current one starts at 0.
     void to_int16() {
       rows16_.assign(2 * padded_, 0);
+      std::vector<Step> natural(width_);
+      destripe(natural.data());
       const std::size_t at = prev_ * padded_;
       for (std::size_t rel = 0; rel < width_; ++rel) {
-        rows16_[at + detail::striped_index(rel, pass_.kernels_.lanes16)] = value(rel);
+        rows16_[at + detail::striped_index(rel, pass_.kernels_.lanes16)] = natural[rel];
       }
       scratch_.striped16.assign(padded_, 0);
       bytes_ = false;

@@ -94,6 +94,13 @@ void stripe16_sse41(const std::int16_t* in, std::int16_t* out);
 void stripe8_sse41(const std::int16_t* in, std::int8_t* out);
 void stripe16_avx2(const std::int16_t* in, std::int16_t* out);
 void stripe8_avx2(const std::int16_t* in, std::int8_t* out);
+// The inverse, as H: out[32 l + s] = H of in[s * lanes + l] (int8 rows hold H - 128).
+using BlockDestriper16 = void (*)(const std::int16_t* in, std::int16_t* out);
+using BlockDestriper8 = void (*)(const std::int8_t* in, std::int16_t* out);
+void destripe16_sse41(const std::int16_t* in, std::int16_t* out);
+void destripe8_sse41(const std::int8_t* in, std::int16_t* out);
+void destripe16_avx2(const std::int16_t* in, std::int16_t* out);
+void destripe8_avx2(const std::int8_t* in, std::int16_t* out);
 
 std::int16_t striped16_sse41(const StripedJob& job);
 std::int16_t striped16_avx2(const StripedJob& job);

@@ -239,29 +239,41 @@ struct AvxUnpack {
 #undef SEQTOPO_SSE41
 #undef SEQTOPO_AVX2
 
-// Columns c0 .. c0 + 7 of tiles t0 .. t0 + 7 of a natural block (tile t at in + 32 t): out[c] = column c0 + c,
-// one int16 per tile.
-[[gnu::target("sse4.1")]] inline void columns8_sse41(const std::int16_t* in, std::size_t t0, std::size_t c0,
-                                                     __m128i* out) {
-  for (std::size_t t = 0; t < 8; ++t) {
-    out[t] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + kTileSide * (t0 + t) + c0));
-  }
+// The transpose of 8 x 8 int16 (rows at in + r * stride): out[c] = column c.
+[[gnu::target("sse4.1")]] inline void transpose8_sse41(const std::int16_t* in, std::size_t stride, __m128i* out) {
+  for (std::size_t r = 0; r < 8; ++r) out[r] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + r * stride));
   SseUnpack::transpose8(out);
 }
 
-// Columns c0 .. c0 + 15 of tiles t0 .. t0 + 15: 16 x 16 as four 8 x 8 (rows t and t + 8 share a vector).
-[[gnu::target("avx2")]] inline void columns16_avx2(const std::int16_t* in, std::size_t t0, std::size_t c0,
-                                                   __m256i* out) {
+// The transpose of 16 x 16 int16, as four 8 x 8 (rows r and r + 8 share a vector).
+[[gnu::target("avx2")]] inline void transpose16_avx2(const std::int16_t* in, std::size_t stride, __m256i* out) {
   __m256i r[16];
-  for (std::size_t t = 0; t < 16; ++t) {
-    r[t] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(in + kTileSide * (t0 + t) + c0));
-  }
-  for (std::size_t t = 0; t < 8; ++t) {  // low halves: columns 0-7, high halves: 8-15; tiles t and t + 8
+  for (std::size_t t = 0; t < 16; ++t) r[t] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(in + t * stride));
+  for (std::size_t t = 0; t < 8; ++t) {  // low halves: columns 0-7, high halves: 8-15; rows t and t + 8
     out[t] = _mm256_permute2x128_si256(r[t], r[t + 8], 0x20);
     out[t + 8] = _mm256_permute2x128_si256(r[t], r[t + 8], 0x31);
   }
   AvxUnpack::transpose8(out);
   AvxUnpack::transpose8(out + 8);
+}
+
+// A striped int16 block of `lanes` tiles (vector s at in + s * lanes) into natural order, the tile of
+// lane l at out + 32 l: its transpose, `lanes` x `lanes` at a time.
+[[gnu::target("sse4.1")]] inline void destripe_lanes8_sse41(const std::int16_t* in, std::int16_t* out) {
+  __m128i c[8];
+  for (std::size_t s0 = 0; s0 < kTileSide; s0 += 8) {
+    transpose8_sse41(in + s0 * 8, 8, c);
+    for (std::size_t l = 0; l < 8; ++l) _mm_storeu_si128(reinterpret_cast<__m128i*>(out + kTileSide * l + s0), c[l]);
+  }
+}
+[[gnu::target("avx2")]] inline void destripe_lanes16_avx2(const std::int16_t* in, std::int16_t* out) {
+  __m256i c[16];
+  for (std::size_t s0 = 0; s0 < kTileSide; s0 += 16) {
+    transpose16_avx2(in + s0 * 16, 16, c);
+    for (std::size_t l = 0; l < 16; ++l) {
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + kTileSide * l + s0), c[l]);
+    }
+  }
 }
 
 namespace sse41 {
@@ -282,15 +294,15 @@ namespace avx2 {
 [[gnu::target("sse4.1")]] void stripe16_sse41(const std::int16_t* in, std::int16_t* out) {
   __m128i c[8];
   for (std::size_t c0 = 0; c0 < kTileSide; c0 += 8) {
-    columns8_sse41(in, 0, c0, c);
+    transpose8_sse41(in + c0, kTileSide, c);
     for (std::size_t s = 0; s < 8; ++s) _mm_storeu_si128(reinterpret_cast<__m128i*>(out + (c0 + s) * 8), c[s]);
   }
 }
 [[gnu::target("sse4.1")]] void stripe8_sse41(const std::int16_t* in, std::int8_t* out) {
   __m128i a[8], b[8];
   for (std::size_t c0 = 0; c0 < kTileSide; c0 += 8) {
-    columns8_sse41(in, 0, c0, a);
-    columns8_sse41(in, 8, c0, b);
+    transpose8_sse41(in + c0, kTileSide, a);
+    transpose8_sse41(in + 8 * kTileSide + c0, kTileSide, b);
     for (std::size_t s = 0; s < 8; ++s) {
       _mm_storeu_si128(reinterpret_cast<__m128i*>(out + (c0 + s) * 16), _mm_packs_epi16(a[s], b[s]));
     }
@@ -299,20 +311,48 @@ namespace avx2 {
 [[gnu::target("avx2")]] void stripe16_avx2(const std::int16_t* in, std::int16_t* out) {
   __m256i c[16];
   for (std::size_t c0 = 0; c0 < kTileSide; c0 += 16) {
-    columns16_avx2(in, 0, c0, c);
+    transpose16_avx2(in + c0, kTileSide, c);
     for (std::size_t s = 0; s < 16; ++s) _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + (c0 + s) * 16), c[s]);
   }
 }
 [[gnu::target("avx2")]] void stripe8_avx2(const std::int16_t* in, std::int8_t* out) {
   __m256i a[16], b[16];
   for (std::size_t c0 = 0; c0 < kTileSide; c0 += 16) {
-    columns16_avx2(in, 0, c0, a);
-    columns16_avx2(in, 16, c0, b);
+    transpose16_avx2(in + c0, kTileSide, a);
+    transpose16_avx2(in + 16 * kTileSide + c0, kTileSide, b);
     for (std::size_t s = 0; s < 16; ++s) {  // packs works per half: tiles 0-7, 16-23 | 8-15, 24-31
       const __m256i packed = _mm256_permute4x64_epi64(_mm256_packs_epi16(a[s], b[s]), 0xD8);
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + (c0 + s) * 32), packed);
     }
   }
+}
+
+// One striped block back into natural order, as H (int8 rows hold H - 128): out[32 l + s] = in[s * lanes + l].
+[[gnu::target("sse4.1")]] void destripe16_sse41(const std::int16_t* in, std::int16_t* out) {
+  destripe_lanes8_sse41(in, out);
+}
+[[gnu::target("sse4.1")]] void destripe8_sse41(const std::int8_t* in, std::int16_t* out) {
+  alignas(16) std::int16_t half[2][kTileSide * 8];  // lanes 0-7 and 8-15, widened
+  for (std::size_t s = 0; s < kTileSide; ++s) {
+    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + s * 16));
+    _mm_store_si128(reinterpret_cast<__m128i*>(half[0] + s * 8), Sse41x8::low16(v));
+    _mm_store_si128(reinterpret_cast<__m128i*>(half[1] + s * 8), Sse41x8::high16(v));
+  }
+  destripe_lanes8_sse41(half[0], out);
+  destripe_lanes8_sse41(half[1], out + 8 * kTileSide);
+}
+[[gnu::target("avx2")]] void destripe16_avx2(const std::int16_t* in, std::int16_t* out) {
+  destripe_lanes16_avx2(in, out);
+}
+[[gnu::target("avx2")]] void destripe8_avx2(const std::int8_t* in, std::int16_t* out) {
+  alignas(32) std::int16_t half[2][kTileSide * 16];  // lanes 0-15 and 16-31, widened
+  for (std::size_t s = 0; s < kTileSide; ++s) {
+    const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(in + s * 32));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(half[0] + s * 16), Avx2x8::low16(v));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(half[1] + s * 16), Avx2x8::high16(v));
+  }
+  destripe_lanes16_avx2(half[0], out);
+  destripe_lanes16_avx2(half[1], out + 16 * kTileSide);
 }
 
 [[gnu::target("sse4.1")]] std::int16_t striped16_sse41(const StripedJob& job) {
@@ -342,5 +382,9 @@ void stripe16_sse41(const std::int16_t*, std::int16_t*) { throw std::logic_error
 void stripe8_sse41(const std::int16_t*, std::int8_t*) { throw std::logic_error("no striped kernel on this CPU"); }
 void stripe16_avx2(const std::int16_t*, std::int16_t*) { throw std::logic_error("no striped kernel on this CPU"); }
 void stripe8_avx2(const std::int16_t*, std::int8_t*) { throw std::logic_error("no striped kernel on this CPU"); }
+void destripe16_sse41(const std::int16_t*, std::int16_t*) { throw std::logic_error("no striped kernel on this CPU"); }
+void destripe8_sse41(const std::int8_t*, std::int16_t*) { throw std::logic_error("no striped kernel on this CPU"); }
+void destripe16_avx2(const std::int16_t*, std::int16_t*) { throw std::logic_error("no striped kernel on this CPU"); }
+void destripe8_avx2(const std::int8_t*, std::int16_t*) { throw std::logic_error("no striped kernel on this CPU"); }
 }  // namespace seqtopo::align::detail
 #endif
