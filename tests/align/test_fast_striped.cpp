@@ -27,6 +27,8 @@ struct StripedIsa {
   align::detail::StripedKernel striped16, striped8;
   align::detail::BlockStriper16 stripe16;
   align::detail::BlockStriper8 stripe8;
+  align::detail::BlockDestriper16 destripe16;
+  align::detail::BlockDestriper8 destripe8;
 };
 
 std::vector<StripedIsa> striped_isas() {
@@ -34,18 +36,20 @@ std::vector<StripedIsa> striped_isas() {
   const align::Isa best = align::best_isa();
   if (best == align::Isa::sse41 || best == align::Isa::avx2) {
     out.push_back({"sse4.1", 8, 16, align::detail::striped16_sse41, align::detail::striped8_sse41,
-                   align::detail::stripe16_sse41, align::detail::stripe8_sse41});
+                   align::detail::stripe16_sse41, align::detail::stripe8_sse41, align::detail::destripe16_sse41,
+                   align::detail::destripe8_sse41});
   }
   if (best == align::Isa::avx2) {
     out.push_back({"avx2", 16, 32, align::detail::striped16_avx2, align::detail::striped8_avx2,
-                   align::detail::stripe16_avx2, align::detail::stripe8_avx2});
+                   align::detail::stripe16_avx2, align::detail::stripe8_avx2, align::detail::destripe16_avx2,
+                   align::detail::destripe8_avx2});
   }
   return out;
 }
 
 std::int8_t saturate8(int v) { return static_cast<std::int8_t>(std::clamp(v, -128, 127)); }
 
-TEST(FastStriped, BlockStripersTransposeEveryBlock) {
+TEST(FastStriped, BlockStripersAndDestripersTransposeEveryBlock) {
   std::mt19937 rng(4);
   std::uniform_int_distribution<int> value(-32768, 32767);
   for (const auto& isa : striped_isas()) {
@@ -67,6 +71,17 @@ TEST(FastStriped, BlockStripersTransposeEveryBlock) {
         } else {
           ASSERT_EQ(out16[at], in[rel]) << isa.name << " int16, column " << rel;
         }
+      }
+      // and back, as H (int8 rows hold H - 128)
+      std::vector<Step> back(block);
+      if (bytes) {
+        isa.destripe8(out8.data(), back.data());
+      } else {
+        isa.destripe16(out16.data(), back.data());
+      }
+      for (std::size_t rel = 0; rel < block; ++rel) {
+        const int want = bytes ? saturate8(in[rel]) + align::detail::kInt8Offset : in[rel];
+        ASSERT_EQ(back[rel], want) << isa.name << (bytes ? " int8" : " int16") << " back, column " << rel;
       }
     }
   }
