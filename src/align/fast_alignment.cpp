@@ -584,7 +584,7 @@ class FastPass {
         if (bytes_) {
           job.prev = rows8_.data() + prev_ * padded_;
           job.cur = rows8_.data() + (1 - prev_) * padded_;
-          if (!exact8_) saved_tiles_ = tiles_;  // a row that may saturate may also leave maxima too high
+          if (!exact8_) saved_tiles_ = tiles_;  // a row that may saturate leaves nothing that is kept
           v = p.kernels_.striped8(job);
           if (!exact8_ && v >= detail::kInt8Limit) {                              // redo the row in int16
             std::copy(saved_tiles_.begin(), saved_tiles_.end(), tiles_.begin());  // job.tile_max stays valid

@@ -59,8 +59,9 @@ inline std::size_t striped_index(std::size_t rel, std::size_t lanes) {
 // [0, 255]: signed saturation at -128 is exactly the floor at H = 0. They are exact for scores in
 // [-128, 127] (scores are saturated to int8) and gaps <= kInt8Gap, if the cap is below kInt8Limit;
 // otherwise, with the cap clipped to 255, whenever the row's maximum (the result), left and diag_left
-// are below kInt8Limit. The fill redoes a row that is not in int16, and goes on in int16; nothing such
-// a row wrote (cells, tile maxima, columns) can be kept, as it may be above the true values too.
+// are below kInt8Limit. The fill redoes a row that is not in int16, and goes on in int16, keeping
+// nothing such a row wrote: its cells are lower bounds of the true ones (saturation clips from above
+// only), but the fill does not rely on that and puts the band's tile maxima back as they were.
 struct CarryHint;
 struct StripedJob {
   const void* prev;
