@@ -69,26 +69,48 @@ Isa best_isa() {
 namespace {
 
 // Side of the tiles whose boundaries the engine keeps: every 32nd row and every 32nd column of H, 2 x 2 / 32
-// bytes per cell of memory; every recomputation starts at most this far above and left.
-constexpr std::size_t kTile = 32;
+// bytes per cell of memory; every recomputation starts at most this far above and left. The striped
+// kernels' lanes are tiles.
+constexpr std::size_t kTile = detail::kTileSide;
 
+// The row kernel (every recomputation, and the scalar fill), the quantizer, and the fill's striped
+// kernels (none for the scalar ISA, which fills row by row with the row kernel: the reference).
 struct Kernels {
   detail::RowKernel row;
   detail::Quantizer quantize;
+  detail::StripedKernel striped16 = nullptr, striped8 = nullptr;
+  detail::BlockStriper16 stripe16 = nullptr;
+  detail::BlockStriper8 stripe8 = nullptr;
+  detail::BlockDestriper16 destripe16 = nullptr;
+  detail::BlockDestriper8 destripe8 = nullptr;
+  std::size_t lanes16 = 0, lanes8 = 0;
+  // Columns of the striped fill's strips come in whole units: a block of either width (lanes8 = 2 lanes16).
+  std::size_t unit() const { return kTile * lanes8; }
 };
 
 Kernels kernels_for(Isa wanted) {
   const Isa have = best_isa();
   // An ISA the CPU lacks falls back to the best one it has (the order of the enum is the order of power).
   const Isa isa = wanted == Isa::best || static_cast<int>(wanted) > static_cast<int>(have) ? have : wanted;
-  switch (isa) {
-    case Isa::avx2:
-      return {detail::row_avx2, detail::quantize_avx2};
-    case Isa::sse41:
-      return {detail::row_sse41, detail::quantize_sse41};
-    default:
-      return {detail::row_scalar, detail::quantize_scalar};
+  Kernels k{detail::row_scalar, detail::quantize_scalar};
+  if (isa == Isa::avx2) {
+    k = {detail::row_avx2, detail::quantize_avx2, detail::striped16_avx2, detail::striped8_avx2};
+    k.stripe16 = detail::stripe16_avx2;
+    k.stripe8 = detail::stripe8_avx2;
+    k.destripe16 = detail::destripe16_avx2;
+    k.destripe8 = detail::destripe8_avx2;
+    k.lanes16 = 16;
+    k.lanes8 = 32;
+  } else if (isa == Isa::sse41) {
+    k = {detail::row_sse41, detail::quantize_sse41, detail::striped16_sse41, detail::striped8_sse41};
+    k.stripe16 = detail::stripe16_sse41;
+    k.stripe8 = detail::stripe8_sse41;
+    k.destripe16 = detail::destripe16_sse41;
+    k.destripe8 = detail::destripe8_sse41;
+    k.lanes16 = 8;
+    k.lanes8 = 16;
   }
+  return k;
 }
 
 void validate(std::size_t rows, std::size_t cols, const AlignConfig& config) {
@@ -148,6 +170,62 @@ Steps steps_for(const AlignConfig& config, float scale) {
   return st;
 }
 
+// Buffers of one worker: a row of steps (scores) and a row of source floats; for the striped fill, the
+// scores of its strip in the striped layout.
+struct Scratch {
+  std::vector<Step> steps;
+  std::vector<float> floats;
+  std::vector<std::int16_t> striped16;
+  std::vector<std::int8_t> striped8;
+  explicit Scratch(std::size_t n) : steps(n + 1 + kRowPadding, 0), floats(n + kRowPadding, 0.0F) {}
+};
+
+std::int8_t saturate8(Step v) { return static_cast<std::int8_t>(std::clamp<int>(v, -128, 127)); }
+
+// Whether every score fits in an int8 row.
+bool fits_int8(const Step* p, std::size_t count) {
+  Step lo = 0, hi = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    lo = std::min(lo, p[k]);
+    hi = std::max(hi, p[k]);
+  }
+  return lo >= -128 && hi <= 127;
+}
+
+// Scores p[j] of pass columns j in [a, b] into the striped layout of a strip that starts at column lo:
+// out[striped_index(j - lo, lanes)], saturated to int8 for an int8 row. Whole blocks go through the
+// vector block striper if there is one, the ends of the range element by element.
+template <typename T, typename BlockStriper>
+void stripe(const Step* p, std::size_t lo, std::size_t a, std::size_t b, std::size_t lanes, T* out,
+            BlockStriper block_striper) {
+  const std::size_t block = kTile * lanes;
+  if (block_striper) {
+    const std::size_t first = (a - lo + block - 1) / block, end = (b - lo + 1) / block;  // whole blocks
+    if (first < end) {
+      for (std::size_t k = first; k < end; ++k) block_striper(p + lo + k * block, out + k * block);
+      if (a < lo + first * block) stripe(p, lo, a, lo + first * block - 1, lanes, out, BlockStriper{});
+      if (lo + end * block <= b) stripe(p, lo, lo + end * block, b, lanes, out, BlockStriper{});
+      return;
+    }
+  }
+  std::size_t rel = a - lo, base = rel - rel % block, lane = rel % block / kTile, seg = rel % kTile;
+  for (std::size_t j = a; j <= b; ++j) {
+    const Step v = p[j];
+    if constexpr (sizeof(T) == 1) {
+      out[base + seg * lanes + lane] = saturate8(v);
+    } else {
+      out[base + seg * lanes + lane] = v;
+    }
+    if (++seg == kTile) {
+      seg = 0;
+      if (++lane == lanes) {
+        lane = 0;
+        base += block;
+      }
+    }
+  }
+}
+
 // Integer scores of pass rows.
 class RowScores {
  public:
@@ -155,12 +233,22 @@ class RowScores {
   // Scores of pass row i (1-based) at pass columns [lo, hi]: p[j] for j in [lo, hi]. May fill and
   // return `steps` (a row buffer); `floats` has room for a row of the source.
   virtual const Step* row(std::size_t i, std::size_t lo, std::size_t hi, Step* steps, float* floats) const = 0;
+  // The same scores over [a, b] for the striped fill, in the striped layout (int8 if `bytes`) of the strip
+  // that starts at column lo (lo - 1 a multiple of Kernels::unit()); elements outside [a, b] unspecified,
+  // <= 0 past the strip's end. May fill and return the scratch's striped buffer of that width (whole
+  // blocks over the strip). For int8, nullptr if a score is outside [-128, 127].
+  virtual const void* striped(std::size_t i, std::size_t lo, std::size_t a, std::size_t b, bool bytes,
+                              Scratch& scratch) const = 0;
 };
 
 class SourceRows final : public RowScores {
  public:
-  SourceRows(const ScoreSource& source, Direction direction, float scale, detail::Quantizer quantize)
-      : source_(source), reverse_(direction == Direction::reverse), scale_(scale), quantize_(quantize) {}
+  SourceRows(const ScoreSource& source, Direction direction, float scale, const Kernels& kernels)
+      : source_(source),
+        reverse_(direction == Direction::reverse),
+        scale_(scale),
+        quantize_(kernels.quantize),
+        kernels_(kernels) {}
   const Step* row(std::size_t i, std::size_t lo, std::size_t hi, Step* steps, float* floats) const override {
     const std::size_t n = source_.cols(), count = hi - lo + 1;
     if (!reverse_) {
@@ -174,36 +262,74 @@ class SourceRows final : public RowScores {
     }
     return steps;
   }
+  const void* striped(std::size_t i, std::size_t lo, std::size_t a, std::size_t b, bool bytes,
+                      Scratch& scratch) const override {
+    const Step* p = row(i, a, b, scratch.steps.data(), scratch.floats.data());
+    if (bytes && !fits_int8(p + a, b - a + 1)) return nullptr;
+    if (bytes) {
+      stripe(p, lo, a, b, kernels_.lanes8, scratch.striped8.data(), kernels_.stripe8);
+      return scratch.striped8.data();
+    }
+    stripe(p, lo, a, b, kernels_.lanes16, scratch.striped16.data(), kernels_.stripe16);
+    return scratch.striped16.data();
+  }
 
  private:
   const ScoreSource& source_;
   bool reverse_;
   float scale_;
   detail::Quantizer quantize_;
+  Kernels kernels_;
 };
 
-// One precomputed row per letter of A's alphabet (a query profile over B, in pass column order).
+// One precomputed row per letter of A's alphabet (a query profile over B, in pass column order), and for
+// the striped fill the same rows in the striped layouts of both widths (whole units over [1, n]).
 class LetterRows final : public RowScores {
  public:
-  LetterRows(const LetterScores& letters, Direction direction, float scale)
+  LetterRows(const LetterScores& letters, Direction direction, float scale, const Kernels& kernels)
       : a_(letters.a), stride_(letters.b.size() + 1 + kRowPadding) {
     const std::size_t n = letters.b.size(), k = letters.alphabet;
+    std::vector<Step> matrix(k * k);  // quantized once: the same steps as quantizing every cell's score
+    for (std::size_t x = 0; x < k * k; ++x) matrix[x] = quantize_one(letters.matrix[x], scale);
     profile_.assign(k * stride_, 0);
     for (std::size_t x = 0; x < k; ++x) {
+      const Step* scores = matrix.data() + x * k;
+      Step* out = profile_.data() + x * stride_;
       for (std::size_t j = 1; j <= n; ++j) {
-        const std::size_t col = direction == Direction::forward ? j - 1 : n - j;
-        profile_[x * stride_ + j] = quantize_one(letters.matrix[x * k + letters.b[col]], scale);
+        out[j] = scores[letters.b[direction == Direction::forward ? j - 1 : n - j]];
       }
+    }
+    if (kernels.striped16) {
+      striped_stride_ = (n + kernels.unit() - 1) / kernels.unit() * kernels.unit();
+      striped16_.assign(k * striped_stride_, 0);
+      striped8_.assign(k * striped_stride_, 0);
+      for (std::size_t x = 0; x < k; ++x) {
+        stripe(profile_.data() + x * stride_, 1, 1, n, kernels.lanes16, striped16_.data() + x * striped_stride_,
+               kernels.stripe16);
+        stripe(profile_.data() + x * stride_, 1, 1, n, kernels.lanes8, striped8_.data() + x * striped_stride_,
+               kernels.stripe8);
+      }
+      fits_int8_ = fits_int8(matrix.data(), matrix.size());
     }
   }
   const Step* row(std::size_t i, std::size_t, std::size_t, Step*, float*) const override {
     return profile_.data() + a_[i - 1] * stride_;
+  }
+  // Strips start at a block boundary of both layouts, so a strip's row is a piece of the whole row's.
+  const void* striped(std::size_t i, std::size_t lo, std::size_t, std::size_t, bool bytes, Scratch&) const override {
+    const std::size_t at = a_[i - 1] * striped_stride_ + (lo - 1);
+    if (bytes) return fits_int8_ ? striped8_.data() + at : nullptr;
+    return striped16_.data() + at;
   }
 
  private:
   std::span<const std::uint8_t> a_;
   std::size_t stride_;
   std::vector<Step> profile_;
+  std::size_t striped_stride_ = 0;
+  bool fits_int8_ = false;
+  std::vector<std::int16_t> striped16_;
+  std::vector<std::int8_t> striped8_;
 };
 
 void validate_letters(const LetterScores& s) {
@@ -225,13 +351,6 @@ void validate_letters(const LetterScores& s) {
 
 using Cell = std::pair<std::size_t, std::size_t>;  // (i, j) in pass coordinates, 1-based
 
-// Buffers of one worker: a row of steps (scores) and a row of source floats.
-struct Scratch {
-  std::vector<Step> steps;
-  std::vector<float> floats;
-  explicit Scratch(std::size_t n) : steps(n + 1 + kRowPadding, 0), floats(n + kRowPadding, 0.0F) {}
-};
-
 // One pass of the fast engine.
 class FastPass {
  public:
@@ -241,6 +360,7 @@ class FastPass {
         config_(config),
         st_(steps),
         kernel_(kernels.row),
+        kernels_(kernels),
         m_(m),
         n_(n),
         stride_(n + 1 + kRowPadding),
@@ -300,47 +420,46 @@ class FastPass {
     const Step* s = row_scores(i, a, b, scratch);
     RowJob job{prev, cur, s, a, b, st_.gap_a, st_.gap_b, st_.cap, cur[a - 1], column_max};
     const Step best = kernel_(job);
-    if (!st_.capped && best >= kMaxStep) {
-      throw std::invalid_argument("cumulative score reaches the int16 range (32767 steps) at scale " +
-                                  std::to_string(st_.scale) + ": set a cap or a smaller scale");
-    }
+    check_overflow(best);
     return {best, s};
   }
 
-  // Fills every row, by column strips (whole tiles) on threads_ threads in a wavefront (a strip's row i
-  // needs the strip on its left to have finished row i). Keeps the tiles' boundaries and maxima if asked.
+  // Fills every row, by column strips on threads_ threads in a wavefront (a strip's row i needs the strip
+  // on its left to have finished row i). Keeps the tiles' boundaries and maxima if asked. The striped
+  // kernels fill when the ISA has them; the scalar ISA fills row by row with the row kernel.
   Step fill(bool keep) {
     if (keep) {
       checkpoints_.assign((m_ / kTile + 1) * stride_, 0);
       columns_.assign((m_ + 1) * column_stride_, 0);
       tile_max_.assign(bands_ * tiles_, 0);
     }
-    // Strips of at least 512 columns, so a strip's row costs far more than its synchronisation.
-    const std::size_t strips = std::max<std::size_t>(1, std::min<std::size_t>(threads_, n_ / 512));
-    constexpr std::size_t kRing = 64;  // rows kept; a strip may run this far ahead of the next one
-    const std::size_t ring = strips == 1 ? 2 : kRing;
-    std::vector<Step> rows(ring * stride_, 0);
-    std::vector<Step> best(strips, 0);
+    const Step best = kernels_.striped16 ? fill_striped(keep) : fill_rows(keep);
+    if (keep) {
+      band_max_.assign(bands_, 0);
+      for (std::size_t b = 0; b < bands_; ++b) update_band_max(b);
+    }
+    return best;
+  }
+
+  static constexpr std::size_t kRing = 64;  // rows kept; a strip may run this far ahead of the next one
+
+  // Runs strip(k) = make_strip(k) for k < strips, each on its own thread (strip 0 on this one), calling
+  // strip(i) for rows i = 1 .. m in a wavefront: strip k's row i once strip k - 1 has finished row i,
+  // and at most ring - 1 rows ahead of strip k + 1. Rethrows a strip's exception.
+  template <typename MakeStrip>
+  void wavefront(std::size_t strips, std::size_t ring, MakeStrip make_strip) const {
     std::vector<std::atomic<std::size_t>> done(strips);
     for (auto& d : done) d.store(0);
     std::atomic<bool> failed{false};
     std::vector<std::exception_ptr> errors(strips);
-
     auto work = [&](std::size_t k) {
       try {
-        const std::size_t t0 = tiles_ * k / strips, t1 = tiles_ * (k + 1) / strips;
-        const std::size_t lo = t0 * kTile + 1, hi = std::min(n_, t1 * kTile);
-        Scratch scratch(n_);
-        std::vector<Step> band(keep ? stride_ : 0, 0);  // column maxima of the current band
+        auto strip = make_strip(k);
         for (std::size_t i = 1; i <= m_; ++i) {
           if (k > 0) wait_for(done[k - 1], i, failed);
           if (k + 1 < strips && i > ring - 1) wait_for(done[k + 1], i - (ring - 1), failed);
           if (failed.load(std::memory_order_relaxed)) return;
-          const Step* prev = rows.data() + ((i - 1) % ring) * stride_;
-          Step* cur = rows.data() + (i % ring) * stride_;
-          const Step v = compute(i, prev, cur, lo, hi, scratch, keep ? band.data() : nullptr).first;
-          best[k] = std::max(best[k], v);
-          if (keep) keep_row(i, cur, t0, t1, band.data());
+          strip(i);
           if (strips > 1) {  // nobody waits on a single strip
             done[k].store(i, std::memory_order_release);
             done[k].notify_all();
@@ -362,11 +481,203 @@ class FastPass {
     for (auto& e : errors) {
       if (e) std::rethrow_exception(e);
     }
-    if (keep) {
-      band_max_.assign(bands_, 0);
-      for (std::size_t b = 0; b < bands_; ++b) update_band_max(b);
-    }
+  }
+
+  // The row-by-row fill: strips of whole tiles (at least 512 columns, so a strip's row costs far more
+  // than its synchronisation) sharing a ring of natural rows.
+  Step fill_rows(bool keep) {
+    const std::size_t strips = std::max<std::size_t>(1, std::min<std::size_t>(threads_, n_ / 512));
+    const std::size_t ring = strips == 1 ? 2 : kRing;
+    std::vector<Step> rows(ring * stride_, 0);
+    std::vector<Step> best(strips, 0);
+    wavefront(strips, ring, [&](std::size_t k) {
+      const std::size_t t0 = tiles_ * k / strips, t1 = tiles_ * (k + 1) / strips;
+      const std::size_t lo = t0 * kTile + 1, hi = std::min(n_, t1 * kTile);
+      return [this, &rows, &best, keep, ring, k, t0, t1, lo, hi, scratch = Scratch(n_),
+              band = std::vector<Step>(keep ? stride_ : 0, 0)](std::size_t i) mutable {
+        const Step* prev = rows.data() + ((i - 1) % ring) * stride_;
+        Step* cur = rows.data() + (i % ring) * stride_;
+        const Step v = compute(i, prev, cur, lo, hi, scratch, keep ? band.data() : nullptr).first;
+        best[k] = std::max(best[k], v);
+        if (keep) keep_row(i, cur, t0, t1, band.data());
+      };
+    });
     return *std::max_element(best.begin(), best.end());
+  }
+
+  // The striped fill: strips of whole units (Kernels::unit(): a block of either width), each with its own
+  // two rows in the striped layout; strip k passes its last column to strip k + 1 through a ring. A strip
+  // computes in int8 lanes (H - 128, fast_kernels.hpp) while that is exact: gaps <= 127, the row's scores
+  // in [-128, 127], and the cap below 255 or else no row reaching 255; from the first row that breaks a
+  // rule it goes on in int16, that row included. Every cell's value is the same for any strip count and
+  // either width.
+  Step fill_striped(bool keep) {
+    const std::size_t unit = kernels_.unit(), units = (n_ + unit - 1) / unit;
+    const std::size_t strips = std::max<std::size_t>(1, std::min({std::size_t{threads_}, units, n_ / 512}));
+    const std::size_t ring = strips == 1 ? 2 : kRing;
+    std::vector<Step> edges(strips * ring, 0);  // H(i, last column of strip k) at k * ring + i % ring
+    std::vector<Step> best(strips, 0);
+    wavefront(strips, ring, [&](std::size_t k) {
+      const std::size_t lo = units * k / strips * unit + 1, hi = std::min(n_, units * (k + 1) / strips * unit);
+      return StripedStrip(*this, keep, k, strips, lo, hi, edges.data(), ring, best[k]);
+    });
+    return *std::max_element(best.begin(), best.end());
+  }
+
+  // One strip of the striped fill; strip(i) computes row i.
+  class StripedStrip {
+   public:
+    StripedStrip(FastPass& pass, bool keep, std::size_t k, std::size_t strips, std::size_t lo, std::size_t hi,
+                 Step* edges, std::size_t ring, Step& best)
+        : pass_(pass),
+          keep_(keep),
+          exact8_(pass.st_.capped && pass.st_.cap < detail::kInt8Limit),
+          bytes_(pass.st_.gap_a <= detail::kInt8Gap && pass.st_.gap_b <= detail::kInt8Gap),
+          k_(k),
+          strips_(strips),
+          lo_(lo),
+          hi_(hi),
+          width_(hi - lo + 1),
+          padded_((width_ + pass.kernels_.unit() - 1) / pass.kernels_.unit() * pass.kernels_.unit()),
+          ring_(ring),
+          edges_(edges),
+          best_(best),
+          scratch_(pass.n_),
+          rows8_(2 * padded_, static_cast<std::int8_t>(-detail::kInt8Offset)),  // H = 0
+          tiles_(padded_ / kTile, 0) {
+      if (bytes_) {
+        scratch_.striped8.assign(padded_, 0);
+      } else {  // gaps beyond int8: int16 from the start
+        rows16_.assign(2 * padded_, 0);
+        scratch_.striped16.assign(padded_, 0);
+      }
+    }
+
+    void operator()(std::size_t i) {
+      const FastPass& p = pass_;
+      const auto [rlo, rhi] = p.region(i);
+      const std::size_t a = std::max(lo_, rlo), b = std::min(hi_, rhi);
+      const Step left = k_ > 0 ? edges_[(k_ - 1) * ring_ + i % ring_] : Step{0};
+      const Step diag_left = k_ > 0 ? edges_[(k_ - 1) * ring_ + (i - 1) % ring_] : Step{0};
+      // A row with no searched column here is 0 here, and so were the rows above (regions only grow).
+      if (a <= b) {
+        detail::StripedJob job{nullptr,
+                               nullptr,
+                               nullptr,
+                               width_,
+                               a - lo_,
+                               b - lo_ + 1,
+                               left,
+                               diag_left,
+                               p.st_.gap_a,
+                               p.st_.gap_b,
+                               p.st_.cap,
+                               tiles_.data(),
+                               keep_ ? pass_.columns_.data() + i * p.column_stride_ + (lo_ - 1) / kTile + 1 : nullptr,
+                               &carry_};
+        Step v = 0;
+        if (bytes_ && !exact8_ && std::max(left, diag_left) >= detail::kInt8Limit) to_int16();
+        if (bytes_) {
+          job.score = p.scores_.striped(i, lo_, a, b, true, scratch_);
+          if (!job.score) to_int16();  // a score outside int8
+        }
+        if (bytes_) {
+          job.prev = rows8_.data() + prev_ * padded_;
+          job.cur = rows8_.data() + (1 - prev_) * padded_;
+          if (!exact8_) saved_tiles_ = tiles_;  // a row that may saturate leaves nothing that is kept
+          v = p.kernels_.striped8(job);
+          if (!exact8_ && v >= detail::kInt8Limit) {                              // redo the row in int16
+            std::copy(saved_tiles_.begin(), saved_tiles_.end(), tiles_.begin());  // job.tile_max stays valid
+            to_int16();
+          }
+        }
+        if (!bytes_) {
+          job.prev = rows16_.data() + prev_ * padded_;
+          job.cur = rows16_.data() + (1 - prev_) * padded_;
+          job.score = p.scores_.striped(i, lo_, a, b, false, scratch_);
+          v = p.kernels_.striped16(job);
+          p.check_overflow(v);
+        }
+        best_ = std::max(best_, v);
+      }
+      prev_ = 1 - prev_;  // row i is now the previous row
+      if (keep_ && i % kTile == 0) {
+        Step* out = pass_.checkpoints_.data() + (i / kTile) * p.stride_ + lo_;
+        destripe(out);
+      }
+      if (keep_ && (i % kTile == 0 || i == p.m_)) {
+        const std::size_t count = (width_ + kTile - 1) / kTile;
+        std::copy(
+            tiles_.begin(), tiles_.begin() + static_cast<std::ptrdiff_t>(count),
+            pass_.tile_max_.begin() + static_cast<std::ptrdiff_t>((i - 1) / kTile * p.tiles_ + (lo_ - 1) / kTile));
+        std::fill(tiles_.begin(), tiles_.end(), Step{0});
+      }
+      if (k_ + 1 < strips_) edges_[k_ * ring_ + i % ring_] = value(width_ - 1);
+    }
+
+   private:
+    // H of the previous row at strip column rel.
+    Step value(std::size_t rel) const {
+      const std::size_t at = prev_ * padded_;
+      if (bytes_)
+        return static_cast<Step>(rows8_[at + detail::striped_index(rel, pass_.kernels_.lanes8)] + detail::kInt8Offset);
+      return rows16_[at + detail::striped_index(rel, pass_.kernels_.lanes16)];
+    }
+
+    // H of the previous row in natural order: out[rel] for rel < width_, block by block (the last one,
+    // partial, through a buffer).
+    void destripe(Step* out) const {
+      const Kernels& k = pass_.kernels_;
+      const std::size_t block = kTile * (bytes_ ? k.lanes8 : k.lanes16);
+      std::vector<Step> tail;
+      for (std::size_t b0 = 0; b0 < width_; b0 += block) {
+        Step* to = out + b0;
+        if (b0 + block > width_) {
+          tail.resize(block);
+          to = tail.data();
+        }
+        if (bytes_) {
+          k.destripe8(rows8_.data() + prev_ * padded_ + b0, to);
+        } else {
+          k.destripe16(rows16_.data() + prev_ * padded_ + b0, to);
+        }
+        if (to != out + b0) std::copy(tail.begin(), tail.begin() + static_cast<std::ptrdiff_t>(width_ - b0), out + b0);
+      }
+    }
+
+    // From int8 to int16 rows: the previous row (exact) is converted, the current one starts at 0.
+    void to_int16() {
+      rows16_.assign(2 * padded_, 0);
+      std::vector<Step> natural(width_);
+      destripe(natural.data());
+      const std::size_t at = prev_ * padded_;
+      for (std::size_t rel = 0; rel < width_; ++rel) {
+        rows16_[at + detail::striped_index(rel, pass_.kernels_.lanes16)] = natural[rel];
+      }
+      scratch_.striped16.assign(padded_, 0);
+      bytes_ = false;
+    }
+
+    FastPass& pass_;
+    bool keep_, exact8_, bytes_;
+    std::size_t k_, strips_, lo_, hi_, width_, padded_, ring_;
+    Step* edges_;
+    Step& best_;
+    Scratch scratch_;
+    std::size_t prev_ = 0;     // which of the two rows holds the previous row
+    detail::CarryHint carry_;  // the kernels' hint (StripedJob)
+    std::vector<std::int8_t> rows8_;
+    std::vector<Step> rows16_;
+    std::vector<Step> tiles_;        // the tiles' maxima over the band so far
+    std::vector<Step> saved_tiles_;  // the same before an int8 row that may saturate
+  };
+
+  // Without a cap, a cell at 32767 steps may have saturated: a clear error, never a wrong alignment.
+  void check_overflow(Step best) const {
+    if (!st_.capped && best >= kMaxStep) {
+      throw std::invalid_argument("cumulative score reaches the int16 range (32767 steps) at scale " +
+                                  std::to_string(st_.scale) + ": set a cap or a smaller scale");
+    }
   }
 
   // What the alignment phase keeps of row i, tiles t0 .. t1 - 1: the right column of every tile, the
@@ -701,6 +1012,7 @@ class FastPass {
   const AlignConfig& config_;
   Steps st_;
   detail::RowKernel kernel_;
+  Kernels kernels_;
   std::size_t m_, n_, stride_;
   std::size_t bands_, tiles_;  // tile rows and columns (kTile x kTile cells, the last ones may be smaller)
   std::size_t column_stride_;  // column checkpoints per row
@@ -789,28 +1101,28 @@ ScoreSource LetterScores::source() const {
 std::vector<LocalAlignment> fast_local_alignments(const ScoreSource& scores, const AlignConfig& config,
                                                   const FastOptions& options) {
   return run_pass(scores.rows(), scores.cols(), config, options, [&](float scale, const Kernels& k) {
-    return std::make_unique<SourceRows>(scores, config.direction, scale, k.quantize);
+    return std::make_unique<SourceRows>(scores, config.direction, scale, k);
   });
 }
 
 std::vector<LocalAlignment> fast_local_alignments(const LetterScores& scores, const AlignConfig& config,
                                                   const FastOptions& options) {
   validate_letters(scores);
-  return run_pass(scores.a.size(), scores.b.size(), config, options, [&](float scale, const Kernels&) {
-    return std::make_unique<LetterRows>(scores, config.direction, scale);
+  return run_pass(scores.a.size(), scores.b.size(), config, options, [&](float scale, const Kernels& k) {
+    return std::make_unique<LetterRows>(scores, config.direction, scale, k);
   });
 }
 
 Score fast_best_score(const ScoreSource& scores, const AlignConfig& config, const FastOptions& options) {
   return best_pass(scores.rows(), scores.cols(), config, options, [&](float scale, const Kernels& k) {
-    return std::make_unique<SourceRows>(scores, config.direction, scale, k.quantize);
+    return std::make_unique<SourceRows>(scores, config.direction, scale, k);
   });
 }
 
 Score fast_best_score(const LetterScores& scores, const AlignConfig& config, const FastOptions& options) {
   validate_letters(scores);
-  return best_pass(scores.a.size(), scores.b.size(), config, options, [&](float scale, const Kernels&) {
-    return std::make_unique<LetterRows>(scores, config.direction, scale);
+  return best_pass(scores.a.size(), scores.b.size(), config, options, [&](float scale, const Kernels& k) {
+    return std::make_unique<LetterRows>(scores, config.direction, scale, k);
   });
 }
 

@@ -33,6 +33,81 @@ struct RowJob {
 };
 using RowKernel = std::int16_t (*)(const RowJob&);
 
+// The fill's kernels: whole rows of a column strip in a striped layout (Farrar 2007) built on the tiles.
+// A strip of columns lo .. lo + width - 1 (lo - 1 a multiple of the block width) is cut into blocks of
+// kTileSide x lanes columns; lane l of a block is one tile's columns and vector s of the block holds
+// column s of each of its tiles, so column rel = j - lo sits at striped_index(rel, lanes). A row is one
+// pass over each block's vectors (the diagonal and upward steps, and the gap_b step from vector s - 1
+// to s inside each tile), then the lazy-F loop carries the gap_b step from each tile's last column into
+// the next tile's first until no lane improves.
+inline constexpr std::size_t kTileSide = 32;
+inline std::size_t striped_index(std::size_t rel, std::size_t lanes) {
+  const std::size_t block = kTileSide * lanes, in = rel % block;
+  return rel - in + (in % kTileSide) * lanes + in / kTileSide;
+}
+
+// One row i of a strip, rows in the striped layout (elements int16 or int8, as the kernel's name says).
+// Columns outside [rlo, rhi) (relative to the strip, rlo < rhi <= width) are outside the searched
+// region: H = 0 there, whatever their scores; blocks with no searched column are not touched (they are
+// all 0 in both rows: a pass's region only grows from row to row). Reads prev and score and writes cur
+// over the touched blocks. tile_max[t] = max(tile_max[t], H(i, column of tile t)) for the tiles of the
+// touched blocks (natural order, int16); columns, if set, gets H(i, lo - 1 + 32 (q + 1)) for every tile q
+// of a touched block that is whole (lo - 1 + 32 (q + 1) <= lo - 1 + width). Returns the row's maximum.
+// Scores past the strip's end (padding up to the whole block) must be <= 0.
+//
+// int16 rows hold H. int8 rows hold H - 128 (so 0 is -128, which is where a row starts), for H in
+// [0, 255]: signed saturation at -128 is exactly the floor at H = 0. They are exact for scores in
+// [-128, 127] (scores are saturated to int8) and gaps <= kInt8Gap, if the cap is below kInt8Limit;
+// otherwise, with the cap clipped to 255, whenever the row's maximum (the result), left and diag_left
+// are below kInt8Limit. The fill redoes a row that is not in int16, and goes on in int16, keeping
+// nothing such a row wrote: its cells are lower bounds of the true ones (saturation clips from above
+// only), but the fill does not rely on that and puts the band's tile maxima back as they were.
+struct CarryHint;
+struct StripedJob {
+  const void* prev;
+  void* cur;
+  const void* score;
+  std::size_t width;             // columns of the strip
+  std::size_t rlo, rhi;          // searched columns of the row, relative to the strip
+  std::int16_t left, diag_left;  // H(i, lo - 1), H(i - 1, lo - 1)
+  std::int16_t gap_a, gap_b, cap;
+  std::int16_t* tile_max;
+  std::int16_t* columns = nullptr;
+  struct CarryHint* carry = nullptr;  // kept from row to row by the caller (speed only; 8 steps if not set)
+};
+
+// How many vectors of a block the kernel's lazy-F pass writes without testing whether they improve:
+// doubled when more than a quarter of the blocks needed more, halved when fewer than 1 in 32 did
+// (counted over at least 256 blocks, between 2 and 16 steps). Only the speed depends on it.
+struct CarryHint {
+  std::size_t steps = 8, blocks = 0, further = 0;
+};
+using StripedKernel = std::int16_t (*)(const StripedJob&);
+inline constexpr int kInt8Limit = 255;   // an int8 row whose maximum reaches this may have saturated
+inline constexpr int kInt8Gap = 127;     // the largest gap an int8 row takes
+inline constexpr int kInt8Offset = 128;  // int8 rows hold H - 128
+
+// One whole block of scores from natural order into the striped layout: out[s * lanes + l] = in[32 l + s]
+// (saturated to int8 by the int8 ones). lanes: 8 / 16 (sse4.1 int16 / int8), 16 / 32 (avx2).
+using BlockStriper16 = void (*)(const std::int16_t* in, std::int16_t* out);
+using BlockStriper8 = void (*)(const std::int16_t* in, std::int8_t* out);
+void stripe16_sse41(const std::int16_t* in, std::int16_t* out);
+void stripe8_sse41(const std::int16_t* in, std::int8_t* out);
+void stripe16_avx2(const std::int16_t* in, std::int16_t* out);
+void stripe8_avx2(const std::int16_t* in, std::int8_t* out);
+// The inverse, as H: out[32 l + s] = H of in[s * lanes + l] (int8 rows hold H - 128).
+using BlockDestriper16 = void (*)(const std::int16_t* in, std::int16_t* out);
+using BlockDestriper8 = void (*)(const std::int8_t* in, std::int16_t* out);
+void destripe16_sse41(const std::int16_t* in, std::int16_t* out);
+void destripe8_sse41(const std::int8_t* in, std::int16_t* out);
+void destripe16_avx2(const std::int16_t* in, std::int16_t* out);
+void destripe8_avx2(const std::int8_t* in, std::int16_t* out);
+
+std::int16_t striped16_sse41(const StripedJob& job);
+std::int16_t striped16_avx2(const StripedJob& job);
+std::int16_t striped8_sse41(const StripedJob& job);
+std::int16_t striped8_avx2(const StripedJob& job);
+
 // out[k] = quantize(in[k] * scale) for k < count (the rule of fast_alignment.hpp).
 using Quantizer = void (*)(const float* in, std::size_t count, float scale, std::int16_t* out);
 

@@ -385,5 +385,134 @@ TEST(FastAlignment, ReadsEachScoreRowSegmentOnlyWhereTheRegionIs) {
   }
 }
 
+// The striped fill's edges (src/align/fast_striped_body.hpp): widths around the lanes (8 to 32), a tile
+// (32), a block (256 to 1024) and a strip unit (512 / 1024), shorter than one vector, gaps 0 to 3, with
+// and without cap, self triangles whose edge crosses blocks; every ISA and 1 to 4 threads.
+TEST(FastAlignment, StripedFillEdgesEveryIsaAndThreads) {
+  std::mt19937 rng(41);
+  const std::size_t widths[] = {1,   3,   7,   8,   9,   15,  16,   17,   31,   32,   33,
+                                255, 256, 257, 511, 512, 513, 1023, 1024, 1025, 2047, 2049};
+  std::uniform_int_distribution<int> small(-3, 3);
+  const float gaps[] = {0.0F, 0.5F, 1.0F, 3.0F};
+  int case_id = 0;
+  for (std::size_t n : widths) {
+    for (int variant = 0; variant < 3; ++variant, ++case_id) {
+      const bool self = variant == 2 && n <= 1025;
+      const std::size_t m = self ? n : 1 + rng() % 75;
+      std::vector<float> s(m * n);
+      const std::size_t offset = rng() % (n + 1);
+      for (std::size_t i = 0; i < m; ++i) {
+        for (std::size_t j = 0; j < n; ++j) {
+          s[i * n + j] = variant == 1 && j == (i + offset) % n ? 2.0F : static_cast<float>(small(rng)) * 0.5F;
+        }
+      }
+      if (self) {
+        for (std::size_t i = 0; i < m; ++i) {
+          for (std::size_t j = 0; j < i; ++j) s[j * n + i] = s[i * n + j];
+        }
+      }
+      const auto source = ScoreSource::dense(s, m, n);
+      AlignConfig c;
+      c.gap_a = gaps[rng() % 4];
+      c.gap_b = gaps[rng() % 4];
+      if (rng() % 2) c.cap = static_cast<float>(1 + rng() % 12);
+      c.threshold = 1.0F;
+      c.max_alignments = 12;
+      c.self = self;
+      c.min_separation = 1 + rng() % 40;
+      c.direction = rng() % 2 ? Direction::forward : Direction::reverse;
+      const float scale = c.cap ? 0.0F : static_cast<float>(1 << (rng() % 4));  // cap: a large scale, int16
+      const float used = align::fast_scale(c, {scale, 1, Isa::best});
+      const auto want = scalar_on_quantized(source, c, used);
+      for (Isa isa : isas()) {
+        for (unsigned threads = 1; threads <= (n >= 1024 ? 4U : 1U); ++threads) {
+          expect_same(align::fast_local_alignments(source, c, {scale, threads, isa}), want,
+                      describe(case_id, c, used, isa, threads) + ", " + std::to_string(m) + " x " + std::to_string(n));
+        }
+        const float best = align::fast_best_score(source, c, {scale, 2, isa});  // the threshold does not apply
+        if (want.empty()) {
+          EXPECT_LT(best, c.threshold) << describe(case_id, c, used, isa, 2);
+        } else {
+          EXPECT_EQ(best, want.front().score) << describe(case_id, c, used, isa, 2);
+        }
+      }
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
+}
+
+// Gap steps of 0 and 1 with scores far above them: F from one cell reaches across many tiles and blocks
+// (the lazy-F corrections, and the lane scan of every block), and with gap_b = 0 it never decays.
+TEST(FastAlignment, FarReachingHorizontalGapsAndGapZero) {
+  std::mt19937 rng(8);
+  const std::size_t m = 90, n = 2300;
+  for (int case_id = 0; case_id < 8; ++case_id) {
+    std::vector<float> s(m * n, -4.0F);
+    for (int k = 0; k < 6; ++k) s[(rng() % m) * n + rng() % n] = 30.0F;     // isolated peaks
+    for (std::size_t i = 0; i < 20; ++i) s[(40 + i) * n + 700 + i] = 3.0F;  // and one diagonal
+    const auto source = ScoreSource::dense(s, m, n);
+    AlignConfig c;
+    c.gap_b = case_id % 2 == 0 ? 0.0F : 0.0625F;
+    c.gap_a = case_id % 4 < 2 ? 0.0F : 2.0F;
+    if (case_id >= 4) c.cap = 50.0F;
+    c.threshold = 1.0F;
+    c.max_alignments = 10;
+    c.direction = case_id % 3 == 0 ? Direction::reverse : Direction::forward;
+    const float scale = c.cap ? 0.0F : 16.0F;  // gap_b 0.0625 is one step
+    const float used = align::fast_scale(c, {scale, 1, Isa::best});
+    const auto want = scalar_on_quantized(source, c, used);
+    ASSERT_FALSE(want.empty());
+    for (Isa isa : isas()) {
+      for (unsigned threads : {1U, 3U}) {
+        expect_same(align::fast_local_alignments(source, c, {scale, threads, isa}), want,
+                    describe(case_id, c, used, isa, threads));
+      }
+    }
+  }
+}
+
+// The int8 lanes (H - 128 in int8, so H in [0, 255]): exact while the cap is below 255 steps, else until
+// a row reaches 255 steps, and only for gaps <= 127 steps and scores in [-128, 127]; a strip goes on in
+// int16 from the first row that breaks a rule. Best values right at the limit and beyond, caps at it,
+// scores and gaps beyond int8, and strips of which only one saturates (its neighbour then sees left
+// values beyond int8).
+TEST(FastAlignment, Int8LanesAtTheirLimits) {
+  const std::size_t m = 270, n = 2100;
+  int case_id = 0;
+  for (std::size_t run : {127U, 254U, 255U, 256U, 260U}) {
+    for (int layout = 0; layout < 4; ++layout, ++case_id) {
+      // a diagonal run of +1 (best = run length) in the left strip, the right strip, across all, or
+      // ending at the last column of the first strip (1024 with 2 threads, for both ISAs' units)
+      std::vector<float> s(m * n, -3.0F);
+      const std::size_t j0 = layout == 0 ? 10 : (layout == 1 ? n - 280 : (layout == 2 ? 1000 : 1024 - run));
+      for (std::size_t k = 0; k < run; ++k) s[k * n + j0 + k] = 1.0F;  // run < m
+      if (layout == 2) {
+        s[5 * n + 2000] = 200.0F;   // a score beyond int8
+        s[6 * n + 2001] = -200.0F;  // and one below it
+      }
+      const auto source = ScoreSource::dense(s, m, n);
+      for (int config = 0; config < 6; ++config) {
+        AlignConfig c;
+        const float gaps[] = {1.0F, 1.0F, 4.0F, 150.0F, 127.0F, 128.0F};  // steps at scale 1
+        c.gap_a = c.gap_b = gaps[config];
+        if (config == 1) c.cap = static_cast<float>(254 + case_id % 3);  // 254, 255, 256
+        if (config == 3) c.cap = 100.0F;
+        if (config == 4) c.cap = 250.0F;
+        c.threshold = 1.0F;
+        c.max_alignments = 4;
+        const auto want = scalar_on_quantized(source, c, 1.0F);
+        ASSERT_FALSE(want.empty());
+        for (Isa isa : isas()) {
+          for (unsigned threads : {1U, 2U}) {
+            const auto what = describe(case_id * 6 + config, c, 1.0F, isa, threads) + ", run " + std::to_string(run);
+            expect_same(align::fast_local_alignments(source, c, {1.0F, threads, isa}), want, what);
+            EXPECT_EQ(align::fast_best_score(source, c, {1.0F, threads, isa}), want.front().score) << what;
+          }
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace seqtopo
