@@ -1,7 +1,7 @@
 #pragma once
 // The fast alignment engine: the same alignments as local_alignments() (smith_waterman.hpp), computed
-// with 16-bit integer SIMD arithmetic and no traceback table: H is kept only on the boundaries of 32 x 32
-// tiles, 1/8 byte per cell (docs/engine.md).
+// with striped integer SIMD arithmetic (8-bit lanes while the scores fit, else 16-bit) and no traceback
+// table: H is kept only on the boundaries of 32 x 32 tiles, 1/8 byte per cell (docs/engine.md).
 //
 // Scores are quantized once: every score, gap, cap and threshold becomes round(x * scale) "steps"
 // (int16, ties to even, saturating at +-32767; a NaN score counts as -32767). On those integer-valued
