@@ -136,6 +136,7 @@ void run(const LocalizeOptions& o) {
   io::OutputDirectory out(o.out_dir);
   if (truth) pipeline::evaluate_localization_run(r, *truth, o.tolerance, resolve_threads(o.threads));
   const std::size_t not_in_map = outputs::write_localize_outputs(r, out);
+  outputs::write_localize_report(r, out);
   out.commit();
 
   std::string line = fmt::format("seqtopo localize: {} query frames in {} map frames, {} not in the map, {:.2f} s",

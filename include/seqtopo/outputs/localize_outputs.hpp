@@ -6,8 +6,10 @@
 
 namespace seqtopo::outputs {
 
-// Every file, the report included, staged in `out`. Returns the number of query frames "not in the map".
+// Every file but the report, staged in `out`. Returns the number of query frames "not in the map".
 std::size_t write_localize_outputs(const pipeline::LocalizeRun& run, io::OutputDirectory& out);
+// report.html from the staged files (localize_report.cpp).
+void write_localize_report(const pipeline::LocalizeRun& run, io::OutputDirectory& out);
 
 // Latency percentile p in [0, 1] of the online frames [s] (0 when there is none).
 double latency_percentile(const pipeline::LocalizeRun& run, double p);

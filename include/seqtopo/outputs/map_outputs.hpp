@@ -8,9 +8,14 @@
 
 namespace seqtopo::outputs {
 
+// topology.svg draws maps of at most this many places place by place; larger ones (more than a layout can
+// place legibly) as their collapsed graph: junctions and path ends as nodes, each path segment one edge
+// labelled with its number of places.
+inline constexpr std::size_t kMaxDrawnPlaces = 300;
+
 // Every file but the report, staged in `out`.
 void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out);
-// report.html from the staged files.
+// report.html from the staged files (map_report.cpp).
 void write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out);
 
 }  // namespace seqtopo::outputs
