@@ -28,21 +28,20 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
-#include <filesystem>
+#include <cstdlib>
 #include <fstream>
-#include <memory>
 #include <random>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include "common/run_command.hpp"
+#include "common/temp_dir.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 
 namespace seqtopo {
 namespace {
-namespace fs = std::filesystem;
 
 constexpr int kMatch = 5, kMismatch = -4;
 
@@ -50,15 +49,6 @@ struct MatcherAlignment {
   int score = 0;
   std::set<std::pair<std::size_t, std::size_t>> pairs;  // 0-based (i, j)
 };
-
-std::string run(const std::string& command) {
-  std::array<char, 4096> buffer{};
-  std::string out;
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  if (!pipe) return out;
-  while (std::fgets(buffer.data(), buffer.size(), pipe.get())) out += buffer.data();
-  return out;
-}
 
 // Parses matcher's "pair" format: per alignment a "# Score:" line, then blocks of
 // "a <start> <gapped text> <end>" / "b <start> <gapped text> <end>" lines.
@@ -128,10 +118,9 @@ void plant(std::mt19937& rng, std::string& s, const std::string& repeat, std::si
 class AgainstMatcher : public ::testing::Test {
  protected:
   void SetUp() override {
-    ASSERT_EQ(std::system("command -v matcher >/dev/null 2>&1"), 0) << "EMBOSS matcher is required (scripts/setup.sh)";
-    dir_ = fs::temp_directory_path() / ("seqtopo-matcher-" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-    std::ofstream m(dir_ / "DNAMATRIX");
+    ASSERT_EQ(test_support::run_command("command -v matcher").status, 0)
+        << "EMBOSS matcher is required (scripts/setup.sh)";
+    std::ofstream m(dir_.path / "DNAMATRIX");
     m << "   A  C  G  T\n";
     for (char r : std::string("ACGT")) {
       m << r;
@@ -139,19 +128,19 @@ class AgainstMatcher : public ::testing::Test {
       m << "\n";
     }
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::vector<MatcherAlignment> matcher(const std::string& a, const std::string& b, int gap, int count) {
-    std::ofstream(dir_ / "a.fa") << ">a\n" << a << "\n";
-    std::ofstream(dir_ / "b.fa") << ">b\n" << b << "\n";
-    const std::string cmd = "cd " + dir_.string() +
+    dir_.write("a.fa", ">a\n" + a + "\n");
+    dir_.write("b.fa", ">b\n" + b + "\n");
+    // matcher's stdout is the alignments; its stderr (a banner) is not looked at.
+    const std::string cmd = "cd " + dir_.path.string() +
                             " && matcher -asequence a.fa -bsequence b.fa -datafile ./DNAMATRIX -gapopen " +
                             std::to_string(gap) + " -gapextend " + std::to_string(gap) + " -alternatives " +
-                            std::to_string(count) + " -aformat3 pair -outfile stdout 2>/dev/null";
-    return parse_pairs(run(cmd));
+                            std::to_string(count) + " -aformat3 pair -outfile stdout";
+    return parse_pairs(test_support::run_command(cmd).out);
   }
 
-  fs::path dir_;
+  const test_support::TempDir dir_;
 };
 
 std::set<std::pair<std::size_t, std::size_t>> pair_set(const align::LocalAlignment& a) {

@@ -1,11 +1,8 @@
 // `seqtopo localize` end to end on a small similarity.npy: outputs, the "not in the map" rows, online mode,
 // and bad input rejected with one error line and no output left behind.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -13,42 +10,18 @@
 #include <string>
 #include <vector>
 
+#include "common/cli_run.hpp"
+#include "common/temp_dir.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Result {
-  int status = 0;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using seqtopo::test_support::CommandResult;
+using seqtopo::test_support::read_file;
 
 class LocalizeCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("seqtopo-localize-cli-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!dir_.empty()) fs::remove_all(dir_);
-  }
-
-  Result run(const std::string& args) {
-    const auto out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string command =
-        std::string(SEQTOPO_CLI) + " localize " + args + " >" + out.string() + " 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    return {WEXITSTATUS(raw), slurp(out), slurp(err)};
-  }
+  static CommandResult localize(const std::string& args) { return seqtopo::test_support::run_cli("localize " + args); }
 
   // A float32 .npy of rows x cols (format 1.0), written by hand so the test needs no library.
   fs::path write_npy(const std::string& name, std::size_t rows, std::size_t cols, const std::vector<float>& values) {
@@ -63,9 +36,7 @@ class LocalizeCli : public ::testing::Test {
     bytes += static_cast<char>(header.size() >> 8);
     bytes += header;
     bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float));
-    const auto path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
+    return dir_.write(name, bytes);
   }
 
   // 50 query frames x 80 map frames: query 0-29 follow map 20-49, query 30-49 are somewhere new.
@@ -78,18 +49,18 @@ class LocalizeCli : public ::testing::Test {
     return write_npy("query_x_map_similarity.npy", 50, 80, v);
   }
 
-  fs::path dir_;
+  const seqtopo::test_support::TempDir dir_;
 };
 
 TEST_F(LocalizeCli, WritesMatchesMetricsAndReport) {
   const auto s = planted();
-  const auto out = dir_ / "out";
-  const auto r = run("--map " + s.string() + " --gt same-index --tolerance 0 --out " + out.string());
+  const auto out = dir_.path / "out";
+  const auto r = localize("--map " + s.string() + " --gt same-index --tolerance 0 --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* name : {"matches.csv", "metrics.json", "pr_curve.png", "report.html", "similarity.png"}) {
     EXPECT_TRUE(fs::exists(out / name)) << name;
   }
-  std::istringstream csv(slurp(out / "matches.csv"));
+  std::istringstream csv(read_file(out / "matches.csv"));
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line, "query,map,score");
@@ -107,12 +78,12 @@ TEST_F(LocalizeCli, WritesMatchesMetricsAndReport) {
   }
   EXPECT_EQ(rows, 50U);
   EXPECT_GE(empty, 15U) << "the 20 frames off the map are reported as not in the map";
-  EXPECT_NE(slurp(out / "metrics.json").find("\"recall_at_100_precision\""), std::string::npos);
+  EXPECT_NE(read_file(out / "metrics.json").find("\"recall_at_100_precision\""), std::string::npos);
 }
 
 TEST_F(LocalizeCli, OnlinePrintsOneEstimatePerFrame) {
   const auto s = planted();
-  const auto r = run("--map " + s.string() + " --online --out " + (dir_ / "out").string());
+  const auto r = localize("--map " + s.string() + " --online --out " + (dir_.path / "out").string());
   ASSERT_EQ(r.status, 0) << r.err;
   std::istringstream lines(r.out);
   std::string line;
@@ -121,28 +92,28 @@ TEST_F(LocalizeCli, OnlinePrintsOneEstimatePerFrame) {
   std::size_t n = 0;
   while (std::getline(lines, line)) ++n;
   EXPECT_EQ(n, 50U);
-  EXPECT_TRUE(fs::exists(dir_ / "out" / "latency.csv"));
+  EXPECT_TRUE(fs::exists(dir_.path / "out" / "latency.csv"));
 }
 
 TEST_F(LocalizeCli, RejectsBadInputWithoutLeavingOutput) {
   const auto s = planted();
-  const auto out = dir_ / "out";
+  const auto out = dir_.path / "out";
   const std::vector<std::string> bad{
       "--map " + s.string() + " --gap -1 --out " + out.string(),
       "--map " + s.string() + " --cap 0 --out " + out.string(),
-      "--map " + (dir_ / "missing.npy").string() + " --out " + out.string(),
-      "--map " + s.string() + " --query " + dir_.string() + " --out " + out.string(),
-      "--map " + s.string() + " --gt " + (dir_ / "missing.csv").string() + " --out " + out.string(),
-      "--query - --map " + dir_.string() + " --out " + out.string(),
+      "--map " + (dir_.path / "missing.npy").string() + " --out " + out.string(),
+      "--map " + s.string() + " --query " + dir_.path.string() + " --out " + out.string(),
+      "--map " + s.string() + " --gt " + (dir_.path / "missing.csv").string() + " --out " + out.string(),
+      "--query - --map " + dir_.path.string() + " --out " + out.string(),
       "--out " + out.string(),
   };
-  std::ofstream(dir_ / "far.csv") << "query,map\n0,500\n";
-  std::ofstream(dir_ / "garbled.csv") << "query,map\n0;1\n";
+  std::ofstream(dir_.path / "far.csv") << "query,map\n0,500\n";
+  std::ofstream(dir_.path / "garbled.csv") << "query,map\n0;1\n";
   std::vector<std::string> all = bad;
-  all.push_back("--map " + s.string() + " --gt " + (dir_ / "far.csv").string() + " --out " + out.string());
-  all.push_back("--map " + s.string() + " --gt " + (dir_ / "garbled.csv").string() + " --out " + out.string());
+  all.push_back("--map " + s.string() + " --gt " + (dir_.path / "far.csv").string() + " --out " + out.string());
+  all.push_back("--map " + s.string() + " --gt " + (dir_.path / "garbled.csv").string() + " --out " + out.string());
   for (const auto& args : all) {
-    const auto r = run(args);
+    const auto r = localize(args);
     EXPECT_NE(r.status, 0) << args;
     EXPECT_EQ(r.err.rfind("seqtopo: error: ", 0), 0U) << args << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

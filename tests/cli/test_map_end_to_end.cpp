@@ -8,38 +8,31 @@
 #include <sstream>
 
 #include "common/cli_run.hpp"
+#include "common/temp_dir.hpp"
 #include "seqtopo/io/npy.hpp"
 
 namespace {
 namespace fs = std::filesystem;
 
+using seqtopo::test_support::read_file;
+using seqtopo::test_support::run_cli;
+
 class MapCommand : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("seqtopo-map-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  int run(const std::string& args, std::string* err = nullptr) {
-    return seqtopo::test_support::run_cli(args, dir_ / "stderr.txt", err);
-  }
-  static std::string read(const fs::path& path) { return seqtopo::test_support::read_file(path); }
-  fs::path dir_;
+  const seqtopo::test_support::TempDir dir_;
 };
 
 // Band stated in the README: on the bundled corridor the default preset reaches F1 0.977, AUC 0.955
 // (precision 1.0). The test allows a small margin for deliberate tuning changes, not for regressions.
 TEST_F(MapCommand, BundledCorridorGoldenRun) {
-  const fs::path out = dir_ / "out";
-  std::string err;
-  ASSERT_EQ(run("map --out " + out.string(), &err), 0) << err;
+  const fs::path out = dir_.path / "out";
+  const auto r = run_cli("map --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
   for (const char* name : {"map.json", "alignments.json", "loop_closures.csv", "similarity.npy", "similarity.png",
                            "topology.dot", "topology.svg", "pr_curve.png", "metrics.json", "report.html"}) {
     EXPECT_TRUE(fs::exists(out / name)) << name;
   }
-  const auto metrics = nlohmann::json::parse(read(out / "metrics.json"));
+  const auto metrics = nlohmann::json::parse(read_file(out / "metrics.json"));
   const auto& lc = metrics.at("loop_closure");
   EXPECT_GE(lc.at("f1").get<double>(), 0.95);
   EXPECT_GE(lc.at("auc").get<double>(), 0.93);
@@ -48,7 +41,7 @@ TEST_F(MapCommand, BundledCorridorGoldenRun) {
   // and the alignment beats the SeqSLAM-style baseline on the same data
   EXPECT_GT(lc.at("auc").get<double>(), metrics.at("baseline").at("auc").get<double>());
 
-  const auto map = nlohmann::json::parse(read(out / "map.json"));
+  const auto map = nlohmann::json::parse(read_file(out / "map.json"));
   ASSERT_EQ(map.at("images").get<int>(), 84);
   ASSERT_EQ(map.at("labels").size(), 84U);
   // images 41..84 revisit 1..44 (1-based): most revisit images share a label with an early image
@@ -60,7 +53,7 @@ TEST_F(MapCommand, BundledCorridorGoldenRun) {
   EXPECT_GE(shared, 35);
   for (const auto& p : map.at("edges")) EXPECT_LT(p[0].get<int>(), p[1].get<int>());
 
-  std::istringstream csv(read(out / "loop_closures.csv"));
+  std::istringstream csv(read_file(out / "loop_closures.csv"));
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line, "i,j,score");
@@ -72,49 +65,53 @@ TEST_F(MapCommand, BundledCorridorGoldenRun) {
     ++rows;
   }
   EXPECT_GT(rows, 30);
-  const std::string svg = read(out / "topology.svg");
+  const std::string svg = read_file(out / "topology.svg");
   EXPECT_NE(svg.find("<svg"), std::string::npos);
-  const std::string html = read(out / "report.html");
+  const std::string html = read_file(out / "report.html");
   EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
   EXPECT_EQ(html.find("http://"), std::string::npos) << "the report must not load anything from the network";
-  EXPECT_EQ(read(out / "similarity.png").substr(1, 3), "PNG");
+  EXPECT_EQ(read_file(out / "similarity.png").substr(1, 3), "PNG");
 }
 
 TEST_F(MapCommand, SameOutputsForAnyThreadCount) {
-  const fs::path one = dir_ / "one", two = dir_ / "two";
-  ASSERT_EQ(run("map --threads 1 --out " + one.string()), 0);
-  ASSERT_EQ(run("map --threads 2 --out " + two.string()), 0);
+  const fs::path one = dir_.path / "one", two = dir_.path / "two";
+  ASSERT_EQ(run_cli("map --threads 1 --out " + one.string()).status, 0);
+  ASSERT_EQ(run_cli("map --threads 2 --out " + two.string()).status, 0);
   for (const char* name : {"map.json", "alignments.json", "loop_closures.csv", "similarity.npy", "scores.npy",
                            "metrics.json", "topology.dot", "similarity.png"}) {
-    EXPECT_EQ(read(one / name), read(two / name)) << name;
+    EXPECT_EQ(read_file(one / name), read_file(two / name)) << name;
   }
 }
 
 TEST_F(MapCommand, BadInputsGiveOneLineAndNoOutput) {
-  const fs::path out = dir_ / "out";
-  std::string err;
-  seqtopo::io::write_npy(dir_ / "rect.npy", seqtopo::DenseMatrix<float>(3, 4, 0.5F));
-  EXPECT_NE(run("map " + (dir_ / "rect.npy").string() + " --input-kind similarity --out " + out.string(), &err), 0);
-  EXPECT_EQ(err.rfind("seqtopo: error: ", 0), 0U) << err;
-  EXPECT_NE(err.find("square"), std::string::npos) << err;
+  const fs::path out = dir_.path / "out";
+  seqtopo::io::write_npy(dir_.path / "rect.npy", seqtopo::DenseMatrix<float>(3, 4, 0.5F));
+  auto r = run_cli("map " + (dir_.path / "rect.npy").string() + " --input-kind similarity --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.err.rfind("seqtopo: error: ", 0), 0U) << r.err;
+  EXPECT_NE(r.err.find("square"), std::string::npos) << r.err;
 
-  seqtopo::io::write_npy(dir_ / "s.npy", seqtopo::DenseMatrix<float>(30, 30, 0.5F));
-  std::ofstream(dir_ / "odo.csv") << "index,x,y,theta\n0,0,0,0\n1,1,0,0\n";
-  EXPECT_NE(
-      run("map " + (dir_ / "s.npy").string() + " --odometry " + (dir_ / "odo.csv").string() + " --out " + out.string(),
-          &err),
-      0);
-  EXPECT_EQ(err, "seqtopo: error: " + (dir_ / "odo.csv").string() + ": has 2 poses, the sequence has 30 images\n");
+  seqtopo::io::write_npy(dir_.path / "s.npy", seqtopo::DenseMatrix<float>(30, 30, 0.5F));
+  std::ofstream(dir_.path / "odo.csv") << "index,x,y,theta\n0,0,0,0\n1,1,0,0\n";
+  r = run_cli("map " + (dir_.path / "s.npy").string() + " --odometry " + (dir_.path / "odo.csv").string() + " --out " +
+              out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.err,
+            "seqtopo: error: " + (dir_.path / "odo.csv").string() + ": has 2 poses, the sequence has 30 images\n");
 
-  EXPECT_NE(run("map " + (dir_ / "missing").string() + " --out " + out.string(), &err), 0);
-  EXPECT_NE(err.find("missing"), std::string::npos);
-  EXPECT_NE(run("map --gap -1 --out " + out.string(), &err), 0);
-  EXPECT_EQ(err.rfind("seqtopo: error: --gap", 0), 0U) << err;
-  EXPECT_NE(run("map --preset nope --out " + out.string(), &err), 0);
-  EXPECT_NE(run("map --odometry-gate 2 --out " + out.string(), &err), 0);
-  EXPECT_EQ(err.rfind("seqtopo: error: --odometry-gate: expected BASE,DRIFT", 0), 0U) << err;
-  EXPECT_NE(run("map --odometry-gate 2,-1 --out " + out.string(), &err), 0);
-  EXPECT_EQ(err.rfind("seqtopo: error: --odometry-gate", 0), 0U) << err;
+  r = run_cli("map " + (dir_.path / "missing").string() + " --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("missing"), std::string::npos);
+  r = run_cli("map --gap -1 --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.err.rfind("seqtopo: error: --gap", 0), 0U) << r.err;
+  EXPECT_NE(run_cli("map --preset nope --out " + out.string()).status, 0);
+  r = run_cli("map --odometry-gate 2 --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.err.rfind("seqtopo: error: --odometry-gate: expected BASE,DRIFT", 0), 0U) << r.err;
+  r = run_cli("map --odometry-gate 2,-1 --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.err.rfind("seqtopo: error: --odometry-gate", 0), 0U) << r.err;
 
   // nothing was left behind: the output folder is absent or empty
   EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out));

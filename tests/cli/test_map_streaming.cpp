@@ -18,6 +18,8 @@
 namespace {
 namespace fs = std::filesystem;
 using seqtopo::DenseMatrix;
+using seqtopo::test_support::read_file;
+using seqtopo::test_support::run_cli;
 
 // A walk through descriptor space that comes back over an earlier part forward (frames n/2 .. n/2 + n/5
 // repeat 0 .. n/5) and another backward (the next n/5 frames repeat 3n/10 .. n/10 in reverse).
@@ -46,10 +48,6 @@ std::size_t true_place(std::size_t i, std::size_t n) {
 
 class MapStreaming : public ::testing::Test {
  protected:
-  int run(const std::string& args, std::string* err = nullptr) {
-    return seqtopo::test_support::run_cli(args, dir_.path / "stderr.txt", err);
-  }
-  static std::string read(const fs::path& path) { return seqtopo::test_support::read_file(path); }
   // descriptors.npy of the walk, and the cosine matrix the streamed score starts from (float dot products
   // of the normalised rows, StreamingSimilarity::cosine) as a similarity.npy: the dense command on it
   // aligns enhance_contrast_symmetric(cosine), which the streamed score equals bit for bit.
@@ -80,18 +78,18 @@ class MapStreaming : public ::testing::Test {
 TEST_F(MapStreaming, SameMapAsTheDenseCommandOnTheSameScores) {
   const std::size_t n = 360;
   write_walk(n, 24);
-  std::string err;
-  ASSERT_EQ(run("map " + path("walk.npy") + " --streaming --out " + path("streamed"), &err), 0) << err;
-  ASSERT_EQ(run("map " + path("cosine.npy") + " --input-kind similarity --engine fast --out " + path("dense"), &err), 0)
-      << err;
+  auto r = run_cli("map " + path("walk.npy") + " --streaming --out " + path("streamed"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run_cli("map " + path("cosine.npy") + " --input-kind similarity --engine fast --out " + path("dense"));
+  ASSERT_EQ(r.status, 0) << r.err;
   const fs::path streamed = path("streamed"), dense = path("dense");
   // None of these files holds a timing: byte for byte. similarity.png too: below 2048 images the overview
   // is the score matrix itself.
   for (const char* name : {"map.json", "alignments.json", "loop_closures.csv", "topology.dot", "similarity.png"}) {
     ASSERT_TRUE(fs::exists(streamed / name)) << name;
-    EXPECT_EQ(read(streamed / name), read(dense / name)) << name;
+    EXPECT_EQ(read_file(streamed / name), read_file(dense / name)) << name;
   }
-  const auto map = nlohmann::json::parse(read(streamed / "map.json"));
+  const auto map = nlohmann::json::parse(read_file(streamed / "map.json"));
   EXPECT_EQ(map.at("images").get<std::size_t>(), n);
   EXPECT_GE(map.at("alignments").size(), 2U) << "the walk has a forward and a reverse revisit";
   EXPECT_FALSE(fs::exists(streamed / "scores.npy"));
@@ -109,9 +107,10 @@ TEST_F(MapStreaming, SameMapAsTheDenseCommandOnTheSameScores) {
   }
 
   // and the result does not depend on the thread count
-  ASSERT_EQ(run("map " + path("walk.npy") + " --streaming --threads 1 --out " + path("one"), &err), 0) << err;
+  r = run_cli("map " + path("walk.npy") + " --streaming --threads 1 --out " + path("one"));
+  ASSERT_EQ(r.status, 0) << r.err;
   for (const char* name : {"map.json", "alignments.json", "loop_closures.csv", "similarity.png"}) {
-    EXPECT_EQ(read(fs::path(path("one")) / name), read(streamed / name)) << name;
+    EXPECT_EQ(read_file(fs::path(path("one")) / name), read_file(streamed / name)) << name;
   }
 }
 
@@ -120,19 +119,17 @@ TEST_F(MapStreaming, GroundTruthOdometryAndReport) {
   write_walk(n, 16);
   const std::string truth = " --ground-truth " + path("poses.csv") + " --gt-radius 2 --gt-places " +
                             path("places.csv") + " --odometry " + path("odometry.csv") + " --odometry-gate none";
-  std::string err;
-  ASSERT_EQ(run("map " + path("walk.npy") + " --streaming" + truth + " --out " + path("streamed"), &err), 0) << err;
-  ASSERT_EQ(
-      run("map " + path("cosine.npy") + " --input-kind similarity --engine fast" + truth + " --out " + path("dense"),
-          &err),
-      0)
-      << err;
+  auto r = run_cli("map " + path("walk.npy") + " --streaming" + truth + " --out " + path("streamed"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run_cli("map " + path("cosine.npy") + " --input-kind similarity --engine fast" + truth + " --out " +
+              path("dense"));
+  ASSERT_EQ(r.status, 0) << r.err;
   const fs::path streamed = path("streamed");
   for (const char* name : {"metric_map.png", "pr_curve.png", "metrics.json", "report.html"}) {
     EXPECT_TRUE(fs::exists(streamed / name)) << name;
   }
-  const auto metrics = nlohmann::json::parse(read(streamed / "metrics.json"));
-  const auto dense_metrics = nlohmann::json::parse(read(fs::path(path("dense")) / "metrics.json"));
+  const auto metrics = nlohmann::json::parse(read_file(streamed / "metrics.json"));
+  const auto dense_metrics = nlohmann::json::parse(read_file(fs::path(path("dense")) / "metrics.json"));
   EXPECT_TRUE(metrics.at("streaming").get<bool>());
   EXPECT_FALSE(dense_metrics.contains("streaming"));
   EXPECT_FALSE(metrics.contains("baseline"));
@@ -141,7 +138,7 @@ TEST_F(MapStreaming, GroundTruthOdometryAndReport) {
   EXPECT_EQ(metrics.at("topology"), dense_metrics.at("topology"));
   EXPECT_GT(metrics.at("loop_closure").at("tp").get<int>(), 0);
 
-  const std::string html = read(streamed / "report.html");
+  const std::string html = read_file(streamed / "report.html");
   EXPECT_NE(html.find("streaming"), std::string::npos);
   EXPECT_NE(html.find("Timings"), std::string::npos);
   EXPECT_NE(html.find("alignment (similarity streamed)"), std::string::npos);
@@ -150,30 +147,29 @@ TEST_F(MapStreaming, GroundTruthOdometryAndReport) {
 
 TEST_F(MapStreaming, SyntheticRouteOfTheBenchmarkMapsItsRevisits) {
   // `seqtopo bench scale --write-route` writes the route BENCHMARK.md maps at 10^5 frames, with its truth.
-  std::string err;
-  ASSERT_EQ(run("bench scale --sizes 3000 --write-route " + path("route"), &err), 0) << err;
+  auto r = run_cli("bench scale --sizes 3000 --write-route " + path("route"));
+  ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(seqtopo::io::read_npy_header(path("route") + "/descriptors.npy").shape,
             (std::vector<std::size_t>{3000, 64}));
-  ASSERT_EQ(run("map " + path("route") + "/descriptors.npy --streaming --ground-truth " + path("route") +
-                    "/poses.csv --gt-radius 5 --out " + path("out"),
-                &err),
-            0)
-      << err;
-  const auto metrics = nlohmann::json::parse(read(fs::path(path("out")) / "metrics.json"));
+  r = run_cli("map " + path("route") + "/descriptors.npy --streaming --ground-truth " + path("route") +
+              "/poses.csv --gt-radius 5 --out " + path("out"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto metrics = nlohmann::json::parse(read_file(fs::path(path("out")) / "metrics.json"));
   // Its consecutive places look almost as alike as a revisit, so alignments land a few frames off.
   EXPECT_GT(metrics.at("loop_closure").at("recall").get<double>(), 0.5);
   EXPECT_GT(metrics.at("loop_closure").at("precision").get<double>(), 0.9);
-  EXPECT_NE(run("bench scale --sizes 300,600 --write-route " + path("two"), &err), 0);
-  EXPECT_NE(err.find("--write-route"), std::string::npos) << err;
+  r = run_cli("bench scale --sizes 300,600 --write-route " + path("two"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("--write-route"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("two") + "/descriptors.npy"));
 }
 
 TEST_F(MapStreaming, LargeSequenceGetsABlockMaxOverview) {
   const std::size_t n = 2300;  // above 2048: the overview takes 2 x 2 blocks
   write_walk(n, 8);
-  std::string err;
-  ASSERT_EQ(run("map " + path("walk.npy") + " --streaming --out " + path("out"), &err), 0) << err;
-  const std::string png = read(fs::path(path("out")) / "similarity.png");
+  const auto r = run_cli("map " + path("walk.npy") + " --streaming --out " + path("out"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string png = read_file(fs::path(path("out")) / "similarity.png");
   ASSERT_GE(png.size(), 24U);
   auto be32 = [&](std::size_t at) {
     return (static_cast<std::uint32_t>(static_cast<unsigned char>(png[at])) << 24U) |
@@ -183,15 +179,14 @@ TEST_F(MapStreaming, LargeSequenceGetsABlockMaxOverview) {
   };
   EXPECT_EQ(be32(16), (n + 1) / 2);  // IHDR width
   EXPECT_EQ(be32(20), (n + 1) / 2);  // IHDR height
-  EXPECT_NE(read(fs::path(path("out")) / "report.html").find("block of 2 x 2 scores"), std::string::npos);
+  EXPECT_NE(read_file(fs::path(path("out")) / "report.html").find("block of 2 x 2 scores"), std::string::npos);
 }
 
 TEST_F(MapStreaming, ImageFolderWithOneVectorDescriptor) {
   const std::string corridor = std::string(SEQTOPO_SOURCE_DIR) + "/data/rtabmap-corridor";
-  std::string err;
-  ASSERT_EQ(run("map " + corridor + " --streaming --descriptor patch --metric cosine --out " + path("out"), &err), 0)
-      << err;
-  const auto map = nlohmann::json::parse(read(fs::path(path("out")) / "map.json"));
+  const auto r = run_cli("map " + corridor + " --streaming --descriptor patch --metric cosine --out " + path("out"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto map = nlohmann::json::parse(read_file(fs::path(path("out")) / "map.json"));
   EXPECT_EQ(map.at("images").get<int>(), 84);
   EXPECT_FALSE(map.at("alignments").empty());
 }
@@ -218,10 +213,10 @@ TEST_F(MapStreaming, RefusesWhatNeedsTheMatrixInOneLine) {
   };
   const fs::path out = path("out");
   for (const auto& [args, subject] : cases) {
-    std::string err;
-    EXPECT_NE(run("map " + args + " --streaming --out " + out.string(), &err), 0) << args;
-    EXPECT_EQ(err.rfind("seqtopo: error: " + subject + ": ", 0), 0U) << args << "\n" << err;
-    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << args << "\n" << err;
+    const auto r = run_cli("map " + args + " --streaming --out " + out.string());
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(r.err.rfind("seqtopo: error: " + subject + ": ", 0), 0U) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
     EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out)) << args;
   }
 }

@@ -1,22 +1,19 @@
 // The simulator feeding the other commands, as a user chains them: the localization paper's rooms
 // test (simulate -> fingerprint -> match-strings) and a mapping run with odometry on a figure-eight.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "common/cli_run.hpp"
 #include "common/temp_dir.hpp"
 
 namespace {
 namespace fs = std::filesystem;
 
-int run(const std::string& args) {
-  const int raw = std::system((std::string(SEQTOPO_CLI) + " " + args + " >/dev/null 2>&1 </dev/null").c_str());
-  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-}
+using seqtopo::test_support::run_cli;
 
 std::size_t data_lines(const fs::path& path) {
   std::ifstream in(path);
@@ -29,21 +26,22 @@ std::size_t data_lines(const fs::path& path) {
 TEST(SimulatedWorlds, RoomsThroughFingerprintsAndStringMatching) {
   seqtopo::test_support::TempDir dir;
   const std::string world = (dir.path / "rooms").string();
-  ASSERT_EQ(run("simulate --scenario rooms --no-images --out " + world), 0);
-  ASSERT_EQ(run("fingerprint " + world + "/panoramas --positions " + world + "/points.csv --role map --out " + world +
-                "/map.tsv"),
-            0);
-  ASSERT_EQ(run("fingerprint " + world + "/panoramas --positions " + world + "/points.csv --role test --out " + world +
-                "/test.tsv"),
-            0);
+  const auto simulated = run_cli("simulate --scenario rooms --no-images --out " + world);
+  ASSERT_EQ(simulated.status, 0) << simulated.err;
+  const auto map_points = run_cli("fingerprint " + world + "/panoramas --positions " + world +
+                                  "/points.csv --role map --out " + world + "/map.tsv");
+  ASSERT_EQ(map_points.status, 0) << map_points.err;
+  const auto test_points = run_cli("fingerprint " + world + "/panoramas --positions " + world +
+                                   "/points.csv --role test --out " + world + "/test.tsv");
+  ASSERT_EQ(test_points.status, 0) << test_points.err;
   EXPECT_EQ(data_lines(world + "/map.tsv"), 10U);   // ten rooms, one map point each
   EXPECT_EQ(data_lines(world + "/test.tsv"), 30U);  // three test points per room
   for (const char* algorithm : {"A", "B", "C"}) {
     const std::string out = world + "/out-" + algorithm;
-    ASSERT_EQ(run("match-strings --db " + world + "/map.tsv --queries " + world + "/test.tsv --algorithm " + algorithm +
-                  " --adjacency " + world + "/adjacency.csv --out " + out),
-              0)
-        << algorithm;
+    const auto matched =
+        run_cli("match-strings --db " + world + "/map.tsv --queries " + world + "/test.tsv --algorithm " + algorithm +
+                " --adjacency " + world + "/adjacency.csv --out " + out);
+    ASSERT_EQ(matched.status, 0) << algorithm << "\n" << matched.err;
     std::ifstream in(out + "/metrics.json");
     const auto metrics = nlohmann::json::parse(in);
     EXPECT_EQ(metrics.at("queries").get<int>(), 30);
@@ -56,11 +54,11 @@ TEST(SimulatedWorlds, RoomsThroughFingerprintsAndStringMatching) {
 TEST(SimulatedWorlds, FigureEightMapsWithOdometry) {
   seqtopo::test_support::TempDir dir;
   const std::string world = (dir.path / "eight").string();
-  ASSERT_EQ(run("simulate --scenario figure-eight --no-images --interval 0.5 --panorama-width 120 --panorama-height 24 "
-                "--supersample 1 "
-                "--out " +
-                world),
-            0);
+  const auto simulated = run_cli(
+      "simulate --scenario figure-eight --no-images --interval 0.5 --panorama-width 120 --panorama-height 24 "
+      "--supersample 1 --out " +
+      world);
+  ASSERT_EQ(simulated.status, 0) << simulated.err;
   const std::size_t frames = data_lines(world + "/odometry.csv") - 1;  // minus the header
   ASSERT_GT(frames, 80U);
   EXPECT_EQ(data_lines(world + "/poses.csv") - 1, frames);
@@ -70,10 +68,10 @@ TEST(SimulatedWorlds, FigureEightMapsWithOdometry) {
   EXPECT_EQ(panoramas, frames);
 
   const std::string out = (dir.path / "map").string();
-  ASSERT_EQ(
-      run("map " + world + "/panoramas --odometry " + world + "/odometry.csv --ground-truth " + world +
-          "/ground_truth.png --gt-places " + world + "/places.csv --gt-poses " + world + "/poses.csv --out " + out),
-      0);
+  const auto mapped =
+      run_cli("map " + world + "/panoramas --odometry " + world + "/odometry.csv --ground-truth " + world +
+              "/ground_truth.png --gt-places " + world + "/places.csv --gt-poses " + world + "/poses.csv --out " + out);
+  ASSERT_EQ(mapped.status, 0) << mapped.err;
   EXPECT_TRUE(fs::exists(out + "/metric_map.png"));
   std::ifstream in(out + "/metrics.json");
   const auto metrics = nlohmann::json::parse(in);
@@ -88,15 +86,17 @@ TEST(SimulatedWorlds, FigureEightMapsWithOdometry) {
 TEST(SimulatedWorlds, CorridorWalkedBackIsFoundWithThePanoramaDescriptor) {
   seqtopo::test_support::TempDir dir;
   const std::string world = (dir.path / "corridor").string();
-  ASSERT_EQ(run("simulate --scenario corridor-reverse --no-images --interval 0.5 --panorama-width 120 "
-                "--panorama-height 24 --supersample 1 --out " +
-                world),
-            0);
+  const auto simulated = run_cli(
+      "simulate --scenario corridor-reverse --no-images --interval 0.5 --panorama-width 120 "
+      "--panorama-height 24 --supersample 1 --out " +
+      world);
+  ASSERT_EQ(simulated.status, 0) << simulated.err;
   const std::string out = (dir.path / "map").string();
-  ASSERT_EQ(run("map " + world + "/panoramas --descriptor joint-histogram,panorama --min-separation 10 --odometry " +
-                world + "/odometry.csv --ground-truth " + world + "/ground_truth.png --gt-places " + world +
-                "/places.csv --gt-poses " + world + "/poses.csv --out " + out),
-            0);
+  const auto mapped =
+      run_cli("map " + world + "/panoramas --descriptor joint-histogram,panorama --min-separation 10 --odometry " +
+              world + "/odometry.csv --ground-truth " + world + "/ground_truth.png --gt-places " + world +
+              "/places.csv --gt-poses " + world + "/poses.csv --out " + out);
+  ASSERT_EQ(mapped.status, 0) << mapped.err;
   std::ifstream in(out + "/metrics.json");
   const auto metrics = nlohmann::json::parse(in);
   EXPECT_GE(metrics.at("loop_closure").at("f1").get<double>(), 0.9);

@@ -1,8 +1,9 @@
 #pragma once
-// A scratch folder for one test, removed with everything in it when the test ends.
+// A scratch folder for one test, removed with everything in it when the test ends, and reading a file whole.
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 namespace seqtopo::test_support {
@@ -23,5 +24,13 @@ struct TempDir {
     return path / name;
   }
 };
+
+// The bytes of the file at `path` ("" if it cannot be read).
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 }  // namespace seqtopo::test_support

@@ -1,11 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <random>
 #include <string>
 
+#include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
 
@@ -16,23 +16,9 @@ namespace fs = std::filesystem;
 
 class OdometryCsv : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("seqtopo-odometry-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
-            std::to_string(std::random_device{}()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p) << text;
-    return p;
-  }
-
   // The InputError subject of reading `text`, or "" when it reads fine.
   std::string error_subject(const std::string& text, bool poses = false) {
-    const fs::path p = write("bad.csv", text);
+    const fs::path p = dir_.write("bad.csv", text);
     try {
       if (poses) {
         read_poses_csv(p);
@@ -45,12 +31,12 @@ class OdometryCsv : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  const test_support::TempDir dir_;
 };
 
 TEST_F(OdometryCsv, CumulativePoses) {
   const auto poses =
-      read_odometry_csv(write("odo.csv", "index,x,y,theta\n0,0,0,0\n1, 0.5 ,0.25,0.1\r\n\n2,1.0,-2,+3\n"));
+      read_odometry_csv(dir_.write("odo.csv", "index,x,y,theta\n0,0,0,0\n1, 0.5 ,0.25,0.1\r\n\n2,1.0,-2,+3\n"));
   ASSERT_EQ(poses.size(), 3U);
   EXPECT_DOUBLE_EQ(poses[1].x, 0.5);
   EXPECT_DOUBLE_EQ(poses[1].y, 0.25);
@@ -62,7 +48,7 @@ TEST_F(OdometryCsv, CumulativePoses) {
 TEST_F(OdometryCsv, IncrementsAreComposedInTheRobotFrame) {
   // Forward 1 m, turn left 90 degrees, forward 1 m: the robot ends at (1, 1) facing +y.
   const auto poses =
-      read_odometry_csv(write("inc.csv", "index,dx,dy,dtheta\n0,0,0,0\n1,1,0,1.5707963267948966\n2,1,0,0\n"));
+      read_odometry_csv(dir_.write("inc.csv", "index,dx,dy,dtheta\n0,0,0,0\n1,1,0,1.5707963267948966\n2,1,0,0\n"));
   ASSERT_EQ(poses.size(), 3U);
   EXPECT_NEAR(poses[1].x, 1, 1e-12);
   EXPECT_NEAR(poses[1].y, 0, 1e-12);
@@ -85,8 +71,8 @@ TEST_F(OdometryCsv, IntegratedIncrementsEqualTheCumulativeForm) {
     std::snprintf(buf, sizeof buf, "%zu,%.17g,%.17g,%.17g\n", i, d.x, d.y, d.theta);
     increments += buf;
   }
-  const auto a = read_odometry_csv(write("a.csv", cumulative));
-  const auto b = read_odometry_csv(write("b.csv", increments));
+  const auto a = read_odometry_csv(dir_.write("a.csv", cumulative));
+  const auto b = read_odometry_csv(dir_.write("b.csv", increments));
   ASSERT_EQ(a.size(), truth.size());
   ASSERT_EQ(b.size(), truth.size());
   for (std::size_t i = 0; i < truth.size(); ++i) {
@@ -97,18 +83,18 @@ TEST_F(OdometryCsv, IntegratedIncrementsEqualTheCumulativeForm) {
 }
 
 TEST_F(OdometryCsv, GroundTruthPosesWithAndWithoutHeading) {
-  const auto xy = read_poses_csv(write("gt.csv", "index,x,y\n0,1,2\n1,3,4\n"));
+  const auto xy = read_poses_csv(dir_.write("gt.csv", "index,x,y\n0,1,2\n1,3,4\n"));
   ASSERT_EQ(xy.size(), 2U);
   EXPECT_DOUBLE_EQ(xy[1].x, 3);
   EXPECT_DOUBLE_EQ(xy[1].y, 4);
   EXPECT_DOUBLE_EQ(xy[1].theta, 0);
-  const auto xyt = read_poses_csv(write("gt2.csv", "index,x,y,theta\n0,1,2,0.5\n"));
+  const auto xyt = read_poses_csv(dir_.write("gt2.csv", "index,x,y,theta\n0,1,2,0.5\n"));
   ASSERT_EQ(xyt.size(), 1U);
   EXPECT_DOUBLE_EQ(xyt[0].theta, 0.5);
 }
 
 TEST_F(OdometryCsv, ErrorsNameTheFileAndLine) {
-  const std::string bad = (dir_ / "bad.csv").string();
+  const std::string bad = (dir_.path / "bad.csv").string();
   EXPECT_EQ(error_subject("index,x,y\n0,0,0\n"), bad + ":1");  // wrong header for odometry
   EXPECT_EQ(error_subject("idx,x,y,theta\n0,0,0,0\n"), bad + ":1");
   EXPECT_EQ(error_subject("index,x,y,theta\n0,0,0,0\n1,0,abc,0\n"), bad + ":3");  // non-numeric
@@ -127,7 +113,7 @@ TEST_F(OdometryCsv, ErrorsNameTheFileAndLine) {
   EXPECT_EQ(error_subject("index,dx,dy,dtheta\n0,0,0,0\n", true), bad + ":1");  // increments are not poses
   EXPECT_EQ(error_subject("index,x,y\n0,0,q\n", true), bad + ":2");
 
-  const fs::path missing = dir_ / "missing.csv";
+  const fs::path missing = dir_.path / "missing.csv";
   try {
     read_odometry_csv(missing);
     FAIL() << "no error for a missing file";
@@ -139,13 +125,13 @@ TEST_F(OdometryCsv, ErrorsNameTheFileAndLine) {
 
 TEST_F(OdometryCsv, MessagesSayWhatIsWrong) {
   try {
-    read_odometry_csv(write("h.csv", "index,x,y\n"));
+    read_odometry_csv(dir_.write("h.csv", "index,x,y\n"));
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("index,dx,dy,dtheta"), std::string::npos) << e.what();
   }
   try {
-    read_odometry_csv(write("o.csv", "index,x,y,theta\n0,0,0,0\n5,0,0,0\n"));
+    read_odometry_csv(dir_.write("o.csv", "index,x,y,theta\n0,0,0,0\n5,0,0,0\n"));
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("expected 1"), std::string::npos) << e.what();

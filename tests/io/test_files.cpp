@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/fasta.hpp"
@@ -14,51 +15,41 @@ namespace fs = std::filesystem;
 
 class Files : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("seqtopo-files-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return dir_ / name;
-  }
-  fs::path dir_;
+  const test_support::TempDir dir_;
 };
 
 TEST_F(Files, FastaRecordsAndErrors) {
-  const auto records = read_fasta(write("ok.fa", ">one first\nACGT\nAC GT\r\n\n>two\nTT\n"));
+  const auto records = read_fasta(dir_.write("ok.fa", ">one first\nACGT\nAC GT\r\n\n>two\nTT\n"));
   ASSERT_EQ(records.size(), 2U);
   EXPECT_EQ(records[0].name, "one first");
   EXPECT_EQ(records[0].sequence, "ACGTACGT");
   EXPECT_EQ(records[1].sequence, "TT");
-  EXPECT_THROW(read_fasta(dir_ / "missing.fa"), InputError);
-  EXPECT_THROW(read_fasta(write("empty.fa", "")), InputError);
-  EXPECT_THROW(read_fasta(write("nohead.fa", "ACGT\n")), InputError);
-  EXPECT_THROW(read_fasta(write("emptyrec.fa", ">a\n>b\nAC\n")), InputError);
+  EXPECT_THROW(read_fasta(dir_.path / "missing.fa"), InputError);
+  EXPECT_THROW(read_fasta(dir_.write("empty.fa", "")), InputError);
+  EXPECT_THROW(read_fasta(dir_.write("nohead.fa", "ACGT\n")), InputError);
+  EXPECT_THROW(read_fasta(dir_.write("emptyrec.fa", ">a\n>b\nAC\n")), InputError);
   try {
-    read_fasta(write("line.fa", "\nACGT\n"));
+    read_fasta(dir_.write("line.fa", "\nACGT\n"));
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(e.subject(), (dir_ / "line.fa").string() + ":2");
+    EXPECT_EQ(e.subject(), (dir_.path / "line.fa").string() + ":2");
   }
 }
 
 TEST_F(Files, AtomicFileReplacesWhole) {
-  write_file_atomic(dir_ / "a.txt", "first");
-  write_file_atomic(dir_ / "a.txt", "second");
-  std::ifstream in(dir_ / "a.txt");
+  write_file_atomic(dir_.path / "a.txt", "first");
+  write_file_atomic(dir_.path / "a.txt", "second");
+  std::ifstream in(dir_.path / "a.txt");
   std::string text((std::istreambuf_iterator<char>(in)), {});
   EXPECT_EQ(text, "second");
   std::size_t files = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++files;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_.path)) ++files;
   EXPECT_EQ(files, 1U) << "no temporary file may be left behind";
-  EXPECT_THROW(write_file_atomic(dir_ / "no" / "such" / "dir.txt", "x"), InputError);
+  EXPECT_THROW(write_file_atomic(dir_.path / "no" / "such" / "dir.txt", "x"), InputError);
 }
 
 TEST_F(Files, OutputDirectoryIsAllOrNothing) {
-  const fs::path out = dir_ / "out";
+  const fs::path out = dir_.path / "out";
   {
     OutputDirectory staged(out);
     staged.write("one.txt", "1");
@@ -90,7 +81,7 @@ namespace seqtopo::io {
 namespace {
 
 TEST_F(Files, CsvRowsUnderAnExactHeader) {
-  const auto path = write("c.csv", "# made by hand\na,b\r\n1,2\n\n# comment\nx,\n");
+  const auto path = dir_.write("c.csv", "# made by hand\na,b\r\n1,2\n\n# comment\nx,\n");
   const auto rows = read_csv(path, {"a", "b"});
   ASSERT_EQ(rows.size(), 2U);
   EXPECT_EQ(rows[0].fields, (std::vector<std::string>{"1", "2"}));
@@ -100,14 +91,14 @@ TEST_F(Files, CsvRowsUnderAnExactHeader) {
       {"hdr.csv", "a,c\n1,2\n", ":1"}, {"few.csv", "a,b\n1\n", ":2"}, {"many.csv", "a,b\n1,2,3\n", ":2"}};
   for (const auto& [name, text, subject] : bad) {
     try {
-      read_csv(write(name, text), {"a", "b"});
+      read_csv(dir_.write(name, text), {"a", "b"});
       FAIL() << name;
     } catch (const InputError& e) {
-      EXPECT_EQ(e.subject(), (dir_ / name).string() + subject) << e.what();
+      EXPECT_EQ(e.subject(), (dir_.path / name).string() + subject) << e.what();
     }
   }
-  EXPECT_THROW(read_csv(write("empty.csv", "# nothing\n"), {"a", "b"}), InputError);
-  EXPECT_THROW(read_csv(dir_ / "missing.csv", {"a", "b"}), InputError);
+  EXPECT_THROW(read_csv(dir_.write("empty.csv", "# nothing\n"), {"a", "b"}), InputError);
+  EXPECT_THROW(read_csv(dir_.path / "missing.csv", {"a", "b"}), InputError);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <random>
 
+#include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/npy.hpp"
 
@@ -16,13 +17,6 @@ namespace fs = std::filesystem;
 
 class Npy : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("seqtopo-npy-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // Writes a .npy by hand: header dict text (padded as numpy does) then raw bytes.
   fs::path handmade(const std::string& name, const std::string& dict, const std::string& data, int version = 1) {
     std::string header = dict;
@@ -40,9 +34,7 @@ class Npy : public ::testing::Test {
       bytes.append(reinterpret_cast<const char*>(&len), 4);
     }
     bytes += header + data;
-    const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
+    return dir_.write(name, bytes);
   }
 
   template <typename T>
@@ -60,7 +52,7 @@ class Npy : public ::testing::Test {
     }
   }
 
-  fs::path dir_;
+  const test_support::TempDir dir_;
 };
 
 TEST_F(Npy, RoundTripFloatAndDouble) {
@@ -72,11 +64,11 @@ TEST_F(Npy, RoundTripFloatAndDouble) {
       DenseMatrix<double> d(rows, cols);
       for (auto& v : f.values) v = static_cast<float>(u(rng));
       for (auto& v : d.values) v = u(rng);
-      write_npy(dir_ / "f.npy", f);
-      write_npy(dir_ / "d.npy", d);
-      EXPECT_EQ(read_npy_matrix<float>(dir_ / "f.npy"), f);
-      EXPECT_EQ(read_npy_matrix<double>(dir_ / "d.npy"), d);
-      const auto header = read_npy_header(dir_ / "d.npy");
+      write_npy(dir_.path / "f.npy", f);
+      write_npy(dir_.path / "d.npy", d);
+      EXPECT_EQ(read_npy_matrix<float>(dir_.path / "f.npy"), f);
+      EXPECT_EQ(read_npy_matrix<double>(dir_.path / "d.npy"), d);
+      const auto header = read_npy_header(dir_.path / "d.npy");
       EXPECT_EQ(header.dtype, "<f8");
       EXPECT_EQ(header.shape, (std::vector<std::size_t>{rows, cols}));
       EXPECT_EQ(header.data_offset % 64, 0U) << "numpy aligns the data to 64 bytes";
@@ -115,9 +107,9 @@ TEST_F(Npy, Rejections) {
   expect_rejected(handmade("inf.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2), }",
                            raw(std::vector<double>{INFINITY, 0})),
                   "non-finite");
-  std::ofstream(dir_ / "text.npy") << "not numpy at all";
-  expect_rejected(dir_ / "text.npy", "magic");
-  expect_rejected(dir_ / "missing.npy", "cannot open");
+  std::ofstream(dir_.path / "text.npy") << "not numpy at all";
+  expect_rejected(dir_.path / "text.npy", "magic");
+  expect_rejected(dir_.path / "missing.npy", "cannot open");
 }
 
 }  // namespace

@@ -1,9 +1,7 @@
 // seqtopo-mpi under mpirun: 1 and 2 ranks write byte-identical alignments.json, equal to the sparse mode
 // computed here in one process with the library, and a bad input fails on every rank with one line.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -11,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/run_command.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/formats/alignment_json.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -25,29 +24,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::CommandResult;
+using test_support::read_file;
 
-struct MpiRun {
-  int code = 0;
-  std::string err;
-};
-
-// mpirun offline and as root if need be (CI): shared memory and self transports only, no binding (ctest
-// runs tests side by side), and no terminal.
-MpiRun mpirun(int ranks, const std::string& args, const fs::path& dir, const std::string& tag) {
-  const fs::path err = dir / (tag + ".err");
-  const std::string command =
-      "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 " +
+// `seqtopo-mpi ARGS` under mpirun with `ranks` ranks (run_command: no terminal input, stdout and stderr
+// captured): offline and as root if need be (CI), shared memory and self transports only, no binding
+// (ctest runs tests side by side).
+CommandResult mpirun(int ranks, const std::string& args) {
+  return test_support::run_command(
+      "exec env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 " +
       std::string(SEQTOPO_MPIEXEC) + " -np " + std::to_string(ranks) +
-      " --oversubscribe --bind-to none --mca btl self,vader --mca pml ob1 -q " + SEQTOPO_MPI_CLI + " " + args +
-      " >/dev/null 2>" + err.string() + " </dev/null";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(err)};
+      " --oversubscribe --bind-to none --mca btl self,vader --mca pml ob1 -q " + SEQTOPO_MPI_CLI + " " + args);
 }
 
 TEST(SeqtopoMpi, TwoRanksWriteTheAlignmentsOfOneProcess) {
@@ -58,11 +45,11 @@ TEST(SeqtopoMpi, TwoRanksWriteTheAlignmentsOfOneProcess) {
   io::write_npy(descriptors, DenseMatrix<float>(n, dim, std::move(route.descriptors)));
 
   const std::string input = "sparse " + descriptors.string() + " --out ";
-  const MpiRun one = mpirun(1, input + (dir.path / "one.json").string(), dir.path, "one");
-  ASSERT_EQ(one.code, 0) << one.err;
-  const MpiRun two = mpirun(2, input + (dir.path / "two.json").string(), dir.path, "two");
-  ASSERT_EQ(two.code, 0) << two.err;
-  const std::string one_json = read_text(dir.path / "one.json"), two_json = read_text(dir.path / "two.json");
+  const CommandResult one = mpirun(1, input + (dir.path / "one.json").string());
+  ASSERT_EQ(one.status, 0) << one.err;
+  const CommandResult two = mpirun(2, input + (dir.path / "two.json").string());
+  ASSERT_EQ(two.status, 0) << two.err;
+  const std::string one_json = read_file(dir.path / "one.json"), two_json = read_file(dir.path / "two.json");
   EXPECT_EQ(one_json, two_json);
 
   // The same input in this process, with the library and seqtopo-mpi's defaults (MapConfig, k = 10,
@@ -97,8 +84,8 @@ TEST(SeqtopoMpi, BadInputFailsOnEveryRankWithOneLine) {
   const fs::path bad = dir.path / "bad.npy";
   std::ofstream(bad) << "not a numpy file";
   const fs::path out = dir.path / "alignments.json";
-  const MpiRun run = mpirun(2, "sparse " + bad.string() + " --out " + out.string(), dir.path, "bad");
-  EXPECT_NE(run.code, 0);
+  const CommandResult run = mpirun(2, "sparse " + bad.string() + " --out " + out.string());
+  EXPECT_NE(run.status, 0);
   EXPECT_FALSE(fs::exists(out));
   // The tool's one line, from rank 0 only, naming the file.
   std::istringstream lines(run.err);
@@ -110,9 +97,8 @@ TEST(SeqtopoMpi, BadInputFailsOnEveryRankWithOneLine) {
   ASSERT_EQ(ours.size(), 1U) << run.err;
   EXPECT_EQ(ours[0].rfind("seqtopo-mpi: error: " + bad.string() + ": ", 0), 0U) << run.err;
 
-  const MpiRun missing =
-      mpirun(2, "sparse " + (dir.path / "missing.npy").string() + " --out " + out.string(), dir.path, "missing");
-  EXPECT_NE(missing.code, 0);
+  const CommandResult missing = mpirun(2, "sparse " + (dir.path / "missing.npy").string() + " --out " + out.string());
+  EXPECT_NE(missing.status, 0);
   EXPECT_NE(missing.err.find("seqtopo-mpi: error: "), std::string::npos) << missing.err;
 }
 
