@@ -1,10 +1,9 @@
-#include "seqtopo/outputs/localize_outputs.hpp"
-
 #include <fmt/format.h>
 
 #include <fstream>
 #include <sstream>
 
+#include "seqtopo/outputs/localize_outputs.hpp"
 #include "seqtopo/report/html_report.hpp"
 
 namespace seqtopo::outputs {
