@@ -21,8 +21,8 @@ ScoreSource dense_source(std::span<const T> values, std::size_t rows, std::size_
 
 }  // namespace
 
-ScoreSource::ScoreSource(std::size_t rows, std::size_t cols, RowReader reader)
-    : rows_(rows), cols_(cols), reader_(std::move(reader)) {
+ScoreSource::ScoreSource(std::size_t rows, std::size_t cols, RowReader reader, CellReader cell)
+    : rows_(rows), cols_(cols), reader_(std::move(reader)), cell_(std::move(cell)) {
   if (!reader_) throw std::invalid_argument("score source needs a row reader");
 }
 
@@ -44,6 +44,7 @@ ScoreSource ScoreSource::function(std::size_t rows, std::size_t cols,
 }
 
 Score ScoreSource::at(std::size_t i, std::size_t j) const {
+  if (cell_) return cell_(i, j);
   Score s = 0;
   reader_(i, j, j + 1, &s);
   return s;

@@ -29,7 +29,8 @@ struct MapOptions {
   std::string preset = "default";
   std::optional<std::string> descriptor, metric_name;
   std::optional<float> kappa, gap, threshold, cap;
-  bool kappa_auto = false, no_cap = false;
+  bool kappa_auto = false, no_cap = false, cap_auto = false, no_e_value = false, fpp_auto = false;
+  std::optional<double> e_value, frames_per_place;
   std::optional<std::string> odometry_gate;
   std::optional<std::string> engine;  // default exact, fast with --streaming
   std::optional<std::size_t> min_separation, contrast_window;
@@ -63,8 +64,12 @@ Settings resolve_settings(const MapOptions& o) {
   s.similarity.note = [](std::string_view text) { std::cerr << "seqtopo map: " << text << "\n"; };
   if (o.gap) s.map.gap = *o.gap;
   if (o.threshold) s.map.threshold = *o.threshold;
+  if (o.no_cap || o.cap) s.map.cap_from_statistics = false;  // an explicit cap is the cap
   if (o.no_cap) s.map.cap.reset();
   if (o.cap) s.map.cap = *o.cap;
+  if (o.no_e_value) s.map.max_e_value.reset();
+  if (o.e_value) s.map.max_e_value = *o.e_value;
+  if (o.frames_per_place) s.map.frames_per_place = *o.frames_per_place;
   const std::string engine = o.engine.value_or(o.streaming ? "fast" : "exact");
   if (engine == "fast") {
     s.map.engine = mapping::MapConfig::Engine::fast;
@@ -234,17 +239,29 @@ const RegisterCommand registered{
            fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
                        "(metres travelled between them) apart, as BASE,DRIFT, or none (default {},{})",
                        mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift));
-       add_number_or(app, "--cap", o->cap, "none", o->no_cap, kPositive,
-                     fmt::format("cap on the cumulative score, or none (default {})", *mapping::MapConfig{}.cap));
+       add_number_or(app, "--e-value", o->e_value, "none", o->no_e_value, kPositive,
+                     fmt::format("a revisit's E-value (alignments this good expected by chance in this sequence) is "
+                                 "at most this, or none for the fixed --threshold (default {}, paper preset none)",
+                                 *mapping::MapConfig{}.max_e_value));
+       add_number_or(app, "--frames-per-place", o->frames_per_place, "auto", o->fpp_auto, kAtLeastOne,
+                     "images per place, the unit of --contrast-window and --min-separation; auto estimates it from "
+                     "the similarity's decay along the sequence (default auto; paper preset: frames)");
+       add_number_or(
+           app, "--cap", o->cap, "none", o->no_cap, kPositive,
+           fmt::format("cap on the cumulative score, or none (default: {} x the score a significant alignment "
+                       "needs; {} without --e-value)",
+                       mapping::MapConfig{}.cap_factor, *mapping::MapConfig{}.cap));
        add_number(app, "--threshold", o->threshold, kPositive,
-                  fmt::format("minimum alignment score of a revisit (default {})", mapping::MapConfig{}.threshold));
+                  fmt::format("minimum alignment score of a revisit with --e-value none (default {})",
+                              mapping::MapConfig{}.threshold));
        add_number(app, "--min-separation", o->min_separation, kAtLeastOne,
-                  fmt::format("frames around the diagonal that never count (default {})",
+                  fmt::format("places (frames with the paper preset) around the diagonal that never count (default {})",
                               mapping::MapConfig{}.min_separation));
-       add_number(app, "--contrast-window", o->contrast_window, kNonNegative,
-                  fmt::format("local contrast enhancement before alignment, half-width in frames; 0 = off "
-                              "(default {}, paper preset 0)",
-                              mapping::MapConfig{}.contrast_window));
+       add_number(
+           app, "--contrast-window", o->contrast_window, kNonNegative,
+           fmt::format("local contrast enhancement before alignment, half-width in places (paper: frames); 0 = off "
+                       "(default {}, paper preset 0)",
+                       mapping::MapConfig{}.contrast_window));
        add_number(app, "--contrast-offset", o->contrast_offset, kAnyFinite,
                   fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
                               mapping::MapConfig{}.contrast_offset));

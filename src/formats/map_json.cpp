@@ -2,11 +2,49 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "seqtopo/formats/alignment_json.hpp"
 
 namespace seqtopo::formats {
+namespace {
+
+// JSON has no NaN: a missing E-value (no statistics) is null.
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// The alignments with their pruning verdict, uncapped path score and E-value.
+nlohmann::json alignment_list(const mapping::MapResult& result) {
+  nlohmann::json list = alignments_to_json(result.alignments, &result.pruning.kept)["alignments"];
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    if (k < result.path_scores.size()) list[k]["path_score"] = result.path_scores[k];
+    if (k < result.e_values.size()) list[k]["e_value"] = number_or_null(result.e_values[k]);
+  }
+  return list;
+}
+
+nlohmann::json significance_json(const mapping::MapResult& result) {
+  const auto& d = result.decisions;
+  nlohmann::json j = {{"frames_per_place", d.frames_per_place},
+                      {"frames_per_place_estimated", d.frames_per_place_estimated},
+                      {"contrast_window", d.contrast_window},
+                      {"min_separation", d.min_separation},
+                      {"min_revisit_pairs", d.min_revisit_pairs},
+                      {"contrast_offset", d.contrast_offset},
+                      {"cap", d.cap ? nlohmann::json(*d.cap) : nlohmann::json(nullptr)},
+                      {"score_threshold", d.score_threshold},
+                      {"notes", d.notes}};
+  if (d.statistics.valid()) {
+    j["lambda"] = d.statistics.lambda;
+    j["k"] = d.statistics.k;
+    j["search_area"] = d.statistics.area;
+    j["fitted_alignments"] = d.statistics.fitted;
+    j["chance_alignment_places"] = d.chance_length;
+  }
+  return j;
+}
+
+}  // namespace
 
 std::string map_json(const mapping::MapResult& result) {
   const auto& map = result.map;
@@ -16,27 +54,36 @@ std::string map_json(const mapping::MapResult& result) {
   for (auto [p, q] : map.edges) edges.push_back({p, q});
   nlohmann::json segments = nlohmann::json::array();
   for (const auto& s : map.segments) segments.push_back(s.places);
-  const nlohmann::json document = {
-      {"images", map.labels.size()},
-      {"labels", map.labels},
-      {"places", places},
-      {"edges", edges},
-      {"junctions", map.junctions},
-      {"segments", segments},
-      {"alignments", alignments_to_json(result.alignments, &result.pruning.kept)["alignments"]}};
+  const nlohmann::json document = {{"images", map.labels.size()},
+                                   {"labels", map.labels},
+                                   {"places", places},
+                                   {"edges", edges},
+                                   {"junctions", map.junctions},
+                                   {"segments", segments},
+                                   {"alignments", alignment_list(result)}};
   return document.dump(1) + "\n";
 }
 
 std::string alignments_json(const mapping::MapResult& result) {
-  return nlohmann::json{{"alignments", alignments_to_json(result.alignments, &result.pruning.kept)["alignments"]},
-                        {"rejected_by_odometry", alignments_to_json(result.rejected)["alignments"]}}
+  nlohmann::json insignificant = alignments_to_json(result.insignificant)["alignments"];
+  for (std::size_t k = 0; k < insignificant.size() && k < result.insignificant_e_values.size(); ++k) {
+    insignificant[k]["e_value"] = number_or_null(result.insignificant_e_values[k]);
+  }
+  return nlohmann::json{{"alignments", alignment_list(result)},
+                        {"rejected_by_odometry", alignments_to_json(result.rejected)["alignments"]},
+                        {"insignificant", std::move(insignificant)},
+                        {"significance", significance_json(result)}}
              .dump(1) +
          "\n";
 }
 
-std::string loop_closures_csv(const mapping::PruningResult& pruning) {
-  std::string csv = "i,j,score\n";
-  for (const auto& p : pruning.pairs) csv += fmt::format("{},{},{}\n", p.i, p.j, p.score);
+std::string loop_closures_csv(const mapping::MapResult& result) {
+  std::string csv = "i,j,score,e_value\n";
+  for (const auto& p : result.pruning.pairs) {
+    const double e = p.alignment < result.e_values.size() ? result.e_values[p.alignment] : std::nan("");
+    csv += std::isfinite(e) ? fmt::format("{},{},{},{:.4g}\n", p.i, p.j, p.score, e)
+                            : fmt::format("{},{},{},\n", p.i, p.j, p.score);
+  }
   return csv;
 }
 

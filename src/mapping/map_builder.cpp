@@ -1,45 +1,219 @@
 #include "seqtopo/mapping/map_builder.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::mapping {
 namespace {
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+// `source` minus a constant, read a row segment at a time.
+align::ScoreSource minus(const align::ScoreSource& source, float offset) {
+  if (offset == 0.0F) return source;
+  return align::ScoreSource(
+      source.rows(), source.cols(),
+      [source, offset](std::size_t i, std::size_t b, std::size_t e, align::Score* out) {
+        source.read_row(i, b, e, out);
+        for (std::size_t k = 0; k < e - b; ++k) out[k] -= offset;
+      },
+      [source, offset](std::size_t i, std::size_t j) { return source.at(i, j) - offset; });
+}
+
+std::size_t in_frames(double places, double frames_per_place) {
+  return static_cast<std::size_t>(std::max(1.0, std::round(places * frames_per_place)));
+}
+
 }  // namespace
 
-SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config) {
+MapConfig settings_in_frames(const MapConfig& c, double frames_per_place) {
+  MapConfig f = c;
+  if (!c.place_units) return f;
+  if (c.contrast_window > 0) f.contrast_window = in_frames(static_cast<double>(c.contrast_window), frames_per_place);
+  f.min_separation = in_frames(static_cast<double>(c.min_separation), frames_per_place);
+  f.topology.u_turn_separation = in_frames(static_cast<double>(c.topology.u_turn_separation), frames_per_place);
+  return f;
+}
+
+namespace {
+
+std::vector<align::LocalAlignment> run_engine(const align::ScoreSource& scores, const align::AlignConfig& engine,
+                                              MapConfig::Engine kind, bool reverse, unsigned threads) {
+  if (kind == MapConfig::Engine::fast) {
+    const align::FastOptions options{.threads = threads};
+    return reverse ? align::fast_local_alignments_both(scores, engine, options)
+                   : align::fast_local_alignments(scores, engine, options);
+  }
+  return reverse ? align::local_alignments_both(scores, engine, threads) : align::local_alignments(scores, engine);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// Chance alignments in the logarithmic phase stay short: their length grows like the log of the search area,
+// in the linear phase like the sequence. The fitted (chance) alignments' median length in places against
+// the log of the area in places: a generous bound that the logarithmic phase keeps even near the transition
+// (measured in docs/significance.md).
+bool logarithmic_phase(double chance_length_places, double area_places) {
+  return chance_length_places <= std::max(4.0, std::log(std::max(area_places, 1.0)));
+}
+
+struct FitRun {
+  significance::ScoreStatistics statistics;
+  std::vector<align::LocalAlignment> alignments;
+  std::vector<double> path_scores;
+  std::size_t fitted = 0;    // alignments the fit could use (not shadows)
+  double chance_length = 0;  // [places]
+};
+
+// Diagonals this close [frames] count as one: a chain of shadows, each within reach of the one before, covers
+// the wide band of similar diagonals around a revisit in a smooth sequence.
+constexpr double kShadowReach = 3.0;
+
+// Whether alignment k lies along one found before it: the same direction, their A ranges overlapping by half
+// of the shorter or more, and their diagonals (i - j forward, i + j reverse, averaged over the pairs) within
+// `reach` frames. Declumping leaves such parallel shadows beside every strong alignment (the diagonals next to
+// a revisit score almost as well); they are part of the revisit, not chance, and stay out of the fit.
+bool shadows_earlier(const std::vector<align::LocalAlignment>& alignments, std::size_t k, double reach) {
+  const auto diagonal = [](const align::LocalAlignment& a) {
+    double sum = 0;
+    for (auto [i, j] : a.pairs) {
+      sum += a.direction == align::Direction::forward ? static_cast<double>(i) - static_cast<double>(j)
+                                                      : static_cast<double>(i + j);
+    }
+    return a.pairs.empty() ? 0.0 : sum / static_cast<double>(a.pairs.size());
+  };
+  const auto& a = alignments[k];
+  const double da = diagonal(a);
+  for (std::size_t e = 0; e < k; ++e) {
+    const auto& b = alignments[e];
+    if (b.direction != a.direction) continue;
+    const std::size_t lo = std::max(a.a_begin, b.a_begin), hi = std::min(a.a_end, b.a_end);
+    const std::size_t shorter = std::min(a.a_end - a.a_begin, b.a_end - b.a_begin);
+    if (hi > lo && 2 * (hi - lo) >= shorter && std::abs(diagonal(b) - da) <= reach) return true;
+  }
+  return false;
+}
+
+// The statistics' run: the best `fit_alignments` declumped alignments of `scores` (any score > 0), with the
+// fast engine and a cap far above chance; the fit uses those that are not shadows of earlier ones.
+// Sequences longer than twice kFitBlock frames are fitted on kFitBlocks diagonal blocks of kFitBlock frames
+// spread evenly along them, read once into memory: the statistics of a cell do not depend on the sequence's
+// length (the area scales them), and the fit then costs the same for 10^4 frames streamed as for 4,000.
+constexpr std::size_t kFitBlock = 2000, kFitBlocks = 4;
+
+// The statistics' run's alignments, best first, in the full sequence's indices; `area` the cells searched.
+std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scores, align::AlignConfig engine,
+                                                  const MapConfig& c, double& area) {
+  const std::size_t n = scores.rows();
+  const bool whole = n <= 2 * kFitBlock;
+  // A sequence this short is fitted whole, from a copy in memory when the source is not (a streamed source
+  // recomputes its tiles for every alignment's traceback and declumping).
+  const std::size_t size = whole ? n : kFitBlock, blocks = whole ? 1 : kFitBlocks;
+  area = static_cast<double>(blocks) * significance::search_area(size, size, true, c.min_separation, c.reverse);
+  if (!whole) engine.max_alignments = (engine.max_alignments + blocks - 1) / blocks;
+  std::vector<align::LocalAlignment> all;
+  std::vector<align::Score> block(size * size);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t start = blocks == 1 ? 0 : (n - size) * b / (blocks - 1);
+    for (std::size_t i = 0; i < size; ++i) scores.read_row(start + i, start, start + size, block.data() + i * size);
+    auto found =
+        run_engine(align::ScoreSource::dense(block, size, size), engine, MapConfig::Engine::fast, c.reverse, c.threads);
+    for (auto& a : found) {
+      a.a_begin += start;
+      a.a_end += start;
+      a.b_begin += start;
+      a.b_end += start;
+      for (auto& [i, j] : a.pairs) i += start, j += start;
+      all.push_back(std::move(a));
+    }
+  }
+  std::stable_sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.score > y.score; });
+  return all;
+}
+
+FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, double frames_per_place,
+                      std::size_t alignments) {
+  align::AlignConfig engine = align_config(c);
+  engine.threshold = 0.0F;
+  engine.cap = 256.0F;  // far above any chance alignment in the logarithmic phase; int16 steps of 1/128
+  engine.max_alignments = alignments;
+  FitRun run;
+  double area = 0;
+  run.alignments = fit_alignments(scores, engine, c, area);
+  std::vector<double> best_first;
+  std::vector<std::size_t> fitted;  // indices of the alignments in best_first
+  for (std::size_t k = 0; k < run.alignments.size(); ++k) {
+    // Chance alignments stay far below the run's cap, where the engine's score is the path's; a path is scored
+    // again only when the cap may have clipped it.
+    const auto& a = run.alignments[k];
+    run.path_scores.push_back(a.score < 0.5F * *engine.cap ? a.score
+                                                           : significance::path_score(a, scores, c.gap, c.gap));
+    if (shadows_earlier(run.alignments, k, kShadowReach)) continue;
+    best_first.push_back(run.alignments[k].score);
+    fitted.push_back(k);
+  }
+  run.fitted = best_first.size();
+  run.statistics = significance::fit_declumped_scores(best_first, area);
+  if (run.statistics.valid()) {
+    std::vector<double> lengths;
+    for (std::size_t r = run.statistics.first_fitted_rank - 1; r < fitted.size(); ++r) {
+      lengths.push_back(static_cast<double>(run.alignments[fitted[r]].pairs.size()) / frames_per_place);
+    }
+    run.chance_length = median(std::move(lengths));
+  }
+  return run;
+}
+
+}  // namespace
+
+SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similarities, std::size_t contrast_window) {
   if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
   const std::size_t n = similarities.front().rows;
   for (const auto& s : similarities) {
     if (!s.square() || s.rows != n) {
       throw std::invalid_argument("similarity matrix must be square and " + std::to_string(n) + " x " +
                                   std::to_string(n) + ", got " + std::to_string(s.rows) + " x " +
-                                  std::to_string(s.cols));
+                                  std::to_string(s.cols) +
+                                  " (descriptors, one row per image, need seqtopo.similarity first)");
     }
   }
   if (similarities.size() == 1) {
-    return config.contrast_window == 0 ? similarities.front()
-                                       : similarity::enhance_contrast_symmetric(
-                                             similarities.front(), config.contrast_window, config.contrast_offset);
+    return contrast_window == 0 ? similarities.front()
+                                : similarity::enhance_contrast_symmetric(similarities.front(), contrast_window, 0.0F);
   }
   SimilarityMatrix sum(n, n, 0.0F);
   for (const auto& s : similarities) {
     const SimilarityMatrix e =
-        config.contrast_window == 0 ? s : similarity::enhance_contrast_symmetric(s, config.contrast_window, 0.0F);
+        contrast_window == 0 ? s : similarity::enhance_contrast_symmetric(s, contrast_window, 0.0F);
     for (std::size_t k = 0; k < sum.values.size(); ++k) sum.values[k] += e.values[k];
   }
-  const float offset = config.contrast_window == 0 ? 0.0F : config.contrast_offset;
   const auto count = static_cast<float>(similarities.size());
-  for (auto& v : sum.values) v = v / count - offset;
+  for (auto& v : sum.values) v = v / count;
   return sum;
+}
+
+SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config) {
+  SimilarityMatrix s = enhanced_scores(similarities, config.contrast_window);
+  if (config.contrast_window == 0) return s;
+  for (auto& v : s.values) v -= config.contrast_offset;
+  return s;
 }
 
 align::AlignConfig align_config(const MapConfig& config) {
@@ -52,6 +226,20 @@ align::AlignConfig align_config(const MapConfig& config) {
   return c;
 }
 
+PlaceScale frames_per_place(const std::vector<SimilarityMatrix>& similarities) {
+  double sum = 0;
+  std::size_t found = 0;
+  for (const auto& s : similarities) {
+    const PlaceScale e = estimate_frames_per_place(align::ScoreSource::dense(s.values, s.rows, s.cols));
+    if (e.found) {
+      sum += e.frames_per_place;
+      ++found;
+    }
+  }
+  if (found == 0) return {};
+  return {sum / static_cast<double>(found), true};
+}
+
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config, std::span<const Pose2> odometry) {
   return build_map(std::vector<SimilarityMatrix>{similarity}, config, odometry);
 }
@@ -59,56 +247,187 @@ MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config,
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
                     std::span<const Pose2> odometry) {
   const auto start = std::chrono::steady_clock::now();
-  SimilarityMatrix scores = alignment_scores(similarities, config);
+  if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
+  MapConfig c = config;
+  const bool estimate = config.place_units && !config.frames_per_place;
+  std::optional<PlaceScale> scale;
+  if (estimate) {
+    // The travelled distance when there is odometry (a smooth descriptor can look alike over many places);
+    // else the decay of the similarity along the sequence.
+    if (!odometry.empty()) scale = frames_per_place_from_odometry(odometry);
+    if (!scale || !scale->found) scale = frames_per_place(similarities);
+    c.frames_per_place = scale->frames_per_place;
+  }
+  const MapConfig framed = settings_in_frames(c, c.frames_per_place.value_or(1.0));
+  SimilarityMatrix enhanced = enhanced_scores(similarities, framed.contrast_window);
   const double seconds_scores = seconds_since(start);
   MapResult result =
-      build_map_from_scores(align::ScoreSource::dense(scores.values, scores.rows, scores.cols), config, odometry);
-  result.scores = std::move(scores);
+      build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols), c, odometry);
+  result.decisions.frames_per_place_estimated = estimate;
+  if (scale && !scale->found) {
+    result.decisions.notes.insert(result.decisions.notes.begin(),
+                                  "no place scale: the similarity keeps falling with the lag (a drifting sequence) or "
+                                  "the sequence is short; windows and separations count frames");
+  }
+  // What was aligned: the enhanced scores minus the offset the run chose (or S itself without enhancement).
+  if (framed.contrast_window > 0) {
+    for (auto& v : enhanced.values) v -= result.decisions.contrast_offset;
+  }
+  result.scores = std::move(enhanced);
   result.seconds_align += seconds_scores;
   return result;
 }
 
-MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config,
-                                std::span<const Pose2> odometry) {
-  const std::size_t n = scores.rows();
-  if (n == 0 || scores.cols() != n) {
+MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config,
+                                  std::span<const Pose2> odometry) {
+  const std::size_t n = enhanced.rows();
+  if (n == 0 || enhanced.cols() != n) {
     throw std::invalid_argument("score source must be square and non-empty, got " + std::to_string(n) + " x " +
-                                std::to_string(scores.cols()));
+                                std::to_string(enhanced.cols()));
   }
   if (!odometry.empty() && odometry.size() != n) {
     throw std::invalid_argument("odometry has " + std::to_string(odometry.size()) + " poses, the sequence " +
                                 std::to_string(n) + " images");
   }
   MapResult result;
+  auto& d = result.decisions;
   auto start = std::chrono::steady_clock::now();
-  const align::AlignConfig engine_config = align_config(config);
-  if (config.engine == MapConfig::Engine::fast) {
-    const align::FastOptions options{.threads = config.threads};
-    result.alignments = config.reverse ? align::fast_local_alignments_both(scores, engine_config, options)
-                                       : align::fast_local_alignments(scores, engine_config, options);
-  } else if (config.reverse) {
-    result.alignments = align::local_alignments_both(scores, engine_config, config.threads);
-  } else {
-    result.alignments = align::local_alignments(scores, engine_config);
+  d.frames_per_place = config.place_units ? config.frames_per_place.value_or(1.0) : 1.0;
+  const MapConfig c = settings_in_frames(config, d.frames_per_place);
+  d.contrast_window = c.contrast_window;
+  d.min_separation = c.min_separation;
+  d.min_revisit_pairs = c.max_e_value ? in_frames(c.min_revisit_places, d.frames_per_place) : 0;
+  // Without contrast enhancement the scores are S itself, aligned as given (the paper): no offset.
+  float offset = c.contrast_window > 0 ? c.contrast_offset : 0.0F;
+  align::AlignConfig engine = align_config(c);
+
+  if (c.max_e_value) {
+    const double area_places =
+        significance::search_area(n, n, true, c.min_separation, c.reverse) / (d.frames_per_place * d.frames_per_place);
+    FitRun fit;
+    while (true) {
+      // A sequence full of revisits and their shadows may leave too few chance alignments among the first
+      // fit_alignments: look further, up to 16 times as far.
+      for (std::size_t m = c.fit_alignments;; m *= 4) {
+        fit = fit_statistics(minus(enhanced, offset), c, d.frames_per_place, m);
+        if (fit.statistics.valid() || fit.alignments.size() < m || m >= 16 * c.fit_alignments) break;
+      }
+      const bool logarithmic = fit.statistics.valid() && logarithmic_phase(fit.chance_length, area_places);
+      if (logarithmic || !fit.statistics.valid() || !c.adapt_offset || c.contrast_window == 0 ||
+          offset + c.contrast_offset_step > c.max_contrast_offset + 1e-6F) {
+        if (!logarithmic && fit.statistics.valid()) {
+          d.notes.push_back(
+              fmt::format("chance alignments stay long ({:.1f} places) even at contrast offset {:.2f}: "
+                          "revisits may be overestimated",
+                          fit.chance_length, offset));
+        }
+        break;
+      }
+      d.notes.push_back(
+          fmt::format("contrast offset {:.2f}: chance alignments grow with the sequence ({:.1f} places, "
+                      "linear phase); raised to {:.2f}",
+                      offset, fit.chance_length, offset + c.contrast_offset_step));
+      offset += c.contrast_offset_step;
+    }
+    d.statistics = fit.statistics;
+    d.chance_length = fit.chance_length;
+    if (fit.statistics.valid()) {
+      // On a grid of 1/64 score units, which both engines represent exactly (the fast engine's scale is a power
+      // of two of at least 64 for caps up to 512), so they agree on what is significant.
+      const double needed = fit.statistics.score_at(*c.max_e_value);
+      const auto grid = [](double v) { return static_cast<float>(std::ceil(std::max(v, 1.0 / 64) * 64.0) / 64.0); };
+      engine.threshold = grid(needed);
+      if (c.cap_from_statistics) engine.cap = grid(c.cap_factor * engine.threshold);
+      // What the filter removed: chance alignments of the statistics' run above the raw threshold.
+      for (std::size_t k = 0; k < fit.alignments.size(); ++k) {
+        const double e = fit.statistics.e_value(fit.path_scores[k]);
+        if (e > *c.max_e_value && fit.alignments[k].score >= c.threshold) {
+          result.insignificant.push_back(fit.alignments[k]);
+          result.insignificant_e_values.push_back(e);
+        }
+      }
+    } else {
+      // The fixed threshold and cap were chosen for one frame per place; scores grow with the frames per place.
+      engine.threshold = static_cast<float>(c.threshold * d.frames_per_place);
+      if (c.cap) engine.cap = static_cast<float>(*c.cap * d.frames_per_place);
+      d.notes.push_back(fmt::format(
+          "too few chance alignments ({}) to fit the significance statistics: a fixed threshold of {:.4g} and cap "
+          "{} apply",
+          fit.fitted, engine.threshold, engine.cap ? fmt::format("{:.4g}", *engine.cap) : "none"));
+    }
   }
-  if (!odometry.empty() && config.odometry_gate) {
-    const std::vector<bool> keep = consistent_with_odometry(result.alignments, odometry, *config.odometry_gate);
+  d.contrast_offset = offset;
+  d.cap = engine.cap;
+  d.score_threshold = engine.threshold;
+
+  const align::ScoreSource scores = minus(enhanced, offset);
+  auto found = run_engine(scores, engine, c.engine, c.reverse, c.threads);
+  for (auto& a : found) {
+    const double path = significance::path_score(a, scores, c.gap, c.gap);
+    const double e = d.statistics.valid() ? d.statistics.e_value(path) : std::nan("");
+    if (a.pairs.size() < d.min_revisit_pairs) {
+      result.insignificant.push_back(std::move(a));
+      result.insignificant_e_values.push_back(e);
+      continue;
+    }
+    result.alignments.push_back(std::move(a));
+    result.path_scores.push_back(path);
+    result.e_values.push_back(e);
+  }
+  // Most significant first: capped scores tie at the cap, their paths' scores do not. Pruning and labels
+  // then prefer the strongest of overlapping alignments (parallel shadows of one revisit, crossing chances).
+  {
+    std::vector<std::size_t> order(result.alignments.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t x, std::size_t y) { return result.path_scores[x] > result.path_scores[y]; });
+    std::vector<align::LocalAlignment> sorted;
+    std::vector<double> sorted_path, sorted_e;
+    for (std::size_t k : order) {
+      sorted.push_back(std::move(result.alignments[k]));
+      sorted_path.push_back(result.path_scores[k]);
+      sorted_e.push_back(result.e_values[k]);
+    }
+    result.alignments = std::move(sorted);
+    result.path_scores = std::move(sorted_path);
+    result.e_values = std::move(sorted_e);
+  }
+  if (!odometry.empty() && c.odometry_gate) {
+    const std::vector<bool> keep = consistent_with_odometry(result.alignments, odometry, *c.odometry_gate);
     std::vector<align::LocalAlignment> kept;
-    for (std::size_t k = 0; k < keep.size(); ++k)
-      (keep[k] ? kept : result.rejected).push_back(std::move(result.alignments[k]));
+    std::vector<double> kept_path, kept_e;
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+      if (keep[k]) {
+        kept.push_back(std::move(result.alignments[k]));
+        kept_path.push_back(result.path_scores[k]);
+        kept_e.push_back(result.e_values[k]);
+      } else {
+        result.rejected.push_back(std::move(result.alignments[k]));
+      }
+    }
     result.alignments = std::move(kept);
+    result.path_scores = std::move(kept_path);
+    result.e_values = std::move(kept_e);
   }
   result.seconds_align = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  result.pruning = prune_per_column(result.alignments, config.pruning);
+  result.pruning = prune_per_column(result.alignments, c.pruning);
   std::vector<std::pair<std::size_t, std::size_t>> same_place;
   same_place.reserve(result.pruning.pairs.size());
   for (const auto& p : result.pruning.pairs) same_place.emplace_back(p.i, p.j);
   const auto labels = label_places(n, same_place);
-  result.map = build_topology(labels, result.alignments, result.pruning, config.topology);
+  result.map = build_topology(labels, result.alignments, result.pruning, c.topology);
   result.seconds_prune_label = seconds_since(start);
   return result;
+}
+
+MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config,
+                                std::span<const Pose2> odometry) {
+  MapConfig c = config;
+  c.contrast_window = 0;  // the scores are aligned as they are
+  c.place_units = false;
+  return build_map_from_enhanced(scores, c, odometry);
 }
 
 }  // namespace seqtopo::mapping

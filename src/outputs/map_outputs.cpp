@@ -115,7 +115,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
 
   out.write("map.json", formats::map_json(result));
   out.write("alignments.json", formats::alignments_json(result));
-  out.write("loop_closures.csv", formats::loop_closures_csv(result.pruning));
+  out.write("loop_closures.csv", formats::loop_closures_csv(result));
 
   if (run.streaming) {
     out.write("similarity.png",

@@ -9,6 +9,7 @@
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/pipeline/baselines.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
@@ -30,6 +31,20 @@ void say(const MapObserver& observer, const std::string& text) {
 // The timing and the one progress line of the map stage, the same for every path.
 void report_map(MapRun& run, const MapObserver& observer) {
   run.timings.emplace_back("pruning + labels + topology", run.result.seconds_prune_label);
+  const auto& d = run.result.decisions;
+  if (run.map_config.place_units) {
+    say(observer, fmt::format("      {:.2f} frames per place{}: contrast window {} frames, min separation {} frames",
+                              d.frames_per_place, d.frames_per_place_estimated ? " (estimated)" : "", d.contrast_window,
+                              d.min_separation));
+  }
+  for (const auto& note : d.notes) say(observer, "      " + note);
+  if (d.statistics.valid()) {
+    say(observer,
+        fmt::format("      significance: lambda {:.3g}, K {:.3g} (from {} chance alignments); E <= {} needs a "
+                    "score of {:.2f}, cap {:.2f}, contrast offset {:.2f}; {} removed",
+                    d.statistics.lambda, d.statistics.k, d.statistics.fitted, run.map_config.max_e_value.value_or(0),
+                    d.score_threshold, d.cap.value_or(0), d.contrast_offset, run.result.insignificant.size()));
+  }
   say(observer, fmt::format("      {} alignments ({} contradicted by odometry), {} kept, {} places, {} junctions",
                             run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),
                             std::count(run.result.pruning.kept.begin(), run.result.pruning.kept.end(), true),
@@ -81,28 +96,45 @@ void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry,
   const MapSettings& settings = request.settings;
   say(observer, "[1/4] descriptors (--streaming: the similarity is computed on the fly, never N x N)");
   auto t = std::chrono::steady_clock::now();
-  auto config = settings.similarity;
-  config.descriptor = settings.descriptors.front();
-  DescriptorResult described = compute_descriptors(request.input, config);
+  auto similarity_config = settings.similarity;
+  similarity_config.descriptor = settings.descriptors.front();
+  DescriptorResult described = compute_descriptors(request.input, similarity_config);
   const std::size_t n = described.descriptors.rows, dim = described.descriptors.cols;
   run.descriptor_names.emplace_back(
       described.descriptor == Descriptor::npy ? "descriptors.npy" : std::string(descriptor_name(described.descriptor)));
   say(observer, fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
   if (n < 2) throw InputError(request.input.path.string(), "needs at least 2 images");
   check_odometry(odometry, n, request.odometry.string());
+  // The place scale from the raw cosine near the diagonal (or the odometry), then the windows in frames.
+  mapping::MapConfig config = settings.map;
+  std::optional<mapping::PlaceScale> place;
   std::optional<scale::StreamingSimilarity> streamed;
-  try {
-    streamed.emplace(described.descriptors.values, n, dim,
-                     scale::StreamingConfig{.contrast_window = settings.map.contrast_window,
-                                            .contrast_offset = settings.map.contrast_offset});
-  } catch (const std::invalid_argument& e) {
-    throw InputError(request.input.path.string(), e.what());  // e.g. an all-zero descriptor has no direction
+  const auto make_streamed = [&](std::size_t window) {
+    try {
+      streamed.emplace(described.descriptors.values, n, dim,
+                       scale::StreamingConfig{.contrast_window = window, .contrast_offset = 0.0F});
+    } catch (const std::invalid_argument& e) {
+      throw InputError(request.input.path.string(), e.what());  // e.g. an all-zero descriptor has no direction
+    }
+  };
+  if (config.place_units && !config.frames_per_place) {
+    if (!odometry.empty()) place = mapping::frames_per_place_from_odometry(odometry);
+    if (!place || !place->found) {
+      make_streamed(0);
+      const auto& raw = *streamed;
+      place = mapping::estimate_frames_per_place(
+          align::ScoreSource::function(n, n, [&raw](std::size_t i, std::size_t j) { return raw.cosine(i, j); }));
+    }
+    config.frames_per_place = place->frames_per_place;
   }
+  const mapping::MapConfig framed = mapping::settings_in_frames(config, config.frames_per_place.value_or(1.0));
+  make_streamed(framed.contrast_window);
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
   run.timings.emplace_back("descriptors", seconds_since(t));
 
   say(observer, "[2/4] alignments (fast engine on streamed scores), pruning, labels, topology");
-  run.result = mapping::build_map_from_scores(streamed->source(), settings.map, odometry);
+  run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry);
+  run.result.decisions.frames_per_place_estimated = place.has_value();
   run.timings.emplace_back("alignment (similarity streamed)", run.result.seconds_align);
   report_map(run, observer);
 
@@ -112,8 +144,17 @@ void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry,
 
   say(observer, "      similarity overview for similarity.png (one more streamed pass over the lower triangle)");
   t = std::chrono::steady_clock::now();
-  // The streamed scores are 0.5 (E + E^T) - offset, symmetric bit for bit: half the reads suffice.
-  run.overview = plot::matrix_overview(streamed->source(), {.max_side = 2048, .symmetric = true});
+  // The streamed scores are 0.5 (E + E^T), symmetric bit for bit: half the reads suffice. The overview shows
+  // them minus the offset the run aligned with.
+  const float offset = run.result.decisions.contrast_offset;
+  const auto& enhanced = *streamed;
+  run.overview = plot::matrix_overview(
+      align::ScoreSource(n, n,
+                         [&enhanced, offset](std::size_t i, std::size_t b, std::size_t e, align::Score* out) {
+                           enhanced.read_row(i, b, e, out);
+                           for (std::size_t k = 0; k < e - b; ++k) out[k] -= offset;
+                         }),
+      {.max_side = 2048, .symmetric = true});
   run.timings.emplace_back("similarity overview (streamed)", seconds_since(t));
 }
 
@@ -135,7 +176,7 @@ void trajectory_and_accuracy(const MapSettings& settings, const MapTruth& truth,
     say(observer, "[4/4] accuracy against the ground truth");
     std::vector<evaluation::ScoredPair> pairs;
     for (const auto& p : run.result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
-    run.metrics = evaluation::evaluate_loop_closures(pairs, n, truth.same_place, settings.map.min_separation);
+    run.metrics = evaluation::evaluate_loop_closures(pairs, n, truth.same_place, run.result.decisions.min_separation);
     if (run.streaming) {
       run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
     } else {
@@ -146,7 +187,7 @@ void trajectory_and_accuracy(const MapSettings& settings, const MapTruth& truth,
       if (run.matrices.size() > 1 || settings.map.contrast_window > 0) {
         sources.emplace_back("seqtopo's fused scores", &run.result.scores);
       }
-      if (auto b = seqslam_loop_closure_baseline(sources, n, truth.same_place, settings.map.min_separation,
+      if (auto b = seqslam_loop_closure_baseline(sources, n, truth.same_place, run.result.decisions.min_separation,
                                                  settings.similarity.threads)) {
         run.baseline_metrics = std::move(b->metrics);
         run.baseline_name = std::move(b->method);
@@ -159,7 +200,7 @@ void trajectory_and_accuracy(const MapSettings& settings, const MapTruth& truth,
     const evaluation::Tolerated tolerated =
         truth.same_place ? evaluation::Tolerated(truth.same_place) : evaluation::Tolerated{};
     run.topology = evaluation::evaluate_topology(run.result.map.labels, run.result.map.junctions, truth.places,
-                                                 truth.junctions, settings.map.min_separation, 2, tolerated);
+                                                 truth.junctions, run.result.decisions.min_separation, 2, tolerated);
   }
   if (!truth.poses.empty() && !run.odometry.empty()) {
     if (truth.poses.size() != n) throw std::invalid_argument("true poses: one per image expected");

@@ -19,6 +19,12 @@ MapSettings map_preset(std::string_view name) {
   s.map.gap = 0.3F;
   s.map.cap = 8.0F;
   s.map.threshold = 3.0F;
+  // The paper: a fixed score threshold, windows and separations in frames, the offset as given.
+  s.map.max_e_value.reset();
+  s.map.place_units = false;
+  s.map.adapt_offset = false;
+  s.map.min_revisit_places = 0;
+  s.map.odometry_gate.reset();  // odometry only draws the picture (paper IV-D)
   return s;
 }
 

@@ -291,9 +291,10 @@ void StreamingSimilarity::read_row(std::size_t i, std::size_t j_begin, std::size
 }
 
 align::ScoreSource StreamingSimilarity::source() const {
-  return align::ScoreSource(n_, n_, [this](std::size_t i, std::size_t j_begin, std::size_t j_end, float* out) {
-    read_row(i, j_begin, j_end, out);
-  });
+  return align::ScoreSource(
+      n_, n_,
+      [this](std::size_t i, std::size_t j_begin, std::size_t j_end, float* out) { read_row(i, j_begin, j_end, out); },
+      [this](std::size_t i, std::size_t j) { return score(i, j); });
 }
 
 StreamingStats StreamingSimilarity::stats() const {

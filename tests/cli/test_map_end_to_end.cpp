@@ -56,12 +56,14 @@ TEST_F(MapCommand, BundledCorridorGoldenRun) {
   std::istringstream csv(read_file(out / "loop_closures.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "i,j,score");
+  EXPECT_EQ(line, "i,j,score,e_value");
   int rows = 0;
   while (std::getline(csv, line)) {
     int i = 0, j = 0;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d", &i, &j), 2) << line;
+    double score = 0, e_value = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%lf,%lf", &i, &j, &score, &e_value), 4) << line;
     EXPECT_GT(i, j);
+    EXPECT_LE(e_value, 0.01) << "every retained pair belongs to a significant alignment";
     ++rows;
   }
   EXPECT_GT(rows, 30);

@@ -96,10 +96,15 @@ TEST_F(MapStreaming, SameMapAsTheDenseCommandOnTheSameScores) {
   EXPECT_FALSE(fs::exists(streamed / "similarity.npy"));
   EXPECT_TRUE(fs::exists(streamed / "report.html"));
 
-  // What the dense command aligned is what the streamed similarity computes, cell for cell.
+  // What the dense command aligned is what the streamed similarity computes, cell for cell, with the contrast
+  // window and offset the run decided (alignments.json "significance").
+  const auto decided = nlohmann::json::parse(read_file(streamed / "alignments.json")).at("significance");
   const auto scores = seqtopo::io::read_npy_matrix<float>(dense / "scores.npy");
   const auto x = seqtopo::io::read_npy_matrix<float>(path("walk.npy"));
-  const seqtopo::scale::StreamingSimilarity similarity(x.values, n, x.cols);
+  const seqtopo::scale::StreamingSimilarity similarity(
+      x.values, n, x.cols,
+      {.contrast_window = decided.at("contrast_window").get<std::size_t>(),
+       .contrast_offset = decided.at("contrast_offset").get<float>()});
   std::vector<float> row(n);
   for (std::size_t i = 0; i < n; ++i) {
     similarity.read_row(i, 0, n, row.data());

@@ -23,18 +23,29 @@ TEST(MapEngines, FastEqualsExactOnQuantizedScores) {
       for (std::size_t j = 0; j < i; ++j) s(j, i) = s(i, j);
     }
     for (auto& v : s.values) v = std::round(v * 512.0F) / 512.0F;
-    MapConfig config;
-    config.contrast_window = 0;  // align S itself, so the quantized values reach the engines unchanged
-    config.threshold = 6;
-    const MapResult exact = build_map(s, config);
-    config.engine = MapConfig::Engine::fast;
-    for (unsigned threads : {1U, 2U}) {
-      config.threads = threads;
-      const MapResult fast = build_map(s, config);
-      ASSERT_FALSE(exact.alignments.empty());
-      EXPECT_EQ(fast.alignments, exact.alignments) << "seed " << seed << ", threads " << threads;
-      EXPECT_EQ(fast.map.labels, exact.map.labels);
-      EXPECT_EQ(fast.map.junctions, exact.map.junctions);
+    // With the significance statistics (their threshold and cap on a 1/64 grid) and with a fixed threshold.
+    for (bool statistics : {true, false}) {
+      MapConfig config;
+      config.contrast_window = 0;  // align S itself, so the quantized values reach the engines unchanged
+      config.place_units = false;
+      if (!statistics) {
+        config.max_e_value.reset();
+        config.threshold = 6;
+      }
+      const MapResult exact = build_map(s, config);
+      config.engine = MapConfig::Engine::fast;
+      for (unsigned threads : {1U, 2U}) {
+        config.threads = threads;
+        const MapResult fast = build_map(s, config);
+        ASSERT_FALSE(exact.alignments.empty());
+        EXPECT_EQ(fast.alignments, exact.alignments) << "seed " << seed << ", threads " << threads;
+        EXPECT_EQ(fast.map.labels, exact.map.labels);
+        EXPECT_EQ(fast.map.junctions, exact.map.junctions);
+        if (statistics) {
+          EXPECT_EQ(fast.e_values, exact.e_values);
+          EXPECT_TRUE(exact.decisions.statistics.valid());
+        }
+      }
     }
   }
 }

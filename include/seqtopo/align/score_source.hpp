@@ -18,7 +18,11 @@ class ScoreSource {
   // Fills out[0 .. j_end - j_begin) with score(i, j) for j in [j_begin, j_end).
   using RowReader = std::function<void(std::size_t i, std::size_t j_begin, std::size_t j_end, Score* out)>;
 
-  ScoreSource(std::size_t rows, std::size_t cols, RowReader reader);
+  // One cell, for sources where a single cell is cheaper computed on its own than through a row segment (a
+  // streamed similarity computes a whole tile for a segment).
+  using CellReader = std::function<Score(std::size_t i, std::size_t j)>;
+
+  ScoreSource(std::size_t rows, std::size_t cols, RowReader reader, CellReader cell = {});
 
   // A dense row-major rows x cols matrix. Throws std::invalid_argument if the size does not match.
   static ScoreSource dense(std::span<const float> values, std::size_t rows, std::size_t cols);
@@ -31,12 +35,15 @@ class ScoreSource {
   void read_row(std::size_t i, std::size_t j_begin, std::size_t j_end, Score* out) const {
     reader_(i, j_begin, j_end, out);
   }
+  // score(i, j): the cell reader when there is one, else a row segment of one cell.
   Score at(std::size_t i, std::size_t j) const;
+  const CellReader& cell_reader() const { return cell_; }
 
  private:
   std::size_t rows_;
   std::size_t cols_;
   RowReader reader_;
+  CellReader cell_;
 };
 
 }  // namespace seqtopo::align

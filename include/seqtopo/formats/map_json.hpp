@@ -8,9 +8,10 @@ namespace seqtopo::formats {
 
 // {"images", "labels", "places", "edges", "junctions", "segments", "alignments"} (alignments with "kept").
 std::string map_json(const mapping::MapResult& result);
-// {"alignments": [... with "kept"], "rejected_by_odometry": [...]}
+// {"alignments": [... with "kept", "path_score", "e_value"], "rejected_by_odometry": [...], "insignificant": [...],
+//  "significance": {...}} (INTERFACE.md)
 std::string alignments_json(const mapping::MapResult& result);
-// i,j,score for every retained pair after pruning.
-std::string loop_closures_csv(const mapping::PruningResult& pruning);
+// i,j,score,e_value for every retained pair after pruning (e_value empty without statistics).
+std::string loop_closures_csv(const mapping::MapResult& result);
 
 }  // namespace seqtopo::formats

@@ -1,8 +1,7 @@
 #pragma once
 // The mapping paper end to end, from a similarity matrix: forward and reverse self alignments with
-// the score cap -> per-column pruning -> transitive labels -> topological map. One call, pure.
-// build_map_from_scores is the same pipeline after the scores, on any score source (scores streamed from
-// descriptors, scale/streaming_similarity.hpp), for sequences whose N x N matrix would not fit.
+// the score cap -> per-column pruning -> transitive labels -> topological map, with the significance of
+// every alignment (E-values from the sequence's own score statistics). One call, pure.
 #include <optional>
 #include <span>
 #include <vector>
@@ -11,8 +10,10 @@
 #include "seqtopo/align/score_source.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/mapping/odometry_gate.hpp"
+#include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/mapping/pruning.hpp"
 #include "seqtopo/mapping/topological_map.hpp"
+#include "seqtopo/significance/score_statistics.hpp"
 
 namespace seqtopo::mapping {
 
@@ -20,17 +21,37 @@ struct MapConfig {
   // Local contrast enhancement before alignment (similarity/contrast_enhancement.hpp): the aligned
   // score is 0.5 (E + E^T) - contrast_offset, in standard deviations of each row's neighbourhood.
   // contrast_window = 0 aligns the raw S = 1 - kappa D, as the paper does.
-  // Defaults chosen on the real corridor loop and on Nordland summer+winter (bench/tune_map.cpp,
-  // README "Accuracy on real data").
-  std::size_t contrast_window = 10;  // [frames]
-  float contrast_offset = 0.5F;      // [standard deviations]
+  std::size_t contrast_window = 10;  // [places] (frames when place_units is false)
+  float contrast_offset = 0.5F;      // [standard deviations]; the smallest tried, see adapt_offset
   float gap = 1.5F;                  // penalty per skipped image, both sequences [score units]
-  std::optional<float> cap = 40.0F;  // cap on the cumulative score (paper IV-B)
-  // Minimum alignment score for a revisit. The real sequences give the same result anywhere in 8..20;
-  // the simulated worlds (bench/worlds.sh) need 20 to drop short chance alignments.
+  // Cap on the cumulative score (paper IV-B). With significance (max_e_value set) and cap_from_statistics,
+  // the cap is cap_factor times the score a significant alignment must reach, so the stretch of non-matching
+  // images that separates two revisits follows the sequence's own statistics; else this fixed value.
+  std::optional<float> cap = 40.0F;
+  bool cap_from_statistics = true;
+  float cap_factor = 2.0F;
+  // Significance (significance/score_statistics.hpp): an alignment is a revisit when its E-value, the number
+  // of alignments this good expected by chance in this sequence, is at most max_e_value. nullopt: the paper's
+  // fixed score threshold below.
+  std::optional<double> max_e_value = 0.01;
+  // Minimum alignment score for a revisit without significance (max_e_value nullopt), or when the sequence is
+  // too short for the statistics to be fitted.
   float threshold = 20.0F;
-  std::size_t min_separation = 10;  // [frames] pairs closer than this in time never count
-  bool reverse = true;              // also look for paths revisited in the opposite direction
+  // Shorter revisits are dropped [places].
+  double min_revisit_places = 3;
+  // The offset is raised (in steps of contrast_offset_step, up to max_contrast_offset) until chance
+  // alignments on the sequence's own scores stay short (the logarithmic phase of local alignment scores,
+  // Arratia & Waterman 1994): below it, the best chance alignment grows with the sequence's length and no
+  // threshold separates revisits from chance.
+  bool adapt_offset = true;
+  float contrast_offset_step = 0.25F;
+  float max_contrast_offset = 3.0F;
+  std::size_t min_separation = 10;  // [places] pairs closer than this in time never count
+  // Windows and separations in places: each place spans frames_per_place images (place_scale.hpp), estimated
+  // from the similarity when nullopt. place_units false counts them in frames, as the paper does.
+  bool place_units = true;
+  std::optional<double> frames_per_place;
+  bool reverse = true;  // also look for paths revisited in the opposite direction
   // exact: the scalar reference engine (align/smith_waterman.hpp, a float table of N x N cells);
   // fast: the vectorized linear-memory engine (align/fast_alignment.hpp) on scores quantized to
   // 1/512 of a unit with the default cap: the same alignments as the exact engine on those scores.
@@ -42,6 +63,23 @@ struct MapConfig {
   PruningConfig pruning;
   TopologyConfig topology;
   unsigned threads = 2;
+  // Declumped alignments found for the statistics' fit (significance/score_statistics.hpp).
+  std::size_t fit_alignments = 300;
+};
+
+// What a map run decided from the sequence itself (the settings in frames, the statistics), for the report.
+struct MapDecisions {
+  double frames_per_place = 1;  // estimated or given
+  bool frames_per_place_estimated = false;
+  std::size_t contrast_window = 0;  // [frames]
+  std::size_t min_separation = 0;   // [frames]
+  std::size_t min_revisit_pairs = 0;
+  float contrast_offset = 0;                 // the offset aligned with (after adapt_offset)
+  std::optional<float> cap;                  // the cap aligned with
+  float score_threshold = 0;                 // the capped score a revisit needs
+  significance::ScoreStatistics statistics;  // invalid without significance or when the fit failed
+  double chance_length = 0;                  // median length of the fitted chance alignments [places]
+  std::vector<std::string> notes;            // what was adapted and why, one line each
 };
 
 struct MapResult {
@@ -49,33 +87,63 @@ struct MapResult {
                                                   // from build_map_from_scores
   std::vector<align::LocalAlignment> alignments;  // best first, forward and reverse merged
   std::vector<align::LocalAlignment> rejected;    // found, but contradicted by the odometry (not in `alignments`)
+  // Per alignment (parallel to `alignments`): the score of its path without the cap, and its E-value (NaN
+  // without significance).
+  std::vector<double> path_scores, e_values;
+  // Found by the statistics' run but not significant, or shorter than a revisit: what the filter removed
+  // (best first, with their E-values), and why.
+  std::vector<align::LocalAlignment> insignificant;
+  std::vector<double> insignificant_e_values;
+  MapDecisions decisions;
   PruningResult pruning;
   TopologicalMap map;
   double seconds_align = 0, seconds_prune_label = 0;
 };
 
+// The pipeline, from the similarity matrices of one sequence:
+//  1. frames per place (place_scale.hpp) estimated from the similarities, unless given or place_units is off;
+//     windows and separations are converted to frames;
+//  2. each matrix contrast-enhanced on its own (so their scales need not agree) and the enhanced scores
+//     averaged (enhanced_scores); without contrast enhancement the raw matrices are averaged;
+//  3. with significance (max_e_value): the statistics' run (the best fit_alignments declumped alignments of
+//     the scores minus the offset, fast engine) fits lambda and K (significance/score_statistics.hpp) and
+//     checks the phase: while chance alignments grow with the sequence the offset is raised; the cap and the
+//     score a revisit needs follow from the fit (MapDecisions);
+//  4. forward and reverse self alignments with the cap (the configured engine), every alignment's E-value
+//     from its uncapped path score, revisits shorter than min_revisit_places dropped; the odometry gate;
+//  5. per-column pruning, transitive labels, topology.
 // Throws std::invalid_argument for a non-square or empty matrix, or odometry of another length.
 // `odometry` (one pose per image, or empty) feeds config.odometry_gate.
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config = {},
                     std::span<const Pose2> odometry = {});
-
-// Several sensors or descriptors of the same sequence, fused: each matrix is contrast-enhanced on its
-// own (so their scales need not agree) and the enhanced scores are averaged before the offset is
-// applied; without contrast enhancement the raw matrices are averaged. All must be N x N.
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config = {},
                     std::span<const Pose2> odometry = {});
 
-// The pipeline after the scores: `scores` is what is aligned as it is (contrast_window and contrast_offset
-// are not applied again). Throws std::invalid_argument for an empty or non-square source, or odometry of
-// another length. The exact engine fills an N x N table whatever the source; a source that is not held
-// in memory wants Engine::fast (1/8 byte per cell, docs/engine.md). seconds_align includes the reads of `scores`.
+// Steps 3-5 on contrast-enhanced scores without the offset (0.5 (E + E^T), or S itself when contrast_window is
+// 0), from any score source: a dense matrix, or scores streamed from descriptors (scale/streaming_similarity.hpp,
+// with the window in frames: settings_in_frames). config.frames_per_place is the scale (1 when nullopt). The
+// exact engine fills an N x N table whatever the source; a source that is not held in memory wants
+// Engine::fast (1/8 byte per cell, docs/engine.md). seconds_align includes the reads of `enhanced`.
+MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config = {},
+                                  std::span<const Pose2> odometry = {});
+
+// Steps 3-5 on scores aligned as they are (no offset, no place units): the engine's own view.
 MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config = {},
                                 std::span<const Pose2> odometry = {});
 
-// The engine settings build_map aligns with: the config's gap, cap, threshold and min_separation, self.
+// The engine settings of the config's gap, cap, threshold and min_separation (in frames: place_units is not
+// applied), self alignment.
 align::AlignConfig align_config(const MapConfig& config);
 
-// The fused score matrix that build_map aligns.
+// The config with its windows and separations converted from places to frames (unchanged without place_units).
+MapConfig settings_in_frames(const MapConfig& config, double frames_per_place);
+
+// The mean of estimate_frames_per_place over the matrices that have a scale (not found when none has).
+PlaceScale frames_per_place(const std::vector<SimilarityMatrix>& similarities);
+
+// Step 2: the fused contrast-enhanced scores without the offset (S itself when contrast_window is 0).
+SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similarities, std::size_t contrast_window);
+// The same minus config.contrast_offset (no place units: config's window in frames).
 SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config);
 
 }  // namespace seqtopo::mapping

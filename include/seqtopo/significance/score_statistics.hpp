@@ -1,0 +1,63 @@
+#pragma once
+// How often a local alignment this good turns up by chance: the statistics BLAST gives every hit, for the
+// scores of one search (a similarity matrix aligned with itself, or a query against a map).
+//
+// Model (Karlin & Altschul 1990 for ungapped scores; the same form holds empirically for gapped local
+// alignment in the logarithmic phase, Arratia & Waterman 1994): in a search of `area` cells, the number of
+// chance alignments scoring at least s is Poisson with mean
+//   E(s) = K * area * exp(-lambda * s),
+// the E-value of a score s; its bit score is (lambda s - ln K) / ln 2.
+//
+// Fit (Waterman & Vingron 1994, "Rapid and accurate estimates of statistical significance for sequence data
+// base searches"; the "island" method of Olsen, Bundschuh & Hwa 1999 and Altschul et al. 2001 counts the same
+// clusters): the non-intersecting (declumped) alignments of the search itself, best first, are a sample of
+// chance alignments once the few real ones at the top are set aside. Their count above s falls like
+// K * area * exp(-lambda s): ln(rank) is a straight line in the score, fitted by least squares over the ranks
+// after the real ones. The real ones are found by the fit itself: a first fit from rank `first_rank` on, then
+// the fit is repeated from twice the number of alignments whose E-value is below `real_e_value`, so a search
+// with many revisits does not bias lambda. No null model has to be simulated and the statistics are those of
+// the sequence's own scores: its descriptors, its length, its aliasing.
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/align/score_source.hpp"
+
+namespace seqtopo::significance {
+
+struct ScoreStatistics {
+  double lambda = 0;  // [1 / score unit]
+  double k = 0;
+  double area = 0;                    // [cells] searched
+  std::size_t fitted = 0;             // alignments the fit used
+  std::size_t first_fitted_rank = 0;  // 1-based rank of the first of them
+
+  bool valid() const { return lambda > 0 && k > 0 && area > 0; }
+  // Expected number of chance alignments scoring >= score in this search.
+  double e_value(double score) const;
+  double bit_score(double score) const;
+  // The score whose E-value is `e_value`.
+  double score_at(double e_value) const;
+};
+
+struct FitConfig {
+  std::size_t first_rank = 10;  // ranks before it are not used in the first fit (the real alignments)
+  std::size_t min_fitted = 30;  // fewer usable alignments than this: no fit (valid() is false)
+  double real_e_value = 1e-3;   // after the first fit, alignments below this E-value count as real
+};
+
+// `scores` are the declumped alignments' scores, best first (non-increasing). Returns an invalid fit when
+// there are too few alignments, their scores do not fall with the rank, or the area is empty.
+ScoreStatistics fit_declumped_scores(std::span<const double> scores, double area, const FitConfig& config = {});
+
+// The score of an alignment's own path, with no cap: the sum of its pairs' scores minus a gap penalty for every
+// element skipped between consecutive pairs (gap_a per skipped element of A, gap_b of B). For a capped alignment
+// this is the evidence the cap hides; for an uncapped one it equals the engine's score.
+double path_score(const align::LocalAlignment& alignment, const align::ScoreSource& scores, double gap_a, double gap_b);
+
+// Cells the engine searches: rows x cols, or for a self search the pairs with i - j >= min_separation; times two
+// when the reverse pass runs too.
+double search_area(std::size_t rows, std::size_t cols, bool self, std::size_t min_separation, bool both_passes);
+
+}  // namespace seqtopo::significance

@@ -1,0 +1,66 @@
+#include "seqtopo/mapping/place_scale.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace seqtopo::mapping {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  if (v.size() % 2 == 1) return *mid;
+  const double upper = *mid;
+  return 0.5 * (upper + *std::max_element(v.begin(), mid));
+}
+
+}  // namespace
+
+PlaceScale estimate_frames_per_place(const align::ScoreSource& s, std::size_t max_lag) {
+  const std::size_t n = s.rows();
+  if (n == 0 || s.cols() != n) throw std::invalid_argument("frames per place: the similarity must be square");
+  const std::size_t lags = std::min(max_lag, n / 3);
+  if (lags < 4) return {};
+  // by_lag[k]: S(i, i + k) for every i; read a row segment at a time.
+  std::vector<std::vector<double>> by_lag(lags + 1);
+  std::vector<align::Score> row(lags + 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t end = std::min(n, i + lags + 1);
+    s.read_row(i, i, end, row.data());
+    for (std::size_t k = 0; k < end - i; ++k) by_lag[k].push_back(row[k]);
+  }
+  std::vector<double> c(lags + 1);
+  for (std::size_t k = 0; k <= lags; ++k) c[k] = median(std::move(by_lag[k]));
+  const double far = median(std::vector<double>(c.begin() + static_cast<std::ptrdiff_t>(lags / 2), c.end()));
+  const double peak = c[0] - far;
+  if (!(peak > 0)) return {};
+  // No flat background: the similarity drifts at every scale.
+  if (c[lags / 2] - c[lags] > 0.2 * (c[0] - c[lags])) return {};
+  const double target = 0.5;  // the half-life
+  for (std::size_t k = 1; k <= lags; ++k) {
+    const double rel = (c[k] - far) / peak;
+    if (rel < target) {
+      const double prev = (c[k - 1] - far) / peak;
+      const double lag = static_cast<double>(k - 1) + (prev - target) / (prev - rel);
+      // A sequence holds at least 50 places: a longer estimate is the descriptors drifting, not a place.
+      const double most = std::max(1.0, static_cast<double>(n) / 50.0);
+      return {std::clamp(lag, 1.0, most), lag <= most};
+    }
+  }
+  return {};
+}
+
+PlaceScale frames_per_place_from_odometry(std::span<const Pose2> odometry, double place_length) {
+  std::vector<double> steps;
+  for (std::size_t k = 1; k < odometry.size(); ++k) {
+    steps.push_back(std::hypot(odometry[k].x - odometry[k - 1].x, odometry[k].y - odometry[k - 1].y));
+  }
+  const double step = median(std::move(steps));
+  if (!(step > 0) || !std::isfinite(step)) return {};
+  return {std::max(1.0, place_length / step), true};
+}
+
+}  // namespace seqtopo::mapping
