@@ -122,47 +122,90 @@ void bind_map(py::module_& m) {
   add_repr(topology, "TopologyConfig", {"u_turn_separation"});
 
   const MapConfig d{};
+  auto labelling_name = [](MapConfig::Labelling l) {
+    return std::string(l == MapConfig::Labelling::consistent ? "consistent" : "pruned_transitive");
+  };
+  auto labelling_value = [](const std::string& name) {
+    if (name == "consistent") return MapConfig::Labelling::consistent;
+    if (name == "pruned_transitive") return MapConfig::Labelling::pruned_transitive;
+    throw std::invalid_argument("unknown labelling '" + name + "' (expected consistent or pruned_transitive)");
+  };
   py::class_<MapConfig> c(
       m, "MapConfig",
       "Settings of build_map (C++ seqtopo::mapping::MapConfig), same names and defaults.\n\n"
-      "contrast_window [frames] (0: align the raw S, as the paper), contrast_offset [standard\n"
-      "deviations], gap (penalty per skipped image), cap (None: no cap), threshold (minimum\n"
-      "alignment score of a revisit), min_separation [frames], reverse (also search paths revisited\n"
-      "backwards), pruning (PruningConfig), topology (TopologyConfig), threads (forward and reverse\n"
-      "passes in parallel when > 1; the result does not depend on it).");
-  c.def(py::init([](std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap,
-                    float threshold, std::size_t min_separation, bool reverse, PruningConfig pruning,
-                    TopologyConfig topology, unsigned threads) {
+      "contrast_window [places] (0: align the raw S, as the paper), contrast_offset [standard\n"
+      "deviations], gap (penalty per skipped image), cap (None: no cap; with cap_from_statistics the cap\n"
+      "is cap_factor x the score a significant alignment needs), max_e_value (None: the fixed threshold),\n"
+      "threshold (minimum alignment score of a revisit without significance), min_revisit_places,\n"
+      "adapt_offset (raise the offset until chance alignments stay short), min_separation [places],\n"
+      "place_units (False: windows in frames, as the paper), frames_per_place (None: estimated),\n"
+      "reverse (also search paths revisited backwards), labelling ('consistent' or 'pruned_transitive'),\n"
+      "max_visit_span [places], pruning (PruningConfig), topology (TopologyConfig), threads (forward and\n"
+      "reverse passes in parallel when > 1; the result does not depend on it).");
+  c.def(py::init([labelling_value](
+                     std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap,
+                     bool cap_from_statistics, float cap_factor, std::optional<double> max_e_value, float threshold,
+                     double min_revisit_places, bool adapt_offset, std::size_t min_separation, bool place_units,
+                     std::optional<double> frames_per_place, bool reverse, const std::string& labelling,
+                     double max_visit_span, PruningConfig pruning, TopologyConfig topology, unsigned threads) {
           MapConfig config;
           config.contrast_window = contrast_window;
           config.contrast_offset = contrast_offset;
           config.gap = gap;
           config.cap = cap;
+          config.cap_from_statistics = cap_from_statistics;
+          config.cap_factor = cap_factor;
+          config.max_e_value = max_e_value;
           config.threshold = threshold;
+          config.min_revisit_places = min_revisit_places;
+          config.adapt_offset = adapt_offset;
           config.min_separation = min_separation;
+          config.place_units = place_units;
+          config.frames_per_place = frames_per_place;
           config.reverse = reverse;
+          config.labelling = labelling_value(labelling);
+          config.max_visit_span = max_visit_span;
           config.pruning = pruning;
           config.topology = topology;
           config.threads = threads;
           return config;
         }),
         py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
-        py::arg("gap") = d.gap, py::arg("cap") = d.cap, py::arg("threshold") = d.threshold,
-        py::arg("min_separation") = d.min_separation, py::arg("reverse") = d.reverse, py::arg("pruning") = d.pruning,
-        py::arg("topology") = d.topology, py::arg("threads") = d.threads)
+        py::arg("gap") = d.gap, py::arg("cap") = d.cap, py::arg("cap_from_statistics") = d.cap_from_statistics,
+        py::arg("cap_factor") = d.cap_factor, py::arg("max_e_value") = d.max_e_value,
+        py::arg("threshold") = d.threshold, py::arg("min_revisit_places") = d.min_revisit_places,
+        py::arg("adapt_offset") = d.adapt_offset, py::arg("min_separation") = d.min_separation,
+        py::arg("place_units") = d.place_units, py::arg("frames_per_place") = d.frames_per_place,
+        py::arg("reverse") = d.reverse, py::arg("labelling") = labelling_name(d.labelling),
+        py::arg("max_visit_span") = d.max_visit_span, py::arg("pruning") = d.pruning, py::arg("topology") = d.topology,
+        py::arg("threads") = d.threads)
       .def_readwrite("contrast_window", &MapConfig::contrast_window)
       .def_readwrite("contrast_offset", &MapConfig::contrast_offset)
       .def_readwrite("gap", &MapConfig::gap)
       .def_readwrite("cap", &MapConfig::cap)
+      .def_readwrite("cap_from_statistics", &MapConfig::cap_from_statistics)
+      .def_readwrite("cap_factor", &MapConfig::cap_factor)
+      .def_readwrite("max_e_value", &MapConfig::max_e_value)
       .def_readwrite("threshold", &MapConfig::threshold)
+      .def_readwrite("min_revisit_places", &MapConfig::min_revisit_places)
+      .def_readwrite("adapt_offset", &MapConfig::adapt_offset)
+      .def_readwrite("contrast_offset_step", &MapConfig::contrast_offset_step)
+      .def_readwrite("max_contrast_offset", &MapConfig::max_contrast_offset)
       .def_readwrite("min_separation", &MapConfig::min_separation)
+      .def_readwrite("place_units", &MapConfig::place_units)
+      .def_readwrite("frames_per_place", &MapConfig::frames_per_place)
       .def_readwrite("reverse", &MapConfig::reverse)
+      .def_property(
+          "labelling", [labelling_name](const MapConfig& x) { return labelling_name(x.labelling); },
+          [labelling_value](MapConfig& x, const std::string& name) { x.labelling = labelling_value(name); })
+      .def_readwrite("max_visit_span", &MapConfig::max_visit_span)
       .def_readwrite("pruning", &MapConfig::pruning)
       .def_readwrite("topology", &MapConfig::topology)
-      .def_readwrite("threads", &MapConfig::threads);
+      .def_readwrite("threads", &MapConfig::threads)
+      .def_readwrite("fit_alignments", &MapConfig::fit_alignments);
   add_repr(c, "MapConfig",
-           {"contrast_window", "contrast_offset", "gap", "cap", "threshold", "min_separation", "reverse", "pruning",
-            "topology", "threads"});
+           {"contrast_window", "contrast_offset", "gap", "cap", "cap_from_statistics", "max_e_value", "threshold",
+            "min_separation", "frames_per_place", "reverse", "labelling", "pruning", "topology", "threads"});
 }
 
 void bind_localize(py::module_& m) {

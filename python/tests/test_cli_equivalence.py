@@ -91,8 +91,9 @@ def test_build_map_with_options_equals_cli(cli, tmp_path):
     np.save(tmp_path / "route_similarity.npy", s)
     run_cli(cli, "map", tmp_path / "route_similarity.npy", "--out", tmp_path / "out", "--gap", 1, "--cap", "none",
             "--threshold", 5, "--min-separation", 6, "--contrast-window", 8, "--contrast-offset", 0.25, "--no-reverse")
-    result = seqtopo.build_map(s, gap=1.0, cap=None, threshold=5.0, min_separation=6, contrast_window=8,
-                               contrast_offset=0.25, reverse=False)
+    # An explicit cap on the command line replaces the one from the statistics.
+    result = seqtopo.build_map(s, gap=1.0, cap=None, cap_from_statistics=False, threshold=5.0, min_separation=6,
+                               contrast_window=8, contrast_offset=0.25, reverse=False)
     assert result.alignments and all(a.direction == "forward" for a in result.alignments)
     assert_map_equal(result, tmp_path / "out")
 

@@ -59,7 +59,10 @@ def test_defaults_equal_the_command_line_help(cli):
     """`seqtopo map --help` prints the defaults of the C++ MapConfig."""
     text = run_cli(cli, "map", "--help").stdout
     config = seqtopo.MapConfig()
-    for option, value in [("gap", config.gap), ("cap", config.cap), ("threshold", config.threshold),
+    cap = re.search(r"--cap\b[^\n]*\(default: ([0-9.]+) x [^;]*; ([0-9.]+) without --e-value", text)
+    assert cap, "cap"
+    assert (float(cap.group(1)), float(cap.group(2))) == pytest.approx((config.cap_factor, config.cap))
+    for option, value in [("gap", config.gap), ("threshold", config.threshold),
                           ("min-separation", config.min_separation), ("contrast-window", config.contrast_window),
                           ("contrast-offset", config.contrast_offset)]:
         match = re.search(r"--" + option + r"\b[^\n]*\(default ([0-9.]+)", text)

@@ -265,9 +265,7 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
       build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols), c, odometry);
   result.decisions.frames_per_place_estimated = estimate;
   if (scale && !scale->found) {
-    result.decisions.notes.insert(result.decisions.notes.begin(),
-                                  "no place scale: the similarity keeps falling with the lag (a drifting sequence) or "
-                                  "the sequence is short; windows and separations count frames");
+    result.decisions.notes.insert(result.decisions.notes.begin(), kNoPlaceScaleNote);
   }
   // What was aligned: the enhanced scores minus the offset the run chose (or S itself without enhancement).
   if (framed.contrast_window > 0) {
@@ -412,11 +410,24 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   result.seconds_align = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  result.pruning = prune_per_column(result.alignments, c.pruning);
-  std::vector<std::pair<std::size_t, std::size_t>> same_place;
-  same_place.reserve(result.pruning.pairs.size());
-  for (const auto& p : result.pruning.pairs) same_place.emplace_back(p.i, p.j);
-  const auto labels = label_places(n, same_place);
+  std::vector<PlaceLabel> labels;
+  if (c.labelling == MapConfig::Labelling::consistent) {
+    ConsistentLabellingConfig lc;
+    lc.min_separation = c.min_separation;
+    lc.max_visit_span = in_frames(c.max_visit_span, d.frames_per_place);
+    // The engine's order when there is no path score (the fixed threshold): best first.
+    std::vector<double> priority = result.path_scores;
+    auto labelling = label_consistently(n, result.alignments, priority, lc, c.pruning.min_retained_fraction);
+    result.pruning = std::move(labelling.accepted);
+    result.refused_pairs = labelling.refused;
+    labels = std::move(labelling.labels);
+  } else {
+    result.pruning = prune_per_column(result.alignments, c.pruning);
+    std::vector<std::pair<std::size_t, std::size_t>> same_place;
+    same_place.reserve(result.pruning.pairs.size());
+    for (const auto& p : result.pruning.pairs) same_place.emplace_back(p.i, p.j);
+    labels = label_places(n, same_place);
+  }
   result.map = build_topology(labels, result.alignments, result.pruning, c.topology);
   result.seconds_prune_label = seconds_since(start);
   return result;

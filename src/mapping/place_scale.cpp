@@ -47,7 +47,8 @@ PlaceScale estimate_frames_per_place(const align::ScoreSource& s, std::size_t ma
       const double lag = static_cast<double>(k - 1) + (prev - target) / (prev - rel);
       // A sequence holds at least 50 places: a longer estimate is the descriptors drifting, not a place.
       const double most = std::max(1.0, static_cast<double>(n) / 50.0);
-      return {std::clamp(lag, 1.0, most), lag <= most};
+      if (lag > most) return {};
+      return {std::max(lag, 1.0), true};
     }
   }
   return {};

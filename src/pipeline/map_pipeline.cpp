@@ -135,6 +135,8 @@ void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry,
   say(observer, "[2/4] alignments (fast engine on streamed scores), pruning, labels, topology");
   run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry);
   run.result.decisions.frames_per_place_estimated = place.has_value();
+  if (place && !place->found)
+    run.result.decisions.notes.insert(run.result.decisions.notes.begin(), mapping::kNoPlaceScaleNote);
   run.timings.emplace_back("alignment (similarity streamed)", run.result.seconds_align);
   report_map(run, observer);
 

@@ -25,6 +25,7 @@ MapSettings map_preset(std::string_view name) {
   s.map.adapt_offset = false;
   s.map.min_revisit_places = 0;
   s.map.odometry_gate.reset();  // odometry only draws the picture (paper IV-D)
+  s.map.labelling = mapping::MapConfig::Labelling::pruned_transitive;
   return s;
 }
 

@@ -1,5 +1,7 @@
 #pragma once
-// A scratch folder for one test, removed with everything in it when the test ends, and reading a file whole.
+// A scratch folder for one test, removed with everything in it when the test ends (unless SEQTOPO_KEEP_TEST_FILES is
+// set), and reading a file whole.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -14,7 +16,10 @@ struct TempDir {
     path = std::filesystem::temp_directory_path() / ("seqtopo-test-" + std::to_string(std::random_device{}()));
     std::filesystem::create_directories(path);
   }
-  ~TempDir() { std::filesystem::remove_all(path); }
+  // SEQTOPO_KEEP_TEST_FILES=1 keeps the folder for a look after a failure.
+  ~TempDir() {
+    if (std::getenv("SEQTOPO_KEEP_TEST_FILES") == nullptr) std::filesystem::remove_all(path);
+  }
   TempDir(const TempDir&) = delete;
   TempDir& operator=(const TempDir&) = delete;
   void touch(const std::string& name) const { std::ofstream(path / name) << "x"; }

@@ -9,6 +9,7 @@
 #include "seqtopo/align/local_alignment.hpp"
 #include "seqtopo/align/score_source.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
+#include "seqtopo/mapping/consistent_labels.hpp"
 #include "seqtopo/mapping/odometry_gate.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/mapping/pruning.hpp"
@@ -60,6 +61,12 @@ struct MapConfig {
   // Applied when odometry is given to build_map: alignments it contradicts are dropped before pruning.
   // Chosen on the simulated worlds (bench/worlds.sh); the real sequences in the README have no odometry.
   std::optional<OdometryGate> odometry_gate = OdometryGate{};
+  // consistent: one labelling from all alignments (consistent_labels.hpp), each place holding at most
+  // max_visit_span [places] of one pass; pruned_transitive: the paper's per-column pruning (pruning.hpp) and
+  // transitive labels (place_labels.hpp).
+  enum class Labelling { consistent, pruned_transitive };
+  Labelling labelling = Labelling::consistent;
+  double max_visit_span = 2;  // [places]
   PruningConfig pruning;
   TopologyConfig topology;
   unsigned threads = 2;
@@ -95,7 +102,8 @@ struct MapResult {
   std::vector<align::LocalAlignment> insignificant;
   std::vector<double> insignificant_e_values;
   MapDecisions decisions;
-  PruningResult pruning;
+  PruningResult pruning;          // the retained pairs (accepted by the labelling, or surviving pruning)
+  std::size_t refused_pairs = 0;  // consistent labelling: proposals refused as inconsistent
   TopologicalMap map;
   double seconds_align = 0, seconds_prune_label = 0;
 };

@@ -23,9 +23,14 @@
 namespace seqtopo::mapping {
 
 struct PlaceScale {
-  double frames_per_place = 1;
-  bool found = false;  // false: too short a sequence, or no decay to a flat background
+  double frames_per_place = 1;  // 1 when not found
+  bool found = false;           // false: too short a sequence, or no decay to a flat background
 };
+
+// What a map run reports when no scale was found.
+inline constexpr const char* kNoPlaceScaleNote =
+    "no place scale: the similarity keeps falling with the lag (a drifting sequence) or the sequence is short; "
+    "windows and separations count frames";
 
 // `similarity` is a square self-similarity (higher = more similar; any scale). Throws std::invalid_argument on
 // a non-square or empty source.

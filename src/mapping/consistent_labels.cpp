@@ -1,0 +1,149 @@
+#include "seqtopo/mapping/consistent_labels.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace seqtopo::mapping {
+namespace {
+
+// Places as disjoint sets whose members are kept sorted, so a merge can be checked against the passes.
+class Places {
+ public:
+  explicit Places(std::size_t n) : parent_(n), members_(n) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+    for (std::size_t k = 0; k < n; ++k) members_[k] = {k};
+  }
+  std::size_t find(std::size_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  // Whether the place of `a` holds an image of the pass of `b` other than b itself: b's pass already
+  // matched there, so pairing a with b again (a shadow of that match) would only widen the place.
+  bool holds_pass_of(std::size_t a, std::size_t b, std::size_t min_separation) {
+    const auto& m = members_[find(a)];
+    const std::size_t low = b >= min_separation ? b - min_separation + 1 : 0;
+    for (auto it = std::lower_bound(m.begin(), m.end(), low); it != m.end() && *it < b + min_separation; ++it) {
+      if (*it != b) return true;
+    }
+    return false;
+  }
+  // Merges the places of a and b when no pass of the result spans more than max_span frames (a pass: members
+  // closer than min_separation to the next). Returns whether they are now one place.
+  bool merge(std::size_t a, std::size_t b, std::size_t min_separation, std::size_t max_span) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return true;
+    std::vector<std::size_t> merged;
+    merged.reserve(members_[a].size() + members_[b].size());
+    std::merge(members_[a].begin(), members_[a].end(), members_[b].begin(), members_[b].end(),
+               std::back_inserter(merged));
+    std::size_t pass_start = merged.front();
+    for (std::size_t k = 1; k < merged.size(); ++k) {
+      if (merged[k] - merged[k - 1] >= min_separation) {
+        pass_start = merged[k];
+      } else if (merged[k] - pass_start > max_span) {
+        return false;
+      }
+    }
+    if (members_[a].size() < members_[b].size()) std::swap(a, b);
+    parent_[b] = a;
+    members_[a] = std::move(merged);
+    members_[b].clear();
+    members_[b].shrink_to_fit();
+    return true;
+  }
+
+ private:
+  std::vector<std::size_t> parent_;
+  std::vector<std::vector<std::size_t>> members_;
+};
+
+}  // namespace
+
+ConsistentLabelling label_consistently(std::size_t images, const std::vector<align::LocalAlignment>& alignments,
+                                       const std::vector<double>& priority, const ConsistentLabellingConfig& config,
+                                       double min_kept_fraction) {
+  if (priority.size() != alignments.size()) throw std::invalid_argument("one priority per alignment needed");
+  for (const auto& a : alignments) {
+    for (auto [i, j] : a.pairs) {
+      if (i >= images || j >= images) {
+        throw std::invalid_argument("pair (" + std::to_string(i) + ", " + std::to_string(j) + ") outside " +
+                                    std::to_string(images) + " images");
+      }
+    }
+  }
+  // The canonical order: most significant first, then a fixed order of the alignments themselves.
+  std::vector<std::size_t> order(alignments.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    if (priority[x] != priority[y]) return priority[x] > priority[y];
+    const auto& ax = alignments[x];
+    const auto& ay = alignments[y];
+    if (ax.direction != ay.direction) return ax.direction == align::Direction::forward;
+    if (ax.a_begin != ay.a_begin) return ax.a_begin < ay.a_begin;
+    if (ax.b_begin != ay.b_begin) return ax.b_begin < ay.b_begin;
+    return ax.pairs < ay.pairs;
+  });
+
+  Places places(images);
+  ConsistentLabelling out;
+  std::vector<std::vector<bool>> accepted(alignments.size());
+  for (std::size_t k : order) {
+    const auto& a = alignments[k];
+    accepted[k].assign(a.pairs.size(), false);
+    for (std::size_t p = 0; p < a.pairs.size(); ++p) {
+      const auto [i, j] = a.pairs[p];
+      if (places.find(i) != places.find(j) &&
+          (places.holds_pass_of(i, j, config.min_separation) || places.holds_pass_of(j, i, config.min_separation))) {
+        ++out.redundant;
+      } else if (places.merge(i, j, config.min_separation, config.max_visit_span)) {
+        accepted[k][p] = true;
+      } else {
+        ++out.refused;
+      }
+    }
+  }
+  auto& result = out.accepted;
+  result.kept.assign(alignments.size(), false);
+  result.retained_count.assign(alignments.size(), 0);
+  for (std::size_t k = 0; k < alignments.size(); ++k) {
+    const auto& a = alignments[k];
+    for (std::size_t p = 0; p < a.pairs.size(); ++p) result.retained_count[k] += accepted[k][p] ? 1 : 0;
+    result.kept[k] = result.retained_count[k] > 0 && static_cast<double>(result.retained_count[k]) >=
+                                                         min_kept_fraction * static_cast<double>(a.pairs.size());
+    for (std::size_t p = 0; p < a.pairs.size(); ++p) {
+      if (accepted[k][p]) result.pairs.push_back({a.pairs[p].first, a.pairs[p].second, k, a.score});
+    }
+  }
+  if (config.fill_gaps) {
+    // Images skipped inside an accepted stretch of an alignment join the place of the image before them.
+    for (std::size_t k : order) {
+      const auto& a = alignments[k];
+      for (std::size_t p = 1; p < a.pairs.size(); ++p) {
+        if (!accepted[k][p] || !accepted[k][p - 1]) continue;
+        for (std::size_t i = a.pairs[p - 1].first + 1; i < a.pairs[p].first; ++i) {
+          places.merge(i, i - 1, config.min_separation, config.max_visit_span);
+        }
+        const std::size_t j0 = std::min(a.pairs[p - 1].second, a.pairs[p].second);
+        const std::size_t j1 = std::max(a.pairs[p - 1].second, a.pairs[p].second);
+        for (std::size_t j = j0 + 1; j < j1; ++j) places.merge(j, j - 1, config.min_separation, config.max_visit_span);
+      }
+    }
+  }
+  std::vector<PlaceLabel> root_label(images, -1);
+  out.labels.resize(images);
+  PlaceLabel next = 0;
+  for (std::size_t k = 0; k < images; ++k) {
+    const std::size_t root = places.find(k);
+    if (root_label[root] < 0) root_label[root] = next++;
+    out.labels[k] = root_label[root];
+  }
+  return out;
+}
+
+}  // namespace seqtopo::mapping

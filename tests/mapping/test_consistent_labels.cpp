@@ -1,0 +1,208 @@
+// Consistent labelling on hand-built alignment sets: the mapping paper's three inconsistent alignments,
+// several traversals, reverse and slower passes, shadows, refused chains, order independence, and the
+// invariant (no place holds a long stretch of one pass) on random alignment sets.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+
+#include "seqtopo/mapping/consistent_labels.hpp"
+#include "seqtopo/mapping/place_labels.hpp"
+
+namespace seqtopo::mapping {
+namespace {
+
+using align::Direction;
+using align::LocalAlignment;
+
+// Later images i0.. paired with earlier images j0.. one to one (forward), or j0 + length - 1 down (reverse).
+LocalAlignment run(std::size_t i0, std::size_t j0, std::size_t length, float score,
+                   Direction direction = Direction::forward) {
+  LocalAlignment a;
+  a.score = score;
+  a.direction = direction;
+  for (std::size_t k = 0; k < length; ++k) {
+    a.pairs.emplace_back(i0 + k, direction == Direction::forward ? j0 + k : j0 + length - 1 - k);
+  }
+  a.a_begin = i0;
+  a.a_end = i0 + length;
+  a.b_begin = j0;
+  a.b_end = j0 + length;
+  return a;
+}
+
+std::vector<double> scores_of(const std::vector<LocalAlignment>& alignments) {
+  std::vector<double> p;
+  for (const auto& a : alignments) p.push_back(a.score);
+  return p;
+}
+
+ConsistentLabelling label(std::size_t n, const std::vector<LocalAlignment>& alignments, std::size_t min_separation = 5,
+                          std::size_t span = 2) {
+  return label_consistently(n, alignments, scores_of(alignments),
+                            {.min_separation = min_separation, .max_visit_span = span});
+}
+
+std::size_t count_places(const std::vector<PlaceLabel>& labels) {
+  return std::set<PlaceLabel>(labels.begin(), labels.end()).size();
+}
+
+TEST(ConsistentLabels, ThePapersThreeInconsistentAlignmentsDoNotCollapse) {
+  // Section IV-C: 1..5 = 11..15, 11..15 = 21..25 and 1..5 = 22..26 (one image off).
+  const std::vector<LocalAlignment> alignments = {run(11, 1, 5, 10), run(21, 11, 5, 9), run(22, 1, 5, 8)};
+  const auto r = label(30, alignments);
+  for (std::size_t k = 0; k < 5; ++k) {
+    EXPECT_EQ(r.labels[1 + k], r.labels[11 + k]) << k;
+    EXPECT_EQ(r.labels[11 + k], r.labels[21 + k]) << k;
+    if (k > 0) {
+      EXPECT_NE(r.labels[1 + k], r.labels[k]) << k;
+    }
+  }
+  EXPECT_TRUE(r.accepted.kept[0] && r.accepted.kept[1]);
+  EXPECT_FALSE(r.accepted.kept[2]) << "the third alignment restates the first two one image off";
+  EXPECT_EQ(r.redundant, 5U);
+  // Transitive closure of every pair chains 1 = 11 = 21 = ... = 26 into far fewer places.
+  std::vector<std::pair<std::size_t, std::size_t>> all;
+  for (const auto& a : alignments) all.insert(all.end(), a.pairs.begin(), a.pairs.end());
+  EXPECT_LT(count_places(label_places(30, all)), count_places(r.labels));
+  const auto transitive = label_places(30, all);
+  EXPECT_EQ(transitive[1], transitive[5]) << "the closure puts a whole pass in one place";
+  EXPECT_NE(r.labels[1], r.labels[5]);
+}
+
+TEST(ConsistentLabels, ThreeTraversalsOfOnePathShareTheirPlaces) {
+  const std::vector<LocalAlignment> alignments = {run(40, 0, 20, 10), run(80, 40, 20, 9), run(80, 0, 20, 8)};
+  const auto r = label(100, alignments, 10);
+  for (std::size_t k = 0; k < 20; ++k) {
+    EXPECT_EQ(r.labels[k], r.labels[40 + k]) << k;
+    EXPECT_EQ(r.labels[k], r.labels[80 + k]) << k;
+  }
+  EXPECT_EQ(count_places(r.labels), 100U - 40U);
+  EXPECT_EQ(r.refused, 0U);
+  EXPECT_EQ(r.redundant, 0U) << "the third alignment agrees with the first two: its pairs are already merged";
+  EXPECT_EQ(r.accepted.pairs.size(), 60U);
+}
+
+TEST(ConsistentLabels, AReverseTraversalPairsEachImageWithItsMirror) {
+  const auto r = label(60, {run(40, 0, 20, 10, Direction::reverse)}, 10);
+  for (std::size_t k = 0; k < 20; ++k) EXPECT_EQ(r.labels[40 + k], r.labels[19 - k]) << k;
+  EXPECT_NE(r.labels[0], r.labels[1]);
+}
+
+TEST(ConsistentLabels, AHalfSpeedPassFillsItsGapsWithoutBubbles) {
+  // The second pass sees every image of the first twice: the alignment pairs every other frame.
+  LocalAlignment a;
+  a.score = 10;
+  for (std::size_t k = 0; k < 20; ++k) a.pairs.emplace_back(40 + 2 * k, k);
+  a.a_begin = 40;
+  a.a_end = 79;
+  a.b_begin = 0;
+  a.b_end = 20;
+  const auto r = label(80, {a}, 10);
+  for (std::size_t k = 0; k < 19; ++k) {
+    EXPECT_EQ(r.labels[40 + 2 * k], r.labels[k]) << k;
+    EXPECT_EQ(r.labels[41 + 2 * k], r.labels[k]) << "the frame skipped by the gap joins the place before it";
+  }
+  const auto no_fill =
+      label_consistently(80, {a}, {10.0}, {.min_separation = 10, .max_visit_span = 2, .fill_gaps = false});
+  EXPECT_NE(no_fill.labels[41], no_fill.labels[0]);
+  // With a span of one frame the slower pass may not hold a place for two frames.
+  const auto strict = label(80, {a}, 10, 0);
+  EXPECT_NE(strict.labels[41], strict.labels[0]);
+}
+
+TEST(ConsistentLabels, AShadowBesideARevisitAddsNothing) {
+  // The local aligner also reports the diagonal one image beside the revisit, a little weaker.
+  const std::vector<LocalAlignment> alignments = {run(40, 1, 20, 9), run(40, 0, 20, 10)};
+  const auto r = label(60, alignments, 10);
+  for (std::size_t k = 0; k < 20; ++k) EXPECT_EQ(r.labels[40 + k], r.labels[k]) << k;
+  for (std::size_t k = 1; k < 20; ++k) EXPECT_NE(r.labels[k], r.labels[k - 1]) << k;
+  EXPECT_TRUE(r.accepted.kept[1]);
+  EXPECT_FALSE(r.accepted.kept[0]) << "the shadow (listed first, weaker) is not a revisit of its own";
+  EXPECT_EQ(r.redundant, 20U);
+}
+
+TEST(ConsistentLabels, AMergeThatPutsAStretchOfOnePassInOnePlaceIsRefused) {
+  // 40..44 = 0..4 and 80..84 = 5..9; then 80..84 = 40..44 would join images k and k + 5 of the first pass.
+  const std::vector<LocalAlignment> alignments = {run(40, 0, 5, 10), run(80, 5, 5, 9), run(80, 40, 5, 8)};
+  const auto r = label(100, alignments, 10);
+  EXPECT_EQ(r.refused, 5U);
+  EXPECT_FALSE(r.accepted.kept[2]);
+  // Transitive closure would have made them one place.
+  for (std::size_t k = 0; k < 5; ++k) {
+    EXPECT_EQ(r.labels[40 + k], r.labels[k]);
+    EXPECT_EQ(r.labels[80 + k], r.labels[5 + k]);
+    EXPECT_NE(r.labels[80 + k], r.labels[40 + k]);
+  }
+  // A wider span allows it (5 frames of one pass in one place).
+  EXPECT_EQ(label(100, alignments, 10, 5).refused, 0U);
+}
+
+TEST(ConsistentLabels, TheResultDoesNotDependOnTheOrderOfTheAlignments) {
+  std::vector<LocalAlignment> alignments = {run(40, 0, 10, 10), run(80, 5, 10, 9), run(80, 40, 10, 9),
+                                            run(60, 20, 8, 9, Direction::reverse), run(41, 0, 10, 7)};
+  const auto reference = label(100, alignments, 10);
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 10; ++trial) {
+    std::vector<std::size_t> order(alignments.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<LocalAlignment> shuffled;
+    for (auto k : order) shuffled.push_back(alignments[k]);
+    const auto r = label(100, shuffled, 10);
+    EXPECT_EQ(r.labels, reference.labels) << trial;
+    EXPECT_EQ(r.refused, reference.refused);
+    EXPECT_EQ(r.redundant, reference.redundant);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      EXPECT_EQ(r.accepted.kept[k], reference.accepted.kept[order[k]]) << trial << " " << k;
+    }
+  }
+}
+
+// The span of the longest stretch of one pass within one place, by brute force over the labels.
+std::size_t longest_stretch(const std::vector<PlaceLabel>& labels, std::size_t min_separation) {
+  std::map<PlaceLabel, std::vector<std::size_t>> members;
+  for (std::size_t k = 0; k < labels.size(); ++k) members[labels[k]].push_back(k);
+  std::size_t longest = 0;
+  for (const auto& [place, m] : members) {
+    std::size_t start = m.front();
+    for (std::size_t k = 1; k < m.size(); ++k) {
+      if (m[k] - m[k - 1] >= min_separation) start = m[k];
+      longest = std::max(longest, m[k] - start);
+    }
+  }
+  return longest;
+}
+
+TEST(ConsistentLabels, RandomAlignmentSetsKeepEveryPassShortInAPlaceAndTheirPairsTogether) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::size_t n = 200;
+    std::vector<LocalAlignment> alignments;
+    const int count = 1 + static_cast<int>(rng() % 8);
+    for (int k = 0; k < count; ++k) {
+      const std::size_t length = 3 + rng() % 15;
+      const std::size_t j0 = rng() % (n - length - 30);
+      const std::size_t i0 = j0 + length + 10 + rng() % (n - j0 - 2 * length - 10);
+      alignments.push_back(
+          run(i0, j0, length, static_cast<float>(rng() % 5), rng() % 2 == 0 ? Direction::forward : Direction::reverse));
+    }
+    const std::size_t span = rng() % 4;
+    const auto r = label(n, alignments, 10, span);
+    EXPECT_LE(longest_stretch(r.labels, 10), span) << trial;
+    for (const auto& p : r.accepted.pairs) EXPECT_EQ(r.labels[p.i], r.labels[p.j]) << trial;
+    std::size_t proposals = 0;
+    for (const auto& a : alignments) proposals += a.pairs.size();
+    EXPECT_EQ(r.accepted.pairs.size() + r.refused + r.redundant, proposals) << trial;
+  }
+}
+
+TEST(ConsistentLabels, BadInputIsAnError) {
+  EXPECT_THROW(label_consistently(10, {run(5, 0, 2, 1)}, {}, {}), std::invalid_argument);
+  EXPECT_THROW(label(10, {run(9, 0, 3, 1)}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace seqtopo::mapping
