@@ -30,7 +30,7 @@ struct MapOptions {
   std::optional<std::string> descriptor, metric_name;
   std::optional<float> kappa, gap, threshold, cap;
   bool kappa_auto = false, no_cap = false, cap_auto = false, no_e_value = false, fpp_auto = false;
-  std::optional<double> e_value, frames_per_place;
+  std::optional<double> e_value, frames_per_place, cap_factor;
   std::optional<std::string> odometry_gate;
   std::optional<std::string> engine;  // default exact, fast with --streaming
   std::optional<std::size_t> min_separation, contrast_window;
@@ -70,6 +70,7 @@ Settings resolve_settings(const MapOptions& o) {
   if (o.no_e_value) s.map.max_e_value.reset();
   if (o.e_value) s.map.max_e_value = *o.e_value;
   if (o.frames_per_place) s.map.frames_per_place = *o.frames_per_place;
+  if (o.cap_factor) s.map.cap_factor = static_cast<float>(*o.cap_factor);
   const std::string engine = o.engine.value_or(o.streaming ? "fast" : "exact");
   if (engine == "fast") {
     s.map.engine = mapping::MapConfig::Engine::fast;
@@ -251,6 +252,10 @@ const RegisterCommand registered{
            fmt::format("cap on the cumulative score, or none (default: {} x the score a significant alignment "
                        "needs; {} without --e-value)",
                        mapping::MapConfig{}.cap_factor, *mapping::MapConfig{}.cap));
+       add_number(app, "--cap-factor", o->cap_factor, kPositive,
+                  fmt::format("without --cap: the cap is this many times the score a significant alignment needs "
+                              "(default {})",
+                              mapping::MapConfig{}.cap_factor));
        add_number(app, "--threshold", o->threshold, kPositive,
                   fmt::format("minimum alignment score of a revisit with --e-value none (default {})",
                               mapping::MapConfig{}.threshold));

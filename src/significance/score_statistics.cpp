@@ -24,30 +24,33 @@ double ScoreStatistics::score_at(double e) const {
 
 namespace {
 
-// Least squares of ln(rank) = a - lambda * score over ranks [first, scores.size()] (1-based).
-ScoreStatistics line_fit(std::span<const double> scores, double area, std::size_t first, std::size_t min_fitted) {
+// Maximum likelihood over ranks [first, M] (1-based) of the M best: in a Poisson process of intensity
+// K * area * lambda * exp(-lambda s) the spacing between the r-th and (r+1)-th best scores is exponential with
+// rate r * lambda, independently of the others (Renyi's representation; the Hill estimator of a tail), so
+// lambda = (M - first) / sum_r r (s_r - s_{r+1}). ln(K * area) is then the mean of ln(r) + lambda s_r, the
+// count above each score. Far steadier than a least-squares line through ln(rank), which the few top ranks
+// swing.
+// The `real` best are not chance: the chance rank of the r-th best is r - real.
+ScoreStatistics tail_fit(std::span<const double> scores, double area, std::size_t first, std::size_t min_fitted,
+                         std::size_t real) {
   ScoreStatistics s;
   s.area = area;
-  if (first < 1) first = 1;
+  first = std::max(first, real + 1);
   if (scores.size() < first || scores.size() - first + 1 < min_fitted) return s;
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const std::size_t n = scores.size() - first + 1;
-  for (std::size_t r = first; r <= scores.size(); ++r) {
-    const double x = scores[r - 1], y = std::log(static_cast<double>(r));
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
+  const std::size_t m = scores.size();
+  double weighted_spacings = 0;
+  for (std::size_t r = first; r < m; ++r) {
+    weighted_spacings += static_cast<double>(r - real) * (scores[r - 1] - scores[r]);
   }
-  const double count = static_cast<double>(n);
-  const double var = sxx - sx * sx / count;
-  if (!(var > 0)) return s;
-  const double slope = (sxy - sx * sy / count) / var;
-  if (!(slope < 0)) return s;
-  s.lambda = -slope;
-  const double intercept = (sy - slope * sx) / count;  // ln(K * area)
+  if (!(weighted_spacings > 0)) return s;
+  s.lambda = static_cast<double>(m - first) / weighted_spacings;
+  double intercept = 0;  // ln(K * area)
+  for (std::size_t r = first; r <= m; ++r) {
+    intercept += std::log(static_cast<double>(r - real)) + s.lambda * scores[r - 1];
+  }
+  intercept /= static_cast<double>(m - first + 1);
   s.k = std::exp(intercept) / area;
-  s.fitted = n;
+  s.fitted = m - first + 1;
   s.first_fitted_rank = first;
   return s;
 }
@@ -59,15 +62,26 @@ ScoreStatistics fit_declumped_scores(std::span<const double> scores, double area
   for (std::size_t k = 1; k < scores.size(); ++k) {
     if (!(scores[k] <= scores[k - 1])) throw std::invalid_argument("alignment scores must be best first");
   }
-  ScoreStatistics fit = line_fit(scores, area, config.first_rank, config.min_fitted);
+  // The first fit on the lower three quarters, surely chance when revisits are fewer than a quarter of the
+  // alignments (a longer list is asked for when they are not, map_builder.cpp): a few real ones at the top
+  // would otherwise pull lambda down until they look like chance themselves.
+  const std::size_t bulk = scores.size() / 4 + 1;
+  ScoreStatistics fit;
+  if (bulk > config.first_rank) fit = tail_fit(scores, area, bulk, config.min_fitted, 0);
+  if (!fit.valid()) fit = tail_fit(scores, area, config.first_rank, config.min_fitted, 0);
   if (!fit.valid()) return fit;
-  // Real alignments are far above the chance line: refit after setting them aside.
-  std::size_t real = 0;
-  while (real < scores.size() && fit.e_value(scores[real]) < config.real_e_value) ++real;
-  const std::size_t first = std::max(config.first_rank, 2 * real + 1);
-  if (first != config.first_rank) {
-    const ScoreStatistics refit = line_fit(scores, area, first, config.min_fitted);
-    if (refit.valid()) return refit;
+  std::size_t real_before = 0;
+  // Real alignments are far above the chance line: refit after setting them aside, until the set of real ones
+  // stays the same (many of them pull the first fit's lambda down, which hides some of them).
+  for (int round = 0; round < 8; ++round) {
+    std::size_t real = 0;
+    while (real < scores.size() && fit.e_value(scores[real]) < config.real_e_value) ++real;
+    const std::size_t first = std::max(config.first_rank, 2 * real + 1);
+    if (first == fit.first_fitted_rank && real == real_before) break;
+    const ScoreStatistics refit = tail_fit(scores, area, first, config.min_fitted, real);
+    if (!refit.valid()) break;
+    fit = refit;
+    real_before = real;
   }
   return fit;
 }

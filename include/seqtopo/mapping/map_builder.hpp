@@ -30,7 +30,7 @@ struct MapConfig {
   // images that separates two revisits follows the sequence's own statistics; else this fixed value.
   std::optional<float> cap = 40.0F;
   bool cap_from_statistics = true;
-  float cap_factor = 2.0F;
+  float cap_factor = 3.0F;
   // Significance (significance/score_statistics.hpp): an alignment is a revisit when its E-value, the number
   // of alignments this good expected by chance in this sequence, is at most max_e_value. nullopt: the paper's
   // fixed score threshold below.

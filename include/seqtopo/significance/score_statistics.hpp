@@ -12,10 +12,12 @@
 // base searches"; the "island" method of Olsen, Bundschuh & Hwa 1999 and Altschul et al. 2001 counts the same
 // clusters): the non-intersecting (declumped) alignments of the search itself, best first, are a sample of
 // chance alignments once the few real ones at the top are set aside. Their count above s falls like
-// K * area * exp(-lambda s): ln(rank) is a straight line in the score, fitted by least squares over the ranks
-// after the real ones. The real ones are found by the fit itself: a first fit from rank `first_rank` on, then
-// the fit is repeated from twice the number of alignments whose E-value is below `real_e_value`, so a search
-// with many revisits does not bias lambda. No null model has to be simulated and the statistics are those of
+// K * area * exp(-lambda s); lambda is the maximum-likelihood estimate from the spacings of the ranked scores
+// after the real ones (the Hill estimator of an exponential tail), K the count above each of them. The real
+// ones are found by the fit itself: a first fit on the lower three quarters of the ranks, then the fit is
+// repeated from `first_rank` or twice
+// the number of alignments whose E-value is below `real_e_value` until that number settles, so a search with
+// many revisits does not bias lambda. No null model has to be simulated and the statistics are those of
 // the sequence's own scores: its descriptors, its length, its aliasing.
 #include <cstddef>
 #include <span>

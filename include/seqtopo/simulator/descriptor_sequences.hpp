@@ -28,7 +28,7 @@ struct DescriptorSequenceConfig {
   std::size_t dim = 128;
   Texture texture = Texture::white;
   double correlation_length = 5;  // [frames] of Texture::ar1
-  std::vector<PlantedRevisit> revisits;
+  std::vector<PlantedRevisit> revisits{};
   std::size_t repeat = 1;
   std::uint64_t seed = 1;
 };

@@ -1,0 +1,85 @@
+// The statistics on whole sequences with known truth (simulator/descriptor_sequences.hpp): on noise with no
+// revisit the E-values count the chance alignments and the default reports none; the place scale of an AR(1)
+// texture is its half-life and follows a higher frame rate; a planted revisit is found at any frame rate.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/mapping/place_scale.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
+#include "seqtopo/simulator/descriptor_sequences.hpp"
+
+namespace seqtopo {
+namespace {
+
+SimilarityMatrix cosine_similarity(const simulator::DescriptorSequenceConfig& config) {
+  const auto sequence = simulator::make_descriptor_sequence(config);
+  return pipeline::similarity_of_descriptors(sequence.descriptors, nullptr).similarity;
+}
+
+TEST(Calibration, OnNoiseTheEValuesCountTheChanceAlignmentsAndTheDefaultReportsNone) {
+  std::size_t reported = 0;
+  double permissive = 0;
+  const int sequences = 6;
+  for (int seed = 1; seed <= sequences; ++seed) {
+    const auto s = cosine_similarity({.frames = 600, .dim = 64, .seed = static_cast<std::uint64_t>(seed)});
+    mapping::MapConfig config;
+    config.min_revisit_places = 0;  // count every chance alignment, short ones included
+    const auto defaults = mapping::build_map(s, config);
+    ASSERT_TRUE(defaults.decisions.statistics.valid()) << seed;
+    for (double e : defaults.e_values) reported += e <= 0.01 ? 1 : 0;
+    // E-value 3: about three chance alignments that good in each sequence.
+    config.max_e_value = 3.0;
+    const auto loose = mapping::build_map(s, config);
+    for (double e : loose.e_values) permissive += e <= 3.0 ? 1 : 0;
+  }
+  EXPECT_LE(reported, 1U) << "at E <= 0.01, 6 noise sequences expect 0.06 chance alignments";
+  const double mean = permissive / sequences;
+  EXPECT_GT(mean, 3.0 / 3) << "E-values far too pessimistic";
+  EXPECT_LT(mean, 3.0 * 3) << "E-values far too optimistic";
+}
+
+TEST(Calibration, ThePlaceScaleOfAnAr1TextureIsItsHalfLifeAndFollowsTheFrameRate) {
+  for (double length : {4.0, 10.0}) {
+    simulator::DescriptorSequenceConfig c{
+        .frames = 1500, .dim = 128, .texture = simulator::Texture::ar1, .correlation_length = length, .seed = 3};
+    const auto s = cosine_similarity(c);
+    const auto scale = mapping::estimate_frames_per_place(align::ScoreSource::dense(s.values, s.rows, s.cols));
+    ASSERT_TRUE(scale.found) << length;
+    // Correlation exp(-lag / L): half of it at L ln 2.
+    EXPECT_NEAR(scale.frames_per_place, length * std::log(2.0), 0.2 * length * std::log(2.0)) << length;
+    c.frames = 500;
+    c.repeat = 3;
+    const auto r = cosine_similarity(c);
+    const auto tripled = mapping::estimate_frames_per_place(align::ScoreSource::dense(r.values, r.rows, r.cols));
+    ASSERT_TRUE(tripled.found) << length;
+    EXPECT_NEAR(tripled.frames_per_place / scale.frames_per_place, 3.0, 0.2 * 3.0) << length;
+  }
+}
+
+TEST(Calibration, ADriftingSequenceHasNoPlaceScale) {
+  const auto s = cosine_similarity({.frames = 800, .dim = 128, .texture = simulator::Texture::walk, .seed = 2});
+  EXPECT_FALSE(mapping::estimate_frames_per_place(align::ScoreSource::dense(s.values, s.rows, s.cols)).found);
+}
+
+TEST(Calibration, APlantedRevisitIsFoundAtEveryFrameRateWithTheSameDefaults) {
+  for (std::size_t repeat : {1, 3}) {
+    const simulator::PlantedRevisit planted{.source = 60, .target = 300, .length = 120, .noise = 1.0};
+    const auto sequence = simulator::make_descriptor_sequence(
+        {.frames = 500, .dim = 64, .revisits = {planted}, .repeat = repeat, .seed = 5});
+    const auto s = pipeline::similarity_of_descriptors(sequence.descriptors, nullptr).similarity;
+    const auto result = mapping::build_map(s, mapping::MapConfig{});
+    std::size_t right = 0, wrong = 0;
+    for (const auto& p : result.pruning.pairs) {
+      (std::abs(sequence.position[p.i] - sequence.position[p.j]) <= 1.5 ? right : wrong) += 1;
+    }
+    EXPECT_EQ(wrong, 0U) << repeat;
+    // At least 80 % of the revisit's frames paired with their source.
+    EXPECT_GE(right, planted.length * repeat * 8 / 10) << repeat;
+    EXPECT_NEAR(result.decisions.frames_per_place, static_cast<double>(repeat), 0.5 * static_cast<double>(repeat));
+  }
+}
+
+}  // namespace
+}  // namespace seqtopo
