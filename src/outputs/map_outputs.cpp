@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "figures.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/map_json.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -119,12 +120,14 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
 
   if (run.streaming) {
     out.write("similarity.png",
-              plot::encode_png(plot::matrix_image(run.overview.cells, alignment_overlays(run, run.overview.block))));
+              plot::encode_png(plot::matrix_figure(run.overview.cells, alignment_overlays(run, run.overview.block),
+                                                   map_similarity_figure(run))));
   } else {
     out.write("similarity.npy", io::encode_npy(run.matrices.front()));
     out.write("scores.npy", io::encode_npy(result.scores));
     // The picture shows what was aligned: S itself, or its contrast-enhanced form (see the report).
-    out.write("similarity.png", plot::encode_png(plot::matrix_image(result.scores, alignment_overlays(run, 1))));
+    out.write("similarity.png", plot::encode_png(plot::matrix_figure(result.scores, alignment_overlays(run, 1),
+                                                                     map_similarity_figure(run))));
   }
 
   out.write("topology.dot", topology_dot(map));
