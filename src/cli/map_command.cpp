@@ -12,6 +12,7 @@
 
 #include "command_registry.hpp"
 #include "number_options.hpp"
+#include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
@@ -60,7 +61,6 @@ Settings resolve_settings(const MapOptions& o) {
     s.similarity.distance = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });
   if (o.kappa) s.similarity.kappa = *o.kappa;
   s.similarity.threads = resolve_threads(o.threads);
-  s.similarity.note = [](std::string_view text) { std::cerr << "seqtopo map: " << text << "\n"; };
   if (o.gap) s.map.gap = *o.gap;
   if (o.threshold) s.map.threshold = *o.threshold;
   if (o.no_cap) s.map.cap.reset();
@@ -95,12 +95,6 @@ Settings resolve_settings(const MapOptions& o) {
   s.map.threads = resolve_threads(o.threads);
   return s;
 }
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-void progress(const std::string& text) { std::cerr << "seqtopo map: " << text << std::endl; }
 
 // --streaming aligns contrast-enhanced cosine scores of one vector descriptor per image, computed on the
 // fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
@@ -165,7 +159,7 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
 }
 
 void run(MapOptions o) {
-  const auto total_start = std::chrono::steady_clock::now();
+  Progress progress("seqtopo map");
   // Everything the user gave is checked before the long computation starts (and before any progress
   // output), so a mistake costs one line and no time.
   pipeline::MapRequest request;
@@ -186,20 +180,30 @@ void run(MapOptions o) {
   const pipeline::MapJob job(request);
   if (o.streaming) check_streaming(o, request.settings, job.input_kind());
   io::OutputDirectory out(o.out);
-  if (bundled_default) progress("no input given: mapping the bundled corridor data " + o.input);
-  if (bundled_default && o.streaming) progress("its ground truth is an N x N image, which --streaming does not read");
-  pipeline::MapRun run = job.run({.progress = [](std::string_view text) { progress(std::string(text)); }});
+  if (bundled_default) progress.line("no input given: mapping the bundled corridor data " + o.input);
+  if (bundled_default && o.streaming) {
+    progress.line("its ground truth is an N x N image, which --streaming does not read");
+  }
+  const double setup_seconds = progress.elapsed();
+  const auto line = [&progress](std::string_view text) { progress.line(text); };
+  pipeline::MapRun run =
+      job.run({.progress = line, .stage = progress.observer(), .later_stages = {"files and figures", "report"}});
+  run.timings.insert(run.timings.begin(), {"setup (options, inputs checked)", setup_seconds});
 
-  const auto t = std::chrono::steady_clock::now();
+  progress.begin("files and figures");
   outputs::write_map_outputs(run, out);
-  run.timings.emplace_back("figures and report", seconds_since(t));
-  outputs::write_map_report(run, out);
+  run.timings.emplace_back("files and figures", progress.end());
+  progress.begin("report");
+  // The report's timings add up to the wall time up to its own writing (the rest is the final rename).
+  const auto report = outputs::write_map_report(run, out, {.seconds_before = progress.elapsed()});
+  progress.end();
+  if (!report.warning.empty()) progress.line("warning: " + report.warning);
   const auto written = out.commit();
-  progress(fmt::format("wrote {} files to {} in {:.2f} s", written.size(), o.out, seconds_since(total_start)));
+  progress.line(fmt::format("wrote {} files to {} in {:.2f} s", written.size(), o.out, progress.elapsed()));
   if (run.metrics) {
-    progress(fmt::format("loop closures: precision {:.3f} recall {:.3f} F1 {:.3f} AUC {:.3f} R@100P {:.3f}",
-                         run.metrics->precision, run.metrics->recall, run.metrics->f1, run.metrics->auc,
-                         run.metrics->recall_at_100_precision));
+    progress.line(fmt::format("loop closures: precision {:.3f} recall {:.3f} F1 {:.3f} AUC {:.3f} R@100P {:.3f}",
+                              run.metrics->precision, run.metrics->recall, run.metrics->f1, run.metrics->auc,
+                              run.metrics->recall_at_100_precision));
   }
 }
 

@@ -27,9 +27,87 @@ void say(const MapObserver& observer, const std::string& text) {
   if (observer.progress) observer.progress(text);
 }
 
+// The run's numbered stages: announced once, then begun and ended in order; each stage's time goes to
+// run.timings (so that they add up to the run's wall time) and to the observer.
+class StageClock {
+ public:
+  StageClock(const MapObserver& observer, MapRun& run, std::vector<std::string> names)
+      : observer_(observer), run_(run), names_(std::move(names)) {
+    names_.insert(names_.end(), observer.later_stages.begin(), observer.later_stages.end());
+    send({.kind = StageEvent::Kind::plan, .stages = names_.size(), .names = &names_});
+  }
+  // The next stage of the plan. `detail` is added to its text line when there is no structured observer.
+  void begin(const std::string& detail = {}) {
+    if (stage_ >= names_.size()) throw std::logic_error("map pipeline: more stages than planned");
+    ++stage_;
+    start_ = std::chrono::steady_clock::now();
+    if (observer_.stage) {
+      send({.kind = StageEvent::Kind::begin, .stage = stage_, .stages = names_.size(), .name = names_[stage_ - 1]});
+    } else {
+      say(observer_, fmt::format("[{}/{}] {}{}", stage_, names_.size(), names_[stage_ - 1], detail));
+    }
+  }
+  void advance(std::size_t done, std::size_t total, std::string_view unit) {
+    send({.kind = StageEvent::Kind::advance,
+          .stage = stage_,
+          .stages = names_.size(),
+          .name = names_[stage_ - 1],
+          .done = done,
+          .total = total,
+          .unit = unit});
+  }
+  // Ends the stage; its time is recorded as `parts` (name, seconds) with the rest of the stage's time given to
+  // the last part (default: the stage's own name). Returns the stage's seconds.
+  double end(std::vector<std::pair<std::string, double>> parts = {}) {
+    const double seconds = seconds_since(start_);
+    if (parts.empty()) parts.emplace_back(names_[stage_ - 1], 0.0);
+    double others = 0;
+    for (std::size_t k = 0; k + 1 < parts.size(); ++k) others += parts[k].second;
+    parts.back().second = std::max(0.0, seconds - others);
+    run_.timings.insert(run_.timings.end(), parts.begin(), parts.end());
+    send({.kind = StageEvent::Kind::end,
+          .stage = stage_,
+          .stages = names_.size(),
+          .name = names_[stage_ - 1],
+          .seconds = seconds});
+    return seconds;
+  }
+  // For SimilarityConfig::progress: the similarity's own counts (images described, matrix cells).
+  std::function<void(std::string_view, std::size_t, std::size_t)> similarity_progress() {
+    if (!observer_.stage) return {};
+    return [this](std::string_view what, std::size_t done, std::size_t total) {
+      advance(done, total, what == "matrix" ? "cells of the matrix" : "images described");
+    };
+  }
+
+ private:
+  void send(const StageEvent& event) const {
+    if (observer_.stage) observer_.stage(event);
+  }
+  const MapObserver& observer_;
+  MapRun& run_;
+  std::vector<std::string> names_;
+  std::size_t stage_ = 0;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// The stages a run goes through, in order (the plan's names).
+std::vector<std::string> stage_names(bool streaming, bool from_memory, bool odometry, bool truth, bool same_place) {
+  std::vector<std::string> names;
+  if (streaming) {
+    names = {"descriptors", "alignments, pruning, labels, topology (streamed scores)", "similarity overview"};
+  } else {
+    if (!from_memory) names.emplace_back("similarity");
+    names.emplace_back("alignments, pruning, labels, topology");
+  }
+  if (odometry) names.emplace_back("metric picture");
+  if (truth) names.emplace_back("accuracy");
+  if (same_place && !streaming) names.emplace_back("SeqSLAM-style baseline");
+  return names;
+}
+
 // The timing and the one progress line of the map stage, the same for every path.
 void report_map(MapRun& run, const MapObserver& observer) {
-  run.timings.emplace_back("pruning + labels + topology", run.result.seconds_prune_label);
   say(observer, fmt::format("      {} alignments ({} contradicted by odometry), {} kept, {} places, {} junctions",
                             run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),
                             std::count(run.result.pruning.kept.begin(), run.result.pruning.kept.end(), true),
@@ -44,17 +122,17 @@ void check_odometry(std::span<const Pose2> odometry, std::size_t n, const std::s
 
 // Stages 1 and 2 with the N x N matrices: one similarity matrix per descriptor, fused and aligned.
 void map_dense(const MapRequest& request, InputKind kind, const std::vector<Pose2>& odometry,
-               const MapObserver& observer, MapRun& run) {
+               const MapObserver& observer, StageClock& clock, MapRun& run) {
   const MapSettings& settings = request.settings;
   auto descriptors = settings.descriptors;
   // A descriptors.npy or similarity.npy input is one matrix, whatever descriptors were asked for.
   if (kind == InputKind::descriptors || kind == InputKind::similarity) descriptors.resize(1);
-  say(observer, "[1/4] similarity matrix");
-  auto t = std::chrono::steady_clock::now();
+  clock.begin(" matrix");
   for (auto descriptor : descriptors) {
     auto config = settings.similarity;
     config.descriptor = descriptor;
     if (!config.note && observer.progress) config.note = observer.progress;
+    if (!config.progress) config.progress = clock.similarity_progress();
     run.similarities.push_back(compute_similarity(request.input, config));
     run.descriptor_names.emplace_back(kind == InputKind::similarity    ? "similarity.npy"
                                       : kind == InputKind::descriptors ? "descriptors.npy"
@@ -63,26 +141,26 @@ void map_dense(const MapRequest& request, InputKind kind, const std::vector<Pose
     say(observer, fmt::format("      {}: {} images, kappa {:.4g}", run.descriptor_names.back(),
                               run.matrices.back().rows, run.similarities.back().kappa));
   }
-  run.timings.emplace_back("similarity", seconds_since(t));
+  clock.end();
   const std::size_t n = run.matrices.front().rows;
   if (n < 2) throw InputError(request.input.path.string(), "needs at least 2 images");
 
-  say(observer, "[2/4] alignments, pruning, labels, topology");
+  clock.begin();
   check_odometry(odometry, n, request.odometry.string());
   run.result = mapping::build_map(run.matrices, settings.map, odometry);
-  run.timings.emplace_back("alignment", run.result.seconds_align);
   report_map(run, observer);
+  clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 }
 
 // The streamed replacement of stages 1 and 2: descriptors, then the map on scores computed when the engine
 // reads them. Leaves run.result.scores empty and fills run.overview for similarity.png.
 void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry, const MapObserver& observer,
-                  MapRun& run) {
+                  StageClock& clock, MapRun& run) {
   const MapSettings& settings = request.settings;
-  say(observer, "[1/4] descriptors (--streaming: the similarity is computed on the fly, never N x N)");
-  auto t = std::chrono::steady_clock::now();
+  clock.begin(" (--streaming: the similarity is computed on the fly, never N x N)");
   auto config = settings.similarity;
   config.descriptor = settings.descriptors.front();
+  if (!config.progress) config.progress = clock.similarity_progress();
   DescriptorResult described = compute_descriptors(request.input, config);
   const std::size_t n = described.descriptors.rows, dim = described.descriptors.cols;
   run.descriptor_names.emplace_back(
@@ -99,59 +177,43 @@ void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry,
     throw InputError(request.input.path.string(), e.what());  // e.g. an all-zero descriptor has no direction
   }
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
-  run.timings.emplace_back("descriptors", seconds_since(t));
+  clock.end();
 
-  say(observer, "[2/4] alignments (fast engine on streamed scores), pruning, labels, topology");
+  clock.begin(" (fast engine)");
   run.result = mapping::build_map_from_scores(streamed->source(), settings.map, odometry);
-  run.timings.emplace_back("alignment (similarity streamed)", run.result.seconds_align);
   report_map(run, observer);
+  clock.end({{"alignment (similarity streamed)", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 
   const auto stats = streamed->stats();
   run.streamed_cells = stats.cells_computed;
   run.streamed_cache_bytes = stats.cache_bytes;
 
-  say(observer, "      similarity overview for similarity.png (one more streamed pass over the lower triangle)");
-  t = std::chrono::steady_clock::now();
+  clock.begin(" for similarity.png (one more streamed pass over the lower triangle)");
   // The streamed scores are 0.5 (E + E^T) - offset, symmetric bit for bit: half the reads suffice.
   run.overview = plot::matrix_overview(streamed->source(), {.max_side = 2048, .symmetric = true});
-  run.timings.emplace_back("similarity overview (streamed)", seconds_since(t));
+  clock.end({{"similarity overview (streamed)", 0}});
 }
 
 // Stages 3 and 4: the trajectory picture and the accuracy against whatever truth is given.
-void trajectory_and_accuracy(const MapSettings& settings, const MapTruth& truth, const MapObserver& observer,
-                             MapRun& run) {
+// The truth is loaded inside the accuracy stage (`load_truth`, may be empty), so that its time is counted there.
+void trajectory_and_accuracy(const MapSettings& settings, const std::function<MapTruth()>& load_truth,
+                             StageClock& clock, MapRun& run) {
   const std::size_t n = run.result.map.labels.size();
-  auto t = std::chrono::steady_clock::now();
   if (!run.odometry.empty()) {
-    say(observer, "[3/4] metric picture (EKF and pose graph)");
+    clock.begin(" (EKF and pose graph)");
     run.ekf = trajectory::ekf_map(run.odometry, run.result.map.labels).images;
     std::vector<std::pair<std::size_t, std::size_t>> loops;
     for (const auto& p : run.result.pruning.pairs) loops.emplace_back(p.i, p.j);
     run.pose_graph = trajectory::pose_graph(run.odometry, loops);
-    run.timings.emplace_back("metric picture", seconds_since(t));
+    clock.end();
   }
-
+  if (!load_truth) return;
+  clock.begin(" against the ground truth");
+  const MapTruth truth = load_truth();
   if (truth.same_place) {
-    say(observer, "[4/4] accuracy against the ground truth");
     std::vector<evaluation::ScoredPair> pairs;
     for (const auto& p : run.result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
     run.metrics = evaluation::evaluate_loop_closures(pairs, n, truth.same_place, settings.map.min_separation);
-    if (run.streaming) {
-      run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
-    } else {
-      // The baseline runs on every matrix seqtopo saw (each descriptor's S and the fused, enhanced scores).
-      std::vector<std::pair<std::string, const SimilarityMatrix*>> sources;
-      for (std::size_t k = 0; k < run.matrices.size(); ++k)
-        sources.emplace_back(run.descriptor_names[k], &run.matrices[k]);
-      if (run.matrices.size() > 1 || settings.map.contrast_window > 0) {
-        sources.emplace_back("seqtopo's fused scores", &run.result.scores);
-      }
-      if (auto b = seqslam_loop_closure_baseline(sources, n, truth.same_place, settings.map.min_separation,
-                                                 settings.similarity.threads)) {
-        run.baseline_metrics = std::move(b->metrics);
-        run.baseline_name = std::move(b->method);
-      }
-    }
   }
   if (!truth.places.empty()) {
     if (truth.places.size() != n) throw std::invalid_argument("true places: one per image expected");
@@ -166,6 +228,27 @@ void trajectory_and_accuracy(const MapSettings& settings, const MapTruth& truth,
     run.ate = TrajectoryErrors{trajectory::absolute_trajectory_error(run.odometry, truth.poses),
                                trajectory::absolute_trajectory_error(run.ekf, truth.poses),
                                trajectory::absolute_trajectory_error(run.pose_graph, truth.poses)};
+  }
+  clock.end();
+  if (truth.same_place) {
+    if (run.streaming) {
+      run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
+    } else {
+      // The baseline runs on every matrix seqtopo saw (each descriptor's S and the fused, enhanced scores).
+      std::vector<std::pair<std::string, const SimilarityMatrix*>> sources;
+      for (std::size_t k = 0; k < run.matrices.size(); ++k)
+        sources.emplace_back(run.descriptor_names[k], &run.matrices[k]);
+      if (run.matrices.size() > 1 || settings.map.contrast_window > 0) {
+        sources.emplace_back("seqtopo's fused scores", &run.result.scores);
+      }
+      clock.begin(fmt::format(" on {} matri{}", sources.size(), sources.size() == 1 ? "x" : "ces"));
+      if (auto b = seqslam_loop_closure_baseline(sources, n, truth.same_place, settings.map.min_separation,
+                                                 settings.similarity.threads)) {
+        run.baseline_metrics = std::move(b->metrics);
+        run.baseline_name = std::move(b->method);
+      }
+      clock.end();
+    }
   }
 }
 
@@ -207,24 +290,35 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
 
 MapRun MapJob::run(const MapObserver& observer) const {
   MapRun run = new_run(request_.settings, request_.input.path.string(), request_.preset);
+  run.sequence = request_.input;
   run.streaming = request_.streaming;
   run.odometry = odometry_;
+  const auto& files = request_.truth;
+  const bool poses = !files.poses.empty() && !run.odometry.empty();
+  const bool any_truth = !files.same_place.empty() || !files.places.empty() || poses;
+  StageClock clock(observer, run,
+                   stage_names(request_.streaming, false, !odometry_.empty(), any_truth, !files.same_place.empty()));
   if (request_.streaming) {
-    map_streamed(request_, odometry_, observer, run);
+    map_streamed(request_, odometry_, observer, clock, run);
   } else {
-    map_dense(request_, kind_, odometry_, observer, run);
+    map_dense(request_, kind_, odometry_, observer, clock, run);
   }
   const std::size_t n = run.result.map.labels.size();
-  MapTruth truth;
-  const auto& files = request_.truth;
-  if (!files.same_place.empty()) truth.same_place = load_same_place(files.same_place, files.radius, n);
-  if (!files.places.empty()) {
-    auto places = load_true_places(files.places, n);
-    truth.places = std::move(places.places);
-    truth.junctions = std::move(places.junctions);
+  std::function<MapTruth()> load_truth;
+  if (any_truth) {
+    load_truth = [&files, n, poses] {
+      MapTruth truth;
+      if (!files.same_place.empty()) truth.same_place = load_same_place(files.same_place, files.radius, n);
+      if (!files.places.empty()) {
+        auto places = load_true_places(files.places, n);
+        truth.places = std::move(places.places);
+        truth.junctions = std::move(places.junctions);
+      }
+      if (poses) truth.poses = load_true_poses(files.poses, n);
+      return truth;
+    };
   }
-  if (!files.poses.empty() && !run.odometry.empty()) truth.poses = load_true_poses(files.poses, n);
-  trajectory_and_accuracy(request_.settings, truth, observer, run);
+  trajectory_and_accuracy(request_.settings, load_truth, clock, run);
   return run;
 }
 
@@ -247,11 +341,17 @@ MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<
     throw std::invalid_argument(fmt::format("odometry has {} poses, the sequence has {} images", odometry.size(), n));
   }
   run.odometry.assign(odometry.begin(), odometry.end());
-  say(observer, "[2/4] alignments, pruning, labels, topology");
+  const bool poses = !truth.poses.empty() && !run.odometry.empty();
+  const bool any_truth = static_cast<bool>(truth.same_place) || !truth.places.empty() || poses;
+  StageClock clock(observer, run,
+                   stage_names(false, true, !run.odometry.empty(), any_truth, static_cast<bool>(truth.same_place)));
+  clock.begin();
   run.result = mapping::build_map(run.matrices, settings.map, odometry);
-  run.timings.emplace_back("alignment", run.result.seconds_align);
   report_map(run, observer);
-  trajectory_and_accuracy(settings, truth, observer, run);
+  clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
+  std::function<MapTruth()> load_truth;
+  if (any_truth) load_truth = [&truth] { return truth; };
+  trajectory_and_accuracy(settings, load_truth, clock, run);
   return run;
 }
 

@@ -29,6 +29,7 @@
 #include "seqtopo/evaluation/topology_metrics.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/pipeline/presets.hpp"
+#include "seqtopo/pipeline/progress.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/plot/matrix_overview.hpp"
@@ -69,6 +70,7 @@ struct TrajectoryErrors {
 // Everything one map run computed.
 struct MapRun {
   std::string input, preset;
+  SequenceInput sequence;  // what was mapped (the report's thumbnails); empty path in memory
   mapping::MapConfig map_config;
   bool paper_trajectory = false;
   std::vector<SimilarityResult> similarities;  // one per descriptor (kappa, names, timings)
@@ -81,7 +83,9 @@ struct MapRun {
   std::string baseline_skipped;  // why the baseline did not run (streaming), when it did not
   std::optional<TrajectoryErrors> ate;
   std::optional<evaluation::TopologyMetrics> topology;
-  std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+  // Stage, seconds: the parts of run(), one after the other, so they add up to its wall time (the command line
+  // appends its own: setup, files and figures, report).
+  std::vector<std::pair<std::string, double>> timings;
   // Streaming: no matrix is held (`matrices` and result.scores are empty); similarity.png draws this
   // block-max overview of the aligned scores instead, and the report states what the streaming cost.
   bool streaming = false;
@@ -91,8 +95,15 @@ struct MapRun {
 };
 
 // Lines about the work as it goes (stages, sizes, memory estimates); the library never prints.
+//
+// `progress` gets text lines; with `stage` set, the stages come as structured events instead
+// (pipeline/progress.hpp: plan, begin, advance with done / total, end with the stage's time) and `progress`
+// only gets the detail lines. `later_stages` names stages the caller runs after the job (writing the files,
+// the report), numbered after the job's own in the plan so that the numbering is the same from start to end.
 struct MapObserver {
   std::function<void(std::string_view)> progress;
+  StageObserver stage;
+  std::vector<std::string> later_stages;
 };
 
 // A checked request: the constructor reads what is small (the odometry, the number of images where it is
