@@ -72,28 +72,41 @@ double frame_distance(similarity::Distance metric, const FrameDescriptor& a, con
 
 // Calls visit(descriptor) for every frame of a sequence, in order, reading it lazily (a query folder is
 // listed first; a query of "-" takes one image path at a time from next_path as the frames arrive).
+// `arrival` (when given) is set to the time each frame arrives: its path read, before it is decoded.
 void for_each_frame(const SequenceInput& input, const Describer& describe, const NextPath& next_path,
-                    const std::function<void(FrameDescriptor)>& visit) {
+                    const std::function<void(FrameDescriptor)>& visit, Clock::time_point* arrival = nullptr) {
+  const auto arrived = [arrival] {
+    if (arrival) *arrival = Clock::now();
+  };
   if (input.path == "-") {
     if (!next_path) throw std::invalid_argument("a query of '-' needs a source of image paths");
     while (const auto line = next_path()) {
       if (line->empty()) continue;
+      arrived();
       visit(describe(image::load_image(*line)));
     }
     return;
   }
   switch (resolve_input_kind(input)) {
     case InputKind::images:
-      for (const auto& file : list_images(input.path)) visit(describe(image::load_image(file)));
+      for (const auto& file : list_images(input.path)) {
+        arrived();
+        visit(describe(image::load_image(file)));
+      }
       return;
     case InputKind::video:
-      image::for_each_video_frame(input.path, input.every,
-                                  [&](std::size_t, const RgbImage& frame) { visit(describe(frame)); });
+      image::for_each_video_frame(input.path, input.every, [&](std::size_t, const RgbImage& frame) {
+        arrived();
+        visit(describe(frame));
+      });
       return;
     case InputKind::descriptors: {
       const auto rows = io::read_npy_matrix<float>(input.path);
       if (rows.empty()) throw InputError(input.path.string(), "no descriptors (empty array)");
-      for (std::size_t i = 0; i < rows.rows; ++i) visit(std::vector<float>(rows.row(i).begin(), rows.row(i).end()));
+      for (std::size_t i = 0; i < rows.rows; ++i) {
+        arrived();
+        visit(std::vector<float>(rows.row(i).begin(), rows.row(i).end()));
+      }
       return;
     }
     default:
@@ -105,14 +118,15 @@ void for_each_frame(const SequenceInput& input, const Describer& describe, const
 void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_frame, const NextPath& next_path,
                 LocalizeRun& run) {
   const auto& config = request.settings.localize;
-  auto report = [&](const localize::OnlineEstimate& e, double seconds) {
+  auto report = [&](const localize::OnlineEstimate& e, double seconds, double wait) {
     FrameAnswer a;
     if (e.in_map) a.map = e.map;
     a.score = e.confidence;
     a.candidates = {e.map};
     run.answers.push_back(a);
     run.latencies.push_back(seconds);
-    if (on_frame) on_frame(e.query, run.answers.back(), seconds);
+    run.waits.push_back(wait);
+    if (on_frame) on_frame(e.query, run.answers.back(), seconds, wait);
   };
 
   if (request.similarity_file) {
@@ -123,7 +137,7 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
     for (std::size_t i = 0; i < s.rows; ++i) {
       const auto t = Clock::now();
       const auto e = localizer.feed(s.row(i));
-      report(e, seconds_since(t));
+      report(e, seconds_since(t), 0.0);
     }
     run.similarity = s;
     run.queries = s.rows;
@@ -150,18 +164,25 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
   localize::OnlineLocalizer localizer(map.size(), config);
   std::vector<float> row(map.size());
   std::vector<float> kept;
-  auto t = Clock::now();  // a frame's latency runs from the end of the previous frame: reading it counts
-  for_each_frame(request.query, describe, next_path, [&](FrameDescriptor q) {
-    try {
-      for (std::size_t j = 0; j < map.size(); ++j) row[j] = static_cast<float>(-frame_distance(metric, q, map[j]));
-    } catch (const std::invalid_argument& e) {
-      throw InputError(request.query.path.string(), e.what());
-    }
-    const auto e = localizer.feed(row);
-    kept.insert(kept.end(), row.begin(), row.end());
-    report(e, seconds_since(t));
-    t = Clock::now();
-  });
+  // A frame's latency is its processing, from its arrival (its path read) to its answer: decoding, describing,
+  // aligning. The time spent waiting for it since the previous answer is reported apart.
+  auto arrival = Clock::now(), answered = arrival;
+  for_each_frame(
+      request.query, describe, next_path,
+      [&](FrameDescriptor q) {
+        try {
+          for (std::size_t j = 0; j < map.size(); ++j) row[j] = static_cast<float>(-frame_distance(metric, q, map[j]));
+        } catch (const std::invalid_argument& e) {
+          throw InputError(request.query.path.string(), e.what());
+        }
+        const auto e = localizer.feed(row);
+        const auto now = Clock::now();
+        kept.insert(kept.end(), row.begin(), row.end());
+        report(e, std::chrono::duration<double>(now - arrival).count(),
+               std::chrono::duration<double>(arrival - answered).count());
+        answered = Clock::now();
+      },
+      &arrival);
   run.queries = run.answers.size();
   if (run.queries == 0) throw InputError(request.query.path.string(), "no query frame");
   run.similarity = SimilarityMatrix(run.queries, run.maps, std::move(kept));
@@ -177,6 +198,7 @@ LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineFrame
   run.settings = request.settings;
   run.inputs = request.similarity_file ? request.similarity_file->string()
                                        : request.query.path.string() + " in " + request.map.path.string();
+  if (!request.similarity_file) run.map_input = request.map, run.query_input = request.query;
   const auto t0 = Clock::now();
   if (request.online) {
     run_online(request, on_frame, next_query_path, run);

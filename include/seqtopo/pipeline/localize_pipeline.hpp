@@ -57,7 +57,10 @@ struct LocalizeRun {
   std::size_t queries = 0, maps = 0;
   std::vector<FrameAnswer> answers;
   std::vector<align::LocalAlignment> alignments;  // offline
-  std::vector<double> latencies;                  // [s] per frame, online
+  // Online, per frame [s]: the latency is the processing, from the frame's arrival (its path or file read) to its
+  // answer (decoding, describing, aligning); the wait is the time before it arrived, since the previous answer.
+  std::vector<double> latencies, waits;
+  SequenceInput map_input, query_input;  // what was read (empty paths for a similarity file): report thumbnails
   std::vector<std::pair<std::string, double>> timings;
   double seconds = 0;  // the localization's wall time
   // With ground truth (evaluate_localization_run):
@@ -65,8 +68,9 @@ struct LocalizeRun {
   std::size_t tolerance = 0;
 };
 
-// Online: called after every query frame with its index, answer and latency [s].
-using OnlineFrameCallback = std::function<void(std::size_t query, const FrameAnswer& answer, double latency)>;
+// Online: called after every query frame with its index, answer, latency (processing) and wait [s].
+using OnlineFrameCallback =
+    std::function<void(std::size_t query, const FrameAnswer& answer, double latency, double wait)>;
 // The next image path of a query given as "-" (nullopt at the end).
 using NextPath = std::function<std::optional<std::string>()>;
 
