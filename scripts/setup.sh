@@ -12,6 +12,7 @@ packages=(
   libfaiss-dev libopenmpi-dev openmpi-bin
   python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-pip python3-venv python3-pil
   chromium chromium-driver python3-selenium ccache clang-format
+  libjs-d3
 )
 
 missing=()
