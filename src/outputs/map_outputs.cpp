@@ -46,14 +46,26 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
     for (const auto& place : map.places) node(place);
     for (auto [p, q] : map.edges) dot << "  p" << p << " -- p" << q << ";\n";
   } else {
+    // Each segment's inner places as a chain of at most 8 runs (node label: its number of places), so that the
+    // picture keeps the segment's shape: a loop is drawn as a ring, not as one edge from a node to itself.
     std::vector<bool> drawn(map.places.size(), false);
-    for (const auto& s : map.segments) {
+    for (std::size_t k = 0; k < map.segments.size(); ++k) {
+      const auto& s = map.segments[k];
       for (auto end : {s.places.front(), s.places.back()}) {
         if (!drawn[end]) node(map.places[end]);
         drawn[end] = true;
       }
-      dot << "  p" << s.places.front() << " -- p" << s.places.back() << " [label=\"" << s.places.size()
-          << "\", fontsize=8];\n";
+      const std::size_t inner = s.places.size() > 2 ? s.places.size() - 2 : 0, runs = std::min<std::size_t>(8, inner);
+      std::string previous = fmt::format("p{}", s.places.front());
+      for (std::size_t r = 0; r < runs; ++r) {
+        const std::size_t begin = 1 + r * inner / runs, end = 1 + (r + 1) * inner / runs;
+        const std::string run = fmt::format("s{}r{}", k, r);
+        dot << "  " << run << " [label=\"" << end - begin << "\", shape=box, width=0.3, height=0.2, fontsize=7, "
+            << "fillcolor=\"#9ecae1\", tooltip=\"places " << s.places[begin] << " to " << s.places[end - 1] << "\"];\n";
+        dot << "  " << previous << " -- " << run << ";\n";
+        previous = run;
+      }
+      dot << "  " << previous << " -- p" << s.places.back() << ";\n";
     }
   }
   dot << "}\n";

@@ -287,11 +287,20 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   if (run.metrics) {
     html.png("Precision-recall, sweeping the score threshold", read_file(out.staged("pr_curve.png")), "pr_curve.png");
   }
-  html.png(what + " (bright = similar) with the alignments: kept pairs red, pruned blue",
-           read_file(out.staged("similarity.png")), "similarity.png");
+  const std::string similarity_png = read_file(out.staged("similarity.png"));
+  if (similarity_png.size() <= detail::kMaxInlinedFigure) {
+    html.png(what + " (bright = similar) with the alignments: kept pairs red, pruned blue", similarity_png,
+             "similarity.png");
+  } else {
+    html.paragraph(
+        fmt::format("similarity.png ({:.1f} MB) is in the folder beside this report, not inlined: the "
+                    "interactive view above shows the same matrix.",
+                    static_cast<double>(similarity_png.size()) / 1e6));
+  }
   html.svg(result.map.places.size() <= kMaxDrawnPlaces
                ? "Places (red: junctions, blue: revisited places) and their connections"
-               : "Junctions (red) and path ends joined by path segments (edge label: number of places)",
+               : "Junctions (red) and path ends joined by path segments, each drawn as a chain of runs of places "
+                 "(box label: number of places)",
            read_file(out.staged("topology.svg")), "topology.svg");
   html.end_details();
 

@@ -22,7 +22,7 @@ int thumbnail_side(std::size_t frames) {
 }
 
 std::string thumbnail_uri(const RgbImage& image, int side) {
-  return "data:image/jpeg;base64," + report::base64(plot::encode_jpeg(plot::shrink(image, side), 82));
+  return "data:image/jpeg;base64," + report::base64(plot::encode_jpeg(plot::shrink(image, side), 75));
 }
 
 }  // namespace
@@ -91,7 +91,10 @@ nlohmann::json sequence_json(const pipeline::SequenceInput& input, std::size_t f
 nlohmann::json matrix_json(const DenseMatrix<float>& cells, std::size_t rows, std::size_t cols,
                            const std::string& row_label, const std::string& col_label, const std::string& value_label) {
   const plot::ValueRange range = plot::display_range(cells, true);
-  return {{"image", "data:image/png;base64," + report::base64(plot::matrix_grey_png(cells, range))},
+  // A large matrix of noisy scores compresses badly as PNG (4 MB at 2048 x 2048); as a JPEG it is a quarter.
+  const bool large = std::max(cells.rows, cells.cols) > 1024;
+  const std::string image = large ? plot::matrix_grey_jpeg(cells, range) : plot::matrix_grey_png(cells, range);
+  return {{"image", std::string(large ? "data:image/jpeg;base64," : "data:image/png;base64,") + report::base64(image)},
           {"rows", rows},
           {"cols", cols},
           {"range", {range.lo, range.hi}},

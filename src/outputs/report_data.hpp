@@ -24,7 +24,11 @@ inline constexpr std::size_t kMaxThumbnails = 20000;
 nlohmann::json sequence_json(const pipeline::SequenceInput& input, std::size_t frames,
                              const std::vector<std::size_t>& wanted, const std::string& noun);
 
-// {"image": PNG data URI (grey levels), "rows", "cols" (the index extents), "range": [lo, hi], labels}.
+// Static figures larger than this are left out of the page (they are files beside it) [bytes].
+inline constexpr std::size_t kMaxInlinedFigure = std::size_t{3} << 20U;
+
+// {"image": PNG (JPEG above 1024 pixels a side) data URI of the grey levels, "rows", "cols" (the index extents),
+// "range": [lo, hi], labels}.
 nlohmann::json matrix_json(const DenseMatrix<float>& cells, std::size_t rows, std::size_t cols,
                            const std::string& row_label, const std::string& col_label, const std::string& value_label);
 

@@ -40,6 +40,8 @@ ValueRange display_range(const DenseMatrix<float>& matrix, bool robust = true);
 // A grey-level PNG (one channel) of the matrix alone, one pixel per cell up to max_size (block means above),
 // `range` mapped to black..white: the layer the interactive report zooms into.
 std::string matrix_grey_png(const DenseMatrix<float>& matrix, ValueRange range, int max_size = 2048);
+// The same as a grey-level JPEG (quality 90): a quarter of the bytes for large noisy matrices.
+std::string matrix_grey_jpeg(const DenseMatrix<float>& matrix, ValueRange range, int max_size = 2048);
 
 // matrix_image() as a figure for a paper: index axes with ticks (left: rows, below: columns), a colour bar
 // of the grey levels with its values, a title and a legend of the overlays.
