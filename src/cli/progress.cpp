@@ -114,8 +114,7 @@ double Progress::end() {
 
 void Progress::line(std::string_view text) {
   const std::lock_guard lock(mutex_);
-  if (style_ == ProgressStyle::none) return;
-  print_locked(std::string(text));
+  print_locked(std::string(text));  // also with the none style: these are results and warnings, not progress
 }
 
 void Progress::on_event(const pipeline::StageEvent& event) {

@@ -6,7 +6,8 @@
 //   runs (nothing is silent for longer), one when it ends
 //     seqtopo map: [1/6] similarity: 45% (1620/3600 images described), 310/s, ETA 6 s
 //     seqtopo map: [1/6] similarity done in 11.62 s
-// SEQTOPO_PROGRESS=bar|lines|none overrides the choice (tests, or a terminal that wants plain lines).
+// SEQTOPO_PROGRESS=bar|lines|none overrides the choice (tests, or a terminal that wants plain lines); none keeps
+// the detail lines (sizes, results, warnings) and drops the stages.
 #include <chrono>
 #include <condition_variable>
 #include <cstddef>
