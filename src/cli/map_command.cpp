@@ -219,8 +219,8 @@ const RegisterCommand registered{
        add_number(app, "--every", o->every, kAtLeastOne, "video: use every K-th frame");
        app.add_option("--preset", o->preset, "paper (joint histogram, chi2, EKF) or default")->capture_default_str();
        app.add_option("--descriptor", o->descriptor,
-                      "joint-histogram|patch|panorama, or several separated by commas to fuse them "
-                      "(default joint-histogram,patch; paper preset joint-histogram)");
+                      "joint-histogram|patch|panorama|npy (npy: the rows of a descriptors.npy INPUT), or several "
+                      "separated by commas to fuse them (default joint-histogram,patch; paper preset joint-histogram)");
        app.add_option("--metric", o->metric_name, "chi2|l1|cosine|sad (default: by descriptor)");
        add_number_or(app, "--kappa", o->kappa, "auto", o->kappa_auto, kPositive,
                      "S = 1 - kappa * D: a number > 0, or auto (from the sequence's own distances)");
