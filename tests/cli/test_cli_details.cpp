@@ -17,6 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 using seqtopo::test_support::read_file;
 using seqtopo::test_support::run_cli;
+using seqtopo::test_support::run_command;
 using seqtopo::test_support::TempDir;
 
 std::string random_dna(std::size_t n, std::mt19937& random) {
@@ -129,6 +130,39 @@ TEST(CliDetails, MatchStringsHeaderFirstAndGeometricRatesSayWhatTheyAreOver) {
   const std::string table = read_file(out / "metrics.txt");
   EXPECT_NE(table.find("Top.  wrong     33.3 %   (of 3 test points)"), std::string::npos) << table;
   EXPECT_NE(table.find("(of 2 of the 3 test points: the topologically correct ones)"), std::string::npos) << table;
+}
+
+TEST(CliDetails, OnlineLatencyIsProcessingAndTheWaitIsApart) {
+  TempDir dir;
+  const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  fs::create_directories(dir.path / "map");
+  for (int k = 1; k <= 40; ++k) {
+    fs::create_symlink(corridor / (std::to_string(k) + ".jpg"), dir.path / "map" / (std::to_string(k) + ".jpg"));
+  }
+  // Three query frames, fed 1 s apart once the map is described: a frame's latency is its processing
+  // (milliseconds), not the wait for it.
+  const std::string feed = "(sleep 2; for k in 41 42 43; do echo " + corridor.string() + "/$k.jpg; sleep 1; done)";
+  const auto r = run_command(feed + " | " + std::string(SEQTOPO_CLI) + " localize --map " +
+                             (dir.path / "map").string() + " --query - --online --out " + (dir.path / "out").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "query,map,confidence,latency_ms,wait_ms");
+  std::vector<double> latency, wait;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> fields;
+    std::stringstream row(line);
+    for (std::string f; std::getline(row, f, ',');) fields.push_back(f);
+    ASSERT_EQ(fields.size(), 5U) << line;
+    latency.push_back(std::stod(fields[3]));
+    wait.push_back(std::stod(fields[4]));
+  }
+  ASSERT_EQ(latency.size(), 3U) << r.out;
+  for (std::size_t q = 0; q < 3; ++q) EXPECT_LT(latency[q], 400.0) << "frame " << q << " counts the wait";
+  for (std::size_t q = 1; q < 3; ++q) EXPECT_GT(wait[q], 500.0) << "frame " << q;
+  const std::string csv = read_file(dir.path / "out" / "latency.csv");
+  EXPECT_EQ(csv.rfind("query,latency_ms,wait_ms\n", 0), 0U) << csv;
 }
 
 }  // namespace
