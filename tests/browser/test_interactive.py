@@ -257,3 +257,50 @@ def test_without_d3_the_report_is_static_and_says_so(browser, scratch):
     problems = report_check.check_report(browser, report, "seqtopo map: ", ("Summary", "Parameters"),
                                          ("pr_curve.png", "similarity.png", "topology.svg"), min_images=3)
     assert not problems, problems
+
+
+def test_the_static_figures_have_axes_colour_bar_and_legends(map_report):
+    """The PNGs `seqtopo map` wrote for the corridor, checked on their pixels."""
+    from PIL import Image
+
+    folder = os.path.dirname(map_report)
+    a = np.asarray(Image.open(os.path.join(folder, "similarity.png")).convert("RGB")).astype(int)
+    grey = a.mean(axis=2)
+    dark = grey < 60
+    # The matrix's frame: the longest dark row and column; the image inside is 84 cells drawn as squares.
+    rows = dark.sum(axis=1)
+    cols = dark.sum(axis=0)
+    frame_bottom = int(np.flatnonzero(rows >= 0.6 * rows.max())[-1])
+    frame_left = int(np.flatnonzero(cols >= 0.6 * cols.max())[0])
+    # Tick marks below the frame: short dark runs in the 7 rows under it, at 5 or more separate columns.
+    below = dark[frame_bottom + 2:frame_bottom + 7, frame_left:]
+    tick_columns = np.flatnonzero(below.sum(axis=0) >= 4)
+    groups = np.split(tick_columns, np.flatnonzero(np.diff(tick_columns) > 3) + 1)
+    assert len(groups) >= 5, "tick marks below the matrix at %r" % tick_columns
+    # Tick marks left of the frame too.
+    left = dark[:frame_bottom, frame_left - 9:frame_left - 2]
+    assert len(np.split(np.flatnonzero(left.sum(axis=1) >= 4),
+                        np.flatnonzero(np.diff(np.flatnonzero(left.sum(axis=1) >= 4)) > 3) + 1)) >= 5
+    # The colour bar: a column right of the matrix whose grey falls from white to black, through 100+ levels.
+    bars = []
+    for x in range(frame_left + 100, a.shape[1]):
+        column = grey[:frame_bottom, x]
+        equal = (a[:frame_bottom, x, 0] == a[:frame_bottom, x, 1]) & (a[:frame_bottom, x, 1] == a[:frame_bottom, x, 2])
+        values = column[equal & (column > 0) & (column < 255)]
+        if len(np.unique(values)) >= 100 and np.all(np.diff(values) <= 2) and values[0] > 230 and values[-1] < 25:
+            bars.append(x)
+    assert bars, "no white-to-black colour bar right of the matrix"
+    # The legend below: the kept (red) and pruned (blue) entries.
+    legend = a[frame_bottom + 40:]
+    for rgb in ((255, 30, 30), (40, 110, 255)):
+        assert (np.abs(legend - rgb).max(axis=2) < 40).sum() > 20, "no legend entry in %r" % (rgb,)
+
+    p = np.asarray(Image.open(os.path.join(folder, "pr_curve.png")).convert("RGB")).astype(int)
+    red = np.abs(p - (220, 30, 30)).max(axis=2) < 40
+    frame = (p.mean(axis=2) < 60).sum(axis=1)
+    top = int(np.flatnonzero(frame >= 0.6 * frame.max())[0])
+    # The corridor's curve is at precision 1.0: drawn below the frame's top line, not on it.
+    red_rows = np.flatnonzero(red.sum(axis=1) > 50)
+    assert len(red_rows) and red_rows.min() >= top + 8, (top, red_rows[:5])
+    blue = np.abs(p - (40, 90, 220)).max(axis=2) < 40
+    assert blue.sum() > 100, "no baseline curve or legend entry"
