@@ -101,9 +101,10 @@ struct MapRun {
 // only gets the detail lines. `later_stages` names stages the caller runs after the job (writing the files,
 // the report), numbered after the job's own in the plan so that the numbering is the same from start to end.
 struct MapObserver {
-  std::function<void(std::string_view)> progress;
-  StageObserver stage;
-  std::vector<std::string> later_stages;
+  // Default member initializers: `{.progress = ...}` alone stays free of -Wmissing-field-initializers.
+  std::function<void(std::string_view)> progress = {};
+  StageObserver stage = {};
+  std::vector<std::string> later_stages = {};
 };
 
 // A checked request: the constructor reads what is small (the odometry, the number of images where it is
