@@ -152,7 +152,7 @@ void run(const LocalizeOptions& o) {
   // The report's timings: the command's setup, the localization's own parts and the rest of its stage.
   double parts = 0;
   for (const auto& t : r.timings) parts += t.second;
-  r.timings.insert(r.timings.begin(), {"setup (options, inputs checked)", setup_seconds});
+  r.timings.insert(r.timings.begin(), {"start-up, options, inputs checked", setup_seconds});
   r.timings.emplace_back("localization: the rest (reading, online frames)",
                          std::max(0.0, localization_seconds - parts));
   r.timings.emplace_back("accuracy and baselines", accuracy_seconds);

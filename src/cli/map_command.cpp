@@ -188,7 +188,7 @@ void run(MapOptions o) {
   const auto line = [&progress](std::string_view text) { progress.line(text); };
   pipeline::MapRun run =
       job.run({.progress = line, .stage = progress.observer(), .later_stages = {"files and figures", "report"}});
-  run.timings.insert(run.timings.begin(), {"setup (options, inputs checked)", setup_seconds});
+  run.timings.insert(run.timings.begin(), {"start-up, options, inputs checked", setup_seconds});
 
   progress.begin("files and figures");
   outputs::write_map_outputs(run, out);

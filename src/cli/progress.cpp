@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
 
 namespace seqtopo::cli {
@@ -40,6 +42,23 @@ std::string rate_text(double per_second) {
   return fmt::format("{:.2g}/s", per_second);
 }
 
+// How long this process has run [s] (start-up and loading of its libraries included), from /proc; 0 where
+// that cannot be read.
+double process_age() {
+  std::ifstream stat("/proc/self/stat"), uptime("/proc/uptime");
+  std::string text;
+  double up = 0;
+  if (!std::getline(stat, text) || !(uptime >> up)) return 0;
+  // Field 22 (starttime, clock ticks after boot) counts from the one after the command name's closing ')'.
+  std::istringstream fields(text.substr(text.rfind(')') + 2));
+  std::string field;
+  for (int k = 3; k <= 22 && fields >> field; ++k) {
+  }
+  const long ticks = sysconf(_SC_CLK_TCK);
+  const double started = ticks > 0 ? std::atof(field.c_str()) / static_cast<double>(ticks) : up;
+  return std::max(0.0, up - started);
+}
+
 }  // namespace
 
 ProgressStyle progress_style() {
@@ -53,7 +72,7 @@ ProgressStyle progress_style() {
 }
 
 Progress::Progress(std::string command, ProgressStyle style, std::ostream* out)
-    : command_(std::move(command)), style_(style), out_(out ? *out : std::cerr) {
+    : command_(std::move(command)), style_(style), out_(out ? *out : std::cerr), age_at_creation_(process_age()) {
   last_output_ = created_;
   if (style_ != ProgressStyle::none) ticker_ = std::thread([this] { tick(); });
 }
@@ -146,7 +165,9 @@ pipeline::StageObserver Progress::observer() {
   return [this](const pipeline::StageEvent& event) { on_event(event); };
 }
 
-double Progress::elapsed() const { return std::chrono::duration<double>(Clock::now() - created_).count(); }
+double Progress::elapsed() const {
+  return age_at_creation_ + std::chrono::duration<double>(Clock::now() - created_).count();
+}
 
 void Progress::pause_bar(bool paused) {
   const std::lock_guard lock(mutex_);

@@ -53,7 +53,7 @@ class Progress {
   void on_event(const pipeline::StageEvent& event);
   pipeline::StageObserver observer();
 
-  // Seconds since this object was made.
+  // Seconds since the process started (its start-up included, where /proc tells it).
   double elapsed() const;
   ProgressStyle style() const { return style_; }
   // Stops drawing the bar until pause_bar(false) (while another output shares the terminal); lines still print.
@@ -72,6 +72,7 @@ class Progress {
   ProgressStyle style_;
   std::ostream& out_;
   Clock::time_point created_ = Clock::now();
+  double age_at_creation_ = 0;  // [s] how long the process had run when this was made
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;
