@@ -13,9 +13,6 @@ import base64
 import io
 import os
 import re
-import shutil
-import subprocess
-import tempfile
 
 import pytest
 
