@@ -8,6 +8,7 @@
 //   // result.similarity: 84 x 84, result.kappa chosen by the rule in similarity_from_distance.hpp
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -69,6 +70,14 @@ SimilarityResult compute_similarity(const SequenceInput& input, const Similarity
 SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b,
                                     const SimilarityConfig& config = {});
 
+// Several sessions as one sequence (seqtopo map S1 S2 ...): their frames one after the other, session by
+// session; N x N over all of them, or N x M against `b`'s sessions. Every session must give the same kind of
+// descriptor; a similarity.npy cannot be one of several. Frame names are prefixed with the session input's
+// file name when there are several.
+SimilarityResult compute_similarity(std::span<const SequenceInput> sessions, const SimilarityConfig& config = {});
+SimilarityResult compute_similarity(std::span<const SequenceInput> a, std::span<const SequenceInput> b,
+                                    const SimilarityConfig& config = {});
+
 // The same computation on descriptors already in memory (rows = images, as a descriptors.npy input; default
 // distance cosine): N x N, or N x M against `against` (rows = `descriptors`). Throws std::invalid_argument
 // on empty or non-finite rows, similarity::MemoryError when the matrix would not fit.
@@ -86,6 +95,7 @@ struct DescriptorResult {
   double seconds_descriptors = 0;
 };
 DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config = {});
+DescriptorResult compute_descriptors(std::span<const SequenceInput> sessions, const SimilarityConfig& config = {});
 
 // The dense descriptors (patch, panorama) of one image, and their length. Throws std::invalid_argument for
 // joint_histogram and npy.
