@@ -219,7 +219,7 @@ ImageListing list_images(const fs::path& folder, const ListOptions& options) {
 
 std::vector<fs::path> list_images(const fs::path& folder) { return list_images(folder, ListOptions{}).files; }
 
-ImageListing list_images(const SequenceInput& input) {
+ImageListing list_input_images(const SequenceInput& input) {
   return list_images(input.path, ListOptions{.recursive = input.recursive, .skip_unreadable = input.skip_unreadable});
 }
 

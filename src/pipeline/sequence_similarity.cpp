@@ -135,7 +135,7 @@ Source resolve(const SequenceInput& input) {
   s.kind = resolve_input_kind(input);
   switch (s.kind) {
     case InputKind::images: {
-      ImageListing listing = list_images(input);
+      ImageListing listing = list_input_images(input);
       s.images = kept_frames(std::move(listing.files), input);
       s.skipped = std::move(listing.skipped);
       s.count = s.images.size();
@@ -234,6 +234,7 @@ void check_memory(const Source& a, const Source* b, Descriptor d, const Similari
 struct Described {
   similarity::DescriptorSet set;
   std::vector<std::string> names;
+  std::vector<std::size_t> session_rows;
 };
 
 // Descriptor of one image into slot i of `out`.
@@ -490,6 +491,7 @@ SimilarityResult from_similarity_file(const Source& s, bool square) {
   r.kappa = std::numeric_limits<float>::quiet_NaN();
   r.frame_names = row_names(r.similarity.rows, "row");
   r.column_names = row_names(r.similarity.cols, "column");
+  r.session_rows = {r.similarity.rows};
   return r;
 }
 
@@ -528,10 +530,15 @@ std::vector<Source> resolve_all(std::span<const SequenceInput> inputs) {
 
 // One side's descriptors, session after session (names prefixed with the session's input when several).
 Described describe_all(const std::vector<Source>& sources, Descriptor d, const SimilarityConfig& c) {
-  if (sources.size() == 1) return describe(sources.front(), d, c);
+  if (sources.size() == 1) {
+    Described one = describe(sources.front(), d, c);
+    one.session_rows = {one.names.size()};
+    return one;
+  }
   Described all;
   for (const auto& s : sources) {
     Described one = describe(s, d, c);
+    all.session_rows.push_back(one.names.size());
     const std::string prefix = s.input.path.filename().string() + "/";
     for (auto& name : one.names) all.names.push_back(prefix + name);
     if (d == Descriptor::joint_histogram) {
@@ -627,6 +634,7 @@ SimilarityResult run(std::span<const SequenceInput> inputs_a, std::span<const Se
   r.distance = metric;
   r.frame_names = std::move(da.names);
   r.column_names = db ? std::move(db->names) : r.frame_names;
+  r.session_rows = std::move(da.session_rows);
   return r;
 }
 
@@ -649,6 +657,7 @@ DescriptorResult compute_descriptors(std::span<const SequenceInput> inputs, cons
   if (r.descriptors.empty()) throw InputError(s.input.path.string(), "no images");
   r.descriptor = d;
   r.frame_names = std::move(described.names);
+  r.session_rows = std::move(described.session_rows);
   r.seconds_descriptors = seconds_since(t0);
   return r;
 }

@@ -75,7 +75,7 @@ struct ImageListing {
 ImageListing list_images(const std::filesystem::path& folder, const ListOptions& options);
 
 // The listing of an image-folder input with its options (recursive, skip_unreadable).
-ImageListing list_images(const SequenceInput& input);
+ImageListing list_input_images(const SequenceInput& input);
 
 // A frame's name for the report: the file name, or the path relative to the folder when recursive.
 std::string image_name(const std::filesystem::path& folder, const std::filesystem::path& file, bool recursive);

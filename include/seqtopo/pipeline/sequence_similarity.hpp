@@ -59,6 +59,7 @@ struct SimilarityResult {
   std::optional<Distance> distance;       // nullopt when the input was a similarity matrix
   std::vector<std::string> frame_names;   // file names / "frame 17" / "row 17", one per row
   std::vector<std::string> column_names;  // one per column
+  std::vector<std::size_t> session_rows;  // rows of each session of the first side (one entry for one input)
   double seconds_descriptors = 0, seconds_matrix = 0;
 };
 
@@ -92,6 +93,7 @@ struct DescriptorResult {
   DenseMatrix<float> descriptors;           // N x dim, one row per image
   Descriptor descriptor = Descriptor::npy;  // the one used (npy for a descriptors.npy input)
   std::vector<std::string> frame_names;     // as in SimilarityResult
+  std::vector<std::size_t> session_rows;    // as in SimilarityResult
   double seconds_descriptors = 0;
 };
 DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config = {});
