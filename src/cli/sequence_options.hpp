@@ -26,7 +26,7 @@ inline void add_sequence_options(CLI::App& app, SequenceOptions& o) {
                  "bags: the sensor_msgs/Image or CompressedImage topic (default: the bag's only image topic)");
   app.add_flag("--recursive", o.recursive,
                "image folders: also the images of every subfolder, in natural order of their relative paths "
-               "(a/2.png, a/10.png, b.png, b/1.png)");
+               "(a/2.png, a/10.png, b/1.png, b.png)");
   app.add_flag("--skip-unreadable", o.skip_unreadable,
                "image folders: leave out, with a warning listing them, entries named like images that cannot be "
                "read (dangling or looping links, folders, FIFOs, corrupt files) instead of stopping");

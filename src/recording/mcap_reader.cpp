@@ -148,6 +148,18 @@ void McapReader::scan(Visitor& v) const {
   if (!in || std::memcmp(magic, kMagic, 8) != 0) {
     throw InputError(path_.string(), "not an MCAP file (no MCAP magic at its start)");
   }
+  // A complete file ends with the magic too; a writer that stopped early, or a cut copy, does not.
+  std::uint8_t tail[8] = {};
+  if (file_size >= 16) {
+    in.seekg(static_cast<std::streamoff>(file_size - 8));
+    in.read(reinterpret_cast<char*>(tail), 8);
+  }
+  if (file_size < 16 || !in || std::memcmp(tail, kMagic, 8) != 0) {
+    throw InputError(path_.string(), "truncated: the file of " + std::to_string(file_size) +
+                                         " bytes does not end with the closing MCAP magic (cut short, or its "
+                                         "writer stopped before closing it)");
+  }
+  in.seekg(8);
   auto records = [&](std::span<const std::uint8_t> content, std::uint8_t op, std::size_t offset, bool in_chunk) {
     const std::string where =
         (in_chunk ? "record in the chunk at offset " : "record at offset ") + std::to_string(offset);

@@ -60,7 +60,7 @@ std::vector<std::filesystem::path> list_images(const std::filesystem::path& fold
 struct ListOptions {
   // Walk the subfolders too (hidden ones skipped, symbolic links to folders not followed). The order is
   // the natural order of the relative paths, compared folder name by folder name: a/2.png, a/10.png,
-  // b.png, b/1.png (a depth-first walk with each folder's entries in natural order).
+  // b/1.png, b.png (a depth-first walk with each folder's entries in natural order).
   bool recursive = false;
   // Leave out, instead of refusing, entries that cannot be read: not regular files, and (decoded once
   // here) corrupt images. They are listed in ImageListing::skipped.

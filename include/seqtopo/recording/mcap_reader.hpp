@@ -7,12 +7,12 @@
 //   maps uint32 byte length + entries; integers little-endian.
 // Read here: Header (0x01), Footer (0x02), Schema (0x03), Channel (0x04), Message (0x05), Chunk (0x06, with
 // compression "", "zstd" or "lz4" (LZ4 frame format), its uncompressed CRC-32 checked when not 0), DataEnd
-// (0x0F). Index, statistics, attachment and metadata records are skipped: the file is read from start to end,
-// which also works for files written without a summary (or cut short before it).
+// (0x0F). Index, statistics, attachment and metadata records are skipped: the data section is read from
+// start to end (so files written without a summary are read too); a file must end with the closing magic.
 //
-// Errors are InputError naming the file and what is wrong: not an MCAP file, a record that runs past the end
-// of the file (a truncated file), a chunk that does not decompress or whose CRC does not match, an unknown
-// compression, a message on a channel never defined.
+// Errors are InputError naming the file and what is wrong: not an MCAP file, no closing magic or a record that
+// runs past the end of the file (a truncated file), a chunk that does not decompress or whose CRC does not match, an
+// unknown compression, a message on a channel never defined.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
