@@ -101,6 +101,7 @@ PreparedSession prepare_session(const SessionSource& source) {
   if (kind == InputKind::bag) {
     bag.emplace(input.path);
     image_topic = bag->image_topic(input.image_topic);
+    bag->check_first_image(image_topic);
     count = (bag->message_count(image_topic) + input.every - 1) / input.every;
     if (source.odometry.empty()) {
       if (const auto topic = bag->odometry_topic(source.odometry_topic)) {

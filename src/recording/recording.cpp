@@ -228,6 +228,26 @@ void Recording::for_each_image(const std::string& topic, std::size_t every, std:
   if (!any) throw InputError(path_.string(), "topic " + topic + " holds no image");
 }
 
+namespace {
+struct StopReading {};  // not a std::exception: passes through the backends' error handling
+}  // namespace
+
+void Recording::check_first_image(const std::string& topic) const {
+  try {
+    backend_->read_images(topic, true, [&](RosImage& m, std::int64_t) {
+      try {
+        (void)to_rgb(m, path_.string());
+      } catch (const InputError& e) {
+        throw InputError(path_.string(), "topic " + topic + ", image 0: " + e.what());
+      }
+      throw StopReading{};
+    });
+  } catch (const StopReading&) {
+    return;
+  }
+  throw InputError(path_.string(), "topic " + topic + " holds no image");
+}
+
 RgbImage to_rgb(const RosImage& m, const std::string& subject) {
   if (m.compressed) {
     const auto image = image::decode_image(m.data, subject);

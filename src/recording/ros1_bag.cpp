@@ -40,6 +40,9 @@ void copy_pose(const PoseMsg& p, RosPose& out) {
 class Ros1Bag final : public Backend {
  public:
   explicit Ros1Bag(std::string path) : path_(std::move(path)) {
+    // Every problem becomes an InputError naming the file; rosbag's own console reports are noise (as
+    // OpenCV's are for images).
+    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
     try {
       bag_.open(path_, rosbag::bagmode::Read);
     } catch (const std::exception& e) {

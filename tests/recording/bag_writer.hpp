@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -145,6 +146,27 @@ inline void write_bag(const Recipe& recipe, BagKind kind, const std::filesystem:
   }
   const CommandResult r = run_command(command);
   ASSERT_EQ(r.status, 0) << command << "\n" << r.err;
+}
+
+// Flips 16 bytes in the middle of the first Chunk record (opcode 0x06) of an MCAP file written by @mcap/core
+// (magic, Header, then the chunks); fails the test when there is none.
+inline void corrupt_first_chunk(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  std::size_t at = 8;
+  while (at + 9 <= bytes.size()) {
+    std::uint64_t length = 0;
+    std::memcpy(&length, bytes.data() + at + 1, 8);
+    if (static_cast<std::uint8_t>(bytes[at]) == 0x06) {
+      const std::size_t middle = at + 9 + static_cast<std::size_t>(length) / 2;
+      for (std::size_t k = middle; k < middle + 16 && k < bytes.size(); ++k) bytes[k] = static_cast<char>(~bytes[k]);
+      std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+      return;
+    }
+    at += 9 + static_cast<std::size_t>(length);
+  }
+  FAIL() << path << " has no chunk";
 }
 
 }  // namespace seqtopo::test_support

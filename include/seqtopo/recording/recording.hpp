@@ -65,6 +65,9 @@ class Recording {
   // The poses of an odometry topic, sorted by time (messages at the same time as the previous one are
   // dropped). Throws InputError on a quaternion that is not a rotation.
   std::vector<TimedPose> poses(const std::string& topic) const;
+  // Decodes the first image of `topic` (a check before long work: an unsupported encoding fails here).
+  // Throws InputError as for_each_image does.
+  void check_first_image(const std::string& topic) const;
   // visit(k, time, image) for the images k = 0, every, 2 * every, ... of `topic` (counted in file order),
   // limited to the kept indices k / every in `frames` when it is not empty (increasing).
   void for_each_image(const std::string& topic, std::size_t every, std::span<const std::size_t> frames,
