@@ -102,12 +102,15 @@ std::vector<std::size_t> select_every_metres(std::span<const Pose2> poses, doubl
     if (!finite(poses[k])) throw std::invalid_argument("pose " + std::to_string(k) + " is not finite");
   }
   kept.push_back(0);
-  double travelled = 0;  // [m] path length since the last kept frame
+  // Marks at D, 2D, 3D, ... of path length: the first frame at or past each mark is kept (a step that passes
+  // several marks keeps one frame), so the spacing is D on average, not D plus each frame's overshoot.
+  double travelled = 0;  // [m] path length from frame 0
+  double mark = metres;
   for (std::size_t k = 1; k < poses.size(); ++k) {
     travelled += std::hypot(poses[k].x - poses[k - 1].x, poses[k].y - poses[k - 1].y);
-    if (travelled >= metres) {
+    if (travelled >= mark) {
       kept.push_back(k);
-      travelled = 0;
+      mark = (std::floor(travelled / metres) + 1) * metres;
     }
   }
   return kept;

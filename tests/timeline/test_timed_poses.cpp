@@ -75,13 +75,20 @@ TEST(SelectEveryMetres, OneFramePerDistanceTravelled) {
   for (int k = 0; k < 5; ++k) poses.push_back({x, 0, 0});
   for (int k = 0; k < 5; ++k) poses.push_back({x += 0.375, 0, 0});
   const auto kept = select_every_metres(poses, 0.5);
-  // Frame 0, then each time another 0.5 m is travelled; standing still (frames 10..14) adds nothing.
-  EXPECT_EQ(kept, (std::vector<std::size_t>{0, 4, 8, 15, 17, 19}));
+  // Frame 0, then the first frame at or past 0.5, 1.0, 1.5, ... m travelled; standing still (frames 10..14)
+  // adds nothing; frame 17 (2.25 m) passes the 2.0 mark, frame 18 (2.625 m) the 2.5 one.
+  EXPECT_EQ(kept, (std::vector<std::size_t>{0, 4, 8, 15, 17, 18, 19}));
   EXPECT_EQ(select_every_metres(poses, 100.0), (std::vector<std::size_t>{0}));
   EXPECT_EQ(select_every_metres(poses, 1e-9).size(), 15U);  // every frame that moved, and frame 0
   EXPECT_THROW(select_every_metres(poses, 0.0), std::invalid_argument);
   EXPECT_THROW(select_every_metres(poses, NAN), std::invalid_argument);
   EXPECT_TRUE(select_every_metres({}, 1.0).empty());
+}
+
+TEST(SelectEveryMetres, OneFramePerMarkPassed) {
+  // A jump of 2.5 m passes the marks 0.5 .. 2.5 at once: one frame, the next mark at 3.0 m.
+  std::vector<Pose2> poses{{0, 0, 0}, {2.5, 0, 0}, {2.9, 0, 0}, {3.0, 0, 0}};
+  EXPECT_EQ(select_every_metres(poses, 0.5), (std::vector<std::size_t>{0, 1, 3}));
 }
 
 TEST(SelectEveryMetres, PathLengthNotStraightLine) {

@@ -34,9 +34,9 @@ InterpolatedPoses interpolate_poses(std::span<const TimedPose> poses, std::span<
                                     const InterpolationConfig& config = {});
 
 // Frames kept one per `metres` of odometry (the mapping paper records one image every 0.25 m indoors and
-// 0.5 m outdoors): frame 0, then every frame whose path length travelled since the last kept frame is at
-// least `metres`. Increasing indices into `poses`. Throws std::invalid_argument when metres is not > 0 or a
-// pose is not finite.
+// 0.5 m outdoors): frame 0, then the first frame whose path length travelled from frame 0 reaches each of
+// metres, 2 metres, 3 metres, ... (one frame when a step passes several marks; no frame while standing still).
+// Increasing indices into `poses`. Throws std::invalid_argument when metres is not > 0 or a pose is not finite.
 std::vector<std::size_t> select_every_metres(std::span<const Pose2> poses, double metres);
 
 // Strictly increasing times: throws std::invalid_argument naming the first index out of order.
