@@ -18,11 +18,15 @@
 
 namespace seqtopo::test_support {
 
-enum class BagKind { ros1, db3, mcap_zstd, mcap_lz4, mcap_none };
+enum class BagKind { ros1, ros1_bz2, ros1_lz4, db3, mcap_zstd, mcap_lz4, mcap_none };
 inline const char* bag_kind_name(BagKind k) {
   switch (k) {
     case BagKind::ros1:
       return "ros1";
+    case BagKind::ros1_bz2:
+      return "ros1_bz2";
+    case BagKind::ros1_lz4:
+      return "ros1_lz4";
     case BagKind::db3:
       return "db3";
     case BagKind::mcap_zstd:
@@ -35,11 +39,13 @@ inline const char* bag_kind_name(BagKind k) {
   return "?";
 }
 inline std::string bag_extension(BagKind k) {
-  return k == BagKind::ros1 ? ".bag" : k == BagKind::db3 ? ".db3" : ".mcap";
+  return k == BagKind::ros1 || k == BagKind::ros1_bz2 || k == BagKind::ros1_lz4 ? ".bag"
+         : k == BagKind::db3                                                    ? ".db3"
+                                                                                : ".mcap";
 }
 inline const std::vector<BagKind>& all_bag_kinds() {
-  static const std::vector<BagKind> kinds{BagKind::ros1, BagKind::db3, BagKind::mcap_zstd, BagKind::mcap_lz4,
-                                          BagKind::mcap_none};
+  static const std::vector<BagKind> kinds{BagKind::ros1,      BagKind::ros1_bz2, BagKind::ros1_lz4, BagKind::db3,
+                                          BagKind::mcap_zstd, BagKind::mcap_lz4, BagKind::mcap_none};
   return kinds;
 }
 
@@ -126,8 +132,13 @@ inline void write_bag(const Recipe& recipe, BagKind kind, const std::filesystem:
   std::string command;
   switch (kind) {
     case BagKind::ros1:
+    case BagKind::ros1_bz2:
+    case BagKind::ros1_lz4:
       command = std::string(SEQTOPO_SYSTEM_PYTHON3) + " " + source + "write_ros1_bag.py " + shell_quoted(recipe_path) +
-                " " + shell_quoted(out);
+                " " + shell_quoted(out) + " " +
+                (kind == BagKind::ros1_bz2   ? "bz2"
+                 : kind == BagKind::ros1_lz4 ? "lz4"
+                                             : "none");
       break;
     case BagKind::db3:
       command = node + shell_quoted(recipe_path) + " cdr " +
