@@ -201,6 +201,23 @@ TEST_P(Readers, TruncatedBagIsAnErrorNamingTheFile) {
   }
 }
 
+// A ROS 2 bag as ros2 bag record writes it: a folder with metadata.yaml and the storage file(s).
+TEST(Ros2BagFolder, ReadAsTheBag) {
+  TempDir dir;
+  SmallBag small(dir);
+  for (const BagKind kind : {BagKind::db3, BagKind::mcap_zstd}) {
+    const fs::path folder = dir.path / bag_kind_name(kind);
+    fs::create_directory(folder);
+    std::ofstream(folder / "metadata.yaml") << "rosbag2_bagfile_information:\n  version: 5\n";
+    test_support::write_bag(small.recipe, kind, folder / ("run_0" + bag_extension(kind)));
+    const Recording bag(folder);
+    EXPECT_EQ(bag.format(), kind == BagKind::db3 ? BagFormat::ros2_sqlite : BagFormat::ros2_mcap);
+    EXPECT_EQ(bag.image_topic(), "/camera");
+    EXPECT_EQ(bag.image_times("/camera").size(), 3U);
+    EXPECT_TRUE(looks_like_recording(folder));
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(AllFormats, Readers, ::testing::ValuesIn(all_bag_kinds()),
                          [](const auto& info) { return std::string(bag_kind_name(info.param)); });
 

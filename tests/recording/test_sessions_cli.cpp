@@ -140,7 +140,10 @@ TEST(EveryMetres, CorridorAt30FpsMapsAsTheFolder) {
 
   // The frames --every-metres keeps, by the library call the command makes, for the ground truth of the kept
   // frames: kept frames i, j are the same place when the corridor's truth says so of their originals.
-  pipeline::SessionSource session{pipeline::SequenceInput(frames), dir.path / "odometry.csv", {}, {}, 0.5};
+  pipeline::SessionSource session;
+  session.input = pipeline::SequenceInput(frames);
+  session.odometry = dir.path / "odometry.csv";
+  session.every_metres = 0.5;
   const pipeline::PreparedSession prepared = pipeline::prepare_session(session);
   const auto& kept = prepared.input.frames;
   ASSERT_GT(kept.size(), 80U);
