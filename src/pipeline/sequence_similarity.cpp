@@ -409,16 +409,22 @@ Described describe_stream(const Source& s, Descriptor d, const SimilarityConfig&
     if (c.progress) c.progress("descriptors", out.names.size(), s.count.value_or(out.names.size()));
   };
   std::optional<std::pair<int, int>> first_size;
+  bool size_warned = false;
   produce([&](std::string name, const RgbImage& frame) {
     if (!first_size) {
       first_size = std::pair{frame.width, frame.height};
-    } else if (*first_size != std::pair{frame.width, frame.height}) {
+    } else if (*first_size != std::pair{frame.width, frame.height} && !size_warned) {
+      const std::string what = name + " is " + std::to_string(frame.width) + " x " + std::to_string(frame.height) +
+                               " pixels, the first frame " + std::to_string(first_size->first) + " x " +
+                               std::to_string(first_size->second);
       if (d == Descriptor::joint_histogram) {
-        throw InputError(s.input.path.string(), name + " is " + std::to_string(frame.width) + " x " +
-                                                    std::to_string(frame.height) +
-                                                    " pixels, the first frame is not: the joint-histogram "
-                                                    "descriptor does not resize");
+        throw InputError(s.input.path.string(), what + ": the joint-histogram descriptor does not resize");
       }
+      if (c.note) {
+        c.note("warning: frames of different sizes (" + what + "); the " + std::string(descriptor_name(d)) +
+               " descriptor resizes every frame");
+      }
+      size_warned = true;
     }
     batch.push_back(frame);
     indices.push_back(std::move(name));

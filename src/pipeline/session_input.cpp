@@ -8,7 +8,6 @@
 
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/pose_files.hpp"
-#include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/timeline/timed_poses.hpp"
 #ifdef SEQTOPO_HAVE_RECORDING

@@ -39,6 +39,7 @@ enum Opcode : std::uint8_t {
   channel = 0x04,
   message = 0x05,
   chunk = 0x06,
+  statistics = 0x0B,
   data_end = 0x0F,
 };
 
@@ -135,6 +136,7 @@ struct McapReader::Visitor {
   std::function<void(const McapMessage&, std::size_t)> on_message;  // message, its record's offset
   std::function<bool(std::uint16_t)> wants;                         // whether a channel's messages are parsed
   std::function<void(const std::string&)> on_header;
+  bool stop_after_header = false;
 };
 
 void McapReader::scan(Visitor& v) const {
@@ -241,6 +243,7 @@ void McapReader::scan(Visitor& v) const {
     try {
       if (op != Opcode::chunk) {
         records(content, op, offset, false);
+        if (op == Opcode::header && v.stop_after_header) return;
         continue;
       }
       const std::string where = "chunk at offset " + std::to_string(offset);
@@ -271,6 +274,92 @@ void McapReader::scan(Visitor& v) const {
   }
 }
 
+bool McapReader::read_summary() {
+  std::ifstream in(path_, std::ios::binary);
+  if (!in) return false;
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::uint64_t>(in.tellg());
+  constexpr std::uint64_t footer_record = 1 + 8 + 20;  // opcode, length, summary_start, offset start, crc
+  if (size < 8 + footer_record + 8) return false;
+  std::uint8_t footer_bytes[footer_record + 8];
+  in.seekg(static_cast<std::streamoff>(size - footer_record - 8));
+  in.read(reinterpret_cast<char*>(footer_bytes), sizeof footer_bytes);
+  if (!in || footer_bytes[0] != Opcode::footer || std::memcmp(footer_bytes + footer_record, kMagic, 8) != 0)
+    return false;
+  std::uint64_t summary_start = 0;
+  std::memcpy(&summary_start, footer_bytes + 9, 8);
+  const std::uint64_t summary_end = size - footer_record - 8;
+  if (summary_start == 0 || summary_start < 8 || summary_start > summary_end) return false;
+  std::vector<std::uint8_t> summary(static_cast<std::size_t>(summary_end - summary_start));
+  in.seekg(static_cast<std::streamoff>(summary_start));
+  in.read(reinterpret_cast<char*>(summary.data()), static_cast<std::streamsize>(summary.size()));
+  if (!in) return false;
+  std::map<std::uint16_t, McapSchema> schemas;
+  std::map<std::uint16_t, McapChannel> channels;
+  std::map<std::uint16_t, std::uint64_t> counts;
+  bool have_statistics = false;
+  try {
+    std::size_t k = 0;
+    while (k < summary.size()) {
+      if (summary.size() - k < 9) return false;
+      std::uint64_t len = 0;
+      std::memcpy(&len, summary.data() + k + 1, 8);
+      if (len > summary.size() - k - 9) return false;
+      Fields f(std::span<const std::uint8_t>(summary).subspan(k + 9, static_cast<std::size_t>(len)), "summary");
+      switch (summary[k]) {
+        case Opcode::schema: {
+          McapSchema sc;
+          sc.id = f.num<std::uint16_t>();
+          sc.name = f.str();
+          sc.encoding = f.str();
+          const auto data = f.bytes32();
+          sc.data.assign(data.begin(), data.end());
+          schemas[sc.id] = sc;
+          break;
+        }
+        case Opcode::channel: {
+          McapChannel c;
+          c.id = f.num<std::uint16_t>();
+          c.schema_id = f.num<std::uint16_t>();
+          c.topic = f.str();
+          c.message_encoding = f.str();
+          channels[c.id] = c;
+          break;
+        }
+        case Opcode::statistics: {
+          (void)f.num<std::uint64_t>();                              // message_count
+          (void)f.num<std::uint16_t>();                              // schema_count
+          for (int n = 0; n < 4; ++n) (void)f.num<std::uint32_t>();  // channel, attachment, metadata, chunk counts
+          (void)f.num<std::uint64_t>();                              // message_start_time
+          (void)f.num<std::uint64_t>();                              // message_end_time
+          Fields map(f.bytes32(), "summary statistics");
+          try {
+            for (;;) {
+              const auto id = map.num<std::uint16_t>();
+              counts[id] = map.num<std::uint64_t>();
+            }
+          } catch (const std::invalid_argument&) {
+            // end of the map
+          }
+          have_statistics = true;
+          break;
+        }
+        default:
+          break;
+      }
+      k += 9 + static_cast<std::size_t>(len);
+    }
+  } catch (const std::invalid_argument&) {
+    return false;  // a summary that does not parse: read the data section instead
+  }
+  if (!have_statistics || channels.empty()) return false;
+  for (const auto& [id, c] : channels) counts.try_emplace(id, 0);
+  schemas_ = std::move(schemas);
+  channels_ = std::move(channels);
+  counts_ = std::move(counts);
+  return true;
+}
+
 McapReader::McapReader(fs::path path) : path_(std::move(path)) {
   Visitor v;
   v.on_header = [&](const std::string& profile) { profile_ = profile; };
@@ -286,6 +375,15 @@ McapReader::McapReader(fs::path path) : path_(std::move(path)) {
     }
     ++counts_[m.channel_id];
   };
+  // The header (profile) and the checks of both magics come from the start of a scan; with a summary
+  // (channels, schemas, statistics) the scan stops after the header instead of reading every chunk.
+  const bool summary = read_summary();
+  if (summary) {
+    v.on_schema = nullptr;
+    v.on_channel = nullptr;
+    v.on_message = nullptr;
+    v.stop_after_header = true;
+  }
   scan(v);
 }
 

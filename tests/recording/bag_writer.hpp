@@ -18,6 +18,7 @@
 
 namespace seqtopo::test_support {
 
+// mcap_none: uncompressed chunks and no Statistics record (the reader then scans the data section for counts).
 enum class BagKind { ros1, ros1_bz2, ros1_lz4, db3, mcap_zstd, mcap_lz4, mcap_none };
 inline const char* bag_kind_name(BagKind k) {
   switch (k) {

@@ -246,26 +246,29 @@ TEST(Mcap, CorruptChunkIsAnErrorNamingTheFile) {
 TEST(Mcap, ReaderSeesSchemasChannelsCounts) {
   TempDir dir;
   SmallBag small(dir);
-  const fs::path path = dir.path / "small.mcap";
-  test_support::write_bag(small.recipe, BagKind::mcap_zstd, path);
-  const McapReader reader(path);
-  EXPECT_EQ(reader.profile(), "ros2");
-  ASSERT_EQ(reader.channels().size(), 3U);
-  std::map<std::string, std::uint64_t> counts;
-  for (const auto& [id, c] : reader.channels()) {
-    counts[c.topic] = reader.message_counts().at(id);
-    EXPECT_EQ(c.message_encoding, "cdr");
-    EXPECT_EQ(reader.schemas().at(c.schema_id).encoding, "ros2msg");
+  for (const BagKind kind : {BagKind::mcap_zstd, BagKind::mcap_none}) {  // with and without Statistics
+    const fs::path path = dir.path / (std::string(bag_kind_name(kind)) + ".mcap");
+    test_support::write_bag(small.recipe, kind, path);
+    const McapReader reader(path);
+    EXPECT_EQ(reader.profile(), "ros2");
+    ASSERT_EQ(reader.channels().size(), 3U);
+    std::map<std::string, std::uint64_t> counts;
+    for (const auto& [id, c] : reader.channels()) {
+      counts[c.topic] = reader.message_counts().at(id);
+      EXPECT_EQ(c.message_encoding, "cdr");
+      EXPECT_EQ(reader.schemas().at(c.schema_id).encoding, "ros2msg");
+    }
+    EXPECT_EQ(counts, (std::map<std::string, std::uint64_t>{{"/camera", 3}, {"/odom", 4}, {"/pose", 1}}));
+    std::size_t messages = 0;
+    std::uint64_t last = 0;
+    reader.for_each_message([&](const McapChannel&, const McapMessage& m) {
+      ++messages;
+      EXPECT_GE(m.log_time, last);
+      last = m.log_time;
+    });
+    EXPECT_EQ(messages, 8U);
   }
-  EXPECT_EQ(counts, (std::map<std::string, std::uint64_t>{{"/camera", 3}, {"/odom", 4}, {"/pose", 1}}));
-  std::size_t messages = 0;
-  std::uint64_t last = 0;
-  reader.for_each_message([&](const McapChannel&, const McapMessage& m) {
-    ++messages;
-    EXPECT_GE(m.log_time, last);
-    last = m.log_time;
-  });
-  EXPECT_EQ(messages, 8U);
+  const fs::path path = dir.path / "mcap_zstd.mcap";
   EXPECT_EQ(error_of([&] { McapReader(small.recipe.topics.empty() ? path : dir.path / "small0.ppm"); }),
             (dir.path / "small0.ppm").string() + ": not an MCAP file (no MCAP magic at its start)");
 }

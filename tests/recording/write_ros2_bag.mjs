@@ -1,7 +1,7 @@
 // Writes a ROS 2 bag's messages with independent implementations, for the tests of seqtopo's readers:
 // CDR by @foxglove/rosmsg2-serialization, MCAP files by @mcap/core (chunks compressed by @foxglove/wasm-zstd
 // or lz4js). Test-only.
-//   node write_ros2_bag.mjs RECIPE.json mcap OUT.mcap [zstd|lz4|none]
+//   node write_ros2_bag.mjs RECIPE.json mcap OUT.mcap [zstd|lz4|none] [nostats]   (nostats: no Statistics record)
 //   node write_ros2_bag.mjs RECIPE.json cdr OUT.bin      (length-prefixed messages for write_db3.py)
 // RECIPE.json: {"topics": [{"name", "type": "sensor_msgs/msg/Image" | ..., "messages": [...]}]}, messages:
 //   Image: {"sec", "nanosec", "width", "height", "encoding", "step", "ppm" (P6/P5 file) | "raw" (base64)}
@@ -69,7 +69,7 @@ function message(type, m) {
   throw new Error("unknown type " + type);
 }
 
-const [recipePath, mode, out, compression = "zstd"] = process.argv.slice(2);
+const [recipePath, mode, out, compression = "zstd", stats = "stats"] = process.argv.slice(2);
 const recipe = JSON.parse(readFileSync(recipePath, "utf8"));
 // Every message, serialized, in time order.
 const all = [];
@@ -107,7 +107,8 @@ if (mode === "cdr") {
     const n = lz4.compressFrame(data, packed);
     return { compression: "lz4", compressedData: packed.subarray(0, n) };
   };
-  const writer = new McapWriter({ writable, chunkSize: recipe.chunk_size ?? 1 << 20, compressChunk });
+  const writer = new McapWriter({ writable, chunkSize: recipe.chunk_size ?? 1 << 20, compressChunk,
+    useStatistics: stats !== "nostats" });
   await writer.start({ profile: "ros2", library: "seqtopo tests (@mcap/core)" });
   const channels = {};
   for (const topic of recipe.topics) {

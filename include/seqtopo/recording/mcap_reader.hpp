@@ -6,9 +6,10 @@
 //   strings are uint32 length + UTF-8 bytes, byte arrays uint32 (uint64 in a Chunk) length + bytes,
 //   maps uint32 byte length + entries; integers little-endian.
 // Read here: Header (0x01), Footer (0x02), Schema (0x03), Channel (0x04), Message (0x05), Chunk (0x06, with
-// compression "", "zstd" or "lz4" (LZ4 frame format), its uncompressed CRC-32 checked when not 0), DataEnd
-// (0x0F). Index, statistics, attachment and metadata records are skipped: the data section is read from
-// start to end (so files written without a summary are read too); a file must end with the closing magic.
+// compression "", "zstd" or "lz4" (LZ4 frame format), its uncompressed CRC-32 checked when not 0), Statistics
+// (0x0B, in the summary) and DataEnd (0x0F). Index, attachment and metadata records are skipped: messages are
+// read from the data section, start to end (so files written without a summary are read too); a file must end
+// with the closing magic.
 //
 // Errors are InputError naming the file and what is wrong: not an MCAP file, no closing magic or a record that
 // runs past the end of the file (a truncated file), a chunk that does not decompress or whose CRC does not match, an
@@ -43,8 +44,9 @@ struct McapMessage {
 
 class McapReader {
  public:
-  // Reads the whole file once: schemas, channels and the number of messages of each channel. Throws
-  // InputError on anything malformed.
+  // Schemas, channels and the number of messages of each channel: from the summary section when the file has
+  // one with a Statistics record (Footer 0x02, Statistics 0x0B), else by reading the whole data section once.
+  // Throws InputError on anything malformed.
   explicit McapReader(std::filesystem::path path);
 
   const std::filesystem::path& path() const { return path_; }
@@ -61,6 +63,7 @@ class McapReader {
  private:
   struct Visitor;
   void scan(Visitor& visitor) const;
+  bool read_summary();  // channels, schemas and counts from the summary section, when it has Statistics
   std::filesystem::path path_;
   std::string profile_;
   std::map<std::uint16_t, McapSchema> schemas_;
