@@ -22,6 +22,7 @@
 #include "seqtopo/outputs/localize_outputs.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/pipeline/localize_pipeline.hpp"
+#include "sequence_options.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -29,6 +30,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct LocalizeOptions {
+  std::vector<std::string> map_paths;  // --map, once per map session
+  SequenceOptions sequence;
   std::string map_path, query_path, out_dir = "seqtopo-out", input_kind = "auto", descriptor = "patch", metric;
   std::optional<float> kappa;
   bool kappa_auto = false;
@@ -93,7 +96,8 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o) {
   return c;
 }
 
-void run(const LocalizeOptions& o) {
+void run(LocalizeOptions o) {
+  if (!o.map_paths.empty()) o.map_path = o.map_paths.front();
   if (o.map_path.empty() && o.query_path.empty()) throw InputError("--map", "give --map and --query");
   const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
   if (o.every == 0) throw InputError("--every", "must be at least 1");
@@ -104,6 +108,9 @@ void run(const LocalizeOptions& o) {
     for (const auto* p : {&o.map_path, &o.query_path}) {
       if (!p->empty() && *p != "-" && !fs::exists(*p)) throw InputError(*p, "does not exist");
     }
+    for (const auto& p : o.map_paths) {
+      if (!fs::exists(p)) throw InputError(p, "does not exist");
+    }
     return similarity_file(o, kind).has_value();
   }();
   if (!have_matrix && (o.map_path.empty() || o.query_path.empty())) {
@@ -113,6 +120,17 @@ void run(const LocalizeOptions& o) {
   request.similarity_file = similarity_file(o, kind);
   request.map = {o.map_path, kind, o.every};
   request.query = {o.query_path, kind, o.every};
+  o.sequence.apply(request.map);
+  o.sequence.apply(request.query);
+  if (o.map_paths.size() > 1) {
+    if (request.similarity_file) {
+      throw InputError("--map", "a similarity matrix holds the whole map; give it once, not with other map sessions");
+    }
+    for (const auto& p : o.map_paths) {
+      request.map_sessions.push_back({p, kind, o.every});
+      o.sequence.apply(request.map_sessions.back());
+    }
+  }
   if (!request.similarity_file || !o.online) request.settings.similarity = similarity_config(o);
   // Ground truth is read before the work, so a bad file fails fast.
   std::optional<pipeline::LocalizationTruthSource> truth_source;
@@ -189,9 +207,12 @@ const RegisterCommand registered{
      "Localize a query traverse in a mapped one by aligning image sequences (offline, or --online frame by frame)",
      [](CLI::App& app) {
        auto o = std::make_shared<LocalizeOptions>();
-       app.add_option("--map", o->map_path,
-                      "mapped traverse: image folder, video, descriptors.npy, or a query x map similarity.npy "
-                      "(rows = query frames, columns = map frames; then --query is not needed)");
+       app.add_option("--map", o->map_paths,
+                      "mapped traverse: image folder, video, bag, descriptors.npy, or a query x map similarity.npy "
+                      "(rows = query frames, columns = map frames; then --query is not needed); given several "
+                      "times, the map is those sessions one after the other")
+           ->allow_extra_args(false);
+       add_sequence_options(app, o->sequence);
        app.add_option(
            "--query", o->query_path,
            "query traverse of the same kind ('-' with --online: image paths on standard input, one per line)");

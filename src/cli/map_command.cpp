@@ -17,13 +17,18 @@
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
+#include "sequence_options.hpp"
 
 namespace seqtopo::cli {
 namespace {
 namespace fs = std::filesystem;
 
 struct MapOptions {
-  std::string input;
+  std::vector<std::string> inputs;  // one per session
+  SequenceOptions sequence;
+  std::vector<std::string> odometry_files, times_files;
+  std::string odometry_topic;
+  std::optional<double> every_metres;
   std::string out = "seqtopo-out";
   std::string input_kind = "auto";
   std::size_t every = 1;
@@ -37,7 +42,7 @@ struct MapOptions {
   std::optional<float> contrast_offset;
   bool no_reverse = false;
   bool streaming = false;
-  std::string odometry, ground_truth, gt_places, gt_poses;
+  std::string ground_truth, gt_places, gt_poses;
   std::optional<double> gt_radius;
   unsigned threads = 0;
   std::string config_file;
@@ -165,22 +170,52 @@ void run(MapOptions o) {
   pipeline::MapRequest request;
   request.settings = resolve_settings(o);
   request.preset = o.preset;
-  const bool bundled_default = o.input.empty();
+  const bool bundled_default = o.inputs.empty();
   if (bundled_default) {
     const fs::path bundled = fs::path(SEQTOPO_DATA_DIR) / "rtabmap-corridor";
-    o.input = fs::exists(bundled) ? bundled.string() : "data/rtabmap-corridor";
+    o.inputs = {fs::exists(bundled) ? bundled.string() : "data/rtabmap-corridor"};
     // Its ground truth is an N x N image, which --streaming refuses.
-    if (o.ground_truth.empty() && !o.streaming) o.ground_truth = (fs::path(o.input) / "ground_truth.bmp").string();
+    if (o.ground_truth.empty() && !o.streaming) o.ground_truth = (fs::path(o.inputs[0]) / "ground_truth.bmp").string();
   }
-  request.input = {o.input, option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); }),
-                   o.every};
-  request.odometry = o.odometry;
+  const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
+  // --odometry and --times: one for a single input, one per session or none for several.
+  for (const auto& [name, files] : {std::pair{"--odometry", &o.odometry_files}, std::pair{"--times", &o.times_files}}) {
+    if (files->size() > 1 && files->size() != o.inputs.size()) {
+      throw InputError(name, fmt::format("given {} times for {} inputs: give it once per session, in the order of "
+                                         "the inputs",
+                                         files->size(), o.inputs.size()));
+    }
+    if (files->size() == 1 && o.inputs.size() > 1) {
+      throw InputError(name, fmt::format("given once for {} sessions: give it once per session, in the order of the "
+                                         "inputs",
+                                         o.inputs.size()));
+    }
+  }
+  for (std::size_t k = 0; k < o.inputs.size(); ++k) {
+    pipeline::SessionSource session;
+    session.input = {o.inputs[k], kind, o.every};
+    o.sequence.apply(session.input);
+    if (!o.odometry_files.empty()) session.odometry = o.odometry_files[k];
+    if (!o.times_files.empty()) session.times = o.times_files[k];
+    session.odometry_topic = o.odometry_topic;
+    session.every_metres = o.every_metres;
+    request.sessions.push_back(std::move(session));
+  }
+  if (request.sessions.size() == 1) {  // the single-input form
+    const auto& single = request.sessions.front();
+    request.input = single.input;
+    request.odometry = single.odometry;
+    request.times = single.times;
+    request.odometry_topic = single.odometry_topic;
+    request.every_metres = single.every_metres;
+    request.sessions.clear();
+  }
   request.truth = {o.ground_truth, o.gt_radius, o.gt_places, o.gt_poses};
   request.streaming = o.streaming;
   const pipeline::MapJob job(request);
   if (o.streaming) check_streaming(o, request.settings, job.input_kind());
   io::OutputDirectory out(o.out);
-  if (bundled_default) progress.line("no input given: mapping the bundled corridor data " + o.input);
+  if (bundled_default) progress.line("no input given: mapping the bundled corridor data " + o.inputs[0]);
   if (bundled_default && o.streaming) {
     progress.line("its ground truth is an N x N image, which --streaming does not read");
   }
@@ -213,7 +248,9 @@ const RegisterCommand registered{
      "(with no INPUT: the bundled corridor data, scored against its ground truth)",
      [](CLI::App& app) {
        auto o = std::make_shared<MapOptions>();
-       app.add_option("input", o->input, "image folder, video, descriptors.npy or similarity.npy");
+       app.add_option("input", o->inputs,
+                      "image folder, video, bag (.bag, .db3, .mcap), descriptors.npy or similarity.npy; several are "
+                      "sessions mapped together (no transition between one's end and the next one's start)");
        app.add_option("--out", o->out, "output folder")->capture_default_str();
        app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
        add_number(app, "--every", o->every, kAtLeastOne, "video: use every K-th frame");
@@ -253,7 +290,20 @@ const RegisterCommand registered{
                   fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
                               mapping::MapConfig{}.contrast_offset));
        app.add_flag("--no-reverse", o->no_reverse, "do not look for paths revisited in the opposite direction");
-       app.add_option("--odometry", o->odometry, "odometry CSV: index,x,y,theta (cumulative) or index,dx,dy,dtheta");
+       app.add_option("--odometry", o->odometry_files,
+                      "odometry: CSV index,x,y,theta (cumulative) or index,dx,dy,dtheta, CSV timestamp,x,y,yaw, "
+                      "TUM or KITTI poses; with several inputs, once per session")
+           ->allow_extra_args(false);
+       app.add_option("--times", o->times_files,
+                      "image times for a timestamped --odometry: times.txt, one time per image [s] (default: "
+                      "times.txt in the folder, or numeric file names); with several inputs, once per session")
+           ->allow_extra_args(false);
+       app.add_option("--odometry-topic", o->odometry_topic,
+                      "bags: the nav_msgs/Odometry or PoseStamped topic matched to the images by time (default: "
+                      "the bag's only one; none = ignore the bag's odometry)");
+       add_number(app, "--every-metres", o->every_metres, kPositive,
+                  "keep one frame per this many metres of odometry travelled (needs odometry) [m]");
+       add_sequence_options(app, o->sequence);
        app.add_option("--ground-truth", o->ground_truth, "N x N same-place image, or poses.csv with --gt-radius");
        add_number(app, "--gt-radius", o->gt_radius, kPositive,
                   "same place when closer than this [m] (poses.csv ground truth)");

@@ -14,6 +14,7 @@
 #include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
+#include "sequence_options.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -26,6 +27,7 @@ struct SimilarityOptions {
   std::size_t every = 1;
   unsigned threads = 0;
   bool descriptor_given = false;
+  SequenceOptions sequence;
 };
 
 void run(const SimilarityOptions& o) {
@@ -43,13 +45,14 @@ void run(const SimilarityOptions& o) {
     progress.advance(done, total, stage == "matrix" ? "cells of the matrix" : "images described");
   };
 
-  const pipeline::SequenceInput a{o.input, kind, o.every};
+  pipeline::SequenceInput a{o.input, kind, o.every};
+  pipeline::SequenceInput b{o.against, kind, o.every};
+  o.sequence.apply(a);
+  o.sequence.apply(b);
   pipeline::SimilarityResult result;
   progress.begin("similarity");
   try {
-    result = o.against.empty()
-                 ? pipeline::compute_similarity(a, config)
-                 : pipeline::compute_similarity(a, pipeline::SequenceInput{o.against, kind, o.every}, config);
+    result = o.against.empty() ? pipeline::compute_similarity(a, config) : pipeline::compute_similarity(a, b, config);
   } catch (const std::invalid_argument& e) {
     throw InputError(o.input, e.what());
   }
@@ -83,7 +86,8 @@ const RegisterCommand registered{
     {"similarity", "Similarity matrix S = 1 - kappa * D of an image folder, video, descriptors.npy or similarity.npy",
      [](CLI::App& app) {
        auto o = std::make_shared<SimilarityOptions>();
-       app.add_option("INPUT", o->input, "image folder, video file, descriptors.npy (N x D) or similarity.npy")
+       app.add_option("INPUT", o->input,
+                      "image folder, video file, bag (.bag, .db3, .mcap), descriptors.npy (N x D) or similarity.npy")
            ->required()
            ->check(CLI::ExistingPath);
        app.add_option("--against", o->against, "second sequence of the same kind: N x M matrix, rows = INPUT")
@@ -101,6 +105,7 @@ const RegisterCommand registered{
        add_number_or(app, "--kappa", o->kappa, "auto", o->kappa_auto, kPositive,
                      "K > 0 in S = 1 - K * D, or auto (the default; see docs/similarity.md)");
        add_number(app, "--threads", o->threads, kThreads, "worker threads (0 = all cores)");
+       add_sequence_options(app, o->sequence);
        app.callback([o] { run(*o); });
      }}};
 

@@ -126,7 +126,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
   const auto& result = run.result;
   const auto& map = result.map;
 
-  out.write("map.json", formats::map_json(result));
+  out.write("map.json", formats::map_json(result, run.sessions));
   out.write("alignments.json", formats::alignments_json(result));
   out.write("loop_closures.csv", formats::loop_closures_csv(result.pruning));
 

@@ -11,6 +11,9 @@
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
+#ifdef SEQTOPO_HAVE_RECORDING
+#include "seqtopo/recording/recording.hpp"
+#endif
 #include "seqtopo/report/interactive.hpp"
 
 namespace seqtopo::outputs::detail {
@@ -46,12 +49,12 @@ nlohmann::json sequence_json(const pipeline::SequenceInput& input, std::size_t f
   const int side = thumbnail_side(frames);
   std::string note;
   if (input.path.empty()) {
-    note = "no images: the sequence was given in memory";
+    note = "no images: the sequence was given in memory, or as several sessions";
   } else {
     try {
       switch (pipeline::resolve_input_kind(input)) {
         case pipeline::InputKind::images: {
-          const auto files = pipeline::list_images(input.path);
+          const auto files = pipeline::list_input_images(input).files;
           if (files.size() != frames) {
             note = fmt::format("no images: the folder has {} images, the run {} frames", files.size(), frames);
             break;
@@ -88,6 +91,23 @@ nlohmann::json sequence_json(const pipeline::SequenceInput& input, std::size_t f
           });
           for (std::size_t k = 0; k < frames; ++k) names[k] = fmt::format("frame {}", k * input.every);
           break;
+        case pipeline::InputKind::bag: {
+#ifdef SEQTOPO_HAVE_RECORDING
+          const recording::Recording bag(input.path);
+          std::size_t kept = 0;  // the callback's index counts the topic's messages, not the kept frames
+          bag.for_each_image(bag.image_topic(input.image_topic), input.every, input.frames,
+                             [&](std::size_t message, double, const RgbImage& frame) {
+                               if (kept < frames) {
+                                 if (embed[kept]) thumbs[kept] = thumbnail_uri(frame, side);
+                                 names[kept] = fmt::format("message {}", message);
+                               }
+                               ++kept;
+                             });
+#else
+          note = "no images: this seqtopo was built without bag support";
+#endif
+          break;
+        }
         case pipeline::InputKind::descriptors:
           note = "no images: the input is a descriptors.npy (one row per " + noun + ")";
           break;

@@ -41,9 +41,27 @@ void check_odometry(std::span<const Pose2> odometry, std::size_t n, const std::s
   }
 }
 
+// run.sessions from the rows of each session.
+void record_sessions(std::span<const SequenceInput> inputs, const std::vector<std::size_t>& rows, MapRun& run) {
+  std::size_t begin = 0;
+  run.sessions.clear();
+  for (std::size_t k = 0; k < rows.size() && k < inputs.size(); ++k) {
+    run.sessions.push_back({inputs[k].path.string(), begin, begin + rows[k]});
+    begin += rows[k];
+  }
+}
+
+// The map settings with the sessions' boundaries: no topological edge from one session's last image to the next
+// one's first.
+mapping::MapConfig map_config_of(const MapSettings& settings, const MapRun& run) {
+  mapping::MapConfig config = settings.map;
+  for (std::size_t k = 1; k < run.sessions.size(); ++k) config.topology.session_starts.push_back(run.sessions[k].begin);
+  return config;
+}
+
 // Stages 1 and 2 with the N x N matrices: one similarity matrix per descriptor, fused and aligned.
-void map_dense(const MapRequest& request, InputKind kind, const std::vector<Pose2>& odometry,
-               const MapObserver& observer, StageClock& clock, MapRun& run) {
+void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs, InputKind kind,
+               const std::vector<Pose2>& odometry, const MapObserver& observer, StageClock& clock, MapRun& run) {
   const MapSettings& settings = request.settings;
   auto descriptors = settings.descriptors;
   // A descriptors.npy or similarity.npy input is one matrix, whatever descriptors were asked for.
@@ -54,7 +72,8 @@ void map_dense(const MapRequest& request, InputKind kind, const std::vector<Pose
     config.descriptor = descriptor;
     if (!config.note && observer.progress) config.note = observer.progress;
     if (!config.progress) config.progress = clock.similarity_progress();
-    run.similarities.push_back(compute_similarity(request.input, config));
+    run.similarities.push_back(compute_similarity(inputs, config));
+    if (run.sessions.empty()) record_sessions(inputs, run.similarities.back().session_rows, run);
     run.descriptor_names.emplace_back(kind == InputKind::similarity    ? "similarity.npy"
                                       : kind == InputKind::descriptors ? "descriptors.npy"
                                                                        : descriptor_name(descriptor));
@@ -64,30 +83,31 @@ void map_dense(const MapRequest& request, InputKind kind, const std::vector<Pose
   }
   clock.end();
   const std::size_t n = run.matrices.front().rows;
-  if (n < 2) throw InputError(request.input.path.string(), "needs at least 2 images");
+  if (n < 2) throw InputError(inputs.front().path.string(), "needs at least 2 images");
 
   clock.begin();
   check_odometry(odometry, n, request.odometry.string());
-  run.result = mapping::build_map(run.matrices, settings.map, odometry);
+  run.result = mapping::build_map(run.matrices, map_config_of(settings, run), odometry);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 }
 
 // The streamed replacement of stages 1 and 2: descriptors, then the map on scores computed when the engine
 // reads them. Leaves run.result.scores empty and fills run.overview for similarity.png.
-void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry, const MapObserver& observer,
-                  StageClock& clock, MapRun& run) {
+void map_streamed(const MapRequest& request, std::span<const SequenceInput> inputs, const std::vector<Pose2>& odometry,
+                  const MapObserver& observer, StageClock& clock, MapRun& run) {
   const MapSettings& settings = request.settings;
   clock.begin(" (--streaming: the similarity is computed on the fly, never N x N)");
   auto config = settings.similarity;
   config.descriptor = settings.descriptors.front();
   if (!config.progress) config.progress = clock.similarity_progress();
-  DescriptorResult described = compute_descriptors(request.input, config);
+  DescriptorResult described = compute_descriptors(inputs, config);
   const std::size_t n = described.descriptors.rows, dim = described.descriptors.cols;
+  record_sessions(inputs, described.session_rows, run);
   run.descriptor_names.emplace_back(
       described.descriptor == Descriptor::npy ? "descriptors.npy" : std::string(descriptor_name(described.descriptor)));
   say(observer, fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
-  if (n < 2) throw InputError(request.input.path.string(), "needs at least 2 images");
+  if (n < 2) throw InputError(inputs.front().path.string(), "needs at least 2 images");
   check_odometry(odometry, n, request.odometry.string());
   std::optional<scale::StreamingSimilarity> streamed;
   try {
@@ -95,13 +115,13 @@ void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry,
                      scale::StreamingConfig{.contrast_window = settings.map.contrast_window,
                                             .contrast_offset = settings.map.contrast_offset});
   } catch (const std::invalid_argument& e) {
-    throw InputError(request.input.path.string(), e.what());  // e.g. an all-zero descriptor has no direction
+    throw InputError(inputs.front().path.string(), e.what());  // e.g. an all-zero descriptor has no direction
   }
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
   clock.end();
 
   clock.begin(" (fast engine)");
-  run.result = mapping::build_map_from_scores(streamed->source(), settings.map, odometry);
+  run.result = mapping::build_map_from_scores(streamed->source(), map_config_of(settings, run), odometry);
   report_map(run, observer);
   clock.end({{"alignment (similarity streamed)", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 
@@ -185,33 +205,61 @@ MapRun new_run(const MapSettings& settings, std::string input, std::string prese
 }  // namespace
 
 MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
-  if (!std::filesystem::exists(request_.input.path)) {
-    throw InputError(request_.input.path.string(), "no such file or folder");
+  std::vector<SessionSource> sources = request_.sessions;
+  if (sources.empty()) {
+    sources.push_back(
+        {request_.input, request_.odometry, request_.times, request_.odometry_topic, request_.every_metres});
   }
-  for (const auto* path :
-       {&request_.odometry, &request_.truth.same_place, &request_.truth.poses, &request_.truth.places}) {
-    if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
-  }
-  kind_ = resolve_input_kind(request_.input);
-  // The number of images, where it is known without decoding anything (not for a video).
-  std::optional<std::size_t> expected;
-  if (kind_ == InputKind::images) expected = list_images(request_.input.path).size();
-  if (kind_ == InputKind::descriptors || kind_ == InputKind::similarity) {
-    const auto header = io::read_npy_header(request_.input.path);
-    if (!header.shape.empty()) expected = header.shape[0];
-    if (kind_ == InputKind::similarity && (header.shape.size() != 2 || header.shape[0] != header.shape[1])) {
-      throw InputError(request_.input.path.string(), "a similarity matrix for map must be square (N x N)");
+  for (const auto& source : sources) {
+    if (!std::filesystem::exists(source.input.path)) {
+      throw InputError(source.input.path.string(), "no such file or folder");
+    }
+    for (const auto* path : {&source.odometry, &source.times}) {
+      if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
     }
   }
-  if (!request_.odometry.empty()) {
-    odometry_ = formats::read_odometry_csv(request_.odometry);
-    if (expected) check_odometry(odometry_, *expected, request_.odometry.string());
+  for (const auto* path : {&request_.truth.same_place, &request_.truth.poses, &request_.truth.places}) {
+    if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
+  }
+  kind_ = resolve_input_kind(sources.front().input);
+  for (const auto& source : sources) {
+    const InputKind kind = resolve_input_kind(source.input);
+    if (kind == InputKind::similarity) {
+      const auto header = io::read_npy_header(source.input.path);
+      if (header.shape.size() != 2 || header.shape[0] != header.shape[1]) {
+        throw InputError(source.input.path.string(), "a similarity matrix for map must be square (N x N)");
+      }
+      if (sources.size() > 1) {
+        throw InputError(source.input.path.string(),
+                         "a similarity matrix cannot be one of several sessions (it has no rows for the others)");
+      }
+    }
+    sessions_.push_back(prepare_session(source));
+  }
+  const bool any_odometry =
+      std::any_of(sessions_.begin(), sessions_.end(), [](const PreparedSession& s) { return !s.odometry.empty(); });
+  for (const auto& s : sessions_) {
+    if (any_odometry && s.odometry.empty()) {
+      throw InputError(s.input.path.string(),
+                       "has no odometry, but another session has: give every session odometry, "
+                       "or none");
+    }
+    odometry_.insert(odometry_.end(), s.odometry.begin(), s.odometry.end());
+    inputs_.push_back(s.input);
   }
 }
 
 MapRun MapJob::run(const MapObserver& observer) const {
-  MapRun run = new_run(request_.settings, request_.input.path.string(), request_.preset);
-  run.sequence = request_.input;
+  std::string names;
+  for (const auto& s : sessions_) {
+    if (!names.empty()) names += ' ';
+    names += s.input.path.string();
+  }
+  MapRun run = new_run(request_.settings, names, request_.preset);
+  if (inputs_.size() == 1) run.sequence = inputs_.front();
+  for (const auto& s : sessions_) {
+    for (const auto& note : s.notes) say(observer, "      " + note);
+  }
   run.streaming = request_.streaming;
   run.odometry = odometry_;
   const auto& files = request_.truth;
@@ -220,9 +268,9 @@ MapRun MapJob::run(const MapObserver& observer) const {
   StageClock clock(observer, run,
                    stage_names(request_.streaming, false, !odometry_.empty(), any_truth, !files.same_place.empty()));
   if (request_.streaming) {
-    map_streamed(request_, odometry_, observer, clock, run);
+    map_streamed(request_, inputs_, odometry_, observer, clock, run);
   } else {
-    map_dense(request_, kind_, odometry_, observer, clock, run);
+    map_dense(request_, inputs_, kind_, odometry_, observer, clock, run);
   }
   const std::size_t n = run.result.map.labels.size();
   std::function<MapTruth()> load_truth;

@@ -36,6 +36,10 @@ struct LocalizeSettings {
 
 struct LocalizeRequest {
   SequenceInput map, query;  // the query's path "-" (online only): image paths from next_query_path
+  // A map made of several sessions (seqtopo localize --map A --map B): when not empty it replaces `map`; the
+  // map frames are the sessions' frames one after the other (columns of the similarity, map indices of the
+  // answers, in that order).
+  std::vector<SequenceInput> map_sessions;
   // A query x map similarity.npy instead of the two sequences (rows = query frames, columns = map frames).
   std::optional<std::filesystem::path> similarity_file;
   LocalizeSettings settings;
@@ -55,6 +59,7 @@ struct LocalizeRun {
   LocalizeSettings settings;    // what ran
   SimilarityMatrix similarity;  // query x map (offline, or the rows seen online)
   std::size_t queries = 0, maps = 0;
+  std::vector<std::size_t> map_session_frames;  // map frames of each map session (one entry for one map)
   std::vector<FrameAnswer> answers;
   std::vector<align::LocalAlignment> alignments;  // offline
   // Online, per frame [s]: the latency is the processing, from the frame's arrival (its path or file read) to its
