@@ -1,7 +1,10 @@
-"""pip install . : builds the Python module seqtopo._core with CMake and packages it with python/seqtopo.
+"""pip install . : builds the Python module seqtopo._core and the seqtopo command with CMake and packages them
+with python/seqtopo (the command as seqtopo/bin/seqtopo, run by the `seqtopo` console entry point).
 
 CMake configures the whole project with SEQTOPO_BUILD_PYTHON=ON (tests and benchmarks off) for the
-interpreter running this script and builds the one target seqtopo_python. Environment:
+interpreter running this script and builds the targets seqtopo_python and seqtopo. While it builds, the stages
+and the compile percentage go to the terminal (python/build_progress.py), since pip shows a build's output
+only with -v. Environment:
   SEQTOPO_CMAKE_BUILD_DIR  CMake build folder (default: build/pip-<python version> in the source tree),
                            kept between installs so that a rebuild only recompiles what changed;
   SEQTOPO_BUILD_JOBS       parallel compile jobs (default: every core);
@@ -20,6 +23,8 @@ from setuptools.command.build_ext import build_ext
 from setuptools.command.egg_info import egg_info
 
 ROOT = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from build_progress import BuildProgress  # noqa: E402
 
 
 def project_version() -> str:
@@ -53,15 +58,22 @@ class CMakeBuild(build_ext):
         if shutil.which("ninja") and not os.path.exists(os.path.join(build_dir, "CMakeCache.txt")):
             configure += ["-G", "Ninja"]
         configure += shlex.split(os.environ.get("CMAKE_ARGS", ""))
-        subprocess.run(configure, check=True)
+        progress = BuildProgress()
+        progress.run(configure, "configuring with CMake in " + os.path.relpath(build_dir, ROOT))
         jobs = os.environ.get("SEQTOPO_BUILD_JOBS") or str(os.cpu_count() or 1)
-        subprocess.run(["cmake", "--build", build_dir, "--target", "seqtopo_python", "-j", jobs], check=True)
+        progress.run(["cmake", "--build", build_dir, "--target", "seqtopo_python", "seqtopo", "-j", jobs],
+                     "building the module and the command with %s jobs (a first build takes minutes)" % jobs)
 
         suffix = sysconfig.get_config_var("EXT_SUFFIX")
         built = os.path.join(build_dir, "python", "seqtopo", "_core" + suffix)
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(built, target)
+        # The command-line tool, run by the `seqtopo` console entry point (seqtopo/_cli.py).
+        tool = os.path.join(os.path.dirname(target), "bin", "seqtopo")
+        os.makedirs(os.path.dirname(tool), exist_ok=True)
+        shutil.copy2(os.path.join(build_dir, "src", "seqtopo"), tool)
+        progress.done("seqtopo._core and the seqtopo command")
 
 
 class OutOfTreeEggInfo(egg_info):
@@ -83,6 +95,7 @@ setup(
     packages=["seqtopo"],
     package_dir={"": "python"},
     ext_modules=[CMakeExtension("seqtopo._core")],
+    entry_points={"console_scripts": ["seqtopo = seqtopo._cli:main"]},
     cmdclass={"build_ext": CMakeBuild, "egg_info": OutOfTreeEggInfo},
     zip_safe=False,
 )

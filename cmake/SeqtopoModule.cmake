@@ -4,10 +4,12 @@
 # A module is built only when every target in DEPS exists: the seqtopo::<x> modules it needs, built earlier,
 # and the third-party targets found by the top-level CMakeLists.txt. Otherwise it is skipped with one status
 # line, and so is every module that needs it; the alignment engine, for one, needs only the standard library.
+# OPTIONAL targets are linked when they exist, and the module's own sources then see SEQTOPO_HAVE_<NAME>
+# (e.g. seqtopo::recording -> SEQTOPO_HAVE_RECORDING).
 include(GNUInstallDirs)
 
 function(seqtopo_add_module name)
-  cmake_parse_arguments(M "" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(M "" "" "DEPS;OPTIONAL" ${ARGN})
   set(missing)
   foreach(dep IN LISTS M_DEPS)
     if(NOT TARGET ${dep})
@@ -36,6 +38,16 @@ function(seqtopo_add_module name)
     target_link_libraries(seqtopo_${name} ${scope} seqtopo_core)  # every module may use the vocabulary
   endif()
   target_link_libraries(seqtopo_${name} ${scope} ${M_DEPS})
+  foreach(dep IN LISTS M_OPTIONAL)
+    if(TARGET ${dep})
+      target_link_libraries(seqtopo_${name} ${scope} ${dep})
+      string(REGEX REPLACE "^.*::" "" dep_name ${dep})
+      string(TOUPPER ${dep_name} dep_name)
+      if(sources)
+        target_compile_definitions(seqtopo_${name} PRIVATE SEQTOPO_HAVE_${dep_name}=1)
+      endif()
+    endif()
+  endforeach()
   install(TARGETS seqtopo_${name} EXPORT seqtopoTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/seqtopo/${name} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/seqtopo)
   set_property(GLOBAL APPEND PROPERTY SEQTOPO_MODULES seqtopo_${name})

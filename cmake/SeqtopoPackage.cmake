@@ -17,4 +17,4 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/seqtopoConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/seqtopoConfig.cmake INSTALL_DESTINATION ${SEQTOPO_CMAKE_DIR})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/seqtopoConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/seqtopoConfig.cmake ${PROJECT_BINARY_DIR}/seqtopoConfigVersion.cmake
-        DESTINATION ${SEQTOPO_CMAKE_DIR})
+              ${PROJECT_SOURCE_DIR}/cmake/SeqtopoRecordingDeps.cmake DESTINATION ${SEQTOPO_CMAKE_DIR})

@@ -12,7 +12,18 @@ packages=(
   libfaiss-dev libopenmpi-dev openmpi-bin
   python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-pip python3-venv python3-pil
   chromium chromium-driver python3-selenium ccache clang-format
+  libjs-d3
+  # Bags (the recording module): ROS 1 through librosbag and the message libraries, ROS 2 .db3 through SQLite,
+  # MCAP chunks through zstd and lz4.
+  librosbag-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libsqlite3-dev libzstd-dev liblz4-dev
+  # Test-only: ROS 1 test bags written by Debian's python3-rosbag (tests/recording).
+  python3-rosbag python3-sensor-msgs python3-nav-msgs python3-geometry-msgs
 )
+# Test-only: the ROS 2 test bags are written by npm packages (tests/recording/package.json), which the tests
+# install into the build folder with npm. Debian's nodejs and npm unless a Node.js with npm is already there.
+if ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -5,7 +5,7 @@ The Python face of the C++ library (the same code the ``seqtopo`` command runs):
     import numpy as np
     import seqtopo
 
-    descriptors = np.load("descriptors.npy")          # N x D, one row per image
+    descriptors = _np.load("descriptors.npy")          # N x D, one row per image
     s = seqtopo.similarity(descriptors).similarity     # N x N, S = 1 - kappa * D (cosine, kappa auto)
     result = seqtopo.build_map(s)                      # alignments -> pruning -> places -> topology
     result.labels, result.loop_closures, result.junctions
@@ -29,11 +29,12 @@ threads run meanwhile.
 
 from __future__ import annotations
 
-import dataclasses
-import os
-from typing import List, Optional, Sequence, Union
+# Private names: the module's namespace holds only what __all__ lists (and the submodules).
+import dataclasses as _dataclasses
+import os as _os
+import tempfile as _tempfile
 
-import numpy as np
+import numpy as _np
 
 from . import _core
 from ._core import (
@@ -65,8 +66,10 @@ __all__ = [
     "KappaRule",
     "LocalizeConfig",
     "LocalizeResult",
+    "LocalizeRun",
     "MapConfig",
     "MapResult",
+    "MapRun",
     "MatchConfig",
     "PruningConfig",
     "SimilarityResult",
@@ -75,21 +78,20 @@ __all__ = [
     "align",
     "build_map",
     "build_map_from_images",
-    "MapRun",
+    "localize",
+    "localize_sequences",
     "map_preset",
     "map_sequence",
-    "write_report",
-    "localize",
     "match_strings",
     "preset_costs",
     "preset_names",
     "similarity",
+    "write_report",
 ]
 
-PathLike = Union[str, "os.PathLike[str]"]
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@_dataclasses.dataclass(frozen=True, eq=False, repr=False)
 class Alignment:
     """One local alignment, as in ``alignments.json``.
 
@@ -105,7 +107,7 @@ class Alignment:
     a_end: int
     b_begin: int
     b_end: int
-    pairs: np.ndarray
+    pairs: _np.ndarray
 
     def to_dict(self) -> dict:
         """The ``alignments.json`` record (without ``kept``)."""
@@ -119,19 +121,23 @@ class Alignment:
             "pairs": self.pairs.tolist(),
         }
 
+    def __repr__(self) -> str:
+        return (f"Alignment({self.direction}, score {self.score:.4g}, a {self.a_begin}..{self.a_end - 1}, "
+                f"b {self.b_begin}..{self.b_end - 1}, {len(self.pairs)} pairs)")
+
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Alignment):
             return NotImplemented
         return (self.score, self.direction, self.a_begin, self.a_end, self.b_begin, self.b_end) == (
             other.score, other.direction, other.a_begin, other.a_end, other.b_begin, other.b_end
-        ) and np.array_equal(self.pairs, other.pairs)
+        ) and _np.array_equal(self.pairs, other.pairs)
 
 
-def _alignments(raw) -> List[Alignment]:
+def _alignments(raw) -> list[Alignment]:
     return [Alignment(*fields) for fields in raw]
 
 
-@dataclasses.dataclass(frozen=True)
+@_dataclasses.dataclass(frozen=True, repr=False)
 class SimilarityResult:
     """The similarity matrix and how it was made.
 
@@ -142,13 +148,18 @@ class SimilarityResult:
     ``frame_names``/``column_names``: file names, ``"frame 17"`` or ``"row 17"``.
     """
 
-    similarity: np.ndarray
+    similarity: _np.ndarray
     kappa: float
     kappa_auto: bool
     kappa_fraction: float
-    metric: Optional[str]
-    frame_names: List[str]
-    column_names: List[str]
+    metric: str | None
+    frame_names: list[str]
+    column_names: list[str]
+
+    def __repr__(self) -> str:
+        r, c = self.similarity.shape
+        how = "a similarity input" if self.metric is None else f"{self.metric}, kappa {self.kappa:.4g}"
+        return f"SimilarityResult({r} x {c}, {how}{' (auto)' if self.kappa_auto else ''})"
 
 
 def _input_error(subject: str, message: str) -> InputError:
@@ -159,17 +170,17 @@ def _input_error(subject: str, message: str) -> InputError:
 
 
 def _is_path(x) -> bool:
-    return isinstance(x, (str, os.PathLike))
+    return isinstance(x, (str, _os.PathLike))
 
 
 def similarity(
     descriptors,
     against=None,
     *,
-    metric: Optional[str] = None,
-    kappa: Optional[float] = None,
+    metric: str | None = None,
+    kappa: float | None = None,
     threads: int = 0,
-    kappa_rule: Optional[KappaRule] = None,
+    kappa_rule: KappaRule | None = None,
     descriptor: str = "joint-histogram",
     input_kind: str = "auto",
     every: int = 1,
@@ -193,7 +204,7 @@ def similarity(
         if against is not None and not _is_path(against):
             raise ValueError("against: give a path when the first input is a path")
         raw = _core.similarity_of_path(
-            os.fspath(descriptors), None if against is None else os.fspath(against), descriptor, metric, kappa,
+            _os.fspath(descriptors), None if against is None else _os.fspath(against), descriptor, metric, kappa,
             input_kind, every, threads, rule,
         )
     else:
@@ -204,17 +215,17 @@ def similarity(
 def align(
     scores,
     *,
-    gap: Optional[float] = None,
-    gap_a: Optional[float] = None,
-    gap_b: Optional[float] = None,
-    cap: Optional[float] = AlignConfig().cap,
+    gap: float | None = None,
+    gap_a: float | None = None,
+    gap_b: float | None = None,
+    cap: float | None = AlignConfig().cap,
     threshold: float = AlignConfig().threshold,
     reverse: bool = True,
     self: bool = AlignConfig().self,
     min_separation: int = AlignConfig().min_separation,
-    max_alignments: Optional[int] = AlignConfig().max_alignments,
+    max_alignments: int | None = AlignConfig().max_alignments,
     threads: int = 2,
-) -> List[Alignment]:
+) -> list[Alignment]:
     """All non-intersecting local alignments of a score matrix, best first (``seqtopo align --scores``).
 
     ``scores``: rows = elements of A, columns = elements of B, higher = better match; a float32
@@ -242,7 +253,7 @@ def align(
     return _alignments(_core.align(scores, config, reverse, threads))
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@_dataclasses.dataclass(frozen=True, eq=False, repr=False)
 class MapResult:
     """A topological map and the alignments it came from (``map.json``, ``loop_closures.csv``).
 
@@ -257,26 +268,31 @@ class MapResult:
     :func:`build_map_from_images`, the similarity matrix of each descriptor, else empty.
     """
 
-    labels: np.ndarray
-    places: List[np.ndarray]
-    edges: np.ndarray
-    junctions: np.ndarray
-    segments: List[np.ndarray]
-    alignments: List[Alignment]
-    kept: np.ndarray
-    retained_count: np.ndarray
-    loop_closures: np.ndarray
-    loop_closure_scores: np.ndarray
-    loop_closure_alignments: np.ndarray
-    scores: np.ndarray
+    labels: _np.ndarray
+    places: list[_np.ndarray]
+    edges: _np.ndarray
+    junctions: _np.ndarray
+    segments: list[_np.ndarray]
+    alignments: list[Alignment]
+    kept: _np.ndarray
+    retained_count: _np.ndarray
+    loop_closures: _np.ndarray
+    loop_closure_scores: _np.ndarray
+    loop_closure_alignments: _np.ndarray
+    scores: _np.ndarray
     seconds_align: float
     seconds_prune_label: float
-    similarities: List[SimilarityResult] = dataclasses.field(default_factory=list)
+    similarities: list[SimilarityResult] = _dataclasses.field(default_factory=list)
 
     @property
     def images(self) -> int:
         """Number of images in the sequence."""
         return len(self.labels)
+
+    def __repr__(self) -> str:
+        kept = int(_np.count_nonzero(self.kept))
+        return (f"MapResult({self.images} images, {len(self.places)} places, {len(self.junctions)} junctions, "
+                f"{len(self.alignments)} alignments ({kept} kept), {len(self.loop_closures)} loop closures)")
 
     def to_json(self) -> dict:
         """The content of ``map.json`` as ``seqtopo map`` writes it."""
@@ -312,7 +328,7 @@ def _config(config, cls, overrides):
     return cls(**fields)
 
 
-def _fields(cls) -> List[str]:
+def _fields(cls) -> list[str]:
     return [name for name in dir(cls) if not name.startswith("_") and isinstance(getattr(cls, name), property)]
 
 
@@ -321,7 +337,7 @@ def _map_result(raw: dict, similarities=()) -> MapResult:
     return MapResult(similarities=list(similarities), **raw)
 
 
-def build_map(similarity, config: Optional[MapConfig] = None, **overrides) -> MapResult:
+def build_map(similarity, config: MapConfig | None = None, **overrides) -> MapResult:
     """The mapping paper end to end from a similarity matrix (what ``seqtopo map`` does after step 1).
 
     ``similarity``: an N x N matrix (higher = more similar), or a list of them for the same sequence
@@ -335,20 +351,33 @@ def build_map(similarity, config: Optional[MapConfig] = None, **overrides) -> Ma
     if _is_path(similarity):
         return build_map_from_images(similarity, config, **overrides)
     config = _config(config, MapConfig, overrides)
-    if isinstance(similarity, (list, tuple)) and similarity and all(np.ndim(s) == 2 for s in similarity):
+    if isinstance(similarity, (list, tuple)) and similarity and all(_np.ndim(s) == 2 for s in similarity):
         matrices = list(similarity)
     else:
         matrices = [similarity]
+    for m in matrices:
+        _require_square(m)
     return _map_result(_core.build_map(matrices, config))
 
 
+def _require_square(matrix) -> None:
+    """A map needs N x N similarities; an N x D array is descriptors, and the error says what to call."""
+    shape = _np.shape(matrix)
+    if len(shape) == 2 and shape[0] != shape[1] and shape[0] > 0 and shape[1] > 0:
+        raise ValueError(
+            f"similarity: a map needs a square N x N similarity matrix (image x image), got {shape[0]} x {shape[1]}. "
+            f"If these are descriptors (one row per image), compute the similarity first: "
+            f"seqtopo.build_map(seqtopo.similarity(descriptors).similarity), or map them in one call: "
+            f"seqtopo.map_sequence(descriptors)")
+
+
 def build_map_from_images(
-    path: PathLike,
-    config: Optional[MapConfig] = None,
+    path: str | os.PathLike,
+    config: MapConfig | None = None,
     *,
-    descriptors: Optional[Sequence[str]] = None,
-    metric: Optional[str] = None,
-    kappa: Optional[float] = None,
+    descriptors: list[str] | None = None,
+    metric: str | None = None,
+    kappa: float | None = None,
     input_kind: str = "auto",
     every: int = 1,
     threads: int = 0,
@@ -377,8 +406,8 @@ def map_preset(name: str = "default") -> dict:
 class MapRun:
     """Everything one :func:`map_sequence` computed: the map (``.map``, a :class:`MapResult`), the accuracy
     against the ground truth (``.metrics``, and the SeqSLAM-style ``.baseline`` on the same matrices),
-    ``.topology`` and ``.trajectory_errors`` (with places or poses), ``.timings`` (stage, seconds).
-    :func:`write_report` writes it as ``seqtopo map`` does."""
+    ``.topology`` and ``.trajectory_errors`` (with places or poses), ``.timings`` (stage, seconds: consecutive
+    parts of the run). :func:`write_report` writes it as ``seqtopo map`` does."""
 
     def __init__(self, raw):
         self._raw = raw
@@ -392,52 +421,212 @@ class MapRun:
         self.input = raw.input
         self.preset = raw.preset
 
+    def __repr__(self) -> str:
+        m = self.map
+        name = _os.path.basename(_os.path.normpath(self.input)) if self.input != "memory" else "memory"
+        text = (f"MapRun({name}: {m.images} images, {len(m.places)} places, {len(m.junctions)} junctions, "
+                f"{len(m.loop_closures)} loop closures")
+        if self.metrics:
+            text += (f"; F1 {self.metrics['f1']:.3f} (precision {self.metrics['precision']:.3f}, "
+                     f"recall {self.metrics['recall']:.3f})")
+        if self.baseline:
+            text += f", baseline F1 {self.baseline['f1']:.3f}"
+        if self.topology:
+            text += f"; ARI {self.topology['adjusted_rand_index']:.3f}"
+        if self.trajectory_errors:
+            text += f"; ATE pose graph {self.trajectory_errors['pose_graph']:.2f} m"
+        return text + f"; {sum(t for _, t in self.timings):.2f} s)"
+
+
+def _arrays(x) -> bool:
+    return isinstance(x, _np.ndarray) or (isinstance(x, (list, tuple)) and x and all(
+        isinstance(m, _np.ndarray) for m in x))
+
+
+def _same_place_from_poses(poses, radius: float):
+    """N x N: images closer than radius [m] (the command line's poses.csv with --gt-radius)."""
+    xy = _np.asarray(poses, dtype=_np.float64)[:, :2]
+    d = _np.sqrt(((xy[:, None, :] - xy[None, :, :]) ** 2).sum(axis=2))
+    return d <= radius
+
 
 def map_sequence(
-    path: PathLike,
-    config: Optional[MapConfig] = None,
+    path,
+    config: MapConfig | None = None,
     *,
     preset: str = "default",
-    descriptors: Optional[Sequence[str]] = None,
-    metric: Optional[str] = None,
-    kappa: Optional[float] = None,
+    descriptors: list[str] | None = None,
+    metric: str | None = None,
+    kappa: float | None = None,
     input_kind: str = "auto",
     every: int = 1,
     threads: int = 0,
-    odometry: Optional[PathLike] = None,
-    ground_truth: Optional[PathLike] = None,
-    gt_radius: Optional[float] = None,
-    gt_places: Optional[PathLike] = None,
-    gt_poses: Optional[PathLike] = None,
+    odometry=None,
+    ground_truth=None,
+    gt_radius: float | None = None,
+    gt_places=None,
+    gt_junctions=None,
+    gt_poses=None,
     streaming: bool = False,
+    names: list[str] | None = None,
     **overrides,
 ) -> "MapRun":
-    """``seqtopo map`` as one call, on the same library pipeline: the sequence at ``path``, the ``preset``'s
-    settings (``config`` and keyword overrides replace its :class:`MapConfig`), optional odometry and ground
-    truth files (the command's ``--odometry``, ``--ground-truth`` / ``--gt-radius``, ``--gt-places``,
-    ``--gt-poses``). Returns a :class:`MapRun`; :func:`write_report` writes its files."""
+    """``seqtopo map`` as one call, on the same library pipeline. Returns a :class:`MapRun`;
+    :func:`write_report` writes its files.
+
+    ``path``: an image folder, video, ``descriptors.npy`` or ``similarity.npy`` (as the command's INPUT), or arrays
+    in memory: one N x N similarity matrix, a list of them (fused), or an N x D array of descriptors (compared by
+    :func:`similarity` first). The ``preset``'s settings apply; ``config`` and keyword overrides replace its
+    :class:`MapConfig`.
+
+    Odometry and ground truth, as files for a path input (the command's ``--odometry``, ``--ground-truth`` with
+    ``--gt-radius``, ``--gt-places``, ``--gt-poses``) or as arrays for an array input: ``odometry`` N x 3
+    (x, y, theta [m, m, rad], cumulative), ``ground_truth`` an N x N same-place matrix or N x 2 positions with
+    ``gt_radius`` [m], ``gt_places`` the true place per image (``gt_junctions``: the true junction places),
+    ``gt_poses`` N x 3 true poses. ``names``: one per matrix, for the report."""
     if config is None:
         config = map_preset(preset)["config"]
     config = _config(config, MapConfig, overrides)
+    if _arrays(path):
+        matrices = list(path) if isinstance(path, (list, tuple)) else [path]
+        if len(matrices) == 1 and matrices[0].ndim == 2 and matrices[0].shape[0] != matrices[0].shape[1]:
+            matrices = [similarity(matrices[0], metric=metric, kappa=kappa, threads=threads).similarity]
+            names = names or ["descriptors (cosine)"]
+        for m in matrices:
+            _require_square(m)
+        for name, value in (("odometry", odometry), ("ground_truth", ground_truth), ("gt_places", gt_places),
+                            ("gt_poses", gt_poses)):
+            if value is not None and _is_path(value):
+                raise ValueError(f"{name}: give an array with arrays in memory (a file goes with a path input)")
+        same_place = None
+        if ground_truth is not None:
+            truth = _np.asarray(ground_truth)
+            if truth.ndim == 2 and truth.shape[1] in (2, 3) and truth.shape[0] != truth.shape[1]:
+                if gt_radius is None:
+                    raise ValueError("ground_truth: positions (N x 2) need gt_radius [m]")
+                truth = _same_place_from_poses(truth, gt_radius)
+            same_place = truth.astype(_np.float32)
+        raw = _core.map_similarities(
+            matrices, list(names or []), config, None if odometry is None else _np.asarray(odometry, _np.float32),
+            same_place, [] if gt_places is None else [int(p) for p in gt_places],
+            [] if gt_junctions is None else [int(j) for j in gt_junctions],
+            None if gt_poses is None else _np.asarray(gt_poses, _np.float32))
+        return MapRun(raw)
     if isinstance(descriptors, str):
         descriptors = descriptors.split(",")
     if descriptors is not None and not descriptors:
         raise ValueError("no descriptor given")
+    for name, value in (("odometry", odometry), ("ground_truth", ground_truth), ("gt_places", gt_places),
+                        ("gt_poses", gt_poses)):
+        if value is not None and not _is_path(value):
+            raise ValueError(f"{name}: give a file with a path input (arrays go with arrays in memory)")
+    if gt_junctions is not None:
+        raise ValueError("gt_junctions: with a path input they are read from junctions.csv beside gt_places")
+
     def fs(p):
-        return "" if p is None else os.fspath(p)
-    raw = _core.map_sequence(os.fspath(path), preset, config, list(descriptors or []), metric, kappa, input_kind,
+        return "" if p is None else _os.fspath(p)
+    raw = _core.map_sequence(_os.fspath(path), preset, config, list(descriptors or []), metric, kappa, input_kind,
                              every, threads, fs(odometry), fs(ground_truth), gt_radius, fs(gt_places), fs(gt_poses),
                              streaming)
     return MapRun(raw)
 
 
-def write_report(run: "MapRun", folder: PathLike) -> None:
-    """Writes ``run`` into ``folder`` as ``seqtopo map --out folder`` does (map.json, figures, report.html),
+class LocalizeRun:
+    """Everything one :func:`localize_sequences` computed: per query frame ``.map`` (best map frame, -1 = not in
+    the map) and ``.score``; ``.alignments`` (offline); with ground truth ``.metrics`` (recall@1, AUC, ...) and
+    ``.baselines`` (single frame, SeqSLAM on the same matrix); ``.similarity`` (query x map), ``.timings``;
+    online ``.latencies`` (processing per frame, from arrival to answer [s]) and ``.waits``.
+    :func:`write_report` writes it as ``seqtopo localize`` does."""
+
+    def __init__(self, raw):
+        self._raw = raw
+        self.online = raw.online
+        self.inputs = raw.inputs
+        self.queries, self.maps = raw.queries, raw.maps
+        self.map, self.score = raw.map, raw.score
+        self.alignments = _alignments(raw.alignments)
+        self.metrics, self.baselines = raw.metrics, raw.baselines
+        self.timings = list(raw.timings)
+        self.latencies, self.waits = raw.latencies, raw.waits
+        self.tolerance = raw.tolerance
+
+    @property
+    def similarity(self) -> _np.ndarray:
+        """The query x map similarity (a copy)."""
+        return self._raw.similarity
+
+    def __repr__(self) -> str:
+        found = int(_np.count_nonzero(self.map >= 0))
+        inputs = " in ".join(_os.path.basename(p) for p in self.inputs.split(" in "))
+        text = (f"LocalizeRun({inputs}: {self.queries} query frames in {self.maps} map frames, {found} in the "
+                f"map, {'online' if self.online else f'{len(self.alignments)} alignments'}")
+        if self.metrics:
+            text += f"; recall@1 {self.metrics['recall_at_1']:.3f}, AUC {self.metrics['auc']:.3f} (+-{self.tolerance})"
+        if self.online and len(self.latencies):
+            text += f"; latency median {1e3 * float(_np.median(self.latencies)):.2f} ms"
+        return text + ")"
+
+
+def localize_sequences(
+    map,
+    query=None,
+    config: LocalizeConfig | None = None,
+    *,
+    descriptor: str = "patch",
+    metric: str | None = None,
+    kappa: float | None = None,
+    input_kind: str = "auto",
+    every: int = 1,
+    threads: int = 0,
+    online: bool = False,
+    ground_truth=None,
+    tolerance: int = 2,
+    **overrides,
+) -> "LocalizeRun":
+    """``seqtopo localize`` as one call: where in the mapped traverse ``map`` is each frame of ``query``?
+
+    ``map``, ``query``: image folders, videos or ``descriptors.npy`` (the command's ``--map``/``--query``); or
+    ``map`` alone a query x map similarity (a ``similarity.npy`` path or an array, rows = query frames).
+    ``config``: a :class:`LocalizeConfig`, keyword arguments override its fields. ``online``: frame by frame.
+    ``ground_truth``: ``"same-index"`` (query k is map k), a CSV of ``query,map`` pairs, or an array of such
+    pairs; the answers are then scored within +-``tolerance`` map frames beside the single-frame and SeqSLAM
+    baselines. Returns a :class:`LocalizeRun`."""
+    config = _config(config, LocalizeConfig, overrides)
+    with _tempfile.TemporaryDirectory(prefix="seqtopo-") as scratch:
+        if isinstance(map, _np.ndarray):
+            if query is not None:
+                raise ValueError("map: an array is the query x map similarity; give no query with it")
+            path = _os.path.join(scratch, "similarity.npy")
+            _np.save(path, _np.ascontiguousarray(map, dtype=_np.float32))
+            map = path
+        truth = ""
+        if ground_truth is not None:
+            if isinstance(ground_truth, str) or isinstance(ground_truth, _os.PathLike):
+                truth = _os.fspath(ground_truth)
+            else:
+                pairs = _np.asarray(ground_truth, dtype=_np.int64).reshape(-1, 2)
+                truth = _os.path.join(scratch, "truth.csv")
+                with open(truth, "w") as f:
+                    f.write("query,map\n" + "".join(f"{q},{m}\n" for q, m in pairs))
+        raw = _core.localize_sequences(_os.fspath(map), "" if query is None else _os.fspath(query), descriptor,
+                                       metric, kappa, input_kind, every, threads, config, online, truth, tolerance)
+    return LocalizeRun(raw)
+
+
+def write_report(run, folder: str | os.PathLike) -> None:
+    """Writes a :class:`MapRun` as ``seqtopo map --out folder`` does (map.json, figures, report.html), or a
+    :class:`LocalizeRun` as ``seqtopo localize --out folder`` does (matches.csv, figures, report.html),
     replacing the folder's previous outputs as a whole."""
-    _core.write_map_outputs(run._raw, os.fspath(folder))
+    if isinstance(run, MapRun):
+        _core.write_map_outputs(run._raw, _os.fspath(folder))
+    elif isinstance(run, LocalizeRun):
+        _core.write_localize_outputs(run._raw, _os.fspath(folder))
+    else:
+        raise TypeError(f"write_report takes a MapRun (map_sequence) or a LocalizeRun (localize_sequences), "
+                        f"got {type(run).__name__}")
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@_dataclasses.dataclass(frozen=True, eq=False, repr=False)
 class LocalizeResult:
     """Where each query frame is in the map (``matches.csv`` and more).
 
@@ -448,15 +637,19 @@ class LocalizeResult:
     :class:`Alignment` found (a = query, b = map), best first.
     """
 
-    map: np.ndarray
-    score: np.ndarray
-    covered: np.ndarray
-    direction: np.ndarray
-    candidates: np.ndarray
-    alignments: List[Alignment]
+    map: _np.ndarray
+    score: _np.ndarray
+    covered: _np.ndarray
+    direction: _np.ndarray
+    candidates: _np.ndarray
+    alignments: list[Alignment]
+
+    def __repr__(self) -> str:
+        return (f"LocalizeResult({len(self.map)} query frames, {int(_np.count_nonzero(self.covered))} in the map, "
+                f"{len(self.alignments)} alignments)")
 
 
-def localize(similarity, config: Optional[LocalizeConfig] = None, **overrides) -> LocalizeResult:
+def localize(similarity, config: LocalizeConfig | None = None, **overrides) -> LocalizeResult:
     """Sequence-based localization of a query traverse in a mapped one (``seqtopo localize``).
 
     ``similarity``: the query x map matrix (rows = query frames, columns = map frames, higher = more
@@ -468,13 +661,13 @@ def localize(similarity, config: Optional[LocalizeConfig] = None, **overrides) -
     raw = _core.localize(similarity, config)
     reverse = raw.pop("reverse")
     return LocalizeResult(
-        direction=np.where(reverse, "reverse", "forward"),
+        direction=_np.where(reverse, "reverse", "forward"),
         alignments=_alignments(raw.pop("alignments")),
         **raw,
     )
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@_dataclasses.dataclass(frozen=True, eq=False, repr=False)
 class StringMatches:
     """The ranked candidates of one query string (rows of ``matches.tsv``).
 
@@ -483,26 +676,31 @@ class StringMatches:
     ``rotation``: with ``cyclic``, the best rotation of the database string.
     """
 
-    db_index: np.ndarray
-    score: np.ndarray
-    rank: np.ndarray
-    rotation: np.ndarray
+    db_index: _np.ndarray
+    score: _np.ndarray
+    rank: _np.ndarray
+    rotation: _np.ndarray
 
     @property
-    def best(self) -> np.ndarray:
+    def best(self) -> _np.ndarray:
         """Database indices of rank 1 (the set of best matchings)."""
         return self.db_index[self.rank == 1]
 
+    def __repr__(self) -> str:
+        best = self.best.tolist()
+        shown = ", ".join(map(str, best[:5])) + (", ..." if len(best) > 5 else "")
+        return f"StringMatches({len(self.db_index)} candidates, best [{shown}])"
+
 
 def match_strings(
-    db: Sequence[str],
-    queries: Sequence[str],
-    config: Optional[MatchConfig] = None,
+    db: list[str],
+    queries: list[str],
+    config: MatchConfig | None = None,
     *,
     window: int = 1,
-    preset: Optional[str] = None,
+    preset: str | None = None,
     **overrides,
-) -> List[StringMatches]:
+) -> list[StringMatches]:
     """String-matching localization of the second paper (``seqtopo match-strings``).
 
     Every query string (a test point's fingerprint: ``v`` = vertical edge, ``A``..``P`` = colour patch) is
@@ -518,3 +716,6 @@ def match_strings(
     config = _config(config, MatchConfig, overrides)
     raw = _core.match_strings(list(db), list(queries), config, window)
     return [StringMatches(*fields) for fields in raw]
+
+
+del annotations

@@ -116,8 +116,12 @@ void bind_map(py::module_& m) {
       "Topology (C++ seqtopo::mapping::TopologyConfig). u_turn_separation [frames]: a reverse\n"
       "alignment meeting itself closer than this is a U-turn, not a junction.");
   topology
-      .def(py::init([](std::size_t u_turn_separation) { return TopologyConfig{u_turn_separation}; }), py::kw_only(),
-           py::arg("u_turn_separation") = dt.u_turn_separation)
+      .def(py::init([](std::size_t u_turn_separation) {
+             TopologyConfig c;
+             c.u_turn_separation = u_turn_separation;
+             return c;
+           }),
+           py::kw_only(), py::arg("u_turn_separation") = dt.u_turn_separation)
       .def_readwrite("u_turn_separation", &TopologyConfig::u_turn_separation);
   add_repr(topology, "TopologyConfig", {"u_turn_separation"});
 

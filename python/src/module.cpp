@@ -24,7 +24,10 @@
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/outputs/localize_outputs.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
+#include "seqtopo/pipeline/ground_truth.hpp"
+#include "seqtopo/pipeline/localize_pipeline.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
 #include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/similarity/memory.hpp"
@@ -297,12 +300,163 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
   return pipeline::map_sequence(request);
 }
 
+// The whole map from arrays in memory (one N x N similarity per descriptor or sensor), with the truth as arrays:
+// same_place N x N (non-zero = same place), true places per image (and the true junctions), true poses N x 3
+// (with odometry N x 3, x y theta [m, m, rad]).
+pipeline::MapRun map_similarities(const py::sequence& similarities, const std::vector<std::string>& names,
+                                  const mapping::MapConfig& config, const py::object& odometry,
+                                  const py::object& same_place, const std::vector<int>& true_places,
+                                  const std::vector<int>& true_junctions, const py::object& true_poses) {
+  std::vector<MatrixView> views;
+  for (std::size_t k = 0; k < similarities.size(); ++k) views.push_back(matrix_view(similarities[k], "similarity"));
+  const auto poses_of = [](const py::object& object, const char* name) {
+    std::vector<Pose2> poses;
+    if (object.is_none()) return poses;
+    const MatrixView view = matrix_view(object, name);
+    if (view.cols != 3) throw std::invalid_argument(std::string(name) + ": expected N x 3 (x, y, theta)");
+    for (std::size_t i = 0; i < view.rows; ++i) {
+      poses.push_back({view.data[3 * i], view.data[3 * i + 1], view.data[3 * i + 2]});
+    }
+    return poses;
+  };
+  const std::vector<Pose2> odo = poses_of(odometry, "odometry");
+  pipeline::MapTruth truth;
+  truth.poses = poses_of(true_poses, "true_poses");
+  truth.places = true_places;
+  truth.junctions = true_junctions;
+  if (!same_place.is_none()) {
+    const MatrixView view = matrix_view(same_place, "ground_truth");
+    if (view.rows != view.cols) throw std::invalid_argument("ground_truth: expected an N x N matrix");
+    auto matrix = std::make_shared<DenseMatrix<std::uint8_t>>(view.rows, view.cols, std::uint8_t{0});
+    for (std::size_t k = 0; k < view.size(); ++k) matrix->values[k] = view.data[k] != 0 ? 1 : 0;
+    truth.same_place = [matrix](std::size_t i, std::size_t j) {
+      return i < matrix->rows && j < matrix->cols && (*matrix)(i, j) != 0;
+    };
+  }
+  auto settings = pipeline::map_preset("default");
+  settings.map = config;
+  const py::gil_scoped_release release;
+  std::vector<SimilarityMatrix> matrices;
+  for (const auto& view : views) {
+    require_finite(view, "similarity");
+    matrices.push_back(to_matrix(view));
+  }
+  return pipeline::map_similarities(std::move(matrices), names, settings, odo, truth);
+}
+
 void write_map_outputs(const pipeline::MapRun& run, const std::filesystem::path& folder) {
   const py::gil_scoped_release release;
   io::OutputDirectory out(folder);
   outputs::write_map_outputs(run, out);
   outputs::write_map_report(run, out);
   out.commit();
+}
+
+// ---- localize_sequences: the pipeline of `seqtopo localize` ------------------------------------------
+
+py::dict localization_metrics(const evaluation::LocalizationMetrics& m) {
+  py::dict d;
+  d["recall_at_1"] = m.recall_at_1;
+  d["recall_at_5"] = m.recall_at_5;
+  d["precision"] = m.precision;
+  d["recall"] = m.recall;
+  d["auc"] = m.auc;
+  d["recall_at_100_precision"] = m.recall_at_100_precision;
+  d["queries"] = m.queries;
+  d["correct"] = m.correct;
+  py::list curve;
+  for (const auto& p : m.curve) curve.append(py::make_tuple(p.threshold, p.precision, p.recall));
+  d["pr_curve"] = curve;
+  return d;
+}
+
+pipeline::LocalizeRun localize_sequences(const std::filesystem::path& map, const std::filesystem::path& query,
+                                         const std::string& descriptor, const std::optional<std::string>& metric,
+                                         std::optional<float> kappa, const std::string& input_kind, std::size_t every,
+                                         unsigned threads, const localize::LocalizeConfig& config, bool online,
+                                         const std::string& ground_truth, std::size_t tolerance) {
+  pipeline::LocalizeRequest request;
+  const auto kind = pipeline::parse_input_kind(input_kind);
+  if (every == 0) throw std::invalid_argument("every must be >= 1");
+  request.map = {map, kind, every};
+  request.query = {query, kind, every};
+  if (query.empty()) {
+    request.similarity_file = map;  // one query x map similarity.npy
+  }
+  request.settings.similarity.descriptor = pipeline::parse_descriptor(descriptor);
+  if (metric) request.settings.similarity.distance = similarity::parse_distance(*metric);
+  check_kappa(kappa);
+  request.settings.similarity.kappa = kappa;
+  request.settings.similarity.threads = threads;
+  request.settings.localize = config;
+  request.online = online;
+  std::optional<pipeline::LocalizationTruthSource> source;
+  if (!ground_truth.empty()) source = pipeline::read_localization_truth(ground_truth);
+  const py::gil_scoped_release release;
+  pipeline::LocalizeRun run = pipeline::localize_sequences(request);
+  if (source) {
+    const auto truth = pipeline::localization_truth(*source, run.queries, run.maps);
+    pipeline::evaluate_localization_run(run, truth, tolerance, threads == 0 ? 2 : threads);
+  }
+  return run;
+}
+
+void write_localize_outputs(const pipeline::LocalizeRun& run, const std::filesystem::path& folder) {
+  const py::gil_scoped_release release;
+  io::OutputDirectory out(folder);
+  outputs::write_localize_outputs(run, out);
+  outputs::write_localize_report(run, out);
+  out.commit();
+}
+
+void bind_localize_run(py::module_& m) {
+  py::class_<pipeline::LocalizeRun>(m, "LocalizeRun")
+      .def_readonly("online", &pipeline::LocalizeRun::online)
+      .def_readonly("inputs", &pipeline::LocalizeRun::inputs)
+      .def_readonly("queries", &pipeline::LocalizeRun::queries)
+      .def_readonly("maps", &pipeline::LocalizeRun::maps)
+      .def_readonly("timings", &pipeline::LocalizeRun::timings)
+      .def_readonly("seconds", &pipeline::LocalizeRun::seconds)
+      .def_readonly("tolerance", &pipeline::LocalizeRun::tolerance)
+      .def_property_readonly("latencies",
+                             [](const pipeline::LocalizeRun& r) {
+                               std::vector<double> v = r.latencies;
+                               return to_array(std::move(v));
+                             })
+      .def_property_readonly("waits",
+                             [](const pipeline::LocalizeRun& r) {
+                               std::vector<double> v = r.waits;
+                               return to_array(std::move(v));
+                             })
+      .def_property_readonly("similarity",
+                             [](const pipeline::LocalizeRun& r) {
+                               SimilarityMatrix copy = r.similarity;
+                               return to_array(std::move(copy));
+                             })
+      .def_property_readonly("map",
+                             [](const pipeline::LocalizeRun& r) {
+                               std::vector<Index> v;
+                               for (const auto& a : r.answers) v.push_back(a.map ? index(*a.map) : -1);
+                               return to_array(std::move(v));
+                             })
+      .def_property_readonly("score",
+                             [](const pipeline::LocalizeRun& r) {
+                               std::vector<float> v;
+                               for (const auto& a : r.answers) v.push_back(a.score);
+                               return to_array(std::move(v));
+                             })
+      .def_property_readonly("alignments", [](const pipeline::LocalizeRun& r) { return alignments_list(r.alignments); })
+      .def_property_readonly("metrics",
+                             [](const pipeline::LocalizeRun& r) {
+                               return r.metrics ? py::object(localization_metrics(*r.metrics)) : py::object(py::none());
+                             })
+      .def_property_readonly("baselines", [](const pipeline::LocalizeRun& r) {
+        if (!r.single_frame || !r.seqslam) return py::object(py::none());
+        py::dict d;
+        d["single_frame"] = localization_metrics(*r.single_frame);
+        d["seqslam"] = localization_metrics(*r.seqslam);
+        return py::object(d);
+      });
 }
 
 void bind_map_run(py::module_& m) {
@@ -429,6 +583,14 @@ PYBIND11_MODULE(_core, m) {
         py::arg("odometry"), py::arg("ground_truth"), py::arg("gt_radius"), py::arg("gt_places"), py::arg("gt_poses"),
         py::arg("streaming"));
   m.def("write_map_outputs", &write_map_outputs, py::arg("run"), py::arg("folder"));
+  m.def("map_similarities", &map_similarities, py::arg("similarities"), py::arg("names"), py::arg("config"),
+        py::arg("odometry"), py::arg("same_place"), py::arg("true_places"), py::arg("true_junctions"),
+        py::arg("true_poses"));
+  bind_localize_run(m);
+  m.def("localize_sequences", &localize_sequences, py::arg("map"), py::arg("query"), py::arg("descriptor"),
+        py::arg("metric"), py::arg("kappa"), py::arg("input_kind"), py::arg("every"), py::arg("threads"),
+        py::arg("config"), py::arg("online"), py::arg("ground_truth"), py::arg("tolerance"));
+  m.def("write_localize_outputs", &write_localize_outputs, py::arg("run"), py::arg("folder"));
   m.def("localize", &localize, py::arg("similarity"), py::arg("config"));
   m.def("similarity_of_descriptors", &similarity_of_descriptors, py::arg("descriptors"), py::arg("against"),
         py::arg("metric"), py::arg("kappa"), py::arg("threads"), py::arg("kappa_rule"));

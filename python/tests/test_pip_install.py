@@ -40,3 +40,11 @@ def test_pip_install_from_source_tree(tmp_path):
     assert location.startswith(str(env_dir)), location  # the installed copy, not the source tree
     # The venv sees Debian's numpy but the installed package is its own.
     assert str(SOURCE_DIR) not in location
+    # pip installed the seqtopo command too (a console entry point running the C++ tool built with the module).
+    command = env_dir / "bin" / "seqtopo"
+    assert command.exists(), sorted(p.name for p in (env_dir / "bin").iterdir())
+    help_text = subprocess.run([str(command), "--help"], capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert help_text.returncode == 0 and "Usage: seqtopo [OPTIONS] SUBCOMMAND" in help_text.stdout, help_text
+    module = subprocess.run([str(python), "-m", "seqtopo", "align", "--help"], capture_output=True, text=True, env=env,
+                            cwd=tmp_path)
+    assert module.returncode == 0 and "Usage: seqtopo align" in module.stdout, module

@@ -16,11 +16,13 @@
 
 #include "command_registry.hpp"
 #include "number_options.hpp"
+#include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/localize_outputs.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/pipeline/localize_pipeline.hpp"
+#include "sequence_options.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -28,6 +30,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct LocalizeOptions {
+  std::vector<std::string> map_paths;  // --map, once per map session
+  SequenceOptions sequence;
   std::string map_path, query_path, out_dir = "seqtopo-out", input_kind = "auto", descriptor = "patch", metric;
   std::optional<float> kappa;
   bool kappa_auto = false;
@@ -92,7 +96,8 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o) {
   return c;
 }
 
-void run(const LocalizeOptions& o) {
+void run(LocalizeOptions o) {
+  if (!o.map_paths.empty()) o.map_path = o.map_paths.front();
   if (o.map_path.empty() && o.query_path.empty()) throw InputError("--map", "give --map and --query");
   const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
   if (o.every == 0) throw InputError("--every", "must be at least 1");
@@ -103,6 +108,9 @@ void run(const LocalizeOptions& o) {
     for (const auto* p : {&o.map_path, &o.query_path}) {
       if (!p->empty() && *p != "-" && !fs::exists(*p)) throw InputError(*p, "does not exist");
     }
+    for (const auto& p : o.map_paths) {
+      if (!fs::exists(p)) throw InputError(p, "does not exist");
+    }
     return similarity_file(o, kind).has_value();
   }();
   if (!have_matrix && (o.map_path.empty() || o.query_path.empty())) {
@@ -112,31 +120,67 @@ void run(const LocalizeOptions& o) {
   request.similarity_file = similarity_file(o, kind);
   request.map = {o.map_path, kind, o.every};
   request.query = {o.query_path, kind, o.every};
+  o.sequence.apply(request.map);
+  o.sequence.apply(request.query);
+  if (o.map_paths.size() > 1) {
+    if (request.similarity_file) {
+      throw InputError("--map", "a similarity matrix holds the whole map; give it once, not with other map sessions");
+    }
+    for (const auto& p : o.map_paths) {
+      request.map_sessions.push_back({p, kind, o.every});
+      o.sequence.apply(request.map_sessions.back());
+    }
+  }
   if (!request.similarity_file || !o.online) request.settings.similarity = similarity_config(o);
   // Ground truth is read before the work, so a bad file fails fast.
   std::optional<pipeline::LocalizationTruthSource> truth_source;
   if (!o.gt.empty()) truth_source = pipeline::read_localization_truth(o.gt);
 
-  if (o.online) std::cout << "query,map,confidence,latency_ms\n";
-  const auto on_frame = [](std::size_t q, const pipeline::FrameAnswer& a, double seconds) {
-    std::cout << fmt::format("{},{},{:.4g},{:.3f}\n", q, a.map ? std::to_string(*a.map) : std::string(), a.score,
-                             1e3 * seconds)
+  Progress progress("seqtopo localize");
+  progress.plan({"localization", "accuracy and baselines", "files and figures", "report"});
+  const double setup_seconds = progress.elapsed();
+  // Online, the answers go to stdout frame by frame; the stage lines stay on stderr, without a bar between them.
+  if (o.online) progress.pause_bar(true);
+  if (o.online) std::cout << "query,map,confidence,latency_ms,wait_ms\n";
+  const auto on_frame = [](std::size_t q, const pipeline::FrameAnswer& a, double seconds, double wait) {
+    std::cout << fmt::format("{},{},{:.4g},{:.3f},{:.3f}\n", q, a.map ? std::to_string(*a.map) : std::string(), a.score,
+                             1e3 * seconds, 1e3 * wait)
               << std::flush;
   };
+  request.settings.similarity.progress = [&progress](std::string_view what, std::size_t done, std::size_t total) {
+    progress.advance(done, total, what == "matrix" ? "cells of the matrix" : "images described");
+  };
+  request.settings.similarity.note = [&progress](std::string_view text) { progress.line(text); };
   const auto next_path = []() -> std::optional<std::string> {
     std::string line;
     if (!std::getline(std::cin, line)) return std::nullopt;
     return line;
   };
+  progress.begin("localization");
   pipeline::LocalizeRun r = pipeline::localize_sequences(request, on_frame, next_path);
+  const double localization_seconds = progress.end();
 
   // The ground truth must fit the sizes before anything is written.
+  progress.begin("accuracy and baselines");
   std::optional<evaluation::LocalizationTruth> truth;
   if (truth_source) truth = pipeline::localization_truth(*truth_source, r.queries, r.maps);
   io::OutputDirectory out(o.out_dir);
   if (truth) pipeline::evaluate_localization_run(r, *truth, o.tolerance, resolve_threads(o.threads));
+  const double accuracy_seconds = progress.end();
+  // The report's timings: the command's setup, the localization's own parts and the rest of its stage.
+  double parts = 0;
+  for (const auto& t : r.timings) parts += t.second;
+  r.timings.insert(r.timings.begin(), {"start-up, options, inputs checked", setup_seconds});
+  r.timings.emplace_back("localization: the rest (reading, online frames)",
+                         std::max(0.0, localization_seconds - parts));
+  r.timings.emplace_back("accuracy and baselines", accuracy_seconds);
+  progress.begin("files and figures");
   const std::size_t not_in_map = outputs::write_localize_outputs(r, out);
-  outputs::write_localize_report(r, out);
+  r.timings.emplace_back("files and figures", progress.end());
+  progress.begin("report");
+  const auto report = outputs::write_localize_report(r, out, {.seconds_before = progress.elapsed()});
+  progress.end();
+  if (!report.warning.empty()) progress.line("warning: " + report.warning);
   out.commit();
 
   std::string line = fmt::format("seqtopo localize: {} query frames in {} map frames, {} not in the map, {:.2f} s",
@@ -146,10 +190,16 @@ void run(const LocalizeOptions& o) {
                         r.metrics->auc, r.metrics->recall_at_100_precision, o.tolerance);
   }
   if (o.online) {
-    line += fmt::format("; latency per frame median {:.3f} ms, max {:.3f} ms",
-                        1e3 * outputs::latency_percentile(r, 0.5), 1e3 * outputs::latency_percentile(r, 1.0));
+    std::vector<double> waits = r.waits;
+    std::sort(waits.begin(), waits.end());
+    line += fmt::format(
+        "; latency per frame (processing) median {:.3f} ms, max {:.3f} ms; waiting for frames "
+        "median {:.3f} ms",
+        1e3 * outputs::latency_percentile(r, 0.5), 1e3 * outputs::latency_percentile(r, 1.0),
+        waits.empty() ? 0.0 : 1e3 * waits[waits.size() / 2]);
   }
-  std::cerr << line << " -> " << (out.dir() / "matches.csv").string() << "\n";
+  progress.line(line.substr(std::string_view("seqtopo localize: ").size()) + " -> " +
+                (out.dir() / "matches.csv").string());
 }
 
 const RegisterCommand registered{
@@ -157,9 +207,12 @@ const RegisterCommand registered{
      "Localize a query traverse in a mapped one by aligning image sequences (offline, or --online frame by frame)",
      [](CLI::App& app) {
        auto o = std::make_shared<LocalizeOptions>();
-       app.add_option("--map", o->map_path,
-                      "mapped traverse: image folder, video, descriptors.npy, or a query x map similarity.npy "
-                      "(rows = query frames, columns = map frames; then --query is not needed)");
+       app.add_option("--map", o->map_paths,
+                      "mapped traverse: image folder, video, bag, descriptors.npy, or a query x map similarity.npy "
+                      "(rows = query frames, columns = map frames; then --query is not needed); given several "
+                      "times, the map is those sessions one after the other")
+           ->allow_extra_args(false);
+       add_sequence_options(app, o->sequence);
        app.add_option(
            "--query", o->query_path,
            "query traverse of the same kind ('-' with --online: image paths on standard input, one per line)");

@@ -85,7 +85,8 @@ std::vector<std::string> expand_config(const std::vector<std::string>& args) {
 }  // namespace seqtopo::cli
 
 int main(int argc, char** argv) {
-  CLI::App app{"seqtopo: topological mapping and localization of a mobile robot with sequence alignment"};
+  // Named, so that --help says "Usage: seqtopo [OPTIONS] SUBCOMMAND" (and "seqtopo map [OPTIONS] ...").
+  CLI::App app{"seqtopo: topological mapping and localization of a mobile robot with sequence alignment", "seqtopo"};
   app.require_subcommand(1);
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   app.set_version_flag("--version", "seqtopo 0.1.0");

@@ -12,17 +12,23 @@
 
 #include "command_registry.hpp"
 #include "number_options.hpp"
+#include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
+#include "sequence_options.hpp"
 
 namespace seqtopo::cli {
 namespace {
 namespace fs = std::filesystem;
 
 struct MapOptions {
-  std::string input;
+  std::vector<std::string> inputs;  // one per session
+  SequenceOptions sequence;
+  std::vector<std::string> odometry_files, times_files;
+  std::string odometry_topic;
+  std::optional<double> every_metres;
   std::string out = "seqtopo-out";
   std::string input_kind = "auto";
   std::size_t every = 1;
@@ -37,7 +43,7 @@ struct MapOptions {
   std::optional<float> contrast_offset;
   bool no_reverse = false;
   bool streaming = false;
-  std::string odometry, ground_truth, gt_places, gt_poses;
+  std::string ground_truth, gt_places, gt_poses;
   std::optional<double> gt_radius;
   unsigned threads = 0;
   std::string config_file;
@@ -61,7 +67,6 @@ Settings resolve_settings(const MapOptions& o) {
     s.similarity.distance = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });
   if (o.kappa) s.similarity.kappa = *o.kappa;
   s.similarity.threads = resolve_threads(o.threads);
-  s.similarity.note = [](std::string_view text) { std::cerr << "seqtopo map: " << text << "\n"; };
   if (o.gap) s.map.gap = *o.gap;
   if (o.threshold) s.map.threshold = *o.threshold;
   if (o.no_cap || o.cap) s.map.cap_from_statistics = false;  // an explicit cap is the cap
@@ -101,12 +106,6 @@ Settings resolve_settings(const MapOptions& o) {
   s.map.threads = resolve_threads(o.threads);
   return s;
 }
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-void progress(const std::string& text) { std::cerr << "seqtopo map: " << text << std::endl; }
 
 // --streaming aligns contrast-enhanced cosine scores of one vector descriptor per image, computed on the
 // fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
@@ -171,41 +170,81 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
 }
 
 void run(MapOptions o) {
-  const auto total_start = std::chrono::steady_clock::now();
+  Progress progress("seqtopo map");
   // Everything the user gave is checked before the long computation starts (and before any progress
   // output), so a mistake costs one line and no time.
   pipeline::MapRequest request;
   request.settings = resolve_settings(o);
   request.preset = o.preset;
-  const bool bundled_default = o.input.empty();
+  const bool bundled_default = o.inputs.empty();
   if (bundled_default) {
     const fs::path bundled = fs::path(SEQTOPO_DATA_DIR) / "rtabmap-corridor";
-    o.input = fs::exists(bundled) ? bundled.string() : "data/rtabmap-corridor";
+    o.inputs = {fs::exists(bundled) ? bundled.string() : "data/rtabmap-corridor"};
     // Its ground truth is an N x N image, which --streaming refuses.
-    if (o.ground_truth.empty() && !o.streaming) o.ground_truth = (fs::path(o.input) / "ground_truth.bmp").string();
+    if (o.ground_truth.empty() && !o.streaming) o.ground_truth = (fs::path(o.inputs[0]) / "ground_truth.bmp").string();
   }
-  request.input = {o.input, option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); }),
-                   o.every};
-  request.odometry = o.odometry;
+  const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
+  // --odometry and --times: one for a single input, one per session or none for several.
+  for (const auto& [name, files] : {std::pair{"--odometry", &o.odometry_files}, std::pair{"--times", &o.times_files}}) {
+    if (files->size() > 1 && files->size() != o.inputs.size()) {
+      throw InputError(name, fmt::format("given {} times for {} inputs: give it once per session, in the order of "
+                                         "the inputs",
+                                         files->size(), o.inputs.size()));
+    }
+    if (files->size() == 1 && o.inputs.size() > 1) {
+      throw InputError(name, fmt::format("given once for {} sessions: give it once per session, in the order of the "
+                                         "inputs",
+                                         o.inputs.size()));
+    }
+  }
+  for (std::size_t k = 0; k < o.inputs.size(); ++k) {
+    pipeline::SessionSource session;
+    session.input = {o.inputs[k], kind, o.every};
+    o.sequence.apply(session.input);
+    if (!o.odometry_files.empty()) session.odometry = o.odometry_files[k];
+    if (!o.times_files.empty()) session.times = o.times_files[k];
+    session.odometry_topic = o.odometry_topic;
+    session.every_metres = o.every_metres;
+    request.sessions.push_back(std::move(session));
+  }
+  if (request.sessions.size() == 1) {  // the single-input form
+    const auto& single = request.sessions.front();
+    request.input = single.input;
+    request.odometry = single.odometry;
+    request.times = single.times;
+    request.odometry_topic = single.odometry_topic;
+    request.every_metres = single.every_metres;
+    request.sessions.clear();
+  }
   request.truth = {o.ground_truth, o.gt_radius, o.gt_places, o.gt_poses};
   request.streaming = o.streaming;
   const pipeline::MapJob job(request);
   if (o.streaming) check_streaming(o, request.settings, job.input_kind());
   io::OutputDirectory out(o.out);
-  if (bundled_default) progress("no input given: mapping the bundled corridor data " + o.input);
-  if (bundled_default && o.streaming) progress("its ground truth is an N x N image, which --streaming does not read");
-  pipeline::MapRun run = job.run({.progress = [](std::string_view text) { progress(std::string(text)); }});
+  if (bundled_default) progress.line("no input given: mapping the bundled corridor data " + o.inputs[0]);
+  if (bundled_default && o.streaming) {
+    progress.line("its ground truth is an N x N image, which --streaming does not read");
+  }
+  const double setup_seconds = progress.elapsed();
+  const auto line = [&progress](std::string_view text) { progress.line(text); };
+  pipeline::MapRun run =
+      job.run({.progress = line, .stage = progress.observer(), .later_stages = {"files and figures", "report"}});
+  run.timings.insert(run.timings.begin(), {"start-up, options, inputs checked", setup_seconds});
 
-  const auto t = std::chrono::steady_clock::now();
+  progress.begin("files and figures");
   outputs::write_map_outputs(run, out);
-  run.timings.emplace_back("figures and report", seconds_since(t));
-  outputs::write_map_report(run, out);
+  run.timings.emplace_back("files and figures", progress.end());
+  progress.begin("report");
+  // The report's timings add up to the wall time up to its own writing (the rest is the final rename).
+  const auto report = outputs::write_map_report(run, out, {.seconds_before = progress.elapsed()});
+  progress.end();
+  if (!report.warning.empty()) progress.line("warning: " + report.warning);
   const auto written = out.commit();
-  progress(fmt::format("wrote {} files to {} in {:.2f} s", written.size(), o.out, seconds_since(total_start)));
+  progress.line(fmt::format("wrote {} files to {} in {:.2f} s", written.size(), o.out, progress.elapsed()));
   if (run.metrics) {
-    progress(fmt::format("loop closures: precision {:.3f} recall {:.3f} F1 {:.3f} AUC {:.3f} R@100P {:.3f}",
-                         run.metrics->precision, run.metrics->recall, run.metrics->f1, run.metrics->auc,
-                         run.metrics->recall_at_100_precision));
+    progress.line(fmt::format("loop closures: precision {:.3f} recall {:.3f} F1 {:.3f} AUC {:.3f} R@100P {:.3f}",
+                              run.metrics->precision, run.metrics->recall, run.metrics->f1, run.metrics->auc,
+                              run.metrics->recall_at_100_precision));
   }
 }
 
@@ -215,14 +254,16 @@ const RegisterCommand registered{
      "(with no INPUT: the bundled corridor data, scored against its ground truth)",
      [](CLI::App& app) {
        auto o = std::make_shared<MapOptions>();
-       app.add_option("input", o->input, "image folder, video, descriptors.npy or similarity.npy");
+       app.add_option("input", o->inputs,
+                      "image folder, video, bag (.bag, .db3, .mcap), descriptors.npy or similarity.npy; several are "
+                      "sessions mapped together (no transition between one's end and the next one's start)");
        app.add_option("--out", o->out, "output folder")->capture_default_str();
        app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
        add_number(app, "--every", o->every, kAtLeastOne, "video: use every K-th frame");
        app.add_option("--preset", o->preset, "paper (joint histogram, chi2, EKF) or default")->capture_default_str();
        app.add_option("--descriptor", o->descriptor,
-                      "joint-histogram|patch|panorama, or several separated by commas to fuse them "
-                      "(default joint-histogram,patch; paper preset joint-histogram)");
+                      "joint-histogram|patch|panorama|npy (npy: the rows of a descriptors.npy INPUT), or several "
+                      "separated by commas to fuse them (default joint-histogram,patch; paper preset joint-histogram)");
        app.add_option("--metric", o->metric_name, "chi2|l1|cosine|sad (default: by descriptor)");
        add_number_or(app, "--kappa", o->kappa, "auto", o->kappa_auto, kPositive,
                      "S = 1 - kappa * D: a number > 0, or auto (from the sequence's own distances)");
@@ -271,7 +312,20 @@ const RegisterCommand registered{
                   fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
                               mapping::MapConfig{}.contrast_offset));
        app.add_flag("--no-reverse", o->no_reverse, "do not look for paths revisited in the opposite direction");
-       app.add_option("--odometry", o->odometry, "odometry CSV: index,x,y,theta (cumulative) or index,dx,dy,dtheta");
+       app.add_option("--odometry", o->odometry_files,
+                      "odometry: CSV index,x,y,theta (cumulative) or index,dx,dy,dtheta, CSV timestamp,x,y,yaw, "
+                      "TUM or KITTI poses; with several inputs, once per session")
+           ->allow_extra_args(false);
+       app.add_option("--times", o->times_files,
+                      "image times for a timestamped --odometry: times.txt, one time per image [s] (default: "
+                      "times.txt in the folder, or numeric file names); with several inputs, once per session")
+           ->allow_extra_args(false);
+       app.add_option("--odometry-topic", o->odometry_topic,
+                      "bags: the nav_msgs/Odometry or PoseStamped topic matched to the images by time (default: "
+                      "the bag's only one; none = ignore the bag's odometry)");
+       add_number(app, "--every-metres", o->every_metres, kPositive,
+                  "keep one frame per this many metres of odometry travelled (needs odometry) [m]");
+       add_sequence_options(app, o->sequence);
        app.add_option("--ground-truth", o->ground_truth, "N x N same-place image, or poses.csv with --gt-radius");
        add_number(app, "--gt-radius", o->gt_radius, kPositive,
                   "same place when closer than this [m] (poses.csv ground truth)");

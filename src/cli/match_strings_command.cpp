@@ -69,15 +69,23 @@ nlohmann::json rates_json(const strings::Rates& r) {
           {"wrong_percent", r.percent(r.wrong)}};
 }
 
-std::string metrics_table(const strings::LocalizationMetrics& m, const std::string& title) {
+// The paper's table. The geometric rates are over the topologically correct test points only (a point placed in
+// the wrong place has no geometric score), which the table says when they are fewer than all.
+std::string metrics_table(const strings::LocalizationMetrics& m, const std::string& title, std::size_t test_points) {
   std::string out = title + "\n";
-  auto rows = [&](const char* kind, const strings::Rates& r) {
+  auto rows = [&](const char* kind, const strings::Rates& r, const std::string& of) {
     out += fmt::format("{} exact   {:6.1f} %\n", kind, r.percent(r.exact));
     out += fmt::format("{} correct {:6.1f} %\n", kind, r.percent(r.correct));
-    out += fmt::format("{} wrong   {:6.1f} %   (of {} test points)\n", kind, r.percent(r.wrong), r.total);
+    out += fmt::format("{} wrong   {:6.1f} %   ({})\n", kind, r.percent(r.wrong), of);
   };
-  if (m.topological) rows("Top. ", *m.topological);
-  if (m.geometric) rows("Geom.", *m.geometric);
+  if (m.topological) rows("Top. ", *m.topological, fmt::format("of {} test points", m.topological->total));
+  if (m.geometric) {
+    const auto& g = *m.geometric;
+    rows("Geom.", g,
+         g.total == test_points ? fmt::format("of {} test points", g.total)
+                                : fmt::format("of {} of the {} test points: the topologically correct ones{}", g.total,
+                                              test_points, m.topological ? "" : " with a position"));
+  }
   return out;
 }
 
@@ -118,9 +126,8 @@ void run(const MatchStringsOptions& o) {
 
   io::OutputDirectory out(o.out_dir);
   // With --cyclic a fifth column gives the rotation (in symbols) of the database string that matched best.
-  std::string tsv =
-      fmt::format("# seqtopo match-strings --algorithm {}{}{}\nquery_id\trank\tdb_id\tscore{}\n", o.algorithm,
-                  o.cyclic ? " --cyclic" : "", o.k ? fmt::format(" --k {}", *o.k) : "", o.cyclic ? "\trotation" : "");
+  // The header is the first line (the settings are in metrics.json and on the command line, not in a comment).
+  std::string tsv = fmt::format("query_id\trank\tdb_id\tscore{}\n", o.cyclic ? "\trotation" : "");
   for (std::size_t q = 0; q < matches.size(); ++q) {
     for (const auto& c : matches[q].ranked) {
       tsv += fmt::format("{}\t{}\t{}\t{:.6g}", queries[q].id, c.rank, db[c.db_index].id, c.score);
@@ -170,7 +177,7 @@ void run(const MatchStringsOptions& o) {
     if (metrics.geometric) j["geometric"] = rates_json(*metrics.geometric);
     out.write("metrics.json", j.dump(1) + "\n");
     const std::string table =
-        metrics_table(metrics, fmt::format("algorithm {}{}", o.algorithm, o.cyclic ? " (cyclic)" : ""));
+        metrics_table(metrics, fmt::format("algorithm {}{}", o.algorithm, o.cyclic ? " (cyclic)" : ""), queries.size());
     out.write("metrics.txt", table);
     std::cout << table;
   }

@@ -1,6 +1,5 @@
 // seqtopo similarity: a sequence in, the similarity matrix S = 1 - kappa * D out (mapping paper IV-A).
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <iostream>
@@ -8,12 +7,14 @@
 
 #include "command_registry.hpp"
 #include "number_options.hpp"
+#include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
+#include "sequence_options.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -26,6 +27,7 @@ struct SimilarityOptions {
   std::size_t every = 1;
   unsigned threads = 0;
   bool descriptor_given = false;
+  SequenceOptions sequence;
 };
 
 void run(const SimilarityOptions& o) {
@@ -36,29 +38,36 @@ void run(const SimilarityOptions& o) {
     config.distance = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
   config.kappa = o.kappa;
   config.threads = resolve_threads(o.threads);
-  const bool interactive = isatty(STDERR_FILENO) != 0;
-  config.note = [](std::string_view text) { std::cerr << "seqtopo similarity: " << text << "\n"; };
-  if (interactive) {
-    config.progress = [](std::string_view stage, std::size_t done, std::size_t total) {
-      std::cerr << fmt::format("\rseqtopo similarity: {} {}/{}   ", stage, done, total);
-      if (done >= total) std::cerr << "\n";
-    };
-  }
+  Progress progress("seqtopo similarity");
+  progress.plan({"similarity", "files"});
+  config.note = [&progress](std::string_view text) { progress.line(text); };
+  config.progress = [&progress](std::string_view stage, std::size_t done, std::size_t total) {
+    progress.advance(done, total, stage == "matrix" ? "cells of the matrix" : "images described");
+  };
 
-  const pipeline::SequenceInput a{o.input, kind, o.every};
+  pipeline::SequenceInput a{o.input, kind, o.every};
+  pipeline::SequenceInput b{o.against, kind, o.every};
+  o.sequence.apply(a);
+  o.sequence.apply(b);
   pipeline::SimilarityResult result;
+  progress.begin("similarity");
   try {
-    result = o.against.empty()
-                 ? pipeline::compute_similarity(a, config)
-                 : pipeline::compute_similarity(a, pipeline::SequenceInput{o.against, kind, o.every}, config);
+    result = o.against.empty() ? pipeline::compute_similarity(a, config) : pipeline::compute_similarity(a, b, config);
   } catch (const std::invalid_argument& e) {
     throw InputError(o.input, e.what());
   }
+  progress.end();
 
+  progress.begin("files");
   io::OutputDirectory out(o.out_dir);
   out.write("similarity.npy", io::encode_npy(result.similarity));
-  out.write("similarity.png", plot::encode_png(plot::matrix_image(result.similarity)));
+  plot::MatrixFigureConfig figure;
+  figure.title = fmt::format("Similarity S = 1 - kappa D ({} x {})", result.similarity.rows, result.similarity.cols);
+  figure.value_label = "similarity S";
+  if (!o.against.empty()) figure.row_label = "INPUT frame", figure.column_label = "--against frame";
+  out.write("similarity.png", plot::encode_png(plot::matrix_figure(result.similarity, {}, figure)));
   out.commit();
+  progress.end();
 
   std::string kappa_text = "input was a similarity matrix";
   if (!std::isnan(result.kappa)) {
@@ -67,17 +76,18 @@ void run(const SimilarityOptions& o) {
                                    result.kappa, 100.0 * result.kappa_fraction)
                      : fmt::format("kappa {:.4g}", result.kappa);
   }
-  std::cerr << fmt::format(
-      "seqtopo similarity: {} x {}{}, {}; descriptors {:.2f} s, matrix {:.2f} s -> {}\n", result.similarity.rows,
-      result.similarity.cols, result.distance ? fmt::format(" ({})", similarity::distance_name(*result.distance)) : "",
-      kappa_text, result.seconds_descriptors, result.seconds_matrix, (out.dir() / "similarity.npy").string());
+  progress.line(fmt::format(
+      "{} x {}{}, {}; descriptors {:.2f} s, matrix {:.2f} s -> {}", result.similarity.rows, result.similarity.cols,
+      result.distance ? fmt::format(" ({})", similarity::distance_name(*result.distance)) : "", kappa_text,
+      result.seconds_descriptors, result.seconds_matrix, (out.dir() / "similarity.npy").string()));
 }
 
 const RegisterCommand registered{
     {"similarity", "Similarity matrix S = 1 - kappa * D of an image folder, video, descriptors.npy or similarity.npy",
      [](CLI::App& app) {
        auto o = std::make_shared<SimilarityOptions>();
-       app.add_option("INPUT", o->input, "image folder, video file, descriptors.npy (N x D) or similarity.npy")
+       app.add_option("INPUT", o->input,
+                      "image folder, video file, bag (.bag, .db3, .mcap), descriptors.npy (N x D) or similarity.npy")
            ->required()
            ->check(CLI::ExistingPath);
        app.add_option("--against", o->against, "second sequence of the same kind: N x M matrix, rows = INPUT")
@@ -95,6 +105,7 @@ const RegisterCommand registered{
        add_number_or(app, "--kappa", o->kappa, "auto", o->kappa_auto, kPositive,
                      "K > 0 in S = 1 - K * D, or auto (the default; see docs/similarity.md)");
        add_number(app, "--threads", o->threads, kThreads, "worker threads (0 = all cores)");
+       add_sequence_options(app, o->sequence);
        app.callback([o] { run(*o); });
      }}};
 

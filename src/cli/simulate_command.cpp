@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <stdexcept>
 
 #include "command_registry.hpp"
+#include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/plot/png.hpp"
@@ -44,12 +46,15 @@ std::string poses_csv(const std::vector<simulator::Pose2>& poses) {
 
 // Encodes the images on all threads, then writes them into one staged folder.
 void write_images(io::OutputDirectory& out, const std::string& folder, const std::vector<RgbImage>& images,
-                  const std::vector<std::string>& names, int threads) {
+                  const std::vector<std::string>& names, int threads, Progress& progress) {
   std::vector<std::string> encoded(images.size());
   const auto n = static_cast<std::ptrdiff_t>(images.size());
+  std::atomic<std::size_t> done{0};
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
-  for (std::ptrdiff_t k = 0; k < n; ++k)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
     encoded[static_cast<std::size_t>(k)] = plot::encode_png(images[static_cast<std::size_t>(k)]);
+    progress.advance(++done, images.size(), folder + " encoded");
+  }
   const std::filesystem::path dir = out.staged(folder);
   std::filesystem::create_directories(dir);
   for (std::size_t k = 0; k < images.size(); ++k) {
@@ -111,10 +116,17 @@ void run(const SimulateOptions& o) {
   config.threads = threads;
 
   const auto started = std::chrono::steady_clock::now();
+  Progress progress("seqtopo simulate");
+  progress.plan({"world", "rendering", "files"});
+  progress.begin("world");
   const simulator::ScenarioSetup setup = simulator::build_scenario(o.scenario, config);
+  progress.end();
+  progress.begin("rendering");
   const simulator::SimulatedRun result = simulator::simulate(setup, config);
+  progress.end();
   const double render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
+  progress.begin("files");
   io::OutputDirectory out(o.out);
   std::string summary;
   if (result.kind == simulator::ScenarioKind::survey) {
@@ -129,7 +141,7 @@ void run(const SimulateOptions& o) {
       adjacency += fmt::format("{},{}\n", result.points[static_cast<std::size_t>(t)].id,
                                result.points[static_cast<std::size_t>(m)].id);
     }
-    write_images(out, "panoramas", result.panoramas, names, threads);
+    write_images(out, "panoramas", result.panoramas, names, threads, progress);
     out.write("points.csv", points);
     out.write("adjacency.csv", adjacency);
     const auto maps = std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return p.map; });
@@ -141,8 +153,8 @@ void run(const SimulateOptions& o) {
     const std::size_t n = result.poses.size();
     std::vector<std::string> names;
     for (std::size_t k = 0; k < n; ++k) names.push_back(frame_name(k));
-    write_images(out, "panoramas", result.panoramas, names, threads);
-    if (!result.images.empty()) write_images(out, "images", result.images, names, threads);
+    write_images(out, "panoramas", result.panoramas, names, threads, progress);
+    if (!result.images.empty()) write_images(out, "images", result.images, names, threads, progress);
     out.write("odometry.csv", poses_csv(result.odometry));
     out.write("poses.csv", poses_csv(result.poses));
     std::string places = "index,place\n";
@@ -172,9 +184,10 @@ void run(const SimulateOptions& o) {
   }
   out.write("floor_plan.png", plot::encode_png(result.floor_plan));
   out.commit();
+  progress.end();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  std::cerr << fmt::format("seqtopo simulate: {}: {}; rendered in {:.2f} s, written in {:.2f} s -> {}\n", o.scenario,
-                           summary, render_seconds, total - render_seconds, o.out);
+  progress.line(fmt::format("{}: {}; rendered in {:.2f} s, written in {:.2f} s -> {}", o.scenario, summary,
+                            render_seconds, total - render_seconds, o.out));
 }
 
 const RegisterCommand registered{

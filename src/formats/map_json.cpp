@@ -46,7 +46,7 @@ nlohmann::json significance_json(const mapping::MapResult& result) {
 
 }  // namespace
 
-std::string map_json(const mapping::MapResult& result) {
+std::string map_json(const mapping::MapResult& result, std::span<const MapSession> sessions) {
   const auto& map = result.map;
   nlohmann::json places = nlohmann::json::array();
   for (const auto& p : map.places) places.push_back({{"id", p.id}, {"images", p.images}});
@@ -54,13 +54,24 @@ std::string map_json(const mapping::MapResult& result) {
   for (auto [p, q] : map.edges) edges.push_back({p, q});
   nlohmann::json segments = nlohmann::json::array();
   for (const auto& s : map.segments) segments.push_back(s.places);
-  const nlohmann::json document = {{"images", map.labels.size()},
-                                   {"labels", map.labels},
-                                   {"places", places},
-                                   {"edges", edges},
-                                   {"junctions", map.junctions},
-                                   {"segments", segments},
-                                   {"alignments", alignment_list(result)}};
+  nlohmann::json document = {{"images", map.labels.size()},
+                             {"labels", map.labels},
+                             {"places", places},
+                             {"edges", edges},
+                             {"junctions", map.junctions},
+                             {"segments", segments},
+                             {"alignments", alignment_list(result)}};
+  if (sessions.size() > 1) {
+    nlohmann::json list = nlohmann::json::array();
+    std::vector<std::size_t> of_image(map.labels.size(), 0);
+    for (std::size_t k = 0; k < sessions.size(); ++k) {
+      const auto& s = sessions[k];
+      list.push_back({{"input", s.input}, {"begin", s.begin}, {"end", s.end}});
+      for (std::size_t i = s.begin; i < s.end && i < of_image.size(); ++i) of_image[i] = k;
+    }
+    document["sessions"] = list;
+    document["image_sessions"] = of_image;
+  }
   return document.dump(1) + "\n";
 }
 

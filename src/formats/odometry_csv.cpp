@@ -32,6 +32,7 @@ std::vector<std::string_view> split(std::string_view line) {
 struct PoseTable {
   std::vector<std::string> header;
   std::vector<std::vector<double>> rows;  // without the index
+  std::vector<std::size_t> lines;         // the line number of each row
 };
 
 PoseTable read_table(const std::filesystem::path& path, const std::vector<std::vector<std::string>>& headers) {
@@ -87,6 +88,7 @@ PoseTable read_table(const std::filesystem::path& path, const std::vector<std::v
     }
     values.erase(values.begin());
     table.rows.push_back(std::move(values));
+    table.lines.push_back(line_no);
   }
   if (table.header.empty()) throw InputError(path.string(), "empty file; header must be " + expected());
   if (table.rows.empty()) throw InputError(path.string(), "no rows after the header");
@@ -101,8 +103,14 @@ std::vector<Pose2> read_odometry_csv(const std::filesystem::path& path) {
   poses.reserve(table.rows.size());
   const bool increments = table.header[1] == "dx";
   Pose2 pose;  // the origin
-  for (const auto& r : table.rows) {
+  for (std::size_t k = 0; k < table.rows.size(); ++k) {
+    const auto& r = table.rows[k];
     pose = increments ? compose(pose, {r[0], r[1], r[2]}) : Pose2{r[0], r[1], wrap_angle(r[2])};
+    // Finite increments can still sum past the largest double (1e308 + 1e308).
+    if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {
+      throw InputError(path.string() + ":" + std::to_string(table.lines[k]),
+                       "the integrated position is not finite (the increments overflow)");
+    }
     poses.push_back(pose);
   }
   return poses;

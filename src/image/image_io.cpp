@@ -71,27 +71,33 @@ void quiet_opencv() {
 
 }  // namespace
 
-RgbImage load_image(const fs::path& path) {
+RgbImage decode_image(std::span<const std::uint8_t> bytes, const std::string& subject) {
   quiet_opencv();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "cannot open image");
-  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.empty()) throw InputError(path.string(), "empty file, not an image");
-  if (truncated_jpeg(bytes)) throw InputError(path.string(), "corrupt image (truncated JPEG)");
+  if (bytes.empty()) throw InputError(subject, "empty, not an image");
+  const std::vector<std::uint8_t> copy(bytes.begin(), bytes.end());
+  if (truncated_jpeg(copy)) throw InputError(subject, "corrupt image (truncated JPEG)");
   cv::Mat decoded;
   try {
-    decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+    decoded = cv::imdecode(copy, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception&) {
     decoded.release();
   }
   if (decoded.empty() || decoded.cols <= 0 || decoded.rows <= 0) {
-    throw InputError(path.string(), "cannot decode image (corrupt or unsupported format)");
+    throw InputError(subject, "cannot decode image (corrupt or unsupported format)");
   }
   try {
     return to_rgb(decoded);
   } catch (const std::exception& e) {
-    throw InputError(path.string(), std::string("cannot convert image: ") + e.what());
+    throw InputError(subject, std::string("cannot convert image: ") + e.what());
   }
+}
+
+RgbImage load_image(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "cannot open image");
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.empty()) throw InputError(path.string(), "empty file, not an image");
+  return decode_image(bytes, path.string());
 }
 
 namespace {

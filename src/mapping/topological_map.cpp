@@ -12,12 +12,22 @@ using Adjacency = std::vector<std::set<PlaceLabel>>;
 
 // Whether the two traversals of an alignment come from (or go to) different places at pair (i, j).
 // step = -1 looks at predecessors, +1 at successors, along the alignment's own direction.
+// Whether images a and a + 1 are consecutive in one session.
+bool joined(const std::set<std::size_t>& session_starts, long a) {
+  return !session_starts.count(static_cast<std::size_t>(a + 1));
+}
+
 bool diverges(const std::vector<PlaceLabel>& labels, std::size_t i, std::size_t j, int step, align::Direction direction,
-              std::size_t u_turn_separation) {
+              std::size_t u_turn_separation, const std::set<std::size_t>& session_starts) {
   const auto n = static_cast<long>(labels.size());
   const long ni = static_cast<long>(i) + step;
   const long nj = static_cast<long>(j) + (direction == align::Direction::forward ? step : -step);
   if (ni < 0 || ni >= n || nj < 0 || nj >= n) return false;
+  // A neighbour across a session boundary is no neighbour: the session starts or ends there.
+  if (!joined(session_starts, std::min<long>(ni, static_cast<long>(i))) ||
+      !joined(session_starts, std::min<long>(nj, static_cast<long>(j)))) {
+    return false;
+  }
   const std::size_t separation = i > j ? i - j : j - i;
   if (direction == align::Direction::reverse && separation <= u_turn_separation) return false;
   return labels[static_cast<std::size_t>(ni)] != labels[static_cast<std::size_t>(nj)];
@@ -79,10 +89,11 @@ TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
   for (PlaceLabel p = 0; p < count; ++p) map.places[p].id = p;
   for (std::size_t k = 0; k < labels.size(); ++k) map.places[labels[k]].images.push_back(k);
 
+  const std::set<std::size_t> session_starts(config.session_starts.begin(), config.session_starts.end());
   Adjacency adjacency(static_cast<std::size_t>(count));
   for (std::size_t k = 1; k < labels.size(); ++k) {
     const PlaceLabel a = labels[k - 1], b = labels[k];
-    if (a == b) continue;
+    if (a == b || session_starts.count(k)) continue;
     adjacency[a].insert(b);
     adjacency[b].insert(a);
   }
@@ -110,8 +121,12 @@ TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
   for (const auto& [k, first_last] : ends) {
     const auto direction = alignments[k].direction;
     const auto& [first, last] = first_last;
-    if (diverges(labels, first.i, first.j, -1, direction, config.u_turn_separation)) junctions.insert(labels[first.i]);
-    if (diverges(labels, last.i, last.j, +1, direction, config.u_turn_separation)) junctions.insert(labels[last.i]);
+    if (diverges(labels, first.i, first.j, -1, direction, config.u_turn_separation, session_starts)) {
+      junctions.insert(labels[first.i]);
+    }
+    if (diverges(labels, last.i, last.j, +1, direction, config.u_turn_separation, session_starts)) {
+      junctions.insert(labels[last.i]);
+    }
   }
   map.junctions.assign(junctions.begin(), junctions.end());
 

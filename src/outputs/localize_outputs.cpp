@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "figures.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
 #include "seqtopo/plot/pr_curve.hpp"
@@ -67,9 +68,8 @@ std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDir
     line.thickness = 2;
     lines.push_back(std::move(line));
   }
-  plot::MatrixImageConfig picture;
-  picture.max_size = 1024;  // the report inlines it; block means keep the alignment lines visible
-  out.write("similarity.png", plot::encode_png(plot::matrix_image(r.similarity, lines, picture)));
+  out.write("similarity.png",
+            plot::encode_png(plot::matrix_figure(r.similarity, lines, localize_similarity_figure(r))));
 
   const char* method = r.online ? "seqtopo online" : "seqtopo alignment";
   if (r.metrics) {
@@ -93,8 +93,10 @@ std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDir
   }
 
   if (r.online) {
-    std::string lat = "query,latency_ms\n";
-    for (std::size_t q = 0; q < r.latencies.size(); ++q) lat += fmt::format("{},{:.4f}\n", q, 1e3 * r.latencies[q]);
+    std::string lat = "query,latency_ms,wait_ms\n";
+    for (std::size_t q = 0; q < r.latencies.size(); ++q) {
+      lat += fmt::format("{},{:.4f},{:.4f}\n", q, 1e3 * r.latencies[q], q < r.waits.size() ? 1e3 * r.waits[q] : 0.0);
+    }
     out.write("latency.csv", lat);
   }
 

@@ -1,13 +1,23 @@
+// report.html of `seqtopo localize`: summary and accuracy, the interactive query x map matrix with the
+// alignments and the matches over it (each match's query and map frames side by side), the PR curves of
+// seqtopo and the baselines, the histogram of the per-frame confidence, parameters and timings.
 #include <fmt/format.h>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
 
+#include "report_data.hpp"
 #include "seqtopo/outputs/localize_outputs.hpp"
 #include "seqtopo/report/html_report.hpp"
 
 namespace seqtopo::outputs {
 namespace {
+
+// As in map_report.cpp: the per-frame score stands in for the confidence until the per-pair confidence is in
+// LocalizeRun; switch here.
+constexpr const char* kConfidenceKey = "score";
+constexpr const char* kConfidenceLabel = "per-frame score (stands in for the confidence)";
 
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -16,14 +26,24 @@ std::string read_file(const std::filesystem::path& path) {
   return ss.str();
 }
 
+detail::CurvePoints curve_points(const std::string& label, const std::string& colour,
+                                 const evaluation::LocalizationMetrics& m) {
+  detail::CurvePoints c{label, colour, {}};
+  for (const auto& p : m.curve) c.points.push_back({p.recall, p.precision, p.threshold});
+  return c;
+}
+
 }  // namespace
 
-void write_localize_report(const pipeline::LocalizeRun& r, io::OutputDirectory& out) {
+ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDirectory& out,
+                                   const ReportOptions& options) {
+  const auto report_start = std::chrono::steady_clock::now();
   const auto& config = r.settings.localize;
   const char* method = r.online ? "seqtopo online" : "seqtopo alignment";
   std::size_t not_in_map = 0;
   for (const auto& a : r.answers) not_in_map += a.map ? 0 : 1;
   report::HtmlReport html("seqtopo localize: " + r.inputs);
+  nlohmann::json data = {{"kind", "localize"}, {"schema", 1}};
   html.heading("Summary");
   std::vector<std::pair<std::string, std::string>> summary{
       {"mode", r.online ? "online (one frame at a time)" : "offline (whole query)"},
@@ -33,9 +53,12 @@ void write_localize_report(const pipeline::LocalizeRun& r, io::OutputDirectory& 
       {"seconds", fmt::format("{:.3f}", r.seconds)}};
   if (!r.online) summary.emplace_back("alignments", std::to_string(r.alignments.size()));
   if (r.online) {
-    summary.emplace_back("latency per frame: median / 99% / max [ms]",
+    summary.emplace_back("latency per frame (processing, from arrival to answer): median / 99% / max [ms]",
                          fmt::format("{:.3f} / {:.3f} / {:.3f}", 1e3 * latency_percentile(r, 0.5),
                                      1e3 * latency_percentile(r, 0.99), 1e3 * latency_percentile(r, 1.0)));
+    double wait = 0;
+    for (double w : r.waits) wait += w;
+    summary.emplace_back("waiting for frames (not in the latency): total [s]", fmt::format("{:.3f}", wait));
   }
   html.key_values(summary);
   if (r.metrics) {
@@ -52,29 +75,100 @@ void write_localize_report(const pipeline::LocalizeRun& r, io::OutputDirectory& 
     html.table({"method", "recall@1", "recall@5", "AUC", "R@100P", "precision", "recall"},
                {row(method, *r.metrics), row("SeqSLAM-style (len 30, v 0.9-1.6)", *r.seqslam),
                 row("single frame", *r.single_frame)});
+    html.raw(
+        "<p class=\"note\">Precision-recall, sweeping the per-frame score threshold; seqtopo on top, the "
+        "baselines dashed; hover for the values.</p><div id=\"pr-view\"></div>"
+        "<div class=\"readout\" id=\"pr-readout\"></div>\n");
+    data["pr"] = detail::pr_json({curve_points(method, "#dc1e1e", *r.metrics),
+                                  curve_points("SeqSLAM-style", "#285adc", *r.seqslam),
+                                  curve_points("single frame", "#787878", *r.single_frame)});
+  }
+
+  html.heading("Similarity matrix");
+  html.raw(detail::matrix_view_markup(
+      std::string("Query (rows) x map (columns) similarity (bright = similar)") +
+      (r.online ? "" : ", alignments red (forward) and green (reverse)") +
+      "; each query frame's match a yellow marker. Scroll or use the buttons to zoom, drag to pan; hover a "
+      "marker to see the query frame beside its map frame."));
+  html.raw("<div id=\"alignment-table\"></div>\n");
+  data["matrix"] =
+      detail::matrix_json(r.similarity, r.similarity.rows, r.similarity.cols, "query frame", "map frame", "similarity");
+  nlohmann::json alignments = nlohmann::json::array();
+  for (std::size_t k = 0; k < r.alignments.size(); ++k)
+    alignments.push_back(detail::alignment_json(r.alignments[k], k, true));
+  data["alignments"] = std::move(alignments);
+  nlohmann::json rows = nlohmann::json::array(), values = nlohmann::json::array();
+  std::vector<std::size_t> wanted_q, wanted_m;
+  for (std::size_t q = 0; q < r.answers.size(); ++q) {
+    const auto& a = r.answers[q];
+    if (!a.map) continue;
+    nlohmann::json row = {{"i", q}, {"j", *a.map}, {"score", a.score}};
+    if (q < r.latencies.size()) row["latency_ms"] = 1e3 * r.latencies[q];
+    values.push_back(row[kConfidenceKey]);
+    rows.push_back(std::move(row));
+    wanted_q.push_back(q);
+    wanted_m.push_back(*a.map);
+  }
+  nlohmann::json fields = {{{"key", "i"}, {"label", "query frame"}},
+                           {{"key", "j"}, {"label", "map frame"}},
+                           {{"key", "score"}, {"label", "score"}}};
+  if (r.online) fields.push_back({{"key", "latency_ms"}, {"label", "latency [ms]"}});
+  data["pairs"] = {{"singular", "Match"},
+                   {"css", "match"},
+                   {"row_name", "query frame"},
+                   {"col_name", "map frame"},
+                   {"confidence", {{"key", kConfidenceKey}, {"label", kConfidenceLabel}}},
+                   {"fields", std::move(fields)},
+                   {"rows", std::move(rows)}};
+  data["sequences"] = {{"rows", detail::sequence_json(r.query_input, r.queries, wanted_q, "query frame")},
+                       {"cols", detail::sequence_json(r.map_input, r.maps, wanted_m, "map frame")}};
+  if (data["sequences"]["rows"]["note"] != "") {
+    html.paragraph("Images: " + data["sequences"]["rows"]["note"].get<std::string>() + ".");
+  }
+
+  html.heading("Confidence of the matches");
+  html.raw("<p class=\"note\">Histogram of the matched frames' " + report::escape_html(kConfidenceLabel) +
+           "; hover a bar for its count.</p><div id=\"confidence-view\"></div>"
+           "<div class=\"readout\" id=\"confidence-readout\"></div>\n");
+  data["histogram"] = {{"label", kConfidenceLabel}, {"unit", "query frames"}, {"values", std::move(values)}};
+
+  html.heading("Parameters");
+  const std::vector<std::pair<std::string, std::string>> parameters{
+      {"descriptor", std::string(pipeline::descriptor_name(r.settings.similarity.descriptor))},
+      {"gap", fmt::format("{}", config.gap)},
+      {"cap", config.cap ? fmt::format("{}", *config.cap) : "none"},
+      {"threshold", fmt::format("{}", config.threshold)},
+      {"offset [sd]", fmt::format("{}", config.contrast_offset)},
+      {"enhancement window [frames]", std::to_string(config.contrast_window)},
+      {"score window [frames]", std::to_string(config.score_window)},
+      {"reverse pass", config.reverse ? "yes" : "no"}};
+  html.key_values(parameters);
+  data["parameters"] = parameters;
+
+  html.heading("Static figures (the PNG files, for papers)");
+  html.begin_details(r.metrics ? "similarity.png, pr_curve.png" : "similarity.png");
+  if (r.metrics) {
     html.png("Precision-recall, sweeping the per-frame score threshold", read_file(out.staged("pr_curve.png")),
              "pr_curve.png");
   }
-  html.heading("Similarity matrix");
   html.png(r.online ? "Query (rows) x map (columns) similarity"
                     : "Query (rows) x map (columns) similarity with the alignments: forward red, reverse green",
            read_file(out.staged("similarity.png")), "similarity.png");
-  html.heading("Parameters");
-  html.key_values({{"descriptor", std::string(pipeline::descriptor_name(r.settings.similarity.descriptor))},
-                   {"gap", fmt::format("{}", config.gap)},
-                   {"cap", config.cap ? fmt::format("{}", *config.cap) : "none"},
-                   {"threshold", fmt::format("{}", config.threshold)},
-                   {"offset [sd]", fmt::format("{}", config.contrast_offset)},
-                   {"enhancement window [frames]", std::to_string(config.contrast_window)},
-                   {"score window [frames]", std::to_string(config.score_window)},
-                   {"reverse pass", config.reverse ? "yes" : "no"}});
-  if (!r.timings.empty()) {
-    html.heading("Timings");
-    std::vector<std::vector<std::string>> rows;
-    for (const auto& [stage, seconds] : r.timings) rows.push_back({stage, fmt::format("{:.3f}", seconds)});
-    html.table({"stage", "seconds"}, rows);
-  }
+  html.end_details();
+
+  html.heading("Timings");
+  html.raw(
+      "<p class=\"note\">Every stage of the run, one after the other: they add up to the wall time.</p>"
+      "<div id=\"timings-view\"></div><div class=\"readout\" id=\"timings-readout\"></div>\n");
+  auto timings = r.timings;
+  data["timings"] = detail::timings_json(timings, options, report_start);
+  std::vector<std::vector<std::string>> table;
+  for (const auto& [stage, seconds] : timings) table.push_back({stage, fmt::format("{:.3f}", seconds)});
+  table.push_back({"wall time", fmt::format("{:.3f}", data["timings"]["wall"].get<double>())});
+  html.table({"stage", "seconds"}, table);
+  const ReportResult status = detail::finish_interactive(html, data);
   out.write("report.html", html.html());
+  return status;
 }
 
 }  // namespace seqtopo::outputs

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "figures.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/map_json.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -45,14 +46,26 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
     for (const auto& place : map.places) node(place);
     for (auto [p, q] : map.edges) dot << "  p" << p << " -- p" << q << ";\n";
   } else {
+    // Each segment's inner places as a chain of at most 8 runs (node label: its number of places), so that the
+    // picture keeps the segment's shape: a loop is drawn as a ring, not as one edge from a node to itself.
     std::vector<bool> drawn(map.places.size(), false);
-    for (const auto& s : map.segments) {
+    for (std::size_t k = 0; k < map.segments.size(); ++k) {
+      const auto& s = map.segments[k];
       for (auto end : {s.places.front(), s.places.back()}) {
         if (!drawn[end]) node(map.places[end]);
         drawn[end] = true;
       }
-      dot << "  p" << s.places.front() << " -- p" << s.places.back() << " [label=\"" << s.places.size()
-          << "\", fontsize=8];\n";
+      const std::size_t inner = s.places.size() > 2 ? s.places.size() - 2 : 0, runs = std::min<std::size_t>(8, inner);
+      std::string previous = fmt::format("p{}", s.places.front());
+      for (std::size_t r = 0; r < runs; ++r) {
+        const std::size_t begin = 1 + r * inner / runs, end = 1 + (r + 1) * inner / runs;
+        const std::string run = fmt::format("s{}r{}", k, r);
+        dot << "  " << run << " [label=\"" << end - begin << "\", shape=box, width=0.3, height=0.2, fontsize=7, "
+            << "fillcolor=\"#9ecae1\", tooltip=\"places " << s.places[begin] << " to " << s.places[end - 1] << "\"];\n";
+        dot << "  " << previous << " -- " << run << ";\n";
+        previous = run;
+      }
+      dot << "  " << previous << " -- p" << s.places.back() << ";\n";
     }
   }
   dot << "}\n";
@@ -113,18 +126,20 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
   const auto& result = run.result;
   const auto& map = result.map;
 
-  out.write("map.json", formats::map_json(result));
+  out.write("map.json", formats::map_json(result, run.sessions));
   out.write("alignments.json", formats::alignments_json(result));
   out.write("loop_closures.csv", formats::loop_closures_csv(result));
 
   if (run.streaming) {
     out.write("similarity.png",
-              plot::encode_png(plot::matrix_image(run.overview.cells, alignment_overlays(run, run.overview.block))));
+              plot::encode_png(plot::matrix_figure(run.overview.cells, alignment_overlays(run, run.overview.block),
+                                                   map_similarity_figure(run))));
   } else {
     out.write("similarity.npy", io::encode_npy(run.matrices.front()));
     out.write("scores.npy", io::encode_npy(result.scores));
     // The picture shows what was aligned: S itself, or its contrast-enhanced form (see the report).
-    out.write("similarity.png", plot::encode_png(plot::matrix_image(result.scores, alignment_overlays(run, 1))));
+    out.write("similarity.png", plot::encode_png(plot::matrix_figure(result.scores, alignment_overlays(run, 1),
+                                                                     map_similarity_figure(run))));
   }
 
   out.write("topology.dot", topology_dot(map));

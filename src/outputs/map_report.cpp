@@ -1,13 +1,26 @@
+// report.html of `seqtopo map`: the summary and accuracy tables, the interactive views (the similarity matrix
+// with the alignments and loop closures over it, each pair's two images, the topology with its places and
+// junctions, the PR curve and the histogram of the pairs' confidence, the stage timings), and the static
+// figures written beside it.
 #include <fmt/format.h>
 
+#include <chrono>
 #include <fstream>
+#include <map>
 #include <sstream>
 
+#include "report_data.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 #include "seqtopo/report/html_report.hpp"
 
 namespace seqtopo::outputs {
 namespace {
+
+// The per-pair value the histogram shows and the pair viewer names "confidence". The per-pair confidence is
+// being added to loop_closures.csv and MapRun by another change; until it is there the alignment's score stands
+// in for it. To switch: put the confidence into pair_json() under its own key and name that key here.
+constexpr const char* kConfidenceKey = "score";
+constexpr const char* kConfidenceLabel = "alignment score (stands in for the confidence)";
 
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -16,20 +29,131 @@ std::string read_file(const std::filesystem::path& path) {
   return s.str();
 }
 
+// {"fields": [{"key", "label"}], "rows": [{"i", "j", ...}]}: the fields the pair viewer shows, in order. A new
+// per-pair field (confidence, E-value) is one more key in each row and one more entry in `fields`.
+nlohmann::json pairs_json(const pipeline::MapRun& run) {
+  const auto& result = run.result;
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& p : result.pruning.pairs) {
+    const auto& a = result.alignments[p.alignment];
+    rows.push_back({{"i", p.i},
+                    {"j", p.j},
+                    {"score", p.score},
+                    {"alignment", p.alignment},
+                    {"direction", std::string(align::to_string(a.direction))}});
+  }
+  return {{"singular", "Loop closure"},
+          {"css", "loop-closure"},
+          {"row_name", "image"},
+          {"col_name", "image"},
+          {"confidence", {{"key", kConfidenceKey}, {"label", kConfidenceLabel}}},
+          {"fields",
+           {{{"key", "i"}, {"label", "image i (later)"}},
+            {{"key", "j"}, {"label", "image j (earlier)"}},
+            {{"key", "score"}, {"label", "alignment score"}},
+            {{"key", "alignment"}, {"label", "alignment #"}},
+            {{"key", "direction"}, {"label", "direction"}}}},
+          {"rows", std::move(rows)}};
+}
+
+// The drawn topology: every place when there are few (kMaxDrawnPlaces), else junctions, path ends and runs of
+// places along each path segment (at most 12 per segment), so that a loop is drawn as a loop.
+nlohmann::json topology_json(const mapping::TopologicalMap& map) {
+  std::vector<bool> junction(map.places.size(), false);
+  for (auto j : map.junctions) junction[static_cast<std::size_t>(j)] = true;
+  nlohmann::json nodes = nlohmann::json::array(), links = nlohmann::json::array();
+  const auto place_label = [&](mapping::PlaceLabel p) {
+    const auto& images = map.places[static_cast<std::size_t>(p)].images;
+    std::string text =
+        fmt::format("{} {}: {} image{}", junction[static_cast<std::size_t>(p)] ? "junction, place" : "place", p,
+                    images.size(), images.size() == 1 ? "" : "s");
+    for (std::size_t k = 0; k < images.size() && k < 8; ++k) text += (k ? ", " : " (") + std::to_string(images[k]);
+    return text + (images.size() > 8 ? ", ...)" : ")");
+  };
+  const bool collapsed = map.places.size() > kMaxDrawnPlaces;
+  if (!collapsed) {
+    for (const auto& place : map.places) {
+      nodes.push_back({{"id", place.id},
+                       {"kind", junction[static_cast<std::size_t>(place.id)] ? "junction" : "place"},
+                       {"places", {place.id}},
+                       {"images", place.images.size()},
+                       {"label", place_label(place.id)}});
+    }
+    for (auto [p, q] : map.edges) links.push_back({p, q, 1});
+  } else {
+    std::map<mapping::PlaceLabel, std::size_t> end_node;  // junctions and path ends: one node each
+    auto end_of = [&](mapping::PlaceLabel p) {
+      if (const auto it = end_node.find(p); it != end_node.end()) return it->second;
+      const std::size_t id = nodes.size();
+      nodes.push_back({{"id", id},
+                       {"kind", junction[static_cast<std::size_t>(p)] ? "junction" : "place"},
+                       {"places", {p}},
+                       {"images", map.places[static_cast<std::size_t>(p)].images.size()},
+                       {"label", place_label(p)}});
+      end_node[p] = id;
+      return id;
+    };
+    for (const auto& s : map.segments) {
+      if (s.places.empty()) continue;
+      const std::size_t first = end_of(s.places.front());
+      std::size_t previous = first;
+      const std::size_t inner = s.places.size() > 2 ? s.places.size() - 2 : 0;
+      const std::size_t runs = std::min<std::size_t>(12, inner);
+      for (std::size_t r = 0; r < runs; ++r) {
+        const std::size_t begin = 1 + r * inner / runs, end = 1 + (r + 1) * inner / runs;
+        std::vector<mapping::PlaceLabel> places(s.places.begin() + static_cast<std::ptrdiff_t>(begin),
+                                                s.places.begin() + static_cast<std::ptrdiff_t>(end));
+        std::size_t images = 0;
+        for (auto p : places) images += map.places[static_cast<std::size_t>(p)].images.size();
+        const std::size_t id = nodes.size();
+        nodes.push_back({{"id", id},
+                         {"kind", "run"},
+                         {"places", places},
+                         {"images", images},
+                         {"label", fmt::format("places {} to {} along a path segment ({} places, {} images)",
+                                               places.front(), places.back(), places.size(), images)}});
+        links.push_back({previous, id, places.size()});
+        previous = id;
+      }
+      if (s.places.size() > 1) links.push_back({previous, end_of(s.places.back()), 1});
+    }
+  }
+  nlohmann::json places = nlohmann::json::array();
+  for (const auto& p : map.places) places.push_back(p.images);
+  nlohmann::json junctions = nlohmann::json::array();
+  // Junction details (evidence) drop in here as an object per junction; the page lists its keys.
+  for (auto j : map.junctions) junctions.push_back({{"place", j}, {"evidence", nullptr}});
+  return {{"collapsed", collapsed},
+          {"nodes", std::move(nodes)},
+          {"links", std::move(links)},
+          {"places", std::move(places)},
+          {"junctions", std::move(junctions)}};
+}
+
+detail::CurvePoints curve_points(const std::string& label, const std::string& colour,
+                                 const evaluation::LoopClosureMetrics& m) {
+  detail::CurvePoints c{label, colour, {}};
+  for (const auto& p : m.curve) c.points.push_back({p.recall, p.precision, p.threshold});
+  return c;
+}
+
 }  // namespace
 
-void write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out) {
+ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out, const ReportOptions& options) {
+  const auto report_start = std::chrono::steady_clock::now();
   report::HtmlReport html("seqtopo map: " + run.input);
   const auto& result = run.result;
+  const std::size_t n = result.map.labels.size();
   const auto kept = std::count(result.pruning.kept.begin(), result.pruning.kept.end(), true);
   html.heading("Summary");
-  html.key_values({{"images", std::to_string(result.map.labels.size())},
+  html.key_values({{"images", std::to_string(n)},
                    {"alignments (kept / found)", fmt::format("{} / {}", kept, result.alignments.size())},
                    {"alignments contradicted by odometry", std::to_string(result.rejected.size())},
                    {"loop-closure pairs retained", std::to_string(result.pruning.pairs.size())},
                    {"places", std::to_string(result.map.places.size())},
                    {"junctions", std::to_string(result.map.junctions.size())},
                    {"path segments", std::to_string(result.map.segments.size())}});
+  nlohmann::json data = {{"kind", "map"}, {"schema", 1}};
   if (run.metrics) {
     html.heading("Loop-closure accuracy");
     auto row = [](const std::string& name, const evaluation::LoopClosureMetrics& m) {
@@ -46,7 +170,13 @@ void write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out) {
     html.table({"method", "precision", "recall", "F1", "AUC", "R@100P", "TP / FP / FN"}, rows);
     if (!run.baseline_metrics && !run.baseline_skipped.empty())
       html.paragraph("Not compared: " + run.baseline_skipped + ".");
-    html.png("Precision-recall, sweeping the score threshold", read_file(out.staged("pr_curve.png")), "pr_curve.png");
+    html.raw(
+        "<p class=\"note\">Precision-recall, sweeping the alignment-score threshold; hover for the values "
+        "(the static figure is pr_curve.png).</p><div id=\"pr-view\"></div>"
+        "<div class=\"readout\" id=\"pr-readout\"></div>\n");
+    std::vector<detail::CurvePoints> curves{curve_points("seqtopo alignment", "#dc1e1e", *run.metrics)};
+    if (run.baseline_metrics) curves.push_back(curve_points(run.baseline_name, "#285adc", *run.baseline_metrics));
+    data["pr"] = detail::pr_json(curves);
   }
   if (run.topology) {
     const auto& t = *run.topology;
@@ -63,23 +193,54 @@ void write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out) {
                {{fmt::format("{:.3f}", run.ate->odometry), fmt::format("{:.3f}", run.ate->ekf),
                  fmt::format("{:.3f}", run.ate->pose_graph)}});
   }
+
+  // The matrix view: the aligned scores (or their block-max overview), alignments and loop closures over it.
   html.heading("Similarity matrix and alignments");
-  if (run.streaming) {
-    html.png(
-        fmt::format("Contrast-enhanced similarity, streamed: each pixel the maximum of a block of {0} x {0} scores "
-                    "(bright = similar), with the alignments: kept pairs red, pruned blue",
-                    run.overview.block),
-        read_file(out.staged("similarity.png")), "similarity.png");
-  } else {
-    html.png(std::string(run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity" : "Similarity matrix") +
-                 " (bright = similar) with the alignments: kept pairs red, pruned blue",
-             read_file(out.staged("similarity.png")), "similarity.png");
+  const std::string what = run.streaming ? "Contrast-enhanced similarity (streamed: block maxima)"
+                           : run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity"
+                                                                : "Similarity S = 1 - kappa D";
+  html.raw(detail::matrix_view_markup(
+      what +
+      " of every pair of images (bright = similar): kept alignments red, pruned ones dashed blue, each "
+      "retained loop-closure pair a yellow marker. Scroll or use the buttons to zoom, drag to pan; hover a "
+      "marker to see its two images, click a cell for any pair."));
+  html.raw("<div id=\"alignment-table\"></div>\n");
+  const auto& cells = run.streaming ? run.overview.cells : result.scores;
+  data["matrix"] = detail::matrix_json(cells, n, n, "image i", "image j",
+                                       run.streaming || run.map_config.contrast_window > 0 ? "score [sd]" : "S");
+  nlohmann::json alignments = nlohmann::json::array();
+  for (std::size_t k = 0; k < result.alignments.size(); ++k) {
+    alignments.push_back(
+        detail::alignment_json(result.alignments[k], k, k < result.pruning.kept.size() && result.pruning.kept[k]));
   }
+  data["alignments"] = std::move(alignments);
+  data["pairs"] = pairs_json(run);
+  std::vector<std::size_t> wanted;
+  for (const auto& p : result.pruning.pairs) wanted.push_back(p.i), wanted.push_back(p.j);
+  data["sequences"] = {{"rows", detail::sequence_json(run.sequence, n, wanted, "image")}, {"cols", "rows"}};
+  if (data["sequences"]["rows"]["note"] != "") {
+    html.paragraph("Images: " + data["sequences"]["rows"]["note"].get<std::string>() + ".");
+  }
+
+  html.heading("Confidence of the loop closures");
+  html.raw("<p class=\"note\">Histogram of the retained pairs' " + report::escape_html(kConfidenceLabel) +
+           "; hover a bar for its count.</p><div id=\"confidence-view\"></div>"
+           "<div class=\"readout\" id=\"confidence-readout\"></div>\n");
+  nlohmann::json values = nlohmann::json::array();
+  for (const auto& row : data["pairs"]["rows"]) values.push_back(row[kConfidenceKey]);
+  data["histogram"] = {{"label", kConfidenceLabel}, {"unit", "pairs"}, {"values", std::move(values)}};
+
   html.heading("Topological map");
-  html.svg(run.result.map.places.size() <= kMaxDrawnPlaces
-               ? "Places (red: junctions, blue: revisited places) and their connections"
-               : "Junctions (red) and path ends joined by path segments (edge label: number of places)",
-           read_file(out.staged("topology.svg")), "topology.svg");
+  html.raw(std::string("<p class=\"note\">") +
+           (result.map.places.size() <= kMaxDrawnPlaces
+                ? "Places (blue: revisited, grey: seen once, red: junctions) and their connections. "
+                : "Junctions (red), path ends and runs of places along each path segment (light blue). ") +
+           "Click a node to see its images; scroll to zoom, drag to pan.</p>"
+           "<div class=\"view\"><div id=\"topology-view\"></div>"
+           "<div class=\"panel\" id=\"place-viewer\"><span class=\"note\">Click a place or a junction.</span></div>"
+           "</div>\n");
+  data["topology"] = topology_json(result.map);
+
   if (!run.odometry.empty()) {
     html.heading("Metric picture");
     html.png("Odometry beside the corrected map; dots coloured by place", read_file(out.staged("metric_map.png")),
@@ -89,15 +250,18 @@ void write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out) {
   const auto& c = run.map_config;
   std::vector<std::pair<std::string, std::string>> parameters{{"input", run.input}, {"preset", run.preset}};
   if (run.streaming) {
-    const double n = static_cast<double>(result.map.labels.size());
+    const double nn = static_cast<double>(n);
     parameters.emplace_back("streaming",
                             "true: cosine similarity of the descriptors, contrast-enhanced on the fly "
                             "(scale/streaming_similarity.hpp), fast engine; no N x N matrix held");
     parameters.emplace_back("similarity cells computed during the alignment",
                             fmt::format("{} ({:.2f} x N^2, recomputations included)", run.streamed_cells,
-                                        static_cast<double>(run.streamed_cells) / (n * n)));
+                                        static_cast<double>(run.streamed_cells) / (nn * nn)));
     parameters.emplace_back("tile cache [MB]",
                             fmt::format("{:.1f}", static_cast<double>(run.streamed_cache_bytes) / 1e6));
+    parameters.emplace_back("similarity.png", fmt::format("an overview: each pixel the maximum of a block of {0} x {0} "
+                                                          "scores, the alignments drawn over it",
+                                                          run.overview.block));
   }
   std::string names;
   for (std::size_t k = 0; k < run.descriptor_names.size(); ++k) {
@@ -117,11 +281,45 @@ void write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out) {
                      {"reverse pass", c.reverse ? "yes" : "no"},
                      {"pruning: min retained fraction", fmt::format("{}", c.pruning.min_retained_fraction)}});
   html.key_values(parameters);
+
+  html.heading("Static figures (the PNG and SVG files, for papers)");
+  html.begin_details("similarity.png, pr_curve.png, topology.svg");
+  if (run.metrics) {
+    html.png("Precision-recall, sweeping the score threshold", read_file(out.staged("pr_curve.png")), "pr_curve.png");
+  }
+  const std::string similarity_png = read_file(out.staged("similarity.png"));
+  if (similarity_png.size() <= detail::kMaxInlinedFigure) {
+    html.png(what + " (bright = similar) with the alignments: kept pairs red, pruned blue", similarity_png,
+             "similarity.png");
+  } else {
+    html.paragraph(
+        fmt::format("similarity.png ({:.1f} MB) is in the folder beside this report, not inlined: the "
+                    "interactive view above shows the same matrix.",
+                    static_cast<double>(similarity_png.size()) / 1e6));
+  }
+  html.svg(result.map.places.size() <= kMaxDrawnPlaces
+               ? "Places (red: junctions, blue: revisited places) and their connections"
+               : "Junctions (red) and path ends joined by path segments, each drawn as a chain of runs of places "
+                 "(box label: number of places)",
+           read_file(out.staged("topology.svg")), "topology.svg");
+  html.end_details();
+
+  // Timings last: the report's own time is measured up to here.
   html.heading("Timings");
+  html.raw(
+      "<p class=\"note\">Every stage of the run, one after the other: they add up to the wall time. Hover a "
+      "part for its share.</p><div id=\"timings-view\"></div><div class=\"readout\" id=\"timings-readout\">"
+      "</div>\n");
+  auto timings = run.timings;
+  data["timings"] = detail::timings_json(timings, options, report_start);
   std::vector<std::vector<std::string>> rows;
-  for (const auto& [stage, seconds] : run.timings) rows.push_back({stage, fmt::format("{:.3f}", seconds)});
+  for (const auto& [stage, seconds] : timings) rows.push_back({stage, fmt::format("{:.3f}", seconds)});
+  rows.push_back({"wall time", fmt::format("{:.3f}", data["timings"]["wall"].get<double>())});
   html.table({"stage", "seconds"}, rows);
+  data["parameters"] = parameters;
+  const ReportResult status = detail::finish_interactive(html, data);
   out.write("report.html", html.html());
+  return status;
 }
 
 }  // namespace seqtopo::outputs

@@ -10,6 +10,9 @@
 #include "seqtopo/localize/online_localizer.hpp"
 #include "seqtopo/pipeline/baselines.hpp"
 #include "seqtopo/similarity/distance.hpp"
+#ifdef SEQTOPO_HAVE_RECORDING
+#include "seqtopo/recording/recording.hpp"
+#endif
 
 namespace seqtopo::pipeline {
 namespace {
@@ -25,6 +28,28 @@ FrameAnswer answer_of(const localize::FrameMatch& f) {
   return a;
 }
 
+std::vector<SequenceInput> map_inputs(const LocalizeRequest& request) {
+  return request.map_sessions.empty() ? std::vector<SequenceInput>{request.map} : request.map_sessions;
+}
+
+// Frames of each map session, from the column names ("session/frame" when several).
+std::vector<std::size_t> map_session_frames(const std::vector<SequenceInput>& maps,
+                                            const std::vector<std::string>& columns) {
+  if (maps.size() == 1) return {columns.size()};
+  std::vector<std::size_t> frames;
+  std::size_t k = 0;
+  for (const auto& m : maps) {
+    const std::string prefix = m.path.filename().string() + "/";
+    std::size_t n = 0;
+    while (k < columns.size() && columns[k].rfind(prefix, 0) == 0) {
+      ++n;
+      ++k;
+    }
+    frames.push_back(n);
+  }
+  return frames;
+}
+
 void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
   const auto t0 = Clock::now();
   SimilarityResult s;
@@ -33,7 +58,9 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
       const SequenceInput file{*request.similarity_file, InputKind::similarity, 1};
       s = compute_similarity(file, file, request.settings.similarity);
     } else {
-      s = compute_similarity(request.query, request.map, request.settings.similarity);
+      const std::vector<SequenceInput> maps = map_inputs(request);
+      s = compute_similarity(std::span<const SequenceInput>(&request.query, 1), maps, request.settings.similarity);
+      run.map_session_frames = map_session_frames(maps, s.column_names);
     }
   } catch (const std::invalid_argument& e) {
     throw InputError(request.query.path.empty() ? request.map.path.string() : request.query.path.string(), e.what());
@@ -72,28 +99,51 @@ double frame_distance(similarity::Distance metric, const FrameDescriptor& a, con
 
 // Calls visit(descriptor) for every frame of a sequence, in order, reading it lazily (a query folder is
 // listed first; a query of "-" takes one image path at a time from next_path as the frames arrive).
+// `arrival` (when given) is set to the time each frame arrives: its path read, before it is decoded.
 void for_each_frame(const SequenceInput& input, const Describer& describe, const NextPath& next_path,
-                    const std::function<void(FrameDescriptor)>& visit) {
+                    const std::function<void(FrameDescriptor)>& visit, Clock::time_point* arrival = nullptr) {
+  const auto arrived = [arrival] {
+    if (arrival) *arrival = Clock::now();
+  };
   if (input.path == "-") {
     if (!next_path) throw std::invalid_argument("a query of '-' needs a source of image paths");
     while (const auto line = next_path()) {
       if (line->empty()) continue;
+      arrived();
       visit(describe(image::load_image(*line)));
     }
     return;
   }
   switch (resolve_input_kind(input)) {
     case InputKind::images:
-      for (const auto& file : list_images(input.path)) visit(describe(image::load_image(file)));
+      for (const auto& file : list_input_images(input).files) {
+        arrived();
+        visit(describe(image::load_image(file)));
+      }
       return;
     case InputKind::video:
-      image::for_each_video_frame(input.path, input.every,
-                                  [&](std::size_t, const RgbImage& frame) { visit(describe(frame)); });
+      image::for_each_video_frame(input.path, input.every, [&](std::size_t, const RgbImage& frame) {
+        arrived();
+        visit(describe(frame));
+      });
       return;
+    case InputKind::bag: {
+#ifdef SEQTOPO_HAVE_RECORDING
+      const recording::Recording bag(input.path);
+      bag.for_each_image(bag.image_topic(input.image_topic), input.every, input.frames,
+                         [&](std::size_t, double, const RgbImage& frame) { visit(describe(frame)); });
+      return;
+#else
+      throw InputError(input.path.string(), "this seqtopo was built without bag support");
+#endif
+    }
     case InputKind::descriptors: {
       const auto rows = io::read_npy_matrix<float>(input.path);
       if (rows.empty()) throw InputError(input.path.string(), "no descriptors (empty array)");
-      for (std::size_t i = 0; i < rows.rows; ++i) visit(std::vector<float>(rows.row(i).begin(), rows.row(i).end()));
+      for (std::size_t i = 0; i < rows.rows; ++i) {
+        arrived();
+        visit(std::vector<float>(rows.row(i).begin(), rows.row(i).end()));
+      }
       return;
     }
     default:
@@ -105,14 +155,15 @@ void for_each_frame(const SequenceInput& input, const Describer& describe, const
 void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_frame, const NextPath& next_path,
                 LocalizeRun& run) {
   const auto& config = request.settings.localize;
-  auto report = [&](const localize::OnlineEstimate& e, double seconds) {
+  auto report = [&](const localize::OnlineEstimate& e, double seconds, double wait) {
     FrameAnswer a;
     if (e.in_map) a.map = e.map;
     a.score = e.confidence;
     a.candidates = {e.map};
     run.answers.push_back(a);
     run.latencies.push_back(seconds);
-    if (on_frame) on_frame(e.query, run.answers.back(), seconds);
+    run.waits.push_back(wait);
+    if (on_frame) on_frame(e.query, run.answers.back(), seconds, wait);
   };
 
   if (request.similarity_file) {
@@ -123,7 +174,7 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
     for (std::size_t i = 0; i < s.rows; ++i) {
       const auto t = Clock::now();
       const auto e = localizer.feed(s.row(i));
-      report(e, seconds_since(t));
+      report(e, seconds_since(t), 0.0);
     }
     run.similarity = s;
     run.queries = s.rows;
@@ -135,7 +186,7 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
   // descriptor and one row of distances. The rows are contrast-enhanced, so S = 1 - kappa * D needs no kappa
   // (any kappa > 0 gives the same scores).
   const auto& sc = request.settings.similarity;
-  const InputKind map_kind = resolve_input_kind(request.map);
+  const InputKind map_kind = resolve_input_kind(map_inputs(request).front());
   const Descriptor d = map_kind == InputKind::descriptors ? Descriptor::npy : sc.descriptor;
   if (d == Descriptor::npy && map_kind != InputKind::descriptors) {
     throw InputError("--descriptor", "npy needs descriptors .npy files as input");
@@ -144,24 +195,35 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
   const Describer describe{d, sc};
   const auto t0 = Clock::now();
   std::vector<FrameDescriptor> map;
-  for_each_frame(request.map, describe, next_path, [&](FrameDescriptor f) { map.push_back(std::move(f)); });
+  for (const auto& session : map_inputs(request)) {
+    const std::size_t before = map.size();
+    for_each_frame(session, describe, next_path, [&](FrameDescriptor f) { map.push_back(std::move(f)); });
+    run.map_session_frames.push_back(map.size() - before);
+  }
   run.timings.emplace_back("map descriptors", seconds_since(t0));
   run.maps = map.size();
   localize::OnlineLocalizer localizer(map.size(), config);
   std::vector<float> row(map.size());
   std::vector<float> kept;
-  auto t = Clock::now();  // a frame's latency runs from the end of the previous frame: reading it counts
-  for_each_frame(request.query, describe, next_path, [&](FrameDescriptor q) {
-    try {
-      for (std::size_t j = 0; j < map.size(); ++j) row[j] = static_cast<float>(-frame_distance(metric, q, map[j]));
-    } catch (const std::invalid_argument& e) {
-      throw InputError(request.query.path.string(), e.what());
-    }
-    const auto e = localizer.feed(row);
-    kept.insert(kept.end(), row.begin(), row.end());
-    report(e, seconds_since(t));
-    t = Clock::now();
-  });
+  // A frame's latency is its processing, from its arrival (its path read) to its answer: decoding, describing,
+  // aligning. The time spent waiting for it since the previous answer is reported apart.
+  auto arrival = Clock::now(), answered = arrival;
+  for_each_frame(
+      request.query, describe, next_path,
+      [&](FrameDescriptor q) {
+        try {
+          for (std::size_t j = 0; j < map.size(); ++j) row[j] = static_cast<float>(-frame_distance(metric, q, map[j]));
+        } catch (const std::invalid_argument& e) {
+          throw InputError(request.query.path.string(), e.what());
+        }
+        const auto e = localizer.feed(row);
+        const auto now = Clock::now();
+        kept.insert(kept.end(), row.begin(), row.end());
+        report(e, std::chrono::duration<double>(now - arrival).count(),
+               std::chrono::duration<double>(arrival - answered).count());
+        answered = Clock::now();
+      },
+      &arrival);
   run.queries = run.answers.size();
   if (run.queries == 0) throw InputError(request.query.path.string(), "no query frame");
   run.similarity = SimilarityMatrix(run.queries, run.maps, std::move(kept));
@@ -175,8 +237,18 @@ LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineFrame
   LocalizeRun run;
   run.online = request.online;
   run.settings = request.settings;
-  run.inputs = request.similarity_file ? request.similarity_file->string()
-                                       : request.query.path.string() + " in " + request.map.path.string();
+  std::string maps;
+  for (const auto& m : map_inputs(request)) {
+    if (!maps.empty()) maps += " + ";
+    maps += m.path.string();
+  }
+  run.inputs =
+      request.similarity_file ? request.similarity_file->string() : request.query.path.string() + " in " + maps;
+  if (!request.similarity_file) {
+    // Thumbnails of a map made of several sessions are not read (the report says so).
+    if (request.map_sessions.size() <= 1) run.map_input = map_inputs(request).front();
+    run.query_input = request.query;
+  }
   const auto t0 = Clock::now();
   if (request.online) {
     run_online(request, on_frame, next_query_path, run);

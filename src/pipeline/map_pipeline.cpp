@@ -16,13 +16,13 @@
 #include "seqtopo/trajectory/ekf_map.hpp"
 #include "seqtopo/trajectory/pose_graph.hpp"
 #include "seqtopo/trajectory/trajectory_error.hpp"
+#include "stage_clock.hpp"
 
 namespace seqtopo::pipeline {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
+using detail::stage_names;
+using detail::StageClock;
 
 void say(const MapObserver& observer, const std::string& text) {
   if (observer.progress) observer.progress(text);
@@ -30,7 +30,6 @@ void say(const MapObserver& observer, const std::string& text) {
 
 // The timing and the one progress line of the map stage, the same for every path.
 void report_map(MapRun& run, const MapObserver& observer) {
-  run.timings.emplace_back("pruning + labels + topology", run.result.seconds_prune_label);
   const auto& d = run.result.decisions;
   if (run.map_config.place_units) {
     say(observer, fmt::format("      {:.2f} frames per place{}: contrast window {} frames, min separation {} frames",
@@ -57,20 +56,39 @@ void check_odometry(std::span<const Pose2> odometry, std::size_t n, const std::s
   }
 }
 
+// run.sessions from the rows of each session.
+void record_sessions(std::span<const SequenceInput> inputs, const std::vector<std::size_t>& rows, MapRun& run) {
+  std::size_t begin = 0;
+  run.sessions.clear();
+  for (std::size_t k = 0; k < rows.size() && k < inputs.size(); ++k) {
+    run.sessions.push_back({inputs[k].path.string(), begin, begin + rows[k]});
+    begin += rows[k];
+  }
+}
+
+// The map settings with the sessions' boundaries: no topological edge from one session's last image to the next
+// one's first.
+mapping::MapConfig map_config_of(const MapSettings& settings, const MapRun& run) {
+  mapping::MapConfig config = settings.map;
+  for (std::size_t k = 1; k < run.sessions.size(); ++k) config.topology.session_starts.push_back(run.sessions[k].begin);
+  return config;
+}
+
 // Stages 1 and 2 with the N x N matrices: one similarity matrix per descriptor, fused and aligned.
-void map_dense(const MapRequest& request, InputKind kind, const std::vector<Pose2>& odometry,
-               const MapObserver& observer, MapRun& run) {
+void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs, InputKind kind,
+               const std::vector<Pose2>& odometry, const MapObserver& observer, StageClock& clock, MapRun& run) {
   const MapSettings& settings = request.settings;
   auto descriptors = settings.descriptors;
   // A descriptors.npy or similarity.npy input is one matrix, whatever descriptors were asked for.
   if (kind == InputKind::descriptors || kind == InputKind::similarity) descriptors.resize(1);
-  say(observer, "[1/4] similarity matrix");
-  auto t = std::chrono::steady_clock::now();
+  clock.begin(" matrix");
   for (auto descriptor : descriptors) {
     auto config = settings.similarity;
     config.descriptor = descriptor;
     if (!config.note && observer.progress) config.note = observer.progress;
-    run.similarities.push_back(compute_similarity(request.input, config));
+    if (!config.progress) config.progress = clock.similarity_progress();
+    run.similarities.push_back(compute_similarity(inputs, config));
+    if (run.sessions.empty()) record_sessions(inputs, run.similarities.back().session_rows, run);
     run.descriptor_names.emplace_back(kind == InputKind::similarity    ? "similarity.npy"
                                       : kind == InputKind::descriptors ? "descriptors.npy"
                                                                        : descriptor_name(descriptor));
@@ -78,35 +96,36 @@ void map_dense(const MapRequest& request, InputKind kind, const std::vector<Pose
     say(observer, fmt::format("      {}: {} images, kappa {:.4g}", run.descriptor_names.back(),
                               run.matrices.back().rows, run.similarities.back().kappa));
   }
-  run.timings.emplace_back("similarity", seconds_since(t));
+  clock.end();
   const std::size_t n = run.matrices.front().rows;
-  if (n < 2) throw InputError(request.input.path.string(), "needs at least 2 images");
+  if (n < 2) throw InputError(inputs.front().path.string(), "needs at least 2 images");
 
-  say(observer, "[2/4] alignments, pruning, labels, topology");
+  clock.begin();
   check_odometry(odometry, n, request.odometry.string());
-  run.result = mapping::build_map(run.matrices, settings.map, odometry);
-  run.timings.emplace_back("alignment", run.result.seconds_align);
+  run.result = mapping::build_map(run.matrices, map_config_of(settings, run), odometry);
   report_map(run, observer);
+  clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 }
 
 // The streamed replacement of stages 1 and 2: descriptors, then the map on scores computed when the engine
 // reads them. Leaves run.result.scores empty and fills run.overview for similarity.png.
-void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry, const MapObserver& observer,
-                  MapRun& run) {
+void map_streamed(const MapRequest& request, std::span<const SequenceInput> inputs, const std::vector<Pose2>& odometry,
+                  const MapObserver& observer, StageClock& clock, MapRun& run) {
   const MapSettings& settings = request.settings;
-  say(observer, "[1/4] descriptors (--streaming: the similarity is computed on the fly, never N x N)");
-  auto t = std::chrono::steady_clock::now();
+  clock.begin(" (--streaming: the similarity is computed on the fly, never N x N)");
   auto similarity_config = settings.similarity;
   similarity_config.descriptor = settings.descriptors.front();
-  DescriptorResult described = compute_descriptors(request.input, similarity_config);
+  if (!similarity_config.progress) similarity_config.progress = clock.similarity_progress();
+  DescriptorResult described = compute_descriptors(inputs, similarity_config);
   const std::size_t n = described.descriptors.rows, dim = described.descriptors.cols;
+  record_sessions(inputs, described.session_rows, run);
   run.descriptor_names.emplace_back(
       described.descriptor == Descriptor::npy ? "descriptors.npy" : std::string(descriptor_name(described.descriptor)));
   say(observer, fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
-  if (n < 2) throw InputError(request.input.path.string(), "needs at least 2 images");
+  if (n < 2) throw InputError(inputs.front().path.string(), "needs at least 2 images");
   check_odometry(odometry, n, request.odometry.string());
   // The place scale from the raw cosine near the diagonal (or the odometry), then the windows in frames.
-  mapping::MapConfig config = settings.map;
+  mapping::MapConfig config = map_config_of(settings, run);
   std::optional<mapping::PlaceScale> place;
   std::optional<scale::StreamingSimilarity> streamed;
   const auto make_streamed = [&](std::size_t window) {
@@ -114,7 +133,7 @@ void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry,
       streamed.emplace(described.descriptors.values, n, dim,
                        scale::StreamingConfig{.contrast_window = window, .contrast_offset = 0.0F});
     } catch (const std::invalid_argument& e) {
-      throw InputError(request.input.path.string(), e.what());  // e.g. an all-zero descriptor has no direction
+      throw InputError(inputs.front().path.string(), e.what());  // e.g. an all-zero descriptor has no direction
     }
   };
   if (config.place_units && !config.frames_per_place) {
@@ -130,22 +149,22 @@ void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry,
   const mapping::MapConfig framed = mapping::settings_in_frames(config, config.frames_per_place.value_or(1.0));
   make_streamed(framed.contrast_window);
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
-  run.timings.emplace_back("descriptors", seconds_since(t));
+  clock.end();
 
-  say(observer, "[2/4] alignments (fast engine on streamed scores), pruning, labels, topology");
+  clock.begin(" (fast engine)");
   run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry);
   run.result.decisions.frames_per_place_estimated = place.has_value();
-  if (place && !place->found)
+  if (place && !place->found) {
     run.result.decisions.notes.insert(run.result.decisions.notes.begin(), mapping::kNoPlaceScaleNote);
-  run.timings.emplace_back("alignment (similarity streamed)", run.result.seconds_align);
+  }
   report_map(run, observer);
+  clock.end({{"alignment (similarity streamed)", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 
   const auto stats = streamed->stats();
   run.streamed_cells = stats.cells_computed;
   run.streamed_cache_bytes = stats.cache_bytes;
 
-  say(observer, "      similarity overview for similarity.png (one more streamed pass over the lower triangle)");
-  t = std::chrono::steady_clock::now();
+  clock.begin(" for similarity.png (one more streamed pass over the lower triangle)");
   // The streamed scores are 0.5 (E + E^T), symmetric bit for bit: half the reads suffice. The overview shows
   // them minus the offset the run aligned with.
   const float offset = run.result.decisions.contrast_offset;
@@ -157,44 +176,29 @@ void map_streamed(const MapRequest& request, const std::vector<Pose2>& odometry,
                            for (std::size_t k = 0; k < e - b; ++k) out[k] -= offset;
                          }),
       {.max_side = 2048, .symmetric = true});
-  run.timings.emplace_back("similarity overview (streamed)", seconds_since(t));
+  clock.end({{"similarity overview (streamed)", 0}});
 }
 
 // Stages 3 and 4: the trajectory picture and the accuracy against whatever truth is given.
-void trajectory_and_accuracy(const MapSettings& settings, const MapTruth& truth, const MapObserver& observer,
-                             MapRun& run) {
+// The truth is loaded inside the accuracy stage (`load_truth`, may be empty), so that its time is counted there.
+void trajectory_and_accuracy(const MapSettings& settings, const std::function<MapTruth()>& load_truth,
+                             StageClock& clock, MapRun& run) {
   const std::size_t n = run.result.map.labels.size();
-  auto t = std::chrono::steady_clock::now();
   if (!run.odometry.empty()) {
-    say(observer, "[3/4] metric picture (EKF and pose graph)");
+    clock.begin(" (EKF and pose graph)");
     run.ekf = trajectory::ekf_map(run.odometry, run.result.map.labels).images;
     std::vector<std::pair<std::size_t, std::size_t>> loops;
     for (const auto& p : run.result.pruning.pairs) loops.emplace_back(p.i, p.j);
     run.pose_graph = trajectory::pose_graph(run.odometry, loops);
-    run.timings.emplace_back("metric picture", seconds_since(t));
+    clock.end();
   }
-
+  if (!load_truth) return;
+  clock.begin(" against the ground truth");
+  const MapTruth truth = load_truth();
   if (truth.same_place) {
-    say(observer, "[4/4] accuracy against the ground truth");
     std::vector<evaluation::ScoredPair> pairs;
     for (const auto& p : run.result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
     run.metrics = evaluation::evaluate_loop_closures(pairs, n, truth.same_place, run.result.decisions.min_separation);
-    if (run.streaming) {
-      run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
-    } else {
-      // The baseline runs on every matrix seqtopo saw (each descriptor's S and the fused, enhanced scores).
-      std::vector<std::pair<std::string, const SimilarityMatrix*>> sources;
-      for (std::size_t k = 0; k < run.matrices.size(); ++k)
-        sources.emplace_back(run.descriptor_names[k], &run.matrices[k]);
-      if (run.matrices.size() > 1 || settings.map.contrast_window > 0) {
-        sources.emplace_back("seqtopo's fused scores", &run.result.scores);
-      }
-      if (auto b = seqslam_loop_closure_baseline(sources, n, truth.same_place, run.result.decisions.min_separation,
-                                                 settings.similarity.threads)) {
-        run.baseline_metrics = std::move(b->metrics);
-        run.baseline_name = std::move(b->method);
-      }
-    }
   }
   if (!truth.places.empty()) {
     if (truth.places.size() != n) throw std::invalid_argument("true places: one per image expected");
@@ -210,6 +214,27 @@ void trajectory_and_accuracy(const MapSettings& settings, const MapTruth& truth,
                                trajectory::absolute_trajectory_error(run.ekf, truth.poses),
                                trajectory::absolute_trajectory_error(run.pose_graph, truth.poses)};
   }
+  clock.end();
+  if (truth.same_place) {
+    if (run.streaming) {
+      run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
+    } else {
+      // The baseline runs on every matrix seqtopo saw (each descriptor's S and the fused, enhanced scores).
+      std::vector<std::pair<std::string, const SimilarityMatrix*>> sources;
+      for (std::size_t k = 0; k < run.matrices.size(); ++k)
+        sources.emplace_back(run.descriptor_names[k], &run.matrices[k]);
+      if (run.matrices.size() > 1 || settings.map.contrast_window > 0) {
+        sources.emplace_back("seqtopo's fused scores", &run.result.scores);
+      }
+      clock.begin(fmt::format(" on {} matri{}", sources.size(), sources.size() == 1 ? "x" : "ces"));
+      if (auto b = seqslam_loop_closure_baseline(sources, n, truth.same_place, run.result.decisions.min_separation,
+                                                 settings.similarity.threads)) {
+        run.baseline_metrics = std::move(b->metrics);
+        run.baseline_name = std::move(b->method);
+      }
+      clock.end();
+    }
+  }
 }
 
 MapRun new_run(const MapSettings& settings, std::string input, std::string preset) {
@@ -224,50 +249,89 @@ MapRun new_run(const MapSettings& settings, std::string input, std::string prese
 }  // namespace
 
 MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
-  if (!std::filesystem::exists(request_.input.path)) {
-    throw InputError(request_.input.path.string(), "no such file or folder");
+  std::vector<SessionSource> sources = request_.sessions;
+  if (sources.empty()) {
+    sources.push_back(
+        {request_.input, request_.odometry, request_.times, request_.odometry_topic, request_.every_metres});
   }
-  for (const auto* path :
-       {&request_.odometry, &request_.truth.same_place, &request_.truth.poses, &request_.truth.places}) {
-    if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
-  }
-  kind_ = resolve_input_kind(request_.input);
-  // The number of images, where it is known without decoding anything (not for a video).
-  std::optional<std::size_t> expected;
-  if (kind_ == InputKind::images) expected = list_images(request_.input.path).size();
-  if (kind_ == InputKind::descriptors || kind_ == InputKind::similarity) {
-    const auto header = io::read_npy_header(request_.input.path);
-    if (!header.shape.empty()) expected = header.shape[0];
-    if (kind_ == InputKind::similarity && (header.shape.size() != 2 || header.shape[0] != header.shape[1])) {
-      throw InputError(request_.input.path.string(), "a similarity matrix for map must be square (N x N)");
+  for (const auto& source : sources) {
+    if (!std::filesystem::exists(source.input.path)) {
+      throw InputError(source.input.path.string(), "no such file or folder");
+    }
+    for (const auto* path : {&source.odometry, &source.times}) {
+      if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
     }
   }
-  if (!request_.odometry.empty()) {
-    odometry_ = formats::read_odometry_csv(request_.odometry);
-    if (expected) check_odometry(odometry_, *expected, request_.odometry.string());
+  for (const auto* path : {&request_.truth.same_place, &request_.truth.poses, &request_.truth.places}) {
+    if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
+  }
+  kind_ = resolve_input_kind(sources.front().input);
+  for (const auto& source : sources) {
+    const InputKind kind = resolve_input_kind(source.input);
+    if (kind == InputKind::similarity) {
+      const auto header = io::read_npy_header(source.input.path);
+      if (header.shape.size() != 2 || header.shape[0] != header.shape[1]) {
+        throw InputError(source.input.path.string(), "a similarity matrix for map must be square (N x N)");
+      }
+      if (sources.size() > 1) {
+        throw InputError(source.input.path.string(),
+                         "a similarity matrix cannot be one of several sessions (it has no rows for the others)");
+      }
+    }
+    sessions_.push_back(prepare_session(source));
+  }
+  const bool any_odometry =
+      std::any_of(sessions_.begin(), sessions_.end(), [](const PreparedSession& s) { return !s.odometry.empty(); });
+  for (const auto& s : sessions_) {
+    if (any_odometry && s.odometry.empty()) {
+      throw InputError(s.input.path.string(),
+                       "has no odometry, but another session has: give every session odometry, "
+                       "or none");
+    }
+    odometry_.insert(odometry_.end(), s.odometry.begin(), s.odometry.end());
+    inputs_.push_back(s.input);
   }
 }
 
 MapRun MapJob::run(const MapObserver& observer) const {
-  MapRun run = new_run(request_.settings, request_.input.path.string(), request_.preset);
+  std::string names;
+  for (const auto& s : sessions_) {
+    if (!names.empty()) names += ' ';
+    names += s.input.path.string();
+  }
+  MapRun run = new_run(request_.settings, names, request_.preset);
+  if (inputs_.size() == 1) run.sequence = inputs_.front();
+  for (const auto& s : sessions_) {
+    for (const auto& note : s.notes) say(observer, "      " + note);
+  }
   run.streaming = request_.streaming;
   run.odometry = odometry_;
+  const auto& files = request_.truth;
+  const bool poses = !files.poses.empty() && !run.odometry.empty();
+  const bool any_truth = !files.same_place.empty() || !files.places.empty() || poses;
+  StageClock clock(observer, run,
+                   stage_names(request_.streaming, false, !odometry_.empty(), any_truth, !files.same_place.empty()));
   if (request_.streaming) {
-    map_streamed(request_, odometry_, observer, run);
+    map_streamed(request_, inputs_, odometry_, observer, clock, run);
   } else {
-    map_dense(request_, kind_, odometry_, observer, run);
+    map_dense(request_, inputs_, kind_, odometry_, observer, clock, run);
   }
   const std::size_t n = run.result.map.labels.size();
-  MapTruth truth;
-  const auto& files = request_.truth;
-  if (!files.same_place.empty()) truth.same_place = load_same_place(files.same_place, files.radius, n);
-  if (!files.places.empty()) {
-    auto places = load_true_places(files.places, n);
-    truth.places = std::move(places.places);
-    truth.junctions = std::move(places.junctions);
+  std::function<MapTruth()> load_truth;
+  if (any_truth) {
+    load_truth = [&files, n, poses] {
+      MapTruth truth;
+      if (!files.same_place.empty()) truth.same_place = load_same_place(files.same_place, files.radius, n);
+      if (!files.places.empty()) {
+        auto places = load_true_places(files.places, n);
+        truth.places = std::move(places.places);
+        truth.junctions = std::move(places.junctions);
+      }
+      if (poses) truth.poses = load_true_poses(files.poses, n);
+      return truth;
+    };
   }
-  if (!files.poses.empty() && !run.odometry.empty()) truth.poses = load_true_poses(files.poses, n);
-  trajectory_and_accuracy(request_.settings, truth, observer, run);
+  trajectory_and_accuracy(request_.settings, load_truth, clock, run);
   return run;
 }
 
@@ -290,11 +354,17 @@ MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<
     throw std::invalid_argument(fmt::format("odometry has {} poses, the sequence has {} images", odometry.size(), n));
   }
   run.odometry.assign(odometry.begin(), odometry.end());
-  say(observer, "[2/4] alignments, pruning, labels, topology");
+  const bool poses = !truth.poses.empty() && !run.odometry.empty();
+  const bool any_truth = static_cast<bool>(truth.same_place) || !truth.places.empty() || poses;
+  StageClock clock(observer, run,
+                   stage_names(false, true, !run.odometry.empty(), any_truth, static_cast<bool>(truth.same_place)));
+  clock.begin();
   run.result = mapping::build_map(run.matrices, settings.map, odometry);
-  run.timings.emplace_back("alignment", run.result.seconds_align);
   report_map(run, observer);
-  trajectory_and_accuracy(settings, truth, observer, run);
+  clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
+  std::function<MapTruth()> load_truth;
+  if (any_truth) load_truth = [&truth] { return truth; };
+  trajectory_and_accuracy(settings, load_truth, clock, run);
   return run;
 }
 

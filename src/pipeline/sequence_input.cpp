@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/image/image_io.hpp"
 
 namespace seqtopo::pipeline {
 
@@ -17,8 +18,9 @@ InputKind parse_input_kind(std::string_view name) {
   if (name == "video") return InputKind::video;
   if (name == "descriptors") return InputKind::descriptors;
   if (name == "similarity") return InputKind::similarity;
+  if (name == "bag") return InputKind::bag;
   throw std::invalid_argument("unknown input kind '" + std::string(name) +
-                              "' (expected auto, images, video, descriptors or similarity)");
+                              "' (expected auto, images, video, descriptors, similarity or bag)");
 }
 
 std::string_view input_kind_name(InputKind kind) {
@@ -33,6 +35,8 @@ std::string_view input_kind_name(InputKind kind) {
       return "descriptors";
     case InputKind::similarity:
       return "similarity";
+    case InputKind::bag:
+      return "bag";
   }
   return "?";
 }
@@ -94,32 +98,133 @@ InputKind resolve_input_kind(const SequenceInput& input) {
   std::error_code ec;
   const auto status = fs::status(input.path, ec);
   if (ec || !fs::exists(status)) throw InputError(input.path.string(), "no such file or directory");
-  if (fs::is_directory(status)) return InputKind::images;
-  if (lower(input.path.extension().string()) == ".npy") {
+  const std::string ext = lower(input.path.extension().string());
+  if (fs::is_directory(status)) {
+    // A ROS 2 bag folder: metadata.yaml beside its .db3 or .mcap storage files.
+    if (fs::exists(input.path / "metadata.yaml", ec)) {
+      for (const auto& entry : fs::directory_iterator(input.path, ec)) {
+        const std::string e = lower(entry.path().extension().string());
+        if (e == ".db3" || e == ".mcap") return InputKind::bag;
+      }
+    }
+    return InputKind::images;
+  }
+  if (ext == ".bag" || ext == ".db3" || ext == ".mcap") return InputKind::bag;
+  if (ext == ".npy") {
     return lower(input.path.filename().string()).find("similarity") != std::string::npos ? InputKind::similarity
                                                                                          : InputKind::descriptors;
   }
   return InputKind::video;
 }
 
-std::vector<fs::path> list_images(const fs::path& folder) {
+namespace {
+
+// Why an entry with an image extension cannot be read as a file, or "" when it is a regular file.
+std::string unreadable_reason(const fs::directory_entry& entry) {
+  std::error_code ec;
+  const auto own = entry.symlink_status(ec);
+  const auto target = fs::status(entry.path(), ec);
+  if (ec) {
+    if (fs::is_symlink(own)) {
+      return ec == std::errc::too_many_symbolic_link_levels ? "a looping symbolic link" : "a dangling symbolic link";
+    }
+    return "cannot be read: " + ec.message();
+  }
+  if (fs::is_regular_file(target)) return {};
+  if (fs::is_directory(target)) return "a folder";
+  if (fs::is_fifo(target)) return "a FIFO";
+  if (fs::is_socket(target)) return "a socket";
+  return "not a regular file";
+}
+
+bool hidden_or_truth(const std::string& name) {
+  return name.empty() || name[0] == '.' || lower(name).rfind("ground_truth", 0) == 0;
+}
+
+// Natural order of relative paths, folder name by folder name.
+bool path_less(const fs::path& a, const fs::path& b) {
+  auto ia = a.begin(), ib = b.begin();
+  for (; ia != a.end() && ib != b.end(); ++ia, ++ib) {
+    const std::string na = ia->string(), nb = ib->string();
+    if (na != nb) return natural_less(na, nb);
+  }
+  return ia == a.end() && ib != b.end();
+}
+
+}  // namespace
+
+ImageListing list_images(const fs::path& folder, const ListOptions& options) {
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw InputError(folder.string(), "not a folder");
-  std::vector<fs::path> files;
-  fs::directory_iterator it(folder, ec);
-  if (ec) throw InputError(folder.string(), "cannot list folder: " + ec.message());
-  for (const auto& entry : it) {
+  ImageListing listing;
+  std::vector<fs::path> relative;
+  auto consider = [&](const fs::directory_entry& entry) {
     const std::string name = entry.path().filename().string();
-    if (name.empty() || name[0] == '.' || lower(name).rfind("ground_truth", 0) == 0) continue;
-    if (!is_image_extension(entry.path())) continue;
-    if (!entry.is_regular_file(ec)) continue;
-    files.push_back(entry.path());
+    if (hidden_or_truth(name) || !is_image_extension(entry.path())) return;
+    if (options.recursive) {
+      // A folder named like an image is walked into by the recursive iterator, not listed.
+      std::error_code e;
+      if (fs::is_directory(entry.symlink_status(e)) && !e) return;
+    }
+    const std::string why = unreadable_reason(entry);
+    if (!why.empty()) {
+      if (!options.skip_unreadable) {
+        throw InputError(entry.path().string(),
+                         "has an image's name but is " + why + " (--skip-unreadable leaves such entries out)");
+      }
+      listing.skipped.emplace_back(entry.path(), why);
+      return;
+    }
+    relative.push_back(entry.path().lexically_relative(folder));
+  };
+  if (options.recursive) {
+    fs::recursive_directory_iterator it(folder, fs::directory_options::none, ec);
+    if (ec) throw InputError(folder.string(), "cannot list folder: " + ec.message());
+    for (const fs::recursive_directory_iterator end; it != end; it.increment(ec)) {
+      if (ec) throw InputError(folder.string(), "cannot list folder: " + ec.message());
+      const std::string name = it->path().filename().string();
+      std::error_code e;
+      if (it->is_directory(e) && !it->is_symlink(e) && !name.empty() && name[0] == '.') {
+        it.disable_recursion_pending();  // hidden folders (.git, ...) are not part of the sequence
+        continue;
+      }
+      consider(*it);
+    }
+    if (ec) throw InputError(folder.string(), "cannot list folder: " + ec.message());
+  } else {
+    fs::directory_iterator it(folder, ec);
+    if (ec) throw InputError(folder.string(), "cannot list folder: " + ec.message());
+    for (const auto& entry : it) consider(entry);
   }
-  if (files.empty()) throw InputError(folder.string(), "folder holds no image (png, jpg, bmp, tif, ...)");
-  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
-    return natural_less(a.filename().string(), b.filename().string());
-  });
-  return files;
+  std::sort(relative.begin(), relative.end(), path_less);
+  for (const auto& r : relative) {
+    fs::path file = folder / r;
+    if (options.skip_unreadable) {
+      try {
+        (void)image::load_image(file);
+      } catch (const InputError& e) {
+        listing.skipped.emplace_back(file, e.what());
+        continue;
+      }
+    }
+    listing.files.push_back(std::move(file));
+  }
+  if (listing.files.empty()) {
+    throw InputError(folder.string(), options.recursive
+                                          ? "folder and its subfolders hold no readable image (png, jpg, bmp, tif, ...)"
+                                          : "folder holds no readable image (png, jpg, bmp, tif, ...)");
+  }
+  return listing;
+}
+
+std::vector<fs::path> list_images(const fs::path& folder) { return list_images(folder, ListOptions{}).files; }
+
+ImageListing list_input_images(const SequenceInput& input) {
+  return list_images(input.path, ListOptions{.recursive = input.recursive, .skip_unreadable = input.skip_unreadable});
+}
+
+std::string image_name(const fs::path& folder, const fs::path& file, bool recursive) {
+  return recursive ? file.lexically_relative(folder).generic_string() : file.filename().string();
 }
 
 }  // namespace seqtopo::pipeline

@@ -16,6 +16,9 @@
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/similarity/distance_matrix.hpp"
 #include "seqtopo/similarity/memory.hpp"
+#ifdef SEQTOPO_HAVE_RECORDING
+#include "seqtopo/recording/recording.hpp"
+#endif
 
 namespace seqtopo::pipeline {
 
@@ -103,10 +106,27 @@ unsigned thread_count(unsigned requested) {
 struct Source {
   SequenceInput input;
   InputKind kind = InputKind::automatic;
-  std::vector<fs::path> images;          // kind images
-  std::optional<std::size_t> count;      // items, when known in advance
-  std::optional<std::size_t> dimension;  // descriptor length, when known in advance
+  std::vector<fs::path> images;                           // kind images (only the kept frames)
+  std::vector<std::pair<fs::path, std::string>> skipped;  // kind images: unreadable entries left out
+  std::optional<std::size_t> count;                       // items, when known in advance
+  std::optional<std::size_t> dimension;                   // descriptor length, when known in advance
+  std::string image_topic;                                // kind bag
 };
+
+// Only the frames of input.frames (when given), checked against the number of frames.
+template <typename T>
+std::vector<T> kept_frames(std::vector<T> all, const SequenceInput& input) {
+  if (input.frames.empty()) return all;
+  std::vector<T> kept;
+  for (std::size_t k : input.frames) {
+    if (k >= all.size()) {
+      throw InputError(input.path.string(), "frame " + std::to_string(k) + " was selected, but the sequence has " +
+                                                std::to_string(all.size()) + " frames");
+    }
+    kept.push_back(std::move(all[k]));
+  }
+  return kept;
+}
 
 Source resolve(const SequenceInput& input) {
   if (input.every == 0) throw std::invalid_argument("every must be at least 1");
@@ -114,18 +134,41 @@ Source resolve(const SequenceInput& input) {
   s.input = input;
   s.kind = resolve_input_kind(input);
   switch (s.kind) {
-    case InputKind::images:
-      s.images = list_images(input.path);
+    case InputKind::images: {
+      ImageListing listing = list_input_images(input);
+      s.images = kept_frames(std::move(listing.files), input);
+      s.skipped = std::move(listing.skipped);
       s.count = s.images.size();
       break;
+    }
     case InputKind::video:
-      if (const auto frames = video_frame_count(input.path)) s.count = (*frames + input.every - 1) / input.every;
+      if (!input.frames.empty()) {
+        s.count = input.frames.size();
+      } else if (const auto frames = video_frame_count(input.path)) {
+        s.count = (*frames + input.every - 1) / input.every;
+      }
       break;
+    case InputKind::bag: {
+#ifdef SEQTOPO_HAVE_RECORDING
+      const recording::Recording bag(input.path);
+      s.image_topic = bag.image_topic(input.image_topic);
+      s.count = input.frames.empty() ? (bag.message_count(s.image_topic) + input.every - 1) / input.every
+                                     : input.frames.size();
+#else
+      throw InputError(input.path.string(),
+                       "this seqtopo was built without bag support (the recording module needs librosbag-dev, "
+                       "libsqlite3-dev, libzstd-dev and liblz4-dev: scripts/setup.sh)");
+#endif
+      break;
+    }
     case InputKind::descriptors:
     case InputKind::similarity: {
       const io::NpyHeader header = io::read_npy_header(input.path);
       if (header.shape.size() != 2) throw InputError(input.path.string(), "expected a 2-D array");
-      s.count = header.shape[0];
+      s.count = input.frames.empty() ? header.shape[0] : input.frames.size();
+      if (s.kind == InputKind::similarity && !input.frames.empty()) {
+        throw InputError(input.path.string(), "frames cannot be selected from a similarity matrix");
+      }
       s.dimension = header.shape[1];
       break;
     }
@@ -191,6 +234,7 @@ void check_memory(const Source& a, const Source* b, Descriptor d, const Similari
 struct Described {
   similarity::DescriptorSet set;
   std::vector<std::string> names;
+  std::vector<std::size_t> session_rows;
 };
 
 // Descriptor of one image into slot i of `out`.
@@ -233,17 +277,51 @@ void parallel_items(std::size_t n, unsigned threads, F&& describe) {
   }
 }
 
+// Images of different sizes: an error for the joint histogram (its fixed 3x3 and 5x5 windows would see
+// another scale in each), a warning for the descriptors that resize every image (patch, panorama).
+void check_sizes(const std::vector<std::pair<int, int>>& sizes, const std::vector<std::string>& names,
+                 const std::vector<fs::path>& files, Descriptor d, const SimilarityConfig& c) {
+  for (std::size_t k = 1; k < sizes.size(); ++k) {
+    if (sizes[k] == sizes[0]) continue;
+    const std::string what = std::to_string(sizes[k].first) + " x " + std::to_string(sizes[k].second) +
+                             " pixels, the first image " + names[0] + " is " + std::to_string(sizes[0].first) + " x " +
+                             std::to_string(sizes[0].second);
+    if (d == Descriptor::joint_histogram) {
+      throw InputError(files[k].string(),
+                       "is " + what +
+                           ": the joint-histogram descriptor does not resize (its 3x3 and 5x5 windows would see "
+                           "a different scale in each); give images of one size, or --descriptor patch");
+    }
+    if (c.note) {
+      c.note("warning: images of different sizes (" + names[k] + " is " + what + "); the " +
+             std::string(descriptor_name(d)) + " descriptor resizes every image");
+    }
+    return;
+  }
+}
+
+void warn_skipped(const Source& s, const SimilarityConfig& c) {
+  if (s.skipped.empty() || !c.note) return;
+  std::string list;
+  for (const auto& [path, why] : s.skipped) list += (list.empty() ? "" : "; ") + path.string() + " (" + why + ")";
+  c.note("warning: --skip-unreadable left out " + std::to_string(s.skipped.size()) + " unreadable entries of " +
+         s.input.path.string() + ": " + list);
+}
+
 Described describe_images(const Source& s, Descriptor d, const SimilarityConfig& c) {
   Described out;
   const std::size_t n = s.images.size();
   prepare_slots(out, d, n, c);
   out.names.reserve(n);
-  for (const auto& p : s.images) out.names.push_back(p.filename().string());
+  for (const auto& p : s.images) out.names.push_back(image_name(s.input.path, p, s.input.recursive));
+  warn_skipped(s, c);
+  std::vector<std::pair<int, int>> sizes(n);
   std::atomic<std::size_t> done{0};
   std::mutex report;
   parallel_items(n, thread_count(c.threads), [&](std::size_t i) {
     const fs::path& path = s.images[i];
     const RgbImage image = load_image(path);
+    sizes[i] = {image.width, image.height};
     try {
       describe_image(image, d, c, i, out);
     } catch (const std::invalid_argument& e) {
@@ -255,14 +333,54 @@ Described describe_images(const Source& s, Descriptor d, const SimilarityConfig&
       c.progress("descriptors", now, n);
     }
   });
+  check_sizes(sizes, out.names, s.images, d, c);
   return out;
 }
 
+// The frames of a video or a bag, in order: produce(visit) calls visit(name, image) once per kept frame.
+using FrameProducer = std::function<void(const std::function<void(std::string, const RgbImage&)>&)>;
+
+Described describe_stream(const Source& s, Descriptor d, const SimilarityConfig& c, const FrameProducer& produce);
+
 Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& c) {
+  return describe_stream(s, d, c, [&](const std::function<void(std::string, const RgbImage&)>& visit) {
+    std::size_t next = 0;
+    const auto& frames = s.input.frames;
+    for_each_video_frame(s.input.path, s.input.every, [&](std::size_t index, const RgbImage& frame) {
+      if (!frames.empty()) {
+        if (next >= frames.size() || frames[next] != index / s.input.every) return;
+        ++next;
+      }
+      visit("frame " + std::to_string(index), frame);
+    });
+    if (next < frames.size()) {
+      throw InputError(s.input.path.string(),
+                       "frame " + std::to_string(frames[next]) + " was selected, but the video has fewer frames");
+    }
+  });
+}
+
+Described describe_bag(const Source& s, Descriptor d, const SimilarityConfig& c) {
+#ifdef SEQTOPO_HAVE_RECORDING
+  const recording::Recording bag(s.input.path);
+  return describe_stream(s, d, c, [&](const std::function<void(std::string, const RgbImage&)>& visit) {
+    bag.for_each_image(s.image_topic, s.input.every, s.input.frames,
+                       [&](std::size_t index, double, const RgbImage& image) {
+                         visit(s.image_topic + " " + std::to_string(index), image);
+                       });
+  });
+#else
+  (void)d;
+  (void)c;
+  throw InputError(s.input.path.string(), "this seqtopo was built without bag support");
+#endif
+}
+
+Described describe_stream(const Source& s, Descriptor d, const SimilarityConfig& c, const FrameProducer& produce) {
   // Frames are decoded in order and described in batches, so a long video never sits in memory whole.
   Described out;
   std::vector<RgbImage> batch;
-  std::vector<std::size_t> indices;
+  std::vector<std::string> indices;
   const unsigned threads = thread_count(c.threads);
   const std::size_t batch_size = 8 * static_cast<std::size_t>(threads);
   std::vector<similarity::SparseHistogram> histograms;
@@ -282,17 +400,34 @@ Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& 
           rows[first + k] = dense_descriptor(batch[k], d, c);
         }
       } catch (const std::invalid_argument& e) {
-        throw InputError(s.input.path.string(), "frame " + std::to_string(indices[k]) + ": " + e.what());
+        throw InputError(s.input.path.string(), indices[k] + ": " + e.what());
       }
     });
-    for (std::size_t index : indices) out.names.push_back("frame " + std::to_string(index));
+    for (auto& name : indices) out.names.push_back(std::move(name));
     batch.clear();
     indices.clear();
     if (c.progress) c.progress("descriptors", out.names.size(), s.count.value_or(out.names.size()));
   };
-  for_each_video_frame(s.input.path, s.input.every, [&](std::size_t index, const RgbImage& frame) {
+  std::optional<std::pair<int, int>> first_size;
+  bool size_warned = false;
+  produce([&](std::string name, const RgbImage& frame) {
+    if (!first_size) {
+      first_size = std::pair{frame.width, frame.height};
+    } else if (*first_size != std::pair{frame.width, frame.height} && !size_warned) {
+      const std::string what = name + " is " + std::to_string(frame.width) + " x " + std::to_string(frame.height) +
+                               " pixels, the first frame " + std::to_string(first_size->first) + " x " +
+                               std::to_string(first_size->second);
+      if (d == Descriptor::joint_histogram) {
+        throw InputError(s.input.path.string(), what + ": the joint-histogram descriptor does not resize");
+      }
+      if (c.note) {
+        c.note("warning: frames of different sizes (" + what + "); the " + std::string(descriptor_name(d)) +
+               " descriptor resizes every frame");
+      }
+      size_warned = true;
+    }
     batch.push_back(frame);
-    indices.push_back(index);
+    indices.push_back(std::move(name));
     if (batch.size() >= batch_size) flush();
   });
   if (!batch.empty()) flush();
@@ -305,6 +440,21 @@ Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& 
       std::copy(rows[i].begin(), rows[i].end(), out.set.dense.row(i).begin());
   }
   return out;
+}
+
+DenseMatrix<float> kept_rows(DenseMatrix<float> all, const SequenceInput& input) {
+  if (input.frames.empty()) return all;
+  DenseMatrix<float> kept(input.frames.size(), all.cols);
+  for (std::size_t r = 0; r < input.frames.size(); ++r) {
+    if (input.frames[r] >= all.rows) {
+      throw InputError(input.path.string(), "row " + std::to_string(input.frames[r]) +
+                                                " was selected, but the array has " + std::to_string(all.rows) +
+                                                " rows");
+    }
+    const auto row = all.row(input.frames[r]);
+    std::copy(row.begin(), row.end(), kept.row(r).begin());
+  }
+  return kept;
 }
 
 std::vector<std::string> row_names(std::size_t n, const char* word) {
@@ -320,9 +470,11 @@ Described describe(const Source& s, Descriptor d, const SimilarityConfig& c) {
       return describe_images(s, d, c);
     case InputKind::video:
       return describe_video(s, d, c);
+    case InputKind::bag:
+      return describe_bag(s, d, c);
     case InputKind::descriptors: {
       Described out;
-      out.set = similarity::DescriptorSet::from_dense(io::read_npy_matrix<float>(s.input.path));
+      out.set = similarity::DescriptorSet::from_dense(kept_rows(io::read_npy_matrix<float>(s.input.path), s.input));
       if (out.set.dense.empty()) throw InputError(s.input.path.string(), "no descriptors (empty array)");
       out.names = row_names(out.set.dense.rows, "row");
       return out;
@@ -345,6 +497,7 @@ SimilarityResult from_similarity_file(const Source& s, bool square) {
   r.kappa = std::numeric_limits<float>::quiet_NaN();
   r.frame_names = row_names(r.similarity.rows, "row");
   r.column_names = row_names(r.similarity.cols, "column");
+  r.session_rows = {r.similarity.rows};
   return r;
 }
 
@@ -365,29 +518,105 @@ void check_kappa(const SimilarityConfig& c) {
   if (c.kappa && (!(*c.kappa > 0) || !std::isfinite(*c.kappa))) throw std::invalid_argument("kappa must be positive");
 }
 
-SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b, const SimilarityConfig& c) {
-  check_kappa(c);
-  const Source a = resolve(input_a);
-  if (a.kind == InputKind::similarity) return from_similarity_file(a, input_b == nullptr);
-  std::optional<Source> b;
-  if (input_b) {
-    b = resolve(*input_b);
-    if (b->kind == InputKind::similarity) {
-      throw InputError(b->input.path.string(), "a similarity matrix can only be the first input");
+// Several sessions of one side, resolved; the first one names the side in errors.
+std::vector<Source> resolve_all(std::span<const SequenceInput> inputs) {
+  if (inputs.empty()) throw std::invalid_argument("no input sequence");
+  std::vector<Source> sources;
+  for (const auto& input : inputs) sources.push_back(resolve(input));
+  if (sources.size() > 1) {
+    for (const auto& s : sources) {
+      if (s.kind == InputKind::similarity) {
+        throw InputError(s.input.path.string(),
+                         "a similarity matrix cannot be one of several sessions (it has no rows for the others)");
+      }
     }
   }
-  const Descriptor d = effective_descriptor(a, c);
-  if (b && effective_descriptor(*b, c) != d) {
-    throw InputError(b->input.path.string(), "both sequences must have the same kind of descriptor");
+  return sources;
+}
+
+// One side's descriptors, session after session (names prefixed with the session's input when several).
+Described describe_all(const std::vector<Source>& sources, Descriptor d, const SimilarityConfig& c) {
+  if (sources.size() == 1) {
+    Described one = describe(sources.front(), d, c);
+    one.session_rows = {one.names.size()};
+    return one;
+  }
+  Described all;
+  for (const auto& s : sources) {
+    Described one = describe(s, d, c);
+    all.session_rows.push_back(one.names.size());
+    const std::string prefix = s.input.path.filename().string() + "/";
+    for (auto& name : one.names) all.names.push_back(prefix + name);
+    if (d == Descriptor::joint_histogram) {
+      for (auto& h : one.set.sparse) all.set.sparse.push_back(std::move(h));
+      continue;
+    }
+    if (!all.set.dense.empty() && all.set.dense.cols != one.set.dense.cols) {
+      throw InputError(s.input.path.string(), "its descriptors have " + std::to_string(one.set.dense.cols) +
+                                                  " columns, the first session's " +
+                                                  std::to_string(all.set.dense.cols));
+    }
+    all.set.dense.cols = one.set.dense.cols;
+    all.set.dense.rows += one.set.dense.rows;
+    all.set.dense.values.insert(all.set.dense.values.end(), one.set.dense.values.begin(), one.set.dense.values.end());
+  }
+  return all;
+}
+
+// The side's sources as one for the memory estimate: the summed count (unknown when one is unknown).
+Source combined(const std::vector<Source>& sources) {
+  Source all = sources.front();
+  std::size_t n = 0;
+  for (const auto& s : sources) {
+    if (!s.count) {
+      all.count.reset();
+      return all;
+    }
+    n += *s.count;
+  }
+  all.count = n;
+  return all;
+}
+
+Descriptor side_descriptor(const std::vector<Source>& sources, const SimilarityConfig& c) {
+  const Descriptor d = effective_descriptor(sources.front(), c);
+  for (const auto& s : sources) {
+    if (effective_descriptor(s, c) != d) {
+      throw InputError(s.input.path.string(), "every session must have the same kind of descriptor");
+    }
+  }
+  return d;
+}
+
+SimilarityResult run(std::span<const SequenceInput> inputs_a, std::span<const SequenceInput> inputs_b, bool two,
+                     const SimilarityConfig& c) {
+  check_kappa(c);
+  const std::vector<Source> a = resolve_all(inputs_a);
+  if (a.front().kind == InputKind::similarity) return from_similarity_file(a.front(), !two);
+  std::vector<Source> b;
+  if (two) {
+    b = resolve_all(inputs_b);
+    for (const auto& s : b) {
+      if (s.kind == InputKind::similarity) {
+        throw InputError(s.input.path.string(), "a similarity matrix can only be the first input");
+      }
+    }
+  }
+  const Descriptor d = side_descriptor(a, c);
+  if (two && side_descriptor(b, c) != d) {
+    throw InputError(b.front().input.path.string(), "both sequences must have the same kind of descriptor");
   }
   const Distance metric = c.distance.value_or(default_distance(d));
-  check_memory(a, b ? &*b : nullptr, d, c);
+  const Source all_a = combined(a);
+  std::optional<Source> all_b;
+  if (two) all_b = combined(b);
+  check_memory(all_a, all_b ? &*all_b : nullptr, d, c);
 
   SimilarityResult r;
   const auto t0 = Clock::now();
-  Described da = describe(a, d, c);
+  Described da = describe_all(a, d, c);
   std::optional<Described> db;
-  if (b) db = describe(*b, d, c);
+  if (two) db = describe_all(b, d, c);
   r.seconds_descriptors = seconds_since(t0);
 
   similarity::MatrixConfig mc;
@@ -400,9 +629,9 @@ SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b,
     distances =
         db ? similarity::distance_matrix(da.set, db->set, metric, mc) : similarity::distance_matrix(da.set, metric, mc);
   } catch (const similarity::MemoryError& e) {
-    throw InputError(a.input.path.string(), e.what());
+    throw InputError(all_a.input.path.string(), e.what());
   } catch (const std::invalid_argument& e) {
-    if (d == Descriptor::npy) throw InputError(a.input.path.string(), e.what());
+    if (d == Descriptor::npy) throw InputError(all_a.input.path.string(), e.what());
     throw;
   }
 
@@ -411,29 +640,36 @@ SimilarityResult run(const SequenceInput& input_a, const SequenceInput* input_b,
   r.distance = metric;
   r.frame_names = std::move(da.names);
   r.column_names = db ? std::move(db->names) : r.frame_names;
+  r.session_rows = std::move(da.session_rows);
   return r;
 }
 
 }  // namespace
 
-DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config) {
-  const Source s = resolve(input);
+DescriptorResult compute_descriptors(std::span<const SequenceInput> inputs, const SimilarityConfig& config) {
+  const std::vector<Source> sources = resolve_all(inputs);
+  const Source& s = sources.front();
   if (s.kind == InputKind::similarity) {
     throw InputError(s.input.path.string(), "a similarity matrix has no descriptors");
   }
-  const Descriptor d = effective_descriptor(s, config);
+  const Descriptor d = side_descriptor(sources, config);
   if (d == Descriptor::joint_histogram) {
     throw InputError(s.input.path.string(), "the joint histogram is sparse and has no vector form");
   }
   DescriptorResult r;
   const auto t0 = Clock::now();
-  Described described = describe(s, d, config);
+  Described described = describe_all(sources, d, config);
   r.descriptors = std::move(described.set.dense);
   if (r.descriptors.empty()) throw InputError(s.input.path.string(), "no images");
   r.descriptor = d;
   r.frame_names = std::move(described.names);
+  r.session_rows = std::move(described.session_rows);
   r.seconds_descriptors = seconds_since(t0);
   return r;
+}
+
+DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config) {
+  return compute_descriptors(std::span<const SequenceInput>(&input, 1), config);
 }
 
 SimilarityResult similarity_of_descriptors(const DenseMatrix<float>& a, const DenseMatrix<float>* b,
@@ -473,11 +709,20 @@ SimilarityResult similarity_of_descriptors(const DenseMatrix<float>& a, const De
 }
 
 SimilarityResult compute_similarity(const SequenceInput& input, const SimilarityConfig& config) {
-  return run(input, nullptr, config);
+  return run(std::span<const SequenceInput>(&input, 1), {}, false, config);
 }
 
 SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b, const SimilarityConfig& config) {
-  return run(a, &b, config);
+  return run(std::span<const SequenceInput>(&a, 1), std::span<const SequenceInput>(&b, 1), true, config);
+}
+
+SimilarityResult compute_similarity(std::span<const SequenceInput> sessions, const SimilarityConfig& config) {
+  return run(sessions, {}, false, config);
+}
+
+SimilarityResult compute_similarity(std::span<const SequenceInput> a, std::span<const SequenceInput> b,
+                                    const SimilarityConfig& config) {
+  return run(a, b, true, config);
 }
 
 }  // namespace seqtopo::pipeline

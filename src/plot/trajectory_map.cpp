@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "axes.hpp"
+
 namespace seqtopo::plot {
 namespace {
 
@@ -23,22 +25,8 @@ constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
 cv::Scalar scalar(const std::array<std::uint8_t, 3>& rgb) { return {double(rgb[0]), double(rgb[1]), double(rgb[2])}; }
 
-// 1, 2 or 5 times a power of ten, so that about `count` ticks span `range` [m].
-double nice_step(double range, int count) {
-  const double raw = range / count;
-  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0}) {
-    if (m * magnitude >= raw) return m * magnitude;
-  }
-  return 10.0 * magnitude;
-}
-
-std::string tick_label(double v, double step) {
-  char buf[32];
-  const int decimals = step >= 1 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, std::abs(v) < step * 1e-6 ? 0.0 : v);
-  return buf;
-}
+using detail::nice_step;
+using detail::tick_label;
 
 // World [m] to panel pixels: equal scale in x and y, y up, the data centred in the plot area.
 struct Frame {
@@ -101,8 +89,8 @@ void draw_axes(cv::Mat& canvas, const Frame& f, const std::string& title) {
   }
   cv::rectangle(canvas, a, kAxis, 1);
   cv::putText(canvas, "x [m]", {a.x + a.width - 40, a.y + a.height + 36}, kFont, 0.45, kAxis, 1, cv::LINE_AA);
-  cv::putText(canvas, "y [m]", {a.x - 50, a.y - 8}, kFont, 0.45, kAxis, 1, cv::LINE_AA);
-  cv::putText(canvas, title, {a.x, 24}, kFont, 0.6, kAxis, 1, cv::LINE_AA);
+  detail::vertical_text(canvas, "y [m]", {a.x - 58, a.y + a.height / 2}, 0.45, kAxis);
+  cv::putText(canvas, title, {a.x, 22}, kFont, 0.6, kAxis, 1, cv::LINE_AA);
 }
 
 }  // namespace
@@ -170,8 +158,8 @@ RgbImage trajectory_map_image(const std::vector<TrajectoryPanel>& panels, const 
   for (std::size_t k = 0; k < panels.size(); ++k) {
     const auto& poses = panels[k].poses;
     const int left = static_cast<int>(k) * w;
-    // Room for the title above, tick labels on the left and below.
-    const cv::Rect area(left + 70, 40, w - 70 - 20, h - 40 - 55);
+    // Room for the title and the legend above, tick labels on the left and below.
+    const cv::Rect area(left + 70, 66, w - 70 - 20, h - 66 - 55);
     const Frame f = make_frame(poses, area);
     draw_axes(canvas, f, panels[k].title);
 
@@ -201,6 +189,28 @@ RgbImage trajectory_map_image(const std::vector<TrajectoryPanel>& panels, const 
       const int s = config.dot_radius + 3;
       cv::rectangle(plot, cv::Rect(path[0].x - s, path[0].y - s, 2 * s + 1, 2 * s + 1), kAxis, 2);
     }
+    // What the colours, lines and the square stand for. This canvas is drawn in RGB order and draw_legend()
+    // swaps to BGR, so the colours are given swapped.
+    auto rgb = [](const cv::Scalar& c) {
+      return std::array<std::uint8_t, 3>{static_cast<std::uint8_t>(c[2]), static_cast<std::uint8_t>(c[1]),
+                                         static_cast<std::uint8_t>(c[0])};
+    };
+    const auto first_place = place_colour(0);
+    std::vector<LegendEntry> legend{{"path", rgb(kPath), LegendEntry::Mark::line}};
+    if (!loop_pairs.empty()) legend.push_back({"loop closure", rgb(kLoopPair), LegendEntry::Mark::line});
+    if (labels.empty()) {
+      legend.push_back({"image", rgb(kUnlabelled), LegendEntry::Mark::dot});
+    } else {
+      legend.push_back({"revisited place (colour per place)",
+                        {first_place[2], first_place[1], first_place[0]},
+                        LegendEntry::Mark::dot});
+      legend.push_back({"seen once", kSingleVisitColour, LegendEntry::Mark::dot});
+    }
+    legend.push_back({"start", {0, 0, 0}, LegendEntry::Mark::hollow_square});
+    // Shrink the text until the legend fits the panel's width.
+    double scale = 0.4;
+    while (scale > 0.25 && detail::legend_size(legend, scale).width > w - 80) scale -= 0.03;
+    detail::draw_legend(canvas, legend, {left + 70, 30}, scale);
   }
 
   RgbImage out(canvas.cols, canvas.rows);

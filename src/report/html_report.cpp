@@ -1,5 +1,7 @@
 #include "seqtopo/report/html_report.hpp"
 
+#include "seqtopo/report/interactive.hpp"
+
 namespace seqtopo::report {
 
 std::string escape_html(const std::string& text) {
@@ -86,13 +88,61 @@ void HtmlReport::svg(const std::string& caption, const std::string& svg_text, co
            "</code>)</figcaption></figure>\n";
 }
 
+void HtmlReport::raw(const std::string& markup) { body_ += markup; }
+
+void HtmlReport::begin_details(const std::string& summary) {
+  body_ += "<details><summary>" + escape_html(summary) + "</summary>\n";
+}
+
+void HtmlReport::end_details() { body_ += "</details>\n"; }
+
+void HtmlReport::interactive(const std::string& json, const std::string& d3_text) {
+  scripts_ += "<script type=\"application/json\" id=\"seqtopo-data\">" + script_text(json) + "</script>\n";
+  scripts_ += "<script>/* D3 3.5, Debian libjs-d3, inlined */\n" + script_text(d3_text) + "\n</script>\n";
+  scripts_ += "<script>\n" + script_text(interactive_script()) + "\n</script>\n";
+}
+
+namespace {
+
+// The page's style: the static tables and figures, and the interactive views (interactive.js).
+constexpr const char* kStyle =
+    "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
+    "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}"
+    "th{background:#f3f3f3}figure{margin:1em 0}img{max-width:100%;border:1px solid #ddd}"
+    "figcaption{color:#555;font-size:90%}details{margin:1em 0}summary{cursor:pointer;font-weight:bold}"
+    ".view{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start}"
+    ".panel{flex:1 1 300px;min-width:280px;border:1px solid #ddd;padding:8px;background:#fafafa;min-height:120px}"
+    ".note{color:#555;font-size:90%}.readout{font-family:monospace;font-size:85%;color:#333;min-height:1.2em}"
+    ".controls button{margin-right:4px}.pair-title{font-weight:bold;margin-bottom:6px}"
+    ".thumb-row{display:flex;flex-wrap:wrap;gap:8px}.thumb-figure{margin:0}"
+    "img.thumb{width:180px;max-width:100%;image-rendering:pixelated;border:1px solid #888}"
+    ".thumb-row .thumb-row img.thumb,#place-viewer img.thumb{width:120px}"
+    ".no-thumb{width:200px;height:90px;border:1px dashed #aaa;color:#666;font-size:85%;padding:4px}"
+    "svg text{font-size:11px}.axis path,.axis line{fill:none;stroke:#222;shape-rendering:crispEdges}"
+    ".axis-label{font-size:12px}.frame{fill:none;stroke:#222}"
+    ".matrix-image{image-rendering:pixelated}"
+    "path.alignment{fill:none;stroke-width:2px;vector-effect:non-scaling-stroke}"
+    "path.alignment.kept{stroke:#ff1e1e}path.alignment.pruned{stroke:#286eff;stroke-dasharray:4 3}"
+    "svg.localize path.alignment.reverse{stroke:#1ec83c}"
+    "circle.pair{fill:#ffd000;stroke:#000;stroke-width:0.6px;vector-effect:non-scaling-stroke;cursor:pointer}"
+    "circle.pair.active{fill:#00e5ff}circle.pair.pinned{fill:#ff00d0}"
+    ".cell-cursor{fill:none;stroke:#00e5ff;stroke-width:1px}"
+    "line.edge{stroke:#999;stroke-width:1.2px;vector-effect:non-scaling-stroke}"
+    "circle.node{fill:#ddd;stroke:#444;stroke-width:0.8px;cursor:pointer;vector-effect:non-scaling-stroke}"
+    "circle.node.revisited{fill:#377eb8}circle.node.run{fill:#9ecae1}circle.node.junction{fill:#e41a1c}"
+    "circle.node.selected{stroke:#000;stroke-width:3px}"
+    "path.curve{fill:none;stroke-width:2px}path.curve.primary{stroke-width:3px}"
+    "path.curve.baseline{stroke-dasharray:7 4}line.curve{stroke-width:2px}line.curve.baseline{stroke-dasharray:5 3}"
+    ".overlay{fill:none;pointer-events:all}rect.bin{fill:#4a7fb5}rect.bin.active{fill:#ff7f0e}"
+    "rect.stage{stroke:#fff}.legend span{margin-right:10px;font-size:90%}"
+    "table.alignments tr.alignment-row{cursor:pointer}table.alignments tr.alignment-row:hover{background:#eef}";
+
+}  // namespace
+
 std::string HtmlReport::html() const {
   return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + escape_html(title_) +
-         "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
-         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}"
-         "th{background:#f3f3f3}figure{margin:1em 0}img{max-width:100%;border:1px solid #ddd}"
-         "figcaption{color:#555;font-size:90%}</style></head>\n<body>\n<h1>" +
-         escape_html(title_) + "</h1>\n" + body_ + "</body></html>\n";
+         "</title>\n<style>" + kStyle + "</style></head>\n<body>\n<h1>" + escape_html(title_) + "</h1>\n" + body_ +
+         scripts_ + "</body></html>\n";
 }
 
 }  // namespace seqtopo::report

@@ -88,7 +88,7 @@ TEST_F(LocalizeCli, OnlinePrintsOneEstimatePerFrame) {
   std::istringstream lines(r.out);
   std::string line;
   std::getline(lines, line);
-  EXPECT_EQ(line, "query,map,confidence,latency_ms");
+  EXPECT_EQ(line, "query,map,confidence,latency_ms,wait_ms");
   std::size_t n = 0;
   while (std::getline(lines, line)) ++n;
   EXPECT_EQ(n, 50U);
@@ -110,7 +110,6 @@ TEST_F(LocalizeCli, RejectsBadInputWithoutLeavingOutput) {
   std::ofstream(dir_.path / "far.csv") << "query,map\n0,500\n";
   std::ofstream(dir_.path / "garbled.csv") << "query,map\n0;1\n";
   std::vector<std::string> all = bad;
-  all.push_back("--map " + s.string() + " --gt " + (dir_.path / "far.csv").string() + " --out " + out.string());
   all.push_back("--map " + s.string() + " --gt " + (dir_.path / "garbled.csv").string() + " --out " + out.string());
   for (const auto& args : all) {
     const auto r = localize(args);
@@ -119,6 +118,18 @@ TEST_F(LocalizeCli, RejectsBadInputWithoutLeavingOutput) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(out / "matches.csv")) << args;
   }
+  // A truth that does not fit the sizes is found once they are known, after the localization stage: its
+  // progress lines come first, the error is the last line and the only one.
+  const auto r =
+      localize("--map " + s.string() + " --gt " + (dir_.path / "far.csv").string() + " --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  std::istringstream lines(r.err);
+  std::vector<std::string> err;
+  for (std::string line; std::getline(lines, line);) err.push_back(line);
+  ASSERT_FALSE(err.empty());
+  EXPECT_EQ(err.back().rfind("seqtopo: error: ", 0), 0U) << r.err;
+  for (std::size_t k = 0; k + 1 < err.size(); ++k) EXPECT_EQ(err[k].rfind("seqtopo localize: [", 0), 0U) << r.err;
+  EXPECT_FALSE(fs::exists(out / "matches.csv"));
 }
 
 }  // namespace

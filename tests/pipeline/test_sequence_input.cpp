@@ -1,5 +1,6 @@
 // Natural order, folder listing and input kinds.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -9,6 +10,8 @@
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
+#include "seqtopo/plot/png.hpp"
 
 namespace seqtopo::pipeline {
 namespace {
@@ -35,7 +38,7 @@ TEST(ListImages, SortedImagesOnly) {
   for (const char* name : {"10.jpg", "2.JPG", "1.png", "notes.txt", ".hidden.png", "ground_truth.bmp", "3.bmp"}) {
     dir.touch(name);
   }
-  fs::create_directory(dir.path / "4.png");  // a folder is not an image
+  fs::create_directory(dir.path / "notes");  // a folder without an image's name is not looked at
   const auto files = list_images(dir.path);
   std::vector<std::string> names;
   for (const auto& f : files) names.push_back(f.filename().string());
@@ -52,6 +55,114 @@ TEST(ListImages, ErrorsNameTheFolder) {
     EXPECT_EQ(e.subject(), dir.path.string());
   }
   EXPECT_THROW(list_images(dir.path / "missing"), InputError);
+}
+
+// Issue #18 (a): an entry that has an image's name but cannot be read is an error naming it, or, with
+// skip_unreadable, left out and listed.
+TEST(ListImages, UnreadableEntriesAreErrorsNamingThem) {
+  TempDir dir;
+  plot::write_png(dir.path / "1.png", RgbImage(4, 4, 100));
+  plot::write_png(dir.path / "3.png", RgbImage(4, 4, 200));
+  const auto expect_refused = [&](const fs::path& entry, const std::string& what) {
+    try {
+      list_images(dir.path);
+      ADD_FAILURE() << "no error for " << entry;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.subject(), entry.string());
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+    const ImageListing skipped = list_images(dir.path, {.skip_unreadable = true});
+    ASSERT_EQ(skipped.files.size(), 2U);
+    ASSERT_EQ(skipped.skipped.size(), 1U);
+    EXPECT_EQ(skipped.skipped[0].first, entry);
+    fs::remove(entry);
+  };
+  fs::create_symlink(dir.path / "missing.png", dir.path / "2.png");
+  expect_refused(dir.path / "2.png", "a dangling symbolic link");
+  fs::create_symlink(dir.path / "loop.png", dir.path / "loop.png");
+  expect_refused(dir.path / "loop.png", "a looping symbolic link");
+  fs::create_directory(dir.path / "4.png");
+  expect_refused(dir.path / "4.png", "a folder");
+  ASSERT_EQ(::mkfifo((dir.path / "5.png").c_str(), 0600), 0);
+  expect_refused(dir.path / "5.png", "a FIFO");
+  // A corrupt file is refused when it is decoded (naming it); --skip-unreadable decodes while listing.
+  dir.write("6.png", "not a png");
+  const ImageListing skipped = list_images(dir.path, {.skip_unreadable = true});
+  ASSERT_EQ(skipped.skipped.size(), 1U);
+  EXPECT_EQ(skipped.skipped[0].first, dir.path / "6.png");
+  EXPECT_EQ(list_images(dir.path).size(), 3U);  // not decoded without the option
+  try {
+    compute_similarity(SequenceInput(dir.path));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.subject(), (dir.path / "6.png").string());
+  }
+  SequenceInput skip(dir.path);
+  skip.skip_unreadable = true;
+  std::vector<std::string> notes;
+  SimilarityConfig config;
+  config.note = [&](std::string_view text) { notes.emplace_back(text); };
+  EXPECT_EQ(compute_similarity(skip, config).similarity.rows, 2U);
+  ASSERT_EQ(notes.size(), 1U);
+  EXPECT_NE(notes[0].find("6.png"), std::string::npos) << notes[0];
+}
+
+TEST(ListImages, RecursiveInNaturalOrderOfRelativePaths) {
+  TempDir dir;
+  for (const char* folder : {"a", "b", "b/c", ".git"}) fs::create_directories(dir.path / folder);
+  for (const char* name : {"a/10.png", "a/2.png", "b.png", "b/1.png", "b/c/1.png", ".git/x.png", "0.png"}) {
+    dir.touch(name);
+  }
+  const auto listing = list_images(dir.path, {.recursive = true});
+  std::vector<std::string> names;
+  for (const auto& f : listing.files) names.push_back(image_name(dir.path, f, true));
+  // Folder name by folder name: the folder "b" sorts before the file "b.png".
+  EXPECT_EQ(names, (std::vector<std::string>{"0.png", "a/2.png", "a/10.png", "b/1.png", "b/c/1.png", "b.png"}));
+  EXPECT_EQ(list_images(dir.path).size(), 2U);  // without recursion: 0.png and b.png
+}
+
+// Issue #18 (a): images of different sizes are an error for the joint histogram, which does not resize, and
+// a warning for the patch descriptor, which does.
+TEST(ImageSizes, DifferentSizesRefusedOrWarned) {
+  TempDir dir;
+  plot::write_png(dir.path / "1.png", RgbImage(16, 12, 10));
+  plot::write_png(dir.path / "2.png", RgbImage(16, 12, 90));
+  plot::write_png(dir.path / "3.png", RgbImage(20, 12, 180));
+  SimilarityConfig config;
+  std::vector<std::string> notes;
+  config.note = [&](std::string_view text) { notes.emplace_back(text); };
+  config.descriptor = Descriptor::joint_histogram;
+  try {
+    compute_similarity(SequenceInput(dir.path), config);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.subject(), (dir.path / "3.png").string());
+    EXPECT_NE(std::string(e.what()).find("20 x 12 pixels, the first image 1.png is 16 x 12"), std::string::npos)
+        << e.what();
+  }
+  config.descriptor = Descriptor::patch;
+  EXPECT_EQ(compute_similarity(SequenceInput(dir.path), config).similarity.rows, 3U);
+  ASSERT_EQ(notes.size(), 1U);
+  EXPECT_NE(notes[0].find("patch descriptor resizes every image"), std::string::npos) << notes[0];
+}
+
+TEST(SequenceInput, SelectedFramesOnly) {
+  TempDir dir;
+  for (int k = 0; k < 5; ++k) plot::write_png(dir.path / (std::to_string(k) + ".png"), RgbImage(8, 8, 40 * k));
+  SequenceInput input(dir.path);
+  input.frames = {0, 2, 3};
+  SimilarityConfig config;
+  config.descriptor = Descriptor::patch;
+  const auto r = compute_similarity(input, config);
+  EXPECT_EQ(r.frame_names, (std::vector<std::string>{"0.png", "2.png", "3.png"}));
+  input.frames = {0, 7};
+  EXPECT_THROW(compute_similarity(input, config), InputError);
+  // Two sessions: one sequence, names prefixed by the session.
+  const std::vector<SequenceInput> sessions{SequenceInput(dir.path), SequenceInput(dir.path)};
+  const auto two = compute_similarity(sessions, config);
+  EXPECT_EQ(two.similarity.rows, 10U);
+  EXPECT_EQ(two.session_rows, (std::vector<std::size_t>{5, 5}));
+  EXPECT_EQ(two.frame_names[5], dir.path.filename().string() + "/0.png");
 }
 
 TEST(InputKind, ParseAndResolve) {

@@ -1,13 +1,23 @@
 #pragma once
 // The map files of `seqtopo map` (INTERFACE.md): map.json, alignments.json and loop_closures.csv, as text.
+#include <cstddef>
+#include <span>
 #include <string>
 
 #include "seqtopo/mapping/map_builder.hpp"
 
 namespace seqtopo::formats {
 
-// {"images", "labels", "places", "edges", "junctions", "segments", "alignments"} (alignments with "kept").
-std::string map_json(const mapping::MapResult& result);
+// One session of a map made of several (seqtopo map S1 S2 ...): its input and its images [begin, end).
+struct MapSession {
+  std::string input;
+  std::size_t begin = 0, end = 0;
+};
+
+// {"images", "labels", "places", "edges", "junctions", "segments", "alignments"} (alignments with "kept"); with
+// two sessions or more also "sessions": [{"input", "begin", "end"}, ...] and "image_sessions": [session of
+// every image].
+std::string map_json(const mapping::MapResult& result, std::span<const MapSession> sessions = {});
 // {"alignments": [... with "kept", "path_score", "e_value"], "rejected_by_odometry": [...], "insignificant": [...],
 //  "significance": {...}} (INTERFACE.md)
 std::string alignments_json(const mapping::MapResult& result);

@@ -13,7 +13,8 @@ namespace seqtopo::formats {
 // [m, m, rad]; integrated from the origin, so row 0 is the first pose itself (usually 0,0,0).
 // Rows must have indices 0..N-1 in order. Blank lines and spaces around fields are ignored.
 // Throws InputError naming file:line on a bad header, a non-numeric or non-finite field, a wrong field
-// count or an index out of order, and naming the file when it cannot be opened or has no rows.
+// count, an index out of order or increments whose integrated position is not finite (1e308 + 1e308), and
+// naming the file when it cannot be opened or has no rows.
 std::vector<Pose2> read_odometry_csv(const std::filesystem::path& path);
 
 // Ground-truth poses: header `index,x,y` or `index,x,y,theta` [m, m, rad]; theta is 0 when absent.

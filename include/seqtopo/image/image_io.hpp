@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <span>
+#include <string>
 
 #include "seqtopo/core/rgb_image.hpp"
 
@@ -12,6 +14,11 @@ namespace seqtopo::image {
 // Decodes one image file (colour or grey, 8 or 16 bit) to 8-bit RGB. Throws InputError naming the file
 // when it is missing, unreadable, corrupt or not an image.
 RgbImage load_image(const std::filesystem::path& path);
+
+// Decodes an encoded image held in memory (PNG, JPEG, ... as in a ROS CompressedImage message) to 8-bit
+// RGB, with the same conversions as load_image. Throws InputError naming `subject` when the bytes are not
+// a decodable image.
+RgbImage decode_image(std::span<const std::uint8_t> bytes, const std::string& subject);
 
 // Frames the container announces (may be approximate or missing for some formats); throws InputError
 // naming the file when it cannot be opened as a video.

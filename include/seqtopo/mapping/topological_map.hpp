@@ -39,6 +39,10 @@ struct TopologicalMap {
 
 struct TopologyConfig {
   std::size_t u_turn_separation = 10;  // [frames]
+  // Several sessions mapped as one sequence: the first image of each session after the first. Image k - 1
+  // and image k of such a k were not taken one after the other, so no edge joins their places, and neither is
+  // the other's predecessor or successor for the junction test (as at the ends of a single sequence).
+  std::vector<std::size_t> session_starts;
 };
 
 TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,

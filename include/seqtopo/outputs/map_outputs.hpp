@@ -4,6 +4,7 @@
 // pr_curve.png, metrics.json (each when it applies; streamed runs have no similarity.npy nor scores.npy),
 // and report.html over them.
 #include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/outputs/report_options.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
 
 namespace seqtopo::outputs {
@@ -15,7 +16,8 @@ inline constexpr std::size_t kMaxDrawnPlaces = 300;
 
 // Every file but the report, staged in `out`.
 void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out);
-// report.html from the staged files (map_report.cpp).
-void write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out);
+// report.html from the staged files (map_report.cpp): interactive (report/interactive.hpp) when D3 is installed,
+// else static, with the result's warning saying why.
+ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out, const ReportOptions& options = {});
 
 }  // namespace seqtopo::outputs

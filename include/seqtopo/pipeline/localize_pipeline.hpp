@@ -36,6 +36,10 @@ struct LocalizeSettings {
 
 struct LocalizeRequest {
   SequenceInput map, query;  // the query's path "-" (online only): image paths from next_query_path
+  // A map made of several sessions (seqtopo localize --map A --map B): when not empty it replaces `map`; the
+  // map frames are the sessions' frames one after the other (columns of the similarity, map indices of the
+  // answers, in that order).
+  std::vector<SequenceInput> map_sessions;
   // A query x map similarity.npy instead of the two sequences (rows = query frames, columns = map frames).
   std::optional<std::filesystem::path> similarity_file;
   LocalizeSettings settings;
@@ -55,9 +59,13 @@ struct LocalizeRun {
   LocalizeSettings settings;    // what ran
   SimilarityMatrix similarity;  // query x map (offline, or the rows seen online)
   std::size_t queries = 0, maps = 0;
+  std::vector<std::size_t> map_session_frames;  // map frames of each map session (one entry for one map)
   std::vector<FrameAnswer> answers;
   std::vector<align::LocalAlignment> alignments;  // offline
-  std::vector<double> latencies;                  // [s] per frame, online
+  // Online, per frame [s]: the latency is the processing, from the frame's arrival (its path or file read) to its
+  // answer (decoding, describing, aligning); the wait is the time before it arrived, since the previous answer.
+  std::vector<double> latencies, waits;
+  SequenceInput map_input, query_input;  // what was read (empty paths for a similarity file): report thumbnails
   std::vector<std::pair<std::string, double>> timings;
   double seconds = 0;  // the localization's wall time
   // With ground truth (evaluate_localization_run):
@@ -65,8 +73,9 @@ struct LocalizeRun {
   std::size_t tolerance = 0;
 };
 
-// Online: called after every query frame with its index, answer and latency [s].
-using OnlineFrameCallback = std::function<void(std::size_t query, const FrameAnswer& answer, double latency)>;
+// Online: called after every query frame with its index, answer, latency (processing) and wait [s].
+using OnlineFrameCallback =
+    std::function<void(std::size_t query, const FrameAnswer& answer, double latency, double wait)>;
 // The next image path of a query given as "-" (nullopt at the end).
 using NextPath = std::function<std::optional<std::string>()>;
 

@@ -27,10 +27,13 @@
 #include "seqtopo/core/pose2.hpp"
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
 #include "seqtopo/evaluation/topology_metrics.hpp"
+#include "seqtopo/formats/map_json.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/pipeline/presets.hpp"
+#include "seqtopo/pipeline/progress.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/pipeline/sequence_similarity.hpp"
+#include "seqtopo/pipeline/session_input.hpp"
 #include "seqtopo/plot/matrix_overview.hpp"
 
 namespace seqtopo::pipeline {
@@ -60,6 +63,15 @@ struct MapRequest {
   // Never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor, computed when the
   // engine reads them (scale/streaming_similarity.hpp). Needs the fast engine.
   bool streaming = false;
+  // For `input` (session_input.hpp): the image times of a timestamped `odometry` file, a bag's odometry
+  // topic, and one frame kept per D metres of odometry.
+  std::filesystem::path times;
+  std::string odometry_topic;
+  std::optional<double> every_metres;
+  // Several sessions (seqtopo map S1 S2 ...): when not empty they replace `input`, `odometry`, `times`,
+  // `odometry_topic` and `every_metres`. Their frames are mapped as one sequence, session after session,
+  // with no transition between one session's last image and the next one's first.
+  std::vector<SessionSource> sessions;
 };
 
 struct TrajectoryErrors {
@@ -69,6 +81,9 @@ struct TrajectoryErrors {
 // Everything one map run computed.
 struct MapRun {
   std::string input, preset;
+  SequenceInput sequence;  // what was mapped (the report's thumbnails); empty path in memory
+  // The session of every image: [begin, end) of each input, in order (one for a single input).
+  std::vector<formats::MapSession> sessions;
   mapping::MapConfig map_config;
   bool paper_trajectory = false;
   std::vector<SimilarityResult> similarities;  // one per descriptor (kappa, names, timings)
@@ -81,7 +96,9 @@ struct MapRun {
   std::string baseline_skipped;  // why the baseline did not run (streaming), when it did not
   std::optional<TrajectoryErrors> ate;
   std::optional<evaluation::TopologyMetrics> topology;
-  std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+  // Stage, seconds: the parts of run(), one after the other, so they add up to its wall time (the command line
+  // appends its own: setup, files and figures, report).
+  std::vector<std::pair<std::string, double>> timings;
   // Streaming: no matrix is held (`matrices` and result.scores are empty); similarity.png draws this
   // block-max overview of the aligned scores instead, and the report states what the streaming cost.
   bool streaming = false;
@@ -91,8 +108,16 @@ struct MapRun {
 };
 
 // Lines about the work as it goes (stages, sizes, memory estimates); the library never prints.
+//
+// `progress` gets text lines; with `stage` set, the stages come as structured events instead
+// (pipeline/progress.hpp: plan, begin, advance with done / total, end with the stage's time) and `progress`
+// only gets the detail lines. `later_stages` names stages the caller runs after the job (writing the files,
+// the report), numbered after the job's own in the plan so that the numbering is the same from start to end.
 struct MapObserver {
-  std::function<void(std::string_view)> progress;
+  // Default member initializers: `{.progress = ...}` alone stays free of -Wmissing-field-initializers.
+  std::function<void(std::string_view)> progress = {};
+  StageObserver stage = {};
+  std::vector<std::string> later_stages = {};
 };
 
 // A checked request: the constructor reads what is small (the odometry, the number of images where it is
@@ -101,12 +126,15 @@ class MapJob {
  public:
   explicit MapJob(MapRequest request);
   MapRun run(const MapObserver& observer = {}) const;
-  InputKind input_kind() const { return kind_; }
+  InputKind input_kind() const { return kind_; }  // of the first session
+  const std::vector<PreparedSession>& sessions() const { return sessions_; }
 
  private:
   MapRequest request_;
   InputKind kind_;
-  std::vector<Pose2> odometry_;
+  std::vector<PreparedSession> sessions_;
+  std::vector<SequenceInput> inputs_;  // the sessions' inputs, with their kept frames
+  std::vector<Pose2> odometry_;        // all sessions', concatenated
 };
 
 // MapJob(request).run(observer).

@@ -8,6 +8,7 @@
 //   // result.similarity: 84 x 84, result.kappa chosen by the rule in similarity_from_distance.hpp
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -58,6 +59,7 @@ struct SimilarityResult {
   std::optional<Distance> distance;       // nullopt when the input was a similarity matrix
   std::vector<std::string> frame_names;   // file names / "frame 17" / "row 17", one per row
   std::vector<std::string> column_names;  // one per column
+  std::vector<std::size_t> session_rows;  // rows of each session of the first side (one entry for one input)
   double seconds_descriptors = 0, seconds_matrix = 0;
 };
 
@@ -67,6 +69,14 @@ SimilarityResult compute_similarity(const SequenceInput& input, const Similarity
 // N x M between two sequences: rows = a, cols = b. For InputKind::similarity on `a`, `b` is ignored and the
 // N x M matrix is returned as is.
 SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b,
+                                    const SimilarityConfig& config = {});
+
+// Several sessions as one sequence (seqtopo map S1 S2 ...): their frames one after the other, session by
+// session; N x N over all of them, or N x M against `b`'s sessions. Every session must give the same kind of
+// descriptor; a similarity.npy cannot be one of several. Frame names are prefixed with the session input's
+// file name when there are several.
+SimilarityResult compute_similarity(std::span<const SequenceInput> sessions, const SimilarityConfig& config = {});
+SimilarityResult compute_similarity(std::span<const SequenceInput> a, std::span<const SequenceInput> b,
                                     const SimilarityConfig& config = {});
 
 // The same computation on descriptors already in memory (rows = images, as a descriptors.npy input; default
@@ -83,9 +93,11 @@ struct DescriptorResult {
   DenseMatrix<float> descriptors;           // N x dim, one row per image
   Descriptor descriptor = Descriptor::npy;  // the one used (npy for a descriptors.npy input)
   std::vector<std::string> frame_names;     // as in SimilarityResult
+  std::vector<std::size_t> session_rows;    // as in SimilarityResult
   double seconds_descriptors = 0;
 };
 DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config = {});
+DescriptorResult compute_descriptors(std::span<const SequenceInput> sessions, const SimilarityConfig& config = {});
 
 // The dense descriptors (patch, panorama) of one image, and their length. Throws std::invalid_argument for
 // joint_histogram and npy.

@@ -1,0 +1,20 @@
+#pragma once
+// What a report is told about the run around it, and what it says back.
+#include <optional>
+#include <string>
+
+namespace seqtopo::outputs {
+
+struct ReportOptions {
+  // Seconds the command had run when the report started (the command line's clock): the report's timings then
+  // add up to the wall time, the gap between the stages shown as its own row. Without it they add up to the
+  // stages' sum.
+  std::optional<double> seconds_before;
+};
+
+struct ReportResult {
+  bool interactive = true;  // false: D3 was not found and the report is static
+  std::string warning;      // one line for the user when something is missing, else empty
+};
+
+}  // namespace seqtopo::outputs

@@ -1,0 +1,5 @@
+"""``python -m seqtopo ...`` is the ``seqtopo`` command."""
+
+from ._cli import main
+
+main()

@@ -1,0 +1,179 @@
+#include "seqtopo/pipeline/session_input.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+#include "seqtopo/core/input_error.hpp"
+#include "seqtopo/formats/pose_files.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/timeline/timed_poses.hpp"
+#ifdef SEQTOPO_HAVE_RECORDING
+#include "seqtopo/recording/recording.hpp"
+#endif
+
+namespace seqtopo::pipeline {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The number a file name's stem is, when it is one ("1403636579763555584.png", "12.5.jpg").
+std::optional<double> number_name(const fs::path& file) {
+  const std::string stem = file.stem().string();
+  double v = 0;
+  const auto [ptr, ec] = std::from_chars(stem.data(), stem.data() + stem.size(), v);
+  if (stem.empty() || ec != std::errc() || ptr != stem.data() + stem.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+// Every `every`-th of `all`, then the kept frames.
+template <typename T>
+std::vector<T> thin(const std::vector<T>& all, std::size_t every) {
+  std::vector<T> out;
+  for (std::size_t k = 0; k < all.size(); k += every) out.push_back(all[k]);
+  return out;
+}
+
+}  // namespace
+
+std::optional<std::vector<double>> frame_times(const SequenceInput& input, const fs::path& times) {
+  if (!times.empty()) return formats::read_times_txt(times);
+  const InputKind kind = resolve_input_kind(input);
+  if (kind != InputKind::images) return std::nullopt;
+  std::error_code ec;
+  if (fs::exists(input.path / "times.txt", ec)) return formats::read_times_txt(input.path / "times.txt");
+  const ImageListing listing = list_input_images(input);
+  std::vector<double> out;
+  for (const auto& f : listing.files) {
+    const auto t = number_name(f);
+    if (!t) return std::nullopt;
+    out.push_back(*t);
+  }
+  const bool nanoseconds = !out.empty() && out.front() > 1e15;
+  for (auto& t : out) t = nanoseconds ? t * 1e-9 : t;
+  try {
+    timeline::check_increasing(out);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(input.path.string(), std::string("image times from the file names: ") + e.what());
+  }
+  return out;
+}
+
+PreparedSession prepare_session(const SessionSource& source) {
+  PreparedSession s;
+  s.input = source.input;
+  s.input.frames.clear();
+  const SequenceInput& input = s.input;
+  const InputKind kind = resolve_input_kind(input);
+  if (input.every == 0) throw InputError("--every", "must be at least 1");
+  if (kind != InputKind::bag && !source.odometry_topic.empty() && source.odometry_topic != "none") {
+    throw InputError("--odometry-topic", "needs a bag input, got " + input.path.string());
+  }
+
+  // The number of frames after `every`, where it is known without decoding.
+  std::optional<std::size_t> count;
+  if (kind == InputKind::images) count = list_input_images(input).files.size();
+  if (kind == InputKind::descriptors || kind == InputKind::similarity) {
+    const auto header = io::read_npy_header(input.path);
+    if (!header.shape.empty()) count = header.shape[0];
+  }
+
+  std::vector<Pose2> poses;  // one per frame (after every)
+  std::vector<TimedPose> timed;
+  std::string timed_subject;
+  if (!source.odometry.empty()) {
+    const formats::PoseFile file = formats::read_pose_file(source.odometry);
+    s.odometry_subject = source.odometry.string();
+    if (file.timestamped()) {
+      timed = file.timed;
+      timed_subject = source.odometry.string();
+    } else {
+      poses = file.per_frame;
+    }
+  }
+#ifdef SEQTOPO_HAVE_RECORDING
+  std::optional<recording::Recording> bag;
+  std::string image_topic;
+  if (kind == InputKind::bag) {
+    bag.emplace(input.path);
+    image_topic = bag->image_topic(input.image_topic);
+    bag->check_first_image(image_topic);
+    count = (bag->message_count(image_topic) + input.every - 1) / input.every;
+    if (source.odometry.empty()) {
+      if (const auto topic = bag->odometry_topic(source.odometry_topic)) {
+        timed = bag->poses(*topic);
+        timed_subject = input.path.string() + ":" + *topic;
+        s.odometry_subject = timed_subject;
+      }
+    }
+  }
+#else
+  if (kind == InputKind::bag) {
+    throw InputError(input.path.string(),
+                     "this seqtopo was built without bag support (scripts/setup.sh installs "
+                     "librosbag-dev, libsqlite3-dev, libzstd-dev and liblz4-dev)");
+  }
+#endif
+
+  if (!timed.empty()) {
+    std::vector<double> times;
+#ifdef SEQTOPO_HAVE_RECORDING
+    if (bag) times = thin(bag->image_times(image_topic), input.every);
+#endif
+    if (kind != InputKind::bag) {
+      const auto t = frame_times(input, source.times);
+      if (!t) {
+        throw InputError(source.odometry.string(),
+                         "holds timestamped poses, but the images have no times: give --times times.txt, put a "
+                         "times.txt in the image folder, or name the images by their time");
+      }
+      times = kind == InputKind::images ? *t : thin(*t, input.every);
+      if (count && times.size() != *count) {
+        throw InputError(source.times.empty() ? input.path.string() : source.times.string(),
+                         fmt::format("{} image times for {} images", times.size(), *count));
+      }
+    }
+    try {
+      const auto matched = timeline::interpolate_poses(timed, times);
+      poses = matched.poses;
+      s.notes.push_back(fmt::format(
+          "odometry from {}: {} poses matched by time to {} images{}", timed_subject, timed.size(), poses.size(),
+          matched.held_at_end
+              ? fmt::format(" ({} just outside the poses' time range got the end pose)", matched.held_at_end)
+              : std::string()));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(timed_subject, e.what());
+    }
+  } else if (!poses.empty() && kind == InputKind::video && input.every > 1) {
+    poses = thin(poses, input.every);  // a per-frame file covers every frame of the video
+  }
+  if (!poses.empty() && count && poses.size() != *count) {
+    throw InputError(s.odometry_subject, fmt::format("has {} poses, the sequence has {} images", poses.size(), *count));
+  }
+
+  if (source.every_metres) {
+    if (poses.empty()) {
+      throw InputError("--every-metres", "needs odometry: give --odometry FILE, or a bag with an odometry topic (" +
+                                             input.path.string() + " has none)");
+    }
+    try {
+      s.input.frames = timeline::select_every_metres(poses, *source.every_metres);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("--every-metres", e.what());
+    }
+    std::vector<Pose2> kept;
+    for (std::size_t k : s.input.frames) kept.push_back(poses[k]);
+    s.notes.push_back(
+        fmt::format("--every-metres {}: {} of {} frames kept", *source.every_metres, kept.size(), poses.size()));
+    poses = std::move(kept);
+    count = poses.size();
+  }
+  s.odometry = std::move(poses);
+  s.frames = count;
+  return s;
+}
+
+}  // namespace seqtopo::pipeline

@@ -1,0 +1,168 @@
+// Command-line details a new user meets first (issue #22): the help names the program, parse errors point to the
+// subcommand's help, `map --help` lists every descriptor, `align` reads soft-masked FASTA by letter, has a view for
+// reading and a default threshold above chance, `match-strings` writes its header first and says what its
+// geometric rates are over.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "common/cli_run.hpp"
+#include "common/temp_dir.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+using seqtopo::test_support::read_file;
+using seqtopo::test_support::run_cli;
+using seqtopo::test_support::run_command;
+using seqtopo::test_support::TempDir;
+
+std::string random_dna(std::size_t n, std::mt19937& random) {
+  std::string s;
+  for (std::size_t k = 0; k < n; ++k) s += "ACGT"[random() % 4];
+  return s;
+}
+
+void write_fasta(const fs::path& path, const std::string& sequence) {
+  std::ofstream(path) << ">seq\n" << sequence << "\n";
+}
+
+TEST(CliDetails, HelpNamesTheProgram) {
+  const auto top = run_cli("--help");
+  EXPECT_EQ(top.status, 0);
+  EXPECT_NE(top.out.find("Usage: seqtopo [OPTIONS] SUBCOMMAND"), std::string::npos) << top.out;
+  const auto map = run_cli("map --help");
+  EXPECT_NE(map.out.find("Usage: seqtopo map [OPTIONS]"), std::string::npos) << map.out;
+  // --descriptor lists npy beside the image descriptors.
+  std::istringstream lines(map.out);
+  std::string line, descriptor;
+  while (std::getline(lines, line)) {
+    if (line.find("--descriptor") != std::string::npos) descriptor = line;
+  }
+  EXPECT_NE(descriptor.find("joint-histogram|patch|panorama|npy"), std::string::npos) << descriptor;
+}
+
+TEST(CliDetails, ParseErrorsPointToTheSubcommandsHelp) {
+  for (const char* command : {"align", "map", "localize", "match-strings"}) {
+    const auto r = run_cli(std::string(command) + " --no-such-option");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err_last_line().find(std::string("(see seqtopo ") + command + " --help)"), std::string::npos) << r.err;
+  }
+}
+
+TEST(CliDetails, AlignReadsSoftMaskedFastaByLetter) {
+  TempDir dir;
+  std::mt19937 random(11);
+  const std::string shared = random_dna(80, random);
+  std::string masked = shared;
+  for (auto& c : masked) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string a = random_dna(200, random) + shared + random_dna(200, random);
+  const std::string b = random_dna(100, random) + masked + random_dna(150, random);  // soft-masked: lower case
+  write_fasta(dir.path / "a.fa", a);
+  write_fasta(dir.path / "b.fa", b);
+  const std::string common = "align --a " + (dir.path / "a.fa").string() + " --b " + (dir.path / "b.fa").string() +
+                             " --mismatch -2 --gap 3 --threshold 30 --json " + (dir.path / "out.json").string();
+  auto r = run_cli(common);
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto json = nlohmann::json::parse(read_file(dir.path / "out.json"));
+  ASSERT_FALSE(json.at("alignments").empty());
+  const auto& best = json.at("alignments").at(0);
+  EXPECT_GE(best.at("score").get<double>(), 80.0);
+  EXPECT_LE(best.at("a_begin").get<int>(), 200);
+  EXPECT_GE(best.at("a_end").get<int>(), 280);
+  EXPECT_LE(best.at("b_begin").get<int>(), 100);
+  // Case-sensitive, the masked stretch matches nothing.
+  r = run_cli(common + " --case-sensitive");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json = nlohmann::json::parse(read_file(dir.path / "out.json"));
+  EXPECT_TRUE(json.at("alignments").empty() || json.at("alignments").at(0).at("score").get<double>() < 40.0);
+
+  // The view for reading: letters over letters, as in the files (lower case kept), a bar per equal pair.
+  r = run_cli("align --a " + (dir.path / "a.fa").string() + " --b " + (dir.path / "b.fa").string() +
+              " --mismatch -2 --gap 3 --threshold 30 --max-alignments 1 --text -");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("{"), std::string::npos) << "the JSON goes to stdout only without --text -";
+  EXPECT_NE(r.out.find("# 1  score"), std::string::npos) << r.out;
+  std::string top, bottom, bars;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("A ", 0) == 0) top += line.substr(11, line.rfind("  ") - 11);
+    if (line.rfind("B ", 0) == 0) bottom += line.substr(11, line.rfind("  ") - 11);
+    if (line.rfind("   ", 0) == 0) bars += line;
+  }
+  EXPECT_NE(top.find(shared.substr(10, 60)), std::string::npos) << r.out;
+  EXPECT_NE(bottom.find(masked.substr(10, 60)), std::string::npos) << r.out;
+  EXPECT_GE(std::count(bars.begin(), bars.end(), '|'), 80);
+}
+
+TEST(CliDetails, AlignDefaultThresholdIsAboveChance) {
+  TempDir dir;
+  std::mt19937 random(5);
+  write_fasta(dir.path / "a.fa", random_dna(400, random));
+  write_fasta(dir.path / "b.fa", random_dna(400, random));
+  const std::string args = "align --a " + (dir.path / "a.fa").string() + " --b " + (dir.path / "b.fa").string() +
+                           " --json " + (dir.path / "out.json").string();
+  // Threshold 0: the engine lists 100 chance alignments of two unrelated sequences.
+  auto r = run_cli(args + " --threshold 0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(read_file(dir.path / "out.json")).at("alignments").size(), 100U);
+  // The default: above the best score against shuffled sequences; unrelated sequences give (almost) nothing.
+  r = run_cli(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_LE(nlohmann::json::parse(read_file(dir.path / "out.json")).at("alignments").size(), 2U);
+  EXPECT_NE(r.err.find("auto: above chance"), std::string::npos) << r.err;
+}
+
+TEST(CliDetails, MatchStringsHeaderFirstAndGeometricRatesSayWhatTheyAreOver) {
+  TempDir dir;
+  // Two map points in two places; three test points, the third in place 1 but looking like place 0.
+  std::ofstream(dir.path / "db.tsv") << "m0\tvAvBvCvD\t0\t0\t0\nm1\tvEvFvGvH\t10\t0\t1\n";
+  std::ofstream(dir.path / "q.tsv") << "t0\tvAvBvCvD\t0.5\t0\t0\nt1\tvEvFvGvH\t10.5\t0\t1\nt2\tvAvBvCvD\t10\t1\t1\n";
+  const auto out = dir.path / "out";
+  const auto r = run_cli("match-strings --db " + (dir.path / "db.tsv").string() + " --queries " +
+                         (dir.path / "q.tsv").string() + " --algorithm B --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string tsv = read_file(out / "matches.tsv");
+  EXPECT_EQ(tsv.rfind("query_id\trank\tdb_id\tscore\n", 0), 0U) << tsv;
+  const std::string table = read_file(out / "metrics.txt");
+  EXPECT_NE(table.find("Top.  wrong     33.3 %   (of 3 test points)"), std::string::npos) << table;
+  EXPECT_NE(table.find("(of 2 of the 3 test points: the topologically correct ones)"), std::string::npos) << table;
+}
+
+TEST(CliDetails, OnlineLatencyIsProcessingAndTheWaitIsApart) {
+  TempDir dir;
+  const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  fs::create_directories(dir.path / "map");
+  for (int k = 1; k <= 40; ++k) {
+    fs::create_symlink(corridor / (std::to_string(k) + ".jpg"), dir.path / "map" / (std::to_string(k) + ".jpg"));
+  }
+  // Three query frames, fed 1 s apart once the map is described: a frame's latency is its processing
+  // (milliseconds), not the wait for it.
+  const std::string feed = "(sleep 2; for k in 41 42 43; do echo " + corridor.string() + "/$k.jpg; sleep 1; done)";
+  const auto r = run_command(feed + " | " + std::string(SEQTOPO_CLI) + " localize --map " +
+                             (dir.path / "map").string() + " --query - --online --out " + (dir.path / "out").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "query,map,confidence,latency_ms,wait_ms");
+  std::vector<double> latency, wait;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> fields;
+    std::stringstream row(line);
+    for (std::string f; std::getline(row, f, ',');) fields.push_back(f);
+    ASSERT_EQ(fields.size(), 5U) << line;
+    latency.push_back(std::stod(fields[3]));
+    wait.push_back(std::stod(fields[4]));
+  }
+  ASSERT_EQ(latency.size(), 3U) << r.out;
+  for (std::size_t q = 0; q < 3; ++q) EXPECT_LT(latency[q], 400.0) << "frame " << q << " counts the wait";
+  for (std::size_t q = 1; q < 3; ++q) EXPECT_GT(wait[q], 500.0) << "frame " << q;
+  const std::string csv = read_file(dir.path / "out" / "latency.csv");
+  EXPECT_EQ(csv.rfind("query,latency_ms,wait_ms\n", 0), 0U) << csv;
+}
+
+}  // namespace
