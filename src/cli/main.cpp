@@ -1,8 +1,10 @@
 // seqtopo command line: dispatches to the registered subcommands and turns every failure into one line
 // `seqtopo: error: <file or option>: <what is wrong>` and a non-zero exit.
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <thread>
 
 #include "command_registry.hpp"
@@ -23,60 +25,125 @@ unsigned resolve_threads(unsigned requested) {
 
 namespace {
 
-// `--config FILE` becomes the options it lists, placed before the command line's own options so that
-// those win (every option takes its last value). FILE holds `name: value` lines; `#` starts a comment;
-// `name: true` is a flag.
-std::vector<std::string> expand_config(const std::vector<std::string>& args) {
-  std::vector<std::string> out;
-  std::vector<std::string> from_file;
-  std::size_t insert_at = std::string::npos;
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    std::string path;
-    if (args[k] == "--config" && k + 1 < args.size()) {
-      path = args[++k];
-    } else if (args[k].rfind("--config=", 0) == 0) {
-      path = args[k].substr(9);
-    } else {
-      out.push_back(args[k]);
+std::string trim(std::string t) {
+  t.erase(0, t.find_first_not_of(" \t\r"));
+  t.erase(t.find_last_not_of(" \t\r") + 1);
+  return t;
+}
+
+// The subcommand the command line runs ("map", or "scale" of "bench scale"), and where its own arguments
+// start in `args` (after the program name and the subcommand names).
+std::pair<CLI::App*, std::size_t> target_command(CLI::App& app, const std::vector<std::string>& args) {
+  CLI::App* command = &app;
+  std::size_t k = 1;
+  while (k < args.size()) {
+    const auto subs = command->get_subcommands([&](CLI::App* sub) { return sub->check_name(args[k]); });
+    if (subs.empty()) break;
+    CLI::App* sub = subs.front();
+    command = sub;
+    ++k;
+  }
+  return {command, k};
+}
+
+std::string command_path(const CLI::App* command) {
+  std::string path;
+  for (const CLI::App* c = command; c != nullptr && c->get_parent() != nullptr; c = c->get_parent()) {
+    path = " " + c->get_name() + path;
+  }
+  return "seqtopo" + path;
+}
+
+// The options one config file lists, checked against `command`'s options: every name must be one of its
+// long options (without the dashes), a flag takes true or false, a number is checked as on the command line.
+// Errors name the file and line (the file as a whole when it is a folder, unreadable, or JSON).
+std::vector<std::string> read_config(const std::string& path, CLI::App& command) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw seqtopo::InputError(path, "is a folder, not a config file");
+  std::ifstream in(path);
+  if (!in) throw seqtopo::InputError(path, "cannot open config file");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  if (in.bad()) throw seqtopo::InputError(path, "cannot read config file");
+  for (const auto& line : lines) {
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    if (t[0] == '{' || t[0] == '[') {
+      throw seqtopo::InputError(path,
+                                "looks like JSON; a config file holds `name: value` lines (a flat YAML subset, "
+                                "e.g. `gap: 1.5`)");
+    }
+    break;
+  }
+  const std::string help = " (see " + command_path(&command) + " --help)";
+  std::vector<std::string> options;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const std::string where = path + ":" + std::to_string(k + 1);
+    std::string line = lines[k];
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    line = trim(line);
+    if (line.empty() || line == "---") continue;
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) throw seqtopo::InputError(where, "expected `name: value`, got '" + line + "'");
+    const std::string name = trim(line.substr(0, colon));
+    std::string value = trim(line.substr(colon + 1));
+    if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front()) {
+      value = value.substr(1, value.size() - 2);
+    }
+    if (name == "config") throw seqtopo::InputError(where, "a config file cannot name another config file");
+    CLI::Option* option = name.empty() || name[0] == '-' ? nullptr : command.get_option_no_throw("--" + name);
+    if (option == nullptr) {
+      throw seqtopo::InputError(where, "unknown option '" + name + "' for " + command_path(&command) +
+                                           " (names are long options without the dashes)" + help);
+    }
+    if (option->get_items_expected_max() == 0) {  // a flag
+      if (value == "true") {
+        options.push_back("--" + name);
+      } else if (value != "false") {
+        throw seqtopo::InputError(where, name + ": a flag takes true or false, got '" + value + "'");
+      }
       continue;
     }
-    if (insert_at == std::string::npos) insert_at = out.size();
-    std::ifstream in(path);
-    if (!in) throw seqtopo::InputError(path, "cannot open config file");
-    std::string line;
-    std::size_t line_no = 0;
-    while (std::getline(in, line)) {
-      ++line_no;
-      if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-      const auto trim = [](std::string t) {
-        t.erase(0, t.find_first_not_of(" \t\r"));
-        t.erase(t.find_last_not_of(" \t\r") + 1);
-        return t;
-      };
-      line = trim(line);
-      if (line.empty() || line == "---") continue;
-      const auto colon = line.find(':');
-      if (colon == std::string::npos) {
-        throw seqtopo::InputError(path + ":" + std::to_string(line_no), "expected `name: value`, got '" + line + "'");
-      }
-      const std::string name = trim(line.substr(0, colon));
-      std::string value = trim(line.substr(colon + 1));
-      if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front()) {
-        value = value.substr(1, value.size() - 2);
-      }
-      if (value == "true") {
-        from_file.push_back("--" + name);
-      } else if (value != "false") {
-        from_file.push_back("--" + name);
-        from_file.push_back(value);
+    if (value.empty()) throw seqtopo::InputError(where, name + ": no value");
+    if (const CLI::Validator* number = find_number_check(*option)) {
+      // a list option ("sizes: 1000,3000") checks each element, as CLI11 does on the command line
+      const char delimiter = option->get_delimiter();
+      std::stringstream items(value);
+      for (std::string item; std::getline(items, item, delimiter != '\0' ? delimiter : '\n');) {
+        if (const std::string error = (*number)(item); !error.empty()) {
+          throw seqtopo::InputError(where, "--" + name + ": " + error);
+        }
       }
     }
+    options.push_back("--" + name);
+    options.push_back(value);
   }
-  if (insert_at != std::string::npos) {
-    // after the program name and the subcommand: the options of the file go first
-    const std::size_t at = std::min(out.size(), std::max<std::size_t>(insert_at, 2));
-    out.insert(out.begin() + static_cast<std::ptrdiff_t>(at), from_file.begin(), from_file.end());
+  return options;
+}
+
+// `--config FILE` becomes the options it lists, placed right after the subcommand so that the command
+// line's own options win (every option takes its last value). FILE holds `name: value` lines; `#` starts
+// a comment; `name: true` is a flag.
+std::vector<std::string> expand_config(CLI::App& app, const std::vector<std::string>& args) {
+  std::vector<std::string> out;
+  std::vector<std::string> paths;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    if (k > 0 && args[k] == "--config" && k + 1 < args.size()) {
+      paths.push_back(args[++k]);
+    } else if (k > 0 && args[k].rfind("--config=", 0) == 0) {
+      paths.push_back(args[k].substr(9));
+    } else {
+      out.push_back(args[k]);
+    }
   }
+  if (paths.empty()) return out;
+  const auto [command, at] = target_command(app, out);
+  std::vector<std::string> from_files;
+  for (const auto& path : paths) {
+    const auto options = read_config(path, *command);
+    from_files.insert(from_files.end(), options.begin(), options.end());
+  }
+  out.insert(out.begin() + static_cast<std::ptrdiff_t>(at), from_files.begin(), from_files.end());
   return out;
 }
 
@@ -96,7 +163,7 @@ int main(int argc, char** argv) {
 
   try {
     std::vector<std::string> args(argv, argv + argc);
-    args = seqtopo::cli::expand_config(args);
+    args = seqtopo::cli::expand_config(app, args);
     // CLI11 parses a reversed vector of the arguments after the program name.
     std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);
     app.parse(reversed);
