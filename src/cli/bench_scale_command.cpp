@@ -396,7 +396,7 @@ void write_route(const Options& opt) {
   for (std::size_t i = 0; i < n; ++i) {
     poses += fmt::format("{},{},0\n", i, route.truth[i] >= 0 ? route.truth[i] : static_cast<long>(i));
   }
-  io::OutputDirectory out(opt.write_route);
+  io::OutputDirectory out(opt.write_route, {.inputs = {}, .command = "seqtopo bench scale --write-route"});
   out.write("descriptors.npy", io::encode_npy(descriptors));
   out.write("poses.csv", poses);
   out.commit();

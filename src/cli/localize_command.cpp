@@ -116,6 +116,8 @@ void run(const LocalizeOptions& o) {
   // Ground truth is read before the work, so a bad file fails fast.
   std::optional<pipeline::LocalizationTruthSource> truth_source;
   if (!o.gt.empty()) truth_source = pipeline::read_localization_truth(o.gt);
+  // Checked (and staged beside) before the work: an output folder that cannot be replaced costs no time.
+  io::OutputDirectory out(o.out_dir, {.inputs = {o.map_path, o.query_path, o.gt}, .command = "seqtopo localize"});
 
   if (o.online) std::cout << "query,map,confidence,latency_ms\n";
   const auto on_frame = [](std::size_t q, const pipeline::FrameAnswer& a, double seconds) {
@@ -133,7 +135,6 @@ void run(const LocalizeOptions& o) {
   // The ground truth must fit the sizes before anything is written.
   std::optional<evaluation::LocalizationTruth> truth;
   if (truth_source) truth = pipeline::localization_truth(*truth_source, r.queries, r.maps);
-  io::OutputDirectory out(o.out_dir);
   if (truth) pipeline::evaluate_localization_run(r, *truth, o.tolerance, resolve_threads(o.threads));
   const std::size_t not_in_map = outputs::write_localize_outputs(r, out);
   outputs::write_localize_report(r, out);

@@ -1,6 +1,12 @@
 // seqtopo command line: dispatches to the registered subcommands and turns every failure into one line
 // `seqtopo: error: <file or option>: <what is wrong>` and a non-zero exit.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -10,6 +16,7 @@
 #include "command_registry.hpp"
 #include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/io/atomic_output.hpp"
 
 namespace seqtopo::cli {
 
@@ -147,11 +154,65 @@ std::vector<std::string> expand_config(CLI::App& app, const std::vector<std::str
   return out;
 }
 
+// SIGINT, SIGTERM and SIGHUP stop a run cleanly: the handler only writes the signal's number to a pipe; a thread
+// waiting on the pipe removes this process's staging folders and temporary files (after a folder swap in
+// progress has finished) and ends the process with 128 + the signal (130, 143, 129). A signal that was ignored
+// when seqtopo started (nohup, a background job of a script) stays ignored.
+std::atomic<bool> stopping{false};
+int signal_pipe[2] = {-1, -1};
+
+extern "C" void on_stop_signal(int signal) {
+  const int saved = errno;
+  const auto byte = static_cast<unsigned char>(signal);
+  [[maybe_unused]] const auto n = ::write(signal_pipe[1], &byte, 1);
+  errno = saved;
+}
+
+void watch_stop_signals() {
+  unsigned char byte = 0;
+  while (::read(signal_pipe[0], &byte, 1) != 1) {
+    if (errno != EINTR) return;
+  }
+  stopping = true;
+  // A second signal while cleaning up ends the process at once (the next run removes what is left).
+  for (const int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, SIG_DFL);
+  seqtopo::io::remove_staged_outputs_and_exit(128 + byte);
+}
+
+void install_stop_signals() {
+  if (::pipe2(signal_pipe, O_CLOEXEC) != 0) return;  // no clean stop, the default ones
+  bool any = false;
+  for (const int s : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction old {};
+    if (::sigaction(s, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) continue;
+    struct sigaction act {};
+    act.sa_handler = on_stop_signal;
+    sigemptyset(&act.sa_mask);
+    act.sa_flags = SA_RESTART;
+    any = ::sigaction(s, &act, nullptr) == 0 || any;
+  }
+  if (any) std::thread(watch_stop_signals).detach();
+}
+
+// The exit status, unless a stop signal is being handled: then the watching thread ends the process (with
+// 128 + signal) and this one waits for it, printing nothing.
+int finish(int status) {
+  while (stopping) ::pause();
+  return status;
+}
+
 }  // namespace
 
 }  // namespace seqtopo::cli
 
 int main(int argc, char** argv) {
+  seqtopo::cli::install_stop_signals();
+  // One line on stderr and the exit status (1: bad input or a failure, 2: a bad command line).
+  const auto fail = [](const std::string& message, int status) {
+    status = seqtopo::cli::finish(status);
+    std::cerr << "seqtopo: error: " << message << "\n";
+    return status;
+  };
   CLI::App app{"seqtopo: topological mapping and localization of a mobile robot with sequence alignment"};
   app.require_subcommand(1);
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
@@ -181,17 +242,13 @@ int main(int argc, char** argv) {
       sub = parsed.empty() ? nullptr : parsed.front();
       if (sub) help += " " + sub->get_name();
     }
-    std::cerr << "seqtopo: error: " << e.what() << " (see " << help << " --help)\n";
-    return 2;
+    return fail(std::string(e.what()) + " (see " + help + " --help)", 2);
   } catch (const seqtopo::InputError& e) {
-    std::cerr << "seqtopo: error: " << e.subject() << ": " << e.what() << "\n";
-    return 1;
+    return fail(e.subject() + ": " + e.what(), 1);
   } catch (const std::bad_alloc&) {
-    std::cerr << "seqtopo: error: out of memory\n";
-    return 1;
+    return fail("out of memory (the memory estimate did not foresee this run's need)", 1);
   } catch (const std::exception& e) {
-    std::cerr << "seqtopo: error: " << e.what() << "\n";
-    return 1;
+    return fail(e.what(), 1);
   }
-  return 0;
+  return seqtopo::cli::finish(0);
 }

@@ -185,7 +185,8 @@ void run(MapOptions o) {
   request.streaming = o.streaming;
   const pipeline::MapJob job(request);
   if (o.streaming) check_streaming(o, request.settings, job.input_kind());
-  io::OutputDirectory out(o.out);
+  io::OutputDirectory out(
+      o.out, {.inputs = {o.input, o.odometry, o.ground_truth, o.gt_places, o.gt_poses}, .command = "seqtopo map"});
   if (bundled_default) progress("no input given: mapping the bundled corridor data " + o.input);
   if (bundled_default && o.streaming) progress("its ground truth is an N x N image, which --streaming does not read");
   pipeline::MapRun run = job.run({.progress = [](std::string_view text) { progress(std::string(text)); }});

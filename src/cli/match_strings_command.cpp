@@ -108,6 +108,8 @@ void run(const MatchStringsOptions& o) {
   config.cyclic = o.cyclic;
   if (o.window == 0) throw InputError("--window", "must be >= 1");
 
+  io::OutputDirectory out(
+      o.out_dir, {.inputs = {o.db_path, o.queries_path, o.adjacency_path}, .command = "seqtopo match-strings"});
   const auto db = read_strings(o.db_path);
   const auto queries = read_strings(o.queries_path);
   std::vector<std::string> db_strings, query_strings;
@@ -117,7 +119,6 @@ void run(const MatchStringsOptions& o) {
 
   const auto matches = strings::match_all_windowed(db_strings, query_strings, config, o.window);
 
-  io::OutputDirectory out(o.out_dir);
   // With --cyclic a fifth column gives the rotation (in symbols) of the database string that matched best.
   std::string tsv =
       fmt::format("# seqtopo match-strings --algorithm {}{}{}\nquery_id\trank\tdb_id\tscore{}\n", o.algorithm,

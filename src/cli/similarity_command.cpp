@@ -45,6 +45,7 @@ void run(const SimilarityOptions& o) {
     };
   }
 
+  io::OutputDirectory out(o.out_dir, {.inputs = {o.input, o.against}, .command = "seqtopo similarity"});
   const pipeline::SequenceInput a{o.input, kind, o.every};
   pipeline::SimilarityResult result;
   try {
@@ -55,7 +56,6 @@ void run(const SimilarityOptions& o) {
     throw InputError(o.input, e.what());
   }
 
-  io::OutputDirectory out(o.out_dir);
   out.write("similarity.npy", io::encode_npy(result.similarity));
   out.write("similarity.png", plot::encode_png(plot::matrix_image(result.similarity)));
   out.commit();

@@ -111,12 +111,12 @@ void run(const SimulateOptions& o) {
   const int threads = static_cast<int>(resolve_threads(o.threads));
   config.threads = threads;
 
+  io::OutputDirectory out(o.out, {.inputs = {}, .command = "seqtopo simulate"});
   const auto started = std::chrono::steady_clock::now();
   const simulator::ScenarioSetup setup = simulator::build_scenario(o.scenario, config);
   const simulator::SimulatedRun result = simulator::simulate(setup, config);
   const double render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
-  io::OutputDirectory out(o.out);
   std::string summary;
   if (result.kind == simulator::ScenarioKind::survey) {
     std::vector<std::string> names;
