@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "command_registry.hpp"
+#include "config_file.hpp"
 #include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
@@ -31,12 +32,6 @@ unsigned resolve_threads(unsigned requested) {
 }
 
 namespace {
-
-std::string trim(std::string t) {
-  t.erase(0, t.find_first_not_of(" \t\r"));
-  t.erase(t.find_last_not_of(" \t\r") + 1);
-  return t;
-}
 
 // The subcommand the command line runs ("map", or "scale" of "bench scale"), and where its own arguments
 // start in `args` (after the program name and the subcommand names).
@@ -67,36 +62,16 @@ std::string command_path(const CLI::App* command) {
 std::vector<std::string> read_config(const std::string& path, CLI::App& command) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw seqtopo::InputError(path, "is a folder, not a config file");
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw seqtopo::InputError(path, "cannot open config file");
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
   if (in.bad()) throw seqtopo::InputError(path, "cannot read config file");
-  for (const auto& line : lines) {
-    const std::string t = trim(line);
-    if (t.empty() || t[0] == '#') continue;
-    if (t[0] == '{' || t[0] == '[') {
-      throw seqtopo::InputError(path,
-                                "looks like JSON; a config file holds `name: value` lines (a flat YAML subset, "
-                                "e.g. `gap: 1.5`)");
-    }
-    break;
-  }
   const std::string help = " (see " + command_path(&command) + " --help)";
   std::vector<std::string> options;
-  for (std::size_t k = 0; k < lines.size(); ++k) {
-    const std::string where = path + ":" + std::to_string(k + 1);
-    std::string line = lines[k];
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    line = trim(line);
-    if (line.empty() || line == "---") continue;
-    const auto colon = line.find(':');
-    if (colon == std::string::npos) throw seqtopo::InputError(where, "expected `name: value`, got '" + line + "'");
-    const std::string name = trim(line.substr(0, colon));
-    std::string value = trim(line.substr(colon + 1));
-    if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front()) {
-      value = value.substr(1, value.size() - 2);
-    }
+  for (const auto& entry : parse_config(text, path)) {
+    const std::string where = path + ":" + std::to_string(entry.line);
+    const std::string& name = entry.name;
+    const std::string& value = entry.value;
     if (name == "config") throw seqtopo::InputError(where, "a config file cannot name another config file");
     CLI::Option* option = name.empty() || name[0] == '-' ? nullptr : command.get_option_no_throw("--" + name);
     if (option == nullptr) {
