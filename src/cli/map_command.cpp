@@ -16,6 +16,8 @@
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
+#include "seqtopo/pipeline/memory_estimate.hpp"
+#include "seqtopo/similarity/memory.hpp"
 
 namespace seqtopo::cli {
 namespace {
@@ -191,6 +193,8 @@ void run(MapOptions o) {
   if (bundled_default && o.streaming) progress("its ground truth is an N x N image, which --streaming does not read");
   pipeline::MapRun run = job.run({.progress = [](std::string_view text) { progress(std::string(text)); }});
 
+  // The pairs are known now: outputs that would not fit are refused before any is written.
+  pipeline::check_outputs_memory(run, similarity::available_memory_bytes(), o.out);
   const auto t = std::chrono::steady_clock::now();
   outputs::write_map_outputs(run, out);
   run.timings.emplace_back("figures and report", seconds_since(t));

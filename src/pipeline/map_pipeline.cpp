@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
@@ -11,7 +12,9 @@
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/pipeline/baselines.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
+#include "seqtopo/pipeline/memory_estimate.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
+#include "seqtopo/similarity/memory.hpp"
 #include "seqtopo/trajectory/ekf_map.hpp"
 #include "seqtopo/trajectory/pose_graph.hpp"
 #include "seqtopo/trajectory/trajectory_error.hpp"
@@ -203,10 +206,17 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     odometry_ = formats::read_odometry_csv(request_.odometry);
     if (expected) check_odometry(odometry_, *expected, request_.odometry.string());
   }
+  // Every buffer of the run counted (memory_estimate.hpp); one that cannot fit is refused here, before any work.
+  // (A video's frames are counted only while it is read: the similarity step estimates its matrix then.)
+  if (expected) {
+    memory_note_ = check_map_memory(request_, kind_, *expected, similarity::available_memory_bytes());
+    request_.settings.similarity.note_memory_above = std::numeric_limits<std::size_t>::max();  // ours is printed
+  }
 }
 
 MapRun MapJob::run(const MapObserver& observer) const {
   MapRun run = new_run(request_.settings, request_.input.path.string(), request_.preset);
+  if (!memory_note_.empty()) say(observer, "      " + memory_note_);
   run.streaming = request_.streaming;
   run.odometry = odometry_;
   if (request_.streaming) {
