@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "common/run_command.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
@@ -230,6 +231,62 @@ TEST_F(OutputDirectoryTest, StoppingRemovesTheStagingFolderAndExits) {
   EXPECT_EQ(WEXITSTATUS(raw), 130);
   EXPECT_EQ(snapshot(out_), before);
   EXPECT_EQ(entries(dir_.path), 1U);
+}
+
+// manifest.json lists every file of the set but itself, with the size and the SHA-256 that sha256sum (another
+// implementation) computes of the committed file; verify_manifest names each kind of difference, and only those.
+TEST_F(OutputDirectoryTest, ManifestMatchesTheFilesAndVerifyNamesEveryDifference) {
+  {
+    OutputDirectory out(out_, {.inputs = {}, .command = "seqtopo test"});
+    out.write("a.txt", "aaaa");
+    out.write("b.txt", "bbbb");
+    out.write("c.txt", "cccc");
+    out.write("sub/d.bin", std::string("\0d\xff", 3));
+    std::ofstream(out.staged("e.svg"), std::ios::binary) << "written by another writer";
+    out.commit();
+  }
+  const Manifest m = read_manifest(out_);
+  std::string names;
+  for (const auto& f : m.files) {
+    names += f.name + " ";
+    EXPECT_EQ(f.bytes, fs::file_size(out_ / f.name)) << f.name;
+  }
+  EXPECT_EQ(names, "a.txt b.txt c.txt e.svg sub/d.bin ");
+  const auto sums =
+      test_support::run_command("cd '" + out_.string() + "' && sha256sum a.txt b.txt c.txt e.svg sub/d.bin");
+  ASSERT_EQ(sums.status, 0) << sums.err;
+  std::string expected;
+  for (const auto& f : m.files) expected += f.sha256 + "  " + f.name + "\n";
+  EXPECT_EQ(sums.out, expected);
+  EXPECT_EQ(verify_manifest(out_), "");
+
+  fs::remove(out_ / "a.txt");
+  write_to(out_ / "b.txt", "bbbbb");  // another size
+  write_to(out_ / "c.txt", "cCcc");   // the same size, other bytes
+  write_to(out_ / "f.txt", "f");      // not listed
+  const std::string problems = verify_manifest(out_);
+  EXPECT_EQ(problems, "a.txt missing; b.txt has another size; c.txt has another SHA-256; f.txt not listed");
+  EXPECT_EQ(problems.find("sub/d.bin"), std::string::npos);
+  EXPECT_EQ(problems.find("e.svg"), std::string::npos);
+
+  // no manifest: the error names the manifest file
+  fs::remove(out_ / kManifestName);
+  try {
+    (void)read_manifest(out_);
+    ADD_FAILURE() << "read without a manifest";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.subject(), (out_ / kManifestName).string());
+  }
+}
+
+// A commit with no file at all still writes a manifest (with no file), and the next run replaces that set.
+TEST_F(OutputDirectoryTest, AnEmptySetHasAnEmptyManifest) {
+  commit_set({});
+  EXPECT_TRUE(read_manifest(out_).files.empty());
+  EXPECT_EQ(snapshot(out_).size(), 1U);
+  commit_set({{"a.txt", "a"}});
+  ASSERT_EQ(read_manifest(out_).files.size(), 1U);
+  EXPECT_EQ(verify_manifest(out_), "");
 }
 
 TEST(Manifest, RoundTripAndRejections) {

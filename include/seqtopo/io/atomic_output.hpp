@@ -65,8 +65,11 @@ class OutputDirectory {
   OutputDirectory(const OutputDirectory&) = delete;
   OutputDirectory& operator=(const OutputDirectory&) = delete;
 
-  // Where to write `name` before commit (writers may create it, a file or a folder, directly there).
+  // Where to write `name` before commit (writers may create it, a file or a folder, directly there), or read back
+  // what was written.
   std::filesystem::path staged(const std::string& name);
+  // Writes `name` and keeps its SHA-256 for the manifest: a file written here is not rewritten through staged()
+  // (commit() hashes again only files whose size differs from what write() wrote, and those writers made).
   void write(const std::string& name, std::string_view bytes);
   // Writes the manifest and puts the staged set in place of the folder's old one; returns the final paths of
   // the staged names (not the manifest's).
