@@ -54,6 +54,7 @@ void Sha256::block(const unsigned char* p) {
 }
 
 void Sha256::update(std::string_view bytes) {
+  if (bytes.empty()) return;  // an empty view may have no data pointer, which memcpy must not see
   const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
   std::size_t n = bytes.size();
   length_ += n;
