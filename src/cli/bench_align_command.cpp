@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/align/letter_problem.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
@@ -134,9 +135,9 @@ void run(const BenchAlignOptions& o) {
 const RegisterBenchCommand registered{
     {"align", "Speed of the fast alignment engine against the scalar engine on random sequences", [](CLI::App& app) {
        auto o = std::make_shared<BenchAlignOptions>();
-       app.add_option("--size", o->size, "Length of each sequence")->capture_default_str();
-       app.add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
-       app.add_option("--seed", o->seed, "Seed of the random sequences and matrix")->capture_default_str();
+       add_number(app, "--size", o->size, {.min = 1, .max = 1e6}, "Length of each sequence");
+       add_number(app, "--threads", o->threads, kThreads, "Worker threads (0 = all cores)");
+       add_number(app, "--seed", o->seed, kNonNegative, "Seed of the random sequences and matrix");
        app.add_flag("--json", o->json, "Print one JSON object instead of a table");
        app.callback([o] { run(*o); });
      }}};

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
@@ -395,7 +396,7 @@ void write_route(const Options& opt) {
   for (std::size_t i = 0; i < n; ++i) {
     poses += fmt::format("{},{},0\n", i, route.truth[i] >= 0 ? route.truth[i] : static_cast<long>(i));
   }
-  io::OutputDirectory out(opt.write_route);
+  io::OutputDirectory out(opt.write_route, {.inputs = {}, .command = "seqtopo bench scale --write-route"});
   out.write("descriptors.npy", io::encode_npy(descriptors));
   out.write("poses.csv", poses);
   out.commit();
@@ -407,10 +408,11 @@ void setup(CLI::App& app) {
   app.add_option("--sizes", opt->sizes, "N for the dense streamed similarity (every pair); 0 = none")->delimiter(',');
   app.add_option("--sparse-sizes", opt->sparse_sizes, "N for the sparse mode (nearest-neighbour candidates); 0 = none")
       ->delimiter(',');
-  app.add_option("--dim", opt->dim, "descriptor dimension")->check(CLI::PositiveNumber);
-  app.add_option("--neighbours", opt->neighbours, "sparse mode: candidates per frame")->check(CLI::PositiveNumber);
-  app.add_option("--background", opt->background, "sparse mode: score of every non-candidate pair (< 0)");
-  app.add_option("--threads", opt->threads, "worker threads (0 = all cores)");
+  add_number(app, "--dim", opt->dim, {.min = 1, .max = 1 << 20}, "descriptor dimension");
+  add_number(app, "--neighbours", opt->neighbours, {.min = 1, .max = 1 << 20}, "sparse mode: candidates per frame");
+  add_number(app, "--background", opt->background, {.max = 0, .max_exclusive = true},
+             "sparse mode: score of every non-candidate pair (< 0)");
+  add_number(app, "--threads", opt->threads, kThreads, "worker threads (0 = all cores)");
   app.add_flag("--json", opt->json, "print JSON instead of a table");
   app.add_option("--out", opt->out, "also write the JSON to this file");
   app.add_flag("!--no-similarity-pass", opt->similarity_pass,

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/core/parse_number.hpp"
 #include "seqtopo/fingerprint/fingerprint.hpp"
@@ -108,17 +109,14 @@ const RegisterCommand registered{
            ->check(CLI::ExistingFile);
        app.add_option("--role", o->role, "keep only the images of this role in --positions (map or test)");
        auto& c = o->config;
-       app.add_option("--edge-step", c.edge_step, "vertical edge: brightness step [grey levels]")
-           ->capture_default_str();
-       app.add_option("--edge-fraction", c.edge_min_fraction, "vertical edge: fraction of band rows with the step")
-           ->capture_default_str();
-       app.add_option("--min-patch-width", c.min_patch_width, "colour patch: minimum width [columns]")
-           ->capture_default_str();
-       app.add_option("--saturation-min", c.saturation_min, "colour classes: below this saturation a pixel is grey")
-           ->capture_default_str();
-       app.add_option("--brightness-percentile", c.brightness_percentile,
-                      "colour classes: scale brightness so this percentile of the band reaches a fixed level (0 = off)")
-           ->capture_default_str();
+       add_number(app, "--edge-step", c.edge_step, kPositive, "vertical edge: brightness step [grey levels]");
+       add_number(app, "--edge-fraction", c.edge_min_fraction, {.min = 0, .max = 1, .min_exclusive = true},
+                  "vertical edge: fraction of band rows with the step");
+       add_number(app, "--min-patch-width", c.min_patch_width, kAtLeastOne, "colour patch: minimum width [columns]");
+       add_number(app, "--saturation-min", c.saturation_min, {.min = 0, .max = 1},
+                  "colour classes: below this saturation a pixel is grey");
+       add_number(app, "--brightness-percentile", c.brightness_percentile, {.min = 0, .max = 1},
+                  "colour classes: scale brightness so this percentile of the band reaches a fixed level (0 = off)");
        app.callback([o] { run(*o); });
      }}};
 

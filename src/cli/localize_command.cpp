@@ -135,6 +135,8 @@ void run(LocalizeOptions o) {
   // Ground truth is read before the work, so a bad file fails fast.
   std::optional<pipeline::LocalizationTruthSource> truth_source;
   if (!o.gt.empty()) truth_source = pipeline::read_localization_truth(o.gt);
+  // Checked (and staged beside) before the work: an output folder that cannot be replaced costs no time.
+  io::OutputDirectory out(o.out_dir, {.inputs = {o.map_path, o.query_path, o.gt}, .command = "seqtopo localize"});
 
   Progress progress("seqtopo localize");
   progress.plan({"localization", "accuracy and baselines", "files and figures", "report"});
@@ -164,7 +166,6 @@ void run(LocalizeOptions o) {
   progress.begin("accuracy and baselines");
   std::optional<evaluation::LocalizationTruth> truth;
   if (truth_source) truth = pipeline::localization_truth(*truth_source, r.queries, r.maps);
-  io::OutputDirectory out(o.out_dir);
   if (truth) pipeline::evaluate_localization_run(r, *truth, o.tolerance, resolve_threads(o.threads));
   const double accuracy_seconds = progress.end();
   // The report's timings: the command's setup, the localization's own parts and the rest of its stage.

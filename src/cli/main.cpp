@@ -1,13 +1,23 @@
 // seqtopo command line: dispatches to the registered subcommands and turns every failure into one line
 // `seqtopo: error: <file or option>: <what is wrong>` and a non-zero exit.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <thread>
 
 #include "command_registry.hpp"
+#include "config_file.hpp"
 #include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/io/atomic_output.hpp"
 
 namespace seqtopo::cli {
 
@@ -23,61 +33,147 @@ unsigned resolve_threads(unsigned requested) {
 
 namespace {
 
-// `--config FILE` becomes the options it lists, placed before the command line's own options so that
-// those win (every option takes its last value). FILE holds `name: value` lines; `#` starts a comment;
-// `name: true` is a flag.
-std::vector<std::string> expand_config(const std::vector<std::string>& args) {
-  std::vector<std::string> out;
-  std::vector<std::string> from_file;
-  std::size_t insert_at = std::string::npos;
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    std::string path;
-    if (args[k] == "--config" && k + 1 < args.size()) {
-      path = args[++k];
-    } else if (args[k].rfind("--config=", 0) == 0) {
-      path = args[k].substr(9);
-    } else {
-      out.push_back(args[k]);
+// The subcommand the command line runs ("map", or "scale" of "bench scale"), and where its own arguments
+// start in `args` (after the program name and the subcommand names).
+std::pair<CLI::App*, std::size_t> target_command(CLI::App& app, const std::vector<std::string>& args) {
+  CLI::App* command = &app;
+  std::size_t k = 1;
+  while (k < args.size()) {
+    const auto subs = command->get_subcommands([&](CLI::App* sub) { return sub->check_name(args[k]); });
+    if (subs.empty()) break;
+    CLI::App* sub = subs.front();
+    command = sub;
+    ++k;
+  }
+  return {command, k};
+}
+
+std::string command_path(const CLI::App* command) {
+  std::string path;
+  for (const CLI::App* c = command; c != nullptr && c->get_parent() != nullptr; c = c->get_parent()) {
+    path = " " + c->get_name() + path;
+  }
+  return "seqtopo" + path;
+}
+
+// The options one config file lists, checked against `command`'s options: every name must be one of its
+// long options (without the dashes), a flag takes true or false, a number is checked as on the command line.
+// Errors name the file and line (the file as a whole when it is a folder, unreadable, or JSON).
+std::vector<std::string> read_config(const std::string& path, CLI::App& command) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw seqtopo::InputError(path, "is a folder, not a config file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw seqtopo::InputError(path, "cannot open config file");
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  if (in.bad()) throw seqtopo::InputError(path, "cannot read config file");
+  const std::string help = " (see " + command_path(&command) + " --help)";
+  std::vector<std::string> options;
+  for (const auto& entry : parse_config(text, path)) {
+    const std::string where = path + ":" + std::to_string(entry.line);
+    const std::string& name = entry.name;
+    const std::string& value = entry.value;
+    if (name == "config") throw seqtopo::InputError(where, "a config file cannot name another config file");
+    CLI::Option* option = name.empty() || name[0] == '-' ? nullptr : command.get_option_no_throw("--" + name);
+    if (option == nullptr) {
+      throw seqtopo::InputError(where, "unknown option '" + name + "' for " + command_path(&command) +
+                                           " (names are long options without the dashes)" + help);
+    }
+    if (option->get_items_expected_max() == 0) {  // a flag
+      if (value == "true") {
+        options.push_back("--" + name);
+      } else if (value != "false") {
+        throw seqtopo::InputError(where, name + ": a flag takes true or false, got '" + value + "'");
+      }
       continue;
     }
-    if (insert_at == std::string::npos) insert_at = out.size();
-    std::ifstream in(path);
-    if (!in) throw seqtopo::InputError(path, "cannot open config file");
-    std::string line;
-    std::size_t line_no = 0;
-    while (std::getline(in, line)) {
-      ++line_no;
-      if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-      const auto trim = [](std::string t) {
-        t.erase(0, t.find_first_not_of(" \t\r"));
-        t.erase(t.find_last_not_of(" \t\r") + 1);
-        return t;
-      };
-      line = trim(line);
-      if (line.empty() || line == "---") continue;
-      const auto colon = line.find(':');
-      if (colon == std::string::npos) {
-        throw seqtopo::InputError(path + ":" + std::to_string(line_no), "expected `name: value`, got '" + line + "'");
-      }
-      const std::string name = trim(line.substr(0, colon));
-      std::string value = trim(line.substr(colon + 1));
-      if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front()) {
-        value = value.substr(1, value.size() - 2);
-      }
-      if (value == "true") {
-        from_file.push_back("--" + name);
-      } else if (value != "false") {
-        from_file.push_back("--" + name);
-        from_file.push_back(value);
+    if (value.empty()) throw seqtopo::InputError(where, name + ": no value");
+    if (const CLI::Validator* number = find_number_check(*option)) {
+      // a list option ("sizes: 1000,3000") checks each element, as CLI11 does on the command line
+      const char delimiter = option->get_delimiter();
+      std::stringstream items(value);
+      for (std::string item; std::getline(items, item, delimiter != '\0' ? delimiter : '\n');) {
+        if (const std::string error = (*number)(item); !error.empty()) {
+          throw seqtopo::InputError(where, "--" + name + ": " + error);
+        }
       }
     }
+    options.push_back("--" + name);
+    options.push_back(value);
   }
-  if (insert_at != std::string::npos) {
-    // after the program name and the subcommand: the options of the file go first
-    const std::size_t at = std::min(out.size(), std::max<std::size_t>(insert_at, 2));
-    out.insert(out.begin() + static_cast<std::ptrdiff_t>(at), from_file.begin(), from_file.end());
+  return options;
+}
+
+// `--config FILE` becomes the options it lists, placed right after the subcommand so that the command
+// line's own options win (every option takes its last value). FILE holds `name: value` lines; `#` starts
+// a comment; `name: true` is a flag.
+std::vector<std::string> expand_config(CLI::App& app, const std::vector<std::string>& args) {
+  std::vector<std::string> out;
+  std::vector<std::string> paths;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    if (k > 0 && args[k] == "--config" && k + 1 < args.size()) {
+      paths.push_back(args[++k]);
+    } else if (k > 0 && args[k].rfind("--config=", 0) == 0) {
+      paths.push_back(args[k].substr(9));
+    } else {
+      out.push_back(args[k]);
+    }
   }
+  if (paths.empty()) return out;
+  const auto [command, at] = target_command(app, out);
+  std::vector<std::string> from_files;
+  for (const auto& path : paths) {
+    const auto options = read_config(path, *command);
+    from_files.insert(from_files.end(), options.begin(), options.end());
+  }
+  out.insert(out.begin() + static_cast<std::ptrdiff_t>(at), from_files.begin(), from_files.end());
   return out;
+}
+
+// SIGINT, SIGTERM and SIGHUP stop a run cleanly: the handler only writes the signal's number to a pipe; a thread
+// waiting on the pipe removes this process's staging folders and temporary files (after a folder swap in
+// progress has finished) and ends the process with 128 + the signal (130, 143, 129). A signal that was ignored
+// when seqtopo started (nohup, a background job of a script) stays ignored.
+std::atomic<bool> stopping{false};
+int signal_pipe[2] = {-1, -1};
+
+extern "C" void on_stop_signal(int signal) {
+  const int saved = errno;
+  const auto byte = static_cast<unsigned char>(signal);
+  [[maybe_unused]] const auto n = ::write(signal_pipe[1], &byte, 1);
+  errno = saved;
+}
+
+void watch_stop_signals() {
+  unsigned char byte = 0;
+  while (::read(signal_pipe[0], &byte, 1) != 1) {
+    if (errno != EINTR) return;
+  }
+  stopping = true;
+  // A second signal while cleaning up ends the process at once (the next run removes what is left).
+  for (const int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, SIG_DFL);
+  seqtopo::io::remove_staged_outputs_and_exit(128 + byte);
+}
+
+void install_stop_signals() {
+  if (::pipe2(signal_pipe, O_CLOEXEC) != 0) return;  // no clean stop, the default ones
+  bool any = false;
+  for (const int s : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction old {};
+    if (::sigaction(s, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) continue;
+    struct sigaction act {};
+    act.sa_handler = on_stop_signal;
+    sigemptyset(&act.sa_mask);
+    act.sa_flags = SA_RESTART;
+    any = ::sigaction(s, &act, nullptr) == 0 || any;
+  }
+  if (any) std::thread(watch_stop_signals).detach();
+}
+
+// The exit status, unless a stop signal is being handled: then the watching thread ends the process (with
+// 128 + signal) and this one waits for it, printing nothing.
+int finish(int status) {
+  while (stopping) ::pause();
+  return status;
 }
 
 }  // namespace
@@ -85,6 +181,13 @@ std::vector<std::string> expand_config(const std::vector<std::string>& args) {
 }  // namespace seqtopo::cli
 
 int main(int argc, char** argv) {
+  seqtopo::cli::install_stop_signals();
+  // One line on stderr and the exit status (1: bad input or a failure, 2: a bad command line).
+  const auto fail = [](const std::string& message, int status) {
+    status = seqtopo::cli::finish(status);
+    std::cerr << "seqtopo: error: " << message << "\n";
+    return status;
+  };
   // Named, so that --help says "Usage: seqtopo [OPTIONS] SUBCOMMAND" (and "seqtopo map [OPTIONS] ...").
   CLI::App app{"seqtopo: topological mapping and localization of a mobile robot with sequence alignment", "seqtopo"};
   app.require_subcommand(1);
@@ -97,7 +200,7 @@ int main(int argc, char** argv) {
 
   try {
     std::vector<std::string> args(argv, argv + argc);
-    args = seqtopo::cli::expand_config(args);
+    args = seqtopo::cli::expand_config(app, args);
     // CLI11 parses a reversed vector of the arguments after the program name.
     std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);
     app.parse(reversed);
@@ -115,17 +218,13 @@ int main(int argc, char** argv) {
       sub = parsed.empty() ? nullptr : parsed.front();
       if (sub) help += " " + sub->get_name();
     }
-    std::cerr << "seqtopo: error: " << e.what() << " (see " << help << " --help)\n";
-    return 2;
+    return fail(std::string(e.what()) + " (see " + help + " --help)", 2);
   } catch (const seqtopo::InputError& e) {
-    std::cerr << "seqtopo: error: " << e.subject() << ": " << e.what() << "\n";
-    return 1;
+    return fail(e.subject() + ": " + e.what(), 1);
   } catch (const std::bad_alloc&) {
-    std::cerr << "seqtopo: error: out of memory\n";
-    return 1;
+    return fail("out of memory (the memory estimate did not foresee this run's need)", 1);
   } catch (const std::exception& e) {
-    std::cerr << "seqtopo: error: " << e.what() << "\n";
-    return 1;
+    return fail(e.what(), 1);
   }
-  return 0;
+  return seqtopo::cli::finish(0);
 }

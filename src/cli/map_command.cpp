@@ -17,6 +17,8 @@
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
+#include "seqtopo/pipeline/memory_estimate.hpp"
+#include "seqtopo/similarity/memory.hpp"
 #include "sequence_options.hpp"
 
 namespace seqtopo::cli {
@@ -220,7 +222,11 @@ void run(MapOptions o) {
   request.streaming = o.streaming;
   const pipeline::MapJob job(request);
   if (o.streaming) check_streaming(o, request.settings, job.input_kind());
-  io::OutputDirectory out(o.out);
+  std::vector<std::filesystem::path> inputs(o.inputs.begin(), o.inputs.end());
+  for (const auto* files : {&o.odometry_files, &o.times_files})
+    inputs.insert(inputs.end(), files->begin(), files->end());
+  for (const auto* file : {&o.ground_truth, &o.gt_places, &o.gt_poses}) inputs.emplace_back(*file);
+  io::OutputDirectory out(o.out, {.inputs = inputs, .command = "seqtopo map"});
   if (bundled_default) progress.line("no input given: mapping the bundled corridor data " + o.inputs[0]);
   if (bundled_default && o.streaming) {
     progress.line("its ground truth is an N x N image, which --streaming does not read");
@@ -231,6 +237,8 @@ void run(MapOptions o) {
       job.run({.progress = line, .stage = progress.observer(), .later_stages = {"files and figures", "report"}});
   run.timings.insert(run.timings.begin(), {"start-up, options, inputs checked", setup_seconds});
 
+  // The pairs are known now: outputs that would not fit are refused before any is written.
+  pipeline::check_outputs_memory(run, similarity::available_memory_bytes(), o.out);
   progress.begin("files and figures");
   outputs::write_map_outputs(run, out);
   run.timings.emplace_back("files and figures", progress.end());

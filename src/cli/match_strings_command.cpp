@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/csv.hpp"
@@ -115,6 +116,8 @@ void run(const MatchStringsOptions& o) {
   config.cyclic = o.cyclic;
   if (o.window == 0) throw InputError("--window", "must be >= 1");
 
+  io::OutputDirectory out(
+      o.out_dir, {.inputs = {o.db_path, o.queries_path, o.adjacency_path}, .command = "seqtopo match-strings"});
   const auto db = read_strings(o.db_path);
   const auto queries = read_strings(o.queries_path);
   std::vector<std::string> db_strings, query_strings;
@@ -124,7 +127,6 @@ void run(const MatchStringsOptions& o) {
 
   const auto matches = strings::match_all_windowed(db_strings, query_strings, config, o.window);
 
-  io::OutputDirectory out(o.out_dir);
   // With --cyclic a fifth column gives the rotation (in symbols) of the database string that matched best.
   // The header is the first line (the settings are in metrics.json and on the command line, not in a comment).
   std::string tsv = fmt::format("query_id\trank\tdb_id\tscore{}\n", o.cyclic ? "\trotation" : "");
@@ -204,24 +206,25 @@ const RegisterCommand registered{
                       "A = global alignment with <= k differences (weighted costs), B = k-differences inexact matching "
                       "(Landau-Vishkin), C = longest common subsequence (Hunt-Szymanski)")
            ->capture_default_str();
-       app.add_option("--k", o->k, "maximum number of differences for A and B (default: no limit)");
+       add_number(app, "--k", o->k, kNonNegative, "maximum number of differences for A and B (default: no limit)");
        app.add_option("--preset", o->preset,
                       "cost table for A: A1, A2-rooms, A2-ground-floor, A2-white-hall, A2-global")
            ->capture_default_str();
-       app.add_option("--deletion-cost", o->deletion, "cost of deleting a query symbol (overrides the preset)");
-       app.add_option("--insertion-cost", o->insertion, "cost of inserting a database symbol (overrides the preset)");
-       app.add_option("--colour-difference-cost", o->colour_difference,
-                      "cost of two different colour patches (overrides the preset)");
-       app.add_option("--coincidence-cost", o->coincidence,
-                      "cost of two equal symbols, may be negative (overrides the preset)");
-       app.add_option("--discordance-cost", o->discordance,
-                      "cost of an edge against a colour patch (overrides the preset)");
+       add_number(app, "--deletion-cost", o->deletion, kNonNegative,
+                  "cost of deleting a query symbol (overrides the preset)");
+       add_number(app, "--insertion-cost", o->insertion, kNonNegative,
+                  "cost of inserting a database symbol (overrides the preset)");
+       add_number(app, "--colour-difference-cost", o->colour_difference, kNonNegative,
+                  "cost of two different colour patches (overrides the preset)");
+       add_number(app, "--coincidence-cost", o->coincidence, kAnyFinite,
+                  "cost of two equal symbols, may be negative (overrides the preset)");
+       add_number(app, "--discordance-cost", o->discordance, kNonNegative,
+                  "cost of an edge against a colour patch (overrides the preset)");
        app.add_flag("--cyclic", o->cyclic,
                     "panoramas: compare with every rotation of each database string (heading unknown)");
-       app.add_option("--window", o->window,
-                      "localize each query with the W queries ending at it, along a monotone chain of database points "
-                      "(both files in travel order)")
-           ->capture_default_str();
+       add_number(app, "--window", o->window, kAtLeastOne,
+                  "localize each query with the W queries ending at it, along a monotone chain of database points "
+                  "(both files in travel order)");
        app.add_option("--adjacency", o->adjacency_path,
                       "CSV test_id,map_id of adjacent points (default: same place label)")
            ->check(CLI::ExistingFile);

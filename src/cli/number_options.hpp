@@ -118,14 +118,24 @@ inline void check_all_numeric_options(CLI::App& app) {
              (type.size() == name.size() || type[name.size()] == ':' || type[name.size()] == ' ');
     };
     if (is("FLOAT")) {
-      option->check(number_check<double>({}));
+      option->check(number_check<double>({}).name("number"));
     } else if (is("UINT")) {
-      option->check(number_check<unsigned long long>({}));
+      option->check(number_check<unsigned long long>({}).name("number"));
     } else if (is("INT")) {
-      option->check(number_check<long>({}));
+      option->check(number_check<long>({}).name("number"));
     }
   }
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) check_all_numeric_options(*sub);
+}
+
+// The number check of `option` (registered by add_number / add_number_or or check_all_numeric_options), or
+// nullptr when the option does not take a number: config files check their values with it.
+inline CLI::Validator* find_number_check(CLI::Option& option) {
+  try {
+    return option.get_validator("number");
+  } catch (const CLI::OptionNotFound&) {
+    return nullptr;
+  }
 }
 
 // Limits used by many options.

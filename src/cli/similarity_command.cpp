@@ -45,6 +45,7 @@ void run(const SimilarityOptions& o) {
     progress.advance(done, total, stage == "matrix" ? "cells of the matrix" : "images described");
   };
 
+  io::OutputDirectory out(o.out_dir, {.inputs = {o.input, o.against}, .command = "seqtopo similarity"});
   pipeline::SequenceInput a{o.input, kind, o.every};
   pipeline::SequenceInput b{o.against, kind, o.every};
   o.sequence.apply(a);
@@ -59,7 +60,6 @@ void run(const SimilarityOptions& o) {
   progress.end();
 
   progress.begin("files");
-  io::OutputDirectory out(o.out_dir);
   out.write("similarity.npy", io::encode_npy(result.similarity));
   plot::MatrixFigureConfig figure;
   figure.title = fmt::format("Similarity S = 1 - kappa D ({} x {})", result.similarity.rows, result.similarity.cols);

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
@@ -115,6 +116,7 @@ void run(const SimulateOptions& o) {
   const int threads = static_cast<int>(resolve_threads(o.threads));
   config.threads = threads;
 
+  io::OutputDirectory out(o.out, {.inputs = {}, .command = "seqtopo simulate"});
   const auto started = std::chrono::steady_clock::now();
   Progress progress("seqtopo simulate");
   progress.plan({"world", "rendering", "files"});
@@ -127,7 +129,6 @@ void run(const SimulateOptions& o) {
   const double render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   progress.begin("files");
-  io::OutputDirectory out(o.out);
   std::string summary;
   if (result.kind == simulator::ScenarioKind::survey) {
     std::vector<std::string> names;
@@ -197,41 +198,39 @@ const RegisterCommand registered{
        app.add_option("--scenario", o->scenario, "scenario name (see --list)");
        app.add_option("--out", o->out, "output directory");
        app.add_flag("--list", o->list, "list the scenarios and exit");
-       app.add_option("--seed", o->seed, "seed of the world's decoration and of all noise")->capture_default_str();
-       app.add_option("--interval", o->interval,
-                      "travel between frames [m] (default per scenario: 0.25 indoors, 0.5 outdoors)");
-       app.add_option("--odometry-noise", o->odometry_noise,
-                      "factor on the scenario's odometry drift and noise (0 = exact)")
-           ->capture_default_str();
-       app.add_option("--heading-drift", o->heading_drift, "systematic odometry heading drift [rad/m]");
-       app.add_option("--scale-error", o->scale_error, "systematic odometry scale error (0.01 = reads 1 % long)");
-       app.add_option("--zigzag-amplitude", o->zigzag, "amplitude of the zigzag scenario's zig-zagging traversal [m]");
-       app.add_option("--panorama-width", o->panorama_width, "panorama width [pixels] = 360 degrees")
-           ->capture_default_str();
-       app.add_option("--panorama-height", o->panorama_height, "panorama height [pixels] (elevation -30..+30 degrees)")
-           ->capture_default_str();
-       app.add_option("--image-width", o->image_width, "forward camera width [pixels] (60 degree field of view)")
-           ->capture_default_str();
-       app.add_option("--image-height", o->image_height, "forward camera height [pixels]")->capture_default_str();
+       add_number(app, "--seed", o->seed, kNonNegative, "seed of the world's decoration and of all noise");
+       add_number(app, "--interval", o->interval, kPositive,
+                  "travel between frames [m] (default per scenario: 0.25 indoors, 0.5 outdoors)");
+       add_number(app, "--odometry-noise", o->odometry_noise, kNonNegative,
+                  "factor on the scenario's odometry drift and noise (0 = exact)");
+       add_number(app, "--heading-drift", o->heading_drift, kAnyFinite,
+                  "systematic odometry heading drift [rad/m] (either sign)");
+       add_number(app, "--scale-error", o->scale_error, {.min = -1, .min_exclusive = true},
+                  "systematic odometry scale error (0.01 = reads 1 % long, -0.01 = 1 % short)");
+       add_number(app, "--zigzag-amplitude", o->zigzag, kNonNegative,
+                  "amplitude of the zigzag scenario's zig-zagging traversal [m]");
+       add_number(app, "--panorama-width", o->panorama_width, {.min = 8, .max = 16384},
+                  "panorama width [pixels] = 360 degrees");
+       add_number(app, "--panorama-height", o->panorama_height, {.min = 2, .max = 4096},
+                  "panorama height [pixels] (elevation -30..+30 degrees)");
+       add_number(app, "--image-width", o->image_width, {.min = 8, .max = 8192},
+                  "forward camera width [pixels] (60 degree field of view)");
+       add_number(app, "--image-height", o->image_height, {.min = 2, .max = 8192}, "forward camera height [pixels]");
        app.add_flag("--no-images", o->no_images, "skip the forward camera (panoramas only)");
-       app.add_option("--supersample", o->supersample, "rays per pixel along each axis (anti-aliasing)")
-           ->capture_default_str();
-       app.add_option("--pixel-noise", o->pixel_noise, "sensor noise, standard deviation [grey levels]")
-           ->capture_default_str();
-       app.add_option("--lighting-change", o->lighting_change,
-                      "factor on the lighting differences between traversals (0 = same lighting)")
-           ->capture_default_str();
-       app.add_option("--place-length", o->place_length, "length of a ground-truth place along a path [m]")
-           ->capture_default_str();
-       app.add_option("--junction-radius", o->junction_radius,
-                      "stretch of path around a node that is the node's place [m]")
-           ->capture_default_str();
-       app.add_option("--gt-radius", o->gt_radius, "ground_truth.png: same place when path points are within R [m]")
-           ->capture_default_str();
-       app.add_option("--gt-band", o->gt_band,
-                      "ground_truth.png: pairs with |i - j| < B frames are zero (default: 5 m of travel)");
-       app.add_option("--max-frames", o->max_frames, "keep only the first N frames (0 = all)")->capture_default_str();
-       app.add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
+       add_number(app, "--supersample", o->supersample, {.min = 1, .max = 8},
+                  "rays per pixel along each axis (anti-aliasing)");
+       add_number(app, "--pixel-noise", o->pixel_noise, kNonNegative, "sensor noise, standard deviation [grey levels]");
+       add_number(app, "--lighting-change", o->lighting_change, kNonNegative,
+                  "factor on the lighting differences between traversals (0 = same lighting)");
+       add_number(app, "--place-length", o->place_length, kPositive, "length of a ground-truth place along a path [m]");
+       add_number(app, "--junction-radius", o->junction_radius, kNonNegative,
+                  "stretch of path around a node that is the node's place [m]");
+       add_number(app, "--gt-radius", o->gt_radius, kPositive,
+                  "ground_truth.png: same place when path points are within R [m]");
+       add_number(app, "--gt-band", o->gt_band, kNonNegative,
+                  "ground_truth.png: pairs with |i - j| < B frames are zero (default: 5 m of travel)");
+       add_number(app, "--max-frames", o->max_frames, kNonNegative, "keep only the first N frames (0 = all)");
+       add_number(app, "--threads", o->threads, kThreads, "worker threads (0 = all cores)");
        app.callback([o] { run(*o); });
      }}};
 

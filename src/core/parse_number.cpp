@@ -1,5 +1,6 @@
 #include "seqtopo/core/parse_number.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -10,10 +11,11 @@
 namespace seqtopo {
 namespace {
 
+// The shortest text that reads back as v ("1048576", not "1.04858e+06"): the range an error states is exact.
 std::string number_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+  std::array<char, 32> text{};
+  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), v);
+  return error == std::errc{} ? std::string(text.data(), end) : std::string("?");
 }
 
 }  // namespace
@@ -40,7 +42,10 @@ T parse_number(std::string_view subject, std::string_view text, const NumberLimi
   std::string_view t = text;
   while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
   while (!t.empty() && (t.back() == ' ' || t.back() == '\t' || t.back() == '\r')) t.remove_suffix(1);
-  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  if (!t.empty() && t.front() == '+') {
+    t.remove_prefix(1);
+    if (!t.empty() && t.front() == '-') return fail();  // "+-1": one sign at most
+  }
   if (t.empty() || t.front() == '+' || (std::is_unsigned_v<T> && t.front() == '-')) return fail();
   T value{};
   const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), value);

@@ -1,61 +1,581 @@
 #include "seqtopo/io/atomic_output.hpp"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <stdexcept>
 #include <system_error>
+#include <thread>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/io/sha256.hpp"
 
 namespace seqtopo::io {
 namespace fs = std::filesystem;
 
 namespace {
-std::string unique_suffix() {
-  static int counter = 0;
-  return ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+
+// What this process must remove if it is stopped: staging folders, temporary files, old sets being removed.
+struct Registry {
+  std::mutex mutex;
+  std::vector<fs::path> paths;
+};
+
+Registry& registry() {
+  static auto* r = new Registry;  // never destroyed: a signal may come during static destruction
+  return *r;
 }
+
+void track_locked(Registry& r, const fs::path& p) { r.paths.push_back(p); }
+
+void untrack(const fs::path& p) {
+  Registry& r = registry();
+  const std::lock_guard lock(r.mutex);
+  r.paths.erase(std::remove(r.paths.begin(), r.paths.end(), p), r.paths.end());
+}
+
+std::uint64_t next_serial() {
+  static std::atomic<std::uint64_t> serial{0};
+  return serial++;
+}
+
+// remove_all, retried while a writer on another thread still adds files to the folder.
+void remove_tree(const fs::path& p) {
+  for (int attempt = 0; attempt < 50; ++attempt) {
+    std::error_code ec;
+    fs::remove_all(p, ec);
+    if (!fs::exists(fs::symlink_status(p, ec))) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+std::string error_text(int error) { return std::error_code(error, std::generic_category()).message(); }
+
+// fsync of a file or folder; failures are reported only for files (some file systems refuse it on folders).
+void sync_path(const fs::path& p, bool directory) {
+  const int fd = ::open(p.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDONLY) | O_CLOEXEC);
+  if (fd < 0) {
+    if (directory) return;
+    throw InputError(p.string(), "cannot open to sync: " + error_text(errno));
+  }
+  const int rc = ::fsync(fd);
+  const int error = errno;
+  ::close(fd);
+  if (rc != 0 && !directory && error != EINVAL) throw InputError(p.string(), "cannot sync: " + error_text(error));
+}
+
+void write_bytes(const fs::path& path, std::string_view bytes, const std::string& subject) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) throw InputError(subject, "cannot open for writing: " + error_text(errno));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = errno;
+      ::close(fd);
+      throw InputError(subject, "write failed: " + error_text(error));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0 && errno != EINVAL) {
+    const int error = errno;
+    ::close(fd);
+    throw InputError(subject, "write failed: " + error_text(error));
+  }
+  if (::close(fd) != 0) throw InputError(subject, "write failed: " + error_text(errno));
+}
+
+// "<prefix><pid>-<k>" or "<prefix><pid>.<k>": the pid, when `name` starts with prefix and a number follows.
+std::optional<pid_t> owner_pid(const std::string& name, const std::string& prefix) {
+  if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  long pid = 0;
+  std::size_t k = prefix.size();
+  for (; k < name.size() && name[k] >= '0' && name[k] <= '9' && pid < (1L << 30); ++k) pid = pid * 10 + (name[k] - '0');
+  if (k == prefix.size() || pid <= 0) return std::nullopt;
+  return static_cast<pid_t>(pid);
+}
+
+// A leftover of a process that no longer runs: its pid is gone and nobody holds the folder's lock.
+bool stale(const fs::path& p, pid_t pid, bool directory) {
+  if (pid == ::getpid()) return false;
+  if (::kill(pid, 0) == 0 || errno == EPERM) return false;  // alive (or a reused pid: left for a later run)
+  if (!directory) return true;
+  const int fd = ::open(p.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return true;
+  const bool unlocked = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+  ::close(fd);
+  return unlocked;
+}
+
+// Removes `folder`'s entries named <prefix><pid>... of processes that no longer run.
+void remove_stale(const fs::path& folder, const std::vector<std::string>& prefixes) {
+  std::error_code ec;
+  std::vector<fs::path> dead;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    for (const auto& prefix : prefixes) {
+      const auto pid = owner_pid(name, prefix);
+      if (pid && stale(it->path(), *pid, it->is_directory(ec))) dead.push_back(it->path());
+    }
+  }
+  for (const auto& p : dead) remove_tree(p);
+}
+
+std::string staging_prefix(const std::string& base) { return "." + base + ".seqtopo-staging-"; }
+std::string old_prefix(const std::string& base) { return "." + base + ".seqtopo-old-"; }
+std::string temporary_prefix(const std::string& base) { return "." + base + ".tmp."; }
+
+// `p` made absolute and normal, without a trailing separator.
+fs::path normal_absolute(const fs::path& p) {
+  fs::path a = fs::absolute(p).lexically_normal();
+  if (a.filename().empty() && a.has_parent_path() && a != a.root_path()) a = a.parent_path();
+  return a;
+}
+
+// True when `inner` is `outer` or lies inside it (component by component).
+bool is_within(const fs::path& inner, const fs::path& outer) {
+  auto i = inner.begin();
+  for (auto o = outer.begin(); o != outer.end(); ++o, ++i) {
+    if (o->empty()) continue;  // trailing separator
+    if (i == inner.end() || *i != *o) return false;
+  }
+  return true;
+}
+
+fs::path resolved(const fs::path& p) {
+  std::error_code ec;
+  fs::path r = fs::weakly_canonical(fs::absolute(p), ec);
+  return ec ? normal_absolute(p) : normal_absolute(r);
+}
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      std::array<char, 8> escape{};
+      std::snprintf(escape.data(), escape.size(), "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += escape.data();
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+// A tiny reader of the one JSON shape manifest_json writes.
+class ManifestReader {
+ public:
+  ManifestReader(std::string_view text, const std::string& subject) : text_(text), subject_(subject) {}
+
+  Manifest read() {
+    Manifest m;
+    bool have_version = false, have_files = false;
+    expect('{');
+    if (!peek('}')) {
+      do {
+        const std::string key = string();
+        expect(':');
+        if (key == "seqtopo_manifest") {
+          if (number() != 1) fail("unsupported manifest version");
+          have_version = true;
+        } else if (key == "command") {
+          m.command = string();
+        } else if (key == "files") {
+          files(m);
+          have_files = true;
+        } else {
+          fail("unknown key '" + key + "'");
+        }
+      } while (take(','));
+    }
+    expect('}');
+    space();
+    if (pos_ != text_.size()) fail("text after the manifest");
+    if (!have_version || !have_files) fail("not a seqtopo manifest (no seqtopo_manifest or files)");
+    return m;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError(subject_, "not a valid manifest: " + what + " (at byte " + std::to_string(pos_) + ")");
+  }
+  void space() {
+    while (pos_ < text_.size() &&
+           (text_[pos_] == ' ' || text_[pos_] == '\n' || text_[pos_] == '\t' || text_[pos_] == '\r')) {
+      ++pos_;
+    }
+  }
+  bool peek(char c) {
+    space();
+    return pos_ < text_.size() && text_[pos_] == c;
+  }
+  bool take(char c) {
+    if (!peek(c)) return false;
+    ++pos_;
+    return true;
+  }
+  void expect(char c) {
+    if (!take(c)) fail(std::string("expected '") + c + "'");
+  }
+  std::string string() {
+    expect('"');
+    std::string out;
+    while (pos_ < text_.size() && text_[pos_] != '"') {
+      char c = text_[pos_++];
+      if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
+      if (c == '\\') {
+        if (pos_ >= text_.size()) break;
+        c = text_[pos_++];
+        if (c == 'u') {
+          if (pos_ + 4 > text_.size()) fail("short \\u escape");
+          unsigned value = 0;
+          for (int k = 0; k < 4; ++k) {
+            const char h = text_[pos_++];
+            const int digit = h >= '0' && h <= '9'   ? h - '0'
+                              : h >= 'a' && h <= 'f' ? h - 'a' + 10
+                              : h >= 'A' && h <= 'F' ? h - 'A' + 10
+                                                     : -1;
+            if (digit < 0) fail("bad \\u escape");
+            value = value * 16 + static_cast<unsigned>(digit);
+          }
+          if (value >= 0x20) fail("\\u escape of a printable character");
+          c = static_cast<char>(value);
+        } else if (c != '"' && c != '\\' && c != '/') {
+          fail("unknown escape");
+        }
+      }
+      out += c;
+    }
+    if (pos_ >= text_.size()) fail("unterminated string");
+    ++pos_;
+    return out;
+  }
+  std::uint64_t number() {
+    space();
+    const std::size_t start = pos_;
+    std::uint64_t value = 0;
+    while (pos_ < text_.size() && text_[pos_] >= '0' && text_[pos_] <= '9') {
+      const auto digit = static_cast<std::uint64_t>(text_[pos_] - '0');
+      if (value > (UINT64_MAX - digit) / 10) fail("number too large");
+      value = value * 10 + digit;
+      ++pos_;
+    }
+    if (pos_ == start) fail("expected a number");
+    return value;
+  }
+  void files(Manifest& m) {
+    expect('[');
+    if (take(']')) return;
+    do {
+      ManifestEntry e;
+      bool name = false, bytes = false, sha = false;
+      expect('{');
+      do {
+        const std::string key = string();
+        expect(':');
+        if (key == "name") {
+          e.name = string();
+          name = true;
+        } else if (key == "bytes") {
+          e.bytes = number();
+          bytes = true;
+        } else if (key == "sha256") {
+          e.sha256 = string();
+          sha = e.sha256.size() == 64 && std::all_of(e.sha256.begin(), e.sha256.end(), [](char c) {
+                  return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+                });
+          if (!sha) fail("sha256 is not 64 hex digits");
+        } else {
+          fail("unknown key '" + key + "' of a file");
+        }
+      } while (take(','));
+      expect('}');
+      if (!name || !bytes || !sha) fail("a file needs name, bytes and sha256");
+      const fs::path p(e.name);
+      if (e.name.empty() || p.is_absolute() ||
+          std::any_of(p.begin(), p.end(), [](const fs::path& part) { return part == ".." || part == "."; })) {
+        fail("file name '" + e.name + "' is not a plain relative path");
+      }
+      m.files.push_back(std::move(e));
+    } while (take(','));
+    expect(']');
+  }
+
+  std::string_view text_;
+  std::string subject_;
+  std::size_t pos_ = 0;
+};
+
+std::string read_whole(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "cannot open file");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  if (in.bad()) throw InputError(path.string(), "cannot read file");
+  return text;
+}
+
+// SHA-256 of a file, read in pieces.
+std::string hash_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "cannot open file");
+  Sha256 h;
+  std::vector<char> buffer(1 << 20);
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    h.update({buffer.data(), static_cast<std::size_t>(in.gcount())});
+  }
+  if (in.bad()) throw InputError(path.string(), "cannot read file");
+  return h.hex();
+}
+
+// Relative '/'-separated paths of the regular files under `dir` (sorted), and of its folders; anything else
+// (a symbolic link, a device) is returned in `other`.
+struct Tree {
+  std::vector<std::string> files, folders, other;
+};
+
+Tree list_tree(const fs::path& dir) {
+  Tree t;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, fs::directory_options::none, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    const std::string rel = it->path().lexically_relative(dir).generic_string();
+    const auto status = it->symlink_status(ec);
+    if (fs::is_symlink(status)) {
+      t.other.push_back(rel);
+    } else if (fs::is_directory(status)) {
+      t.folders.push_back(rel);
+    } else if (fs::is_regular_file(status)) {
+      t.files.push_back(rel);
+    } else {
+      t.other.push_back(rel);
+    }
+  }
+  if (ec) throw InputError(dir.string(), "cannot list: " + ec.message());
+  std::sort(t.files.begin(), t.files.end());
+  return t;
+}
+
+// Throws unless `target` may be replaced whole: absent, an empty folder, or a folder whose manifest lists every
+// file in it. `shown` is the folder as the user gave it.
+void check_replaceable(const fs::path& target, const fs::path& shown) {
+  std::error_code ec;
+  const auto status = fs::symlink_status(target, ec);
+  if (!fs::exists(status)) return;
+  if (!fs::is_directory(status)) throw InputError(shown.string(), "exists and is not a folder");
+  if (fs::is_empty(target, ec)) return;
+  const fs::path manifest = target / kManifestName;
+  if (!fs::exists(fs::symlink_status(manifest, ec))) {
+    throw InputError(shown.string(),
+                     "is not empty and has no manifest.json of an earlier seqtopo run; an output folder is replaced "
+                     "whole, so give a new or empty folder (or remove this one)");
+  }
+  const Manifest m = parse_manifest(read_whole(manifest), manifest.string());
+  std::set<std::string> listed{kManifestName}, folders;
+  for (const auto& f : m.files) {
+    listed.insert(f.name);
+    for (fs::path p = fs::path(f.name).parent_path(); !p.empty(); p = p.parent_path())
+      folders.insert(p.generic_string());
+  }
+  const Tree tree = list_tree(target);
+  const auto foreign = [&](const std::string& rel) {
+    throw InputError(shown.string(), "holds '" + rel +
+                                         "', which its manifest.json does not list (no seqtopo run wrote it); an "
+                                         "output folder is replaced whole, so move it away or choose another folder");
+  };
+  for (const auto& f : tree.files) {
+    if (!listed.count(f)) foreign(f);
+  }
+  for (const auto& f : tree.folders) {
+    if (!folders.count(f)) foreign(f + "/");
+  }
+  if (!tree.other.empty()) foreign(tree.other.front());
+}
+
 }  // namespace
 
 void write_file_atomic(const fs::path& path, std::string_view bytes) {
-  const fs::path tmp = path.string() + unique_suffix();
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path.string(), "cannot open for writing");
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(path.string(), "write failed");
-    }
-  }
+  const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  const std::string base = path.filename().string();
+  if (base.empty()) throw InputError(path.string(), "is not a file name");
   std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path.string(), "cannot move into place: " + ec.message());
+  if (fs::is_directory(path, ec)) throw InputError(path.string(), "is a folder");
+  if (!fs::is_directory(parent, ec)) throw InputError(path.string(), "its folder does not exist");
+  remove_stale(parent, {temporary_prefix(base)});
+  const fs::path tmp =
+      parent / (temporary_prefix(base) + std::to_string(::getpid()) + "." + std::to_string(next_serial()));
+  {
+    Registry& r = registry();
+    const std::lock_guard lock(r.mutex);
+    track_locked(r, tmp);
   }
+  try {
+    write_bytes(tmp, bytes, path.string());
+  } catch (...) {
+    fs::remove(tmp, ec);
+    untrack(tmp);
+    throw;
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int error = errno;
+    fs::remove(tmp, ec);
+    untrack(tmp);
+    throw InputError(path.string(), "cannot move into place: " + error_text(error));
+  }
+  untrack(tmp);
+  sync_path(parent, true);
 }
 
-OutputDirectory::OutputDirectory(fs::path dir) : dir_(std::move(dir)) {
+std::string manifest_json(const Manifest& manifest) {
+  std::vector<ManifestEntry> files = manifest.files;
+  std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  std::string out = "{\"seqtopo_manifest\": 1, \"command\": " + json_string(manifest.command) + ", \"files\": [";
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    out += k == 0 ? "\n" : ",\n";
+    out += " {\"name\": " + json_string(files[k].name) + ", \"bytes\": " + std::to_string(files[k].bytes) +
+           ", \"sha256\": \"" + files[k].sha256 + "\"}";
+  }
+  out += files.empty() ? "]}\n" : "\n]}\n";
+  return out;
+}
+
+Manifest parse_manifest(std::string_view text, const std::string& subject) {
+  return ManifestReader(text, subject).read();
+}
+
+Manifest read_manifest(const fs::path& dir) {
+  const fs::path path = dir / kManifestName;
+  return parse_manifest(read_whole(path), path.string());
+}
+
+std::string verify_manifest(const fs::path& dir) {
+  const Manifest m = read_manifest(dir);
+  std::string problems;
+  const auto add = [&](const std::string& text) { problems += (problems.empty() ? "" : "; ") + text; };
+  std::set<std::string> listed{kManifestName};
+  for (const auto& f : m.files) {
+    listed.insert(f.name);
+    const fs::path p = dir / f.name;
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) {
+      add(f.name + " missing");
+      continue;
+    }
+    if (fs::file_size(p, ec) != f.bytes) {
+      add(f.name + " has another size");
+    } else if (hash_file(p) != f.sha256) {
+      add(f.name + " has another SHA-256");
+    }
+  }
+  const Tree tree = list_tree(dir);
+  for (const auto& f : tree.files) {
+    if (!listed.count(f)) add(f + " not listed");
+  }
+  for (const auto& f : tree.other) add(f + " not listed");
+  return problems;
+}
+
+OutputDirectory::OutputDirectory(fs::path dir, OutputOptions options)
+    : dir_(std::move(dir)), options_(std::move(options)) {
+  if (dir_.empty()) throw InputError("output folder", "no folder given");
+  target_ = normal_absolute(dir_);
   std::error_code ec;
-  fs::create_directories(dir_, ec);
-  if (ec || !fs::is_directory(dir_)) throw InputError(dir_.string(), "cannot create output directory");
-  staging_ = dir_ / (".staging" + unique_suffix());
-  fs::create_directory(staging_, ec);
-  if (ec) throw InputError(dir_.string(), "cannot write in output directory: " + ec.message());
+  if (fs::is_symlink(target_, ec)) {
+    target_ = fs::canonical(target_, ec);  // replace the folder the link points to, keep the link
+    if (ec) throw InputError(dir_.string(), "is a symbolic link to nothing");
+  }
+  if (target_ == target_.root_path() || target_.filename().empty()) {
+    throw InputError(dir_.string(), "the root folder cannot be an output folder");
+  }
+  const fs::path real = resolved(target_);
+  for (const auto& input : options_.inputs) {
+    if (input.empty() || input == "-" || !fs::exists(input, ec)) continue;
+    const fs::path in = resolved(input);
+    if (in == real)
+      throw InputError(dir_.string(), "is the input " + input.string() + "; choose another output folder");
+    if (is_within(in, real)) {
+      throw InputError(dir_.string(), "holds the input " + input.string() +
+                                          "; an output folder is replaced whole, so choose another one");
+    }
+    if (is_within(real, in)) {
+      throw InputError(dir_.string(), "is inside the input folder " + input.string() +
+                                          "; outputs are never written into an input folder");
+    }
+  }
+  const fs::path cwd = fs::current_path(ec);
+  if (!ec && is_within(resolved(cwd), real)) {
+    throw InputError(dir_.string(),
+                     "holds the current folder; an output folder is replaced whole, so run from "
+                     "outside it or choose another one");
+  }
+  const fs::path parent = target_.parent_path();
+  const std::string base = target_.filename().string();
+  for (fs::path p = parent; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    made_parents_.push_back(p);
+    if (p == p.root_path()) break;
+  }
+  fs::create_directories(parent, ec);
+  if (ec || !fs::is_directory(parent)) {
+    throw InputError(dir_.string(), "cannot create its parent folder: " + (ec ? ec.message() : "not a folder"));
+  }
+  remove_stale(parent, {staging_prefix(base), old_prefix(base)});
+  try {
+    check_replaceable(target_, dir_);
+    Registry& r = registry();
+    const std::lock_guard lock(r.mutex);
+    for (;;) {
+      staging_ = parent / (staging_prefix(base) + std::to_string(::getpid()) + "-" + std::to_string(next_serial()));
+      if (::mkdir(staging_.c_str(), 0777) == 0) break;
+      if (errno != EEXIST) throw InputError(dir_.string(), "cannot write beside it: " + error_text(errno));
+    }
+    track_locked(r, staging_);
+  } catch (...) {
+    for (const auto& p : made_parents_) fs::remove(p, ec);  // only what is still empty
+    throw;
+  }
+  lock_fd_ = ::open(staging_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (lock_fd_ >= 0) (void)::flock(lock_fd_, LOCK_EX | LOCK_NB);
+  // The new set keeps the old folder's permissions.
+  if (fs::is_directory(target_, ec)) fs::permissions(staging_, fs::status(target_, ec).permissions(), ec);
 }
 
 OutputDirectory::~OutputDirectory() {
-  std::error_code ec;
-  fs::remove_all(staging_, ec);
+  if (!committed_ && !staging_.empty()) {
+    remove_tree(staging_);
+    untrack(staging_);
+    std::error_code ec;
+    for (const auto& p : made_parents_) fs::remove(p, ec);
+  }
+  if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
 fs::path OutputDirectory::staged(const std::string& name) {
+  const fs::path relative(name);
+  if (name.empty() || relative.is_absolute() || name == kManifestName ||
+      std::any_of(relative.begin(), relative.end(), [](const fs::path& p) { return p == ".." || p == "."; })) {
+    throw std::invalid_argument("OutputDirectory: '" + name + "' is not a plain relative name (or is the manifest's)");
+  }
+  if (committed_) throw std::logic_error("OutputDirectory: staged() after commit()");
   if (std::find(names_.begin(), names_.end(), name) == names_.end()) names_.push_back(name);
-  const fs::path path = staging_ / name;
+  const fs::path path = staging_ / relative;
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
   return path;
@@ -63,29 +583,103 @@ fs::path OutputDirectory::staged(const std::string& name) {
 
 void OutputDirectory::write(const std::string& name, std::string_view bytes) {
   const fs::path path = staged(name);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw InputError((dir_ / name).string(), "write failed");
+  write_bytes(path, bytes, (dir_ / name).string());
+  hashes_[fs::path(name).generic_string()] = {bytes.size(), sha256_hex(bytes)};
 }
 
 std::vector<fs::path> OutputDirectory::commit() {
-  std::vector<fs::path> written;
-  for (const auto& name : names_) {
-    const fs::path from = staging_ / name;
-    if (!fs::exists(from)) throw InputError((dir_ / name).string(), "was never written");
-  }
+  if (committed_) throw std::logic_error("OutputDirectory: commit() twice");
   for (const auto& name : names_) {
     std::error_code ec;
-    const fs::path to = dir_ / name;
-    fs::create_directories(to.parent_path(), ec);
-    // A staged folder (e.g. images/) replaces the old one whole.
-    if (fs::is_directory(staging_ / name) && fs::is_directory(to)) fs::remove_all(to, ec);
-    fs::rename(staging_ / name, to, ec);
-    if (ec) throw InputError((dir_ / name).string(), "cannot move into place: " + ec.message());
-    written.push_back(dir_ / name);
+    if (!fs::exists(staging_ / name, ec)) throw InputError((dir_ / name).string(), "was never written");
   }
-  committed_ = true;
+  // The manifest: every file of the staged set (also those writers made themselves), synced to disk.
+  const Tree tree = list_tree(staging_);
+  if (!tree.other.empty()) throw InputError((dir_ / tree.other.front()).string(), "is not a regular file");
+  Manifest manifest{options_.command, {}};
+  for (const auto& rel : tree.files) {
+    const fs::path p = staging_ / rel;
+    std::error_code ec;
+    ManifestEntry e{rel, fs::file_size(p, ec), {}};
+    if (ec) throw InputError((dir_ / rel).string(), "cannot read its size: " + ec.message());
+    const auto known = hashes_.find(rel);
+    if (known != hashes_.end() && known->second.first == e.bytes) {
+      e.sha256 = known->second.second;  // as write() wrote it (and synced it)
+    } else {
+      e.sha256 = hash_file(p);
+      sync_path(p, false);
+    }
+    manifest.files.push_back(std::move(e));
+  }
+  write_bytes(staging_ / kManifestName, manifest_json(manifest), (dir_ / kManifestName).string());
+  for (const auto& f : tree.folders) sync_path(staging_ / f, true);
+  sync_path(staging_, true);
+
+  const fs::path parent = target_.parent_path();
+  const std::string base = target_.filename().string();
+  fs::path old;  // where the old set is after the swap (to be removed)
+  {
+    Registry& r = registry();
+    const std::lock_guard lock(r.mutex);  // a stopping process waits for the swap, then removes what is left
+    check_replaceable(target_, dir_);     // again: the folder may have changed during the run
+    std::error_code ec;
+    bool exists = fs::exists(fs::symlink_status(target_, ec));
+    if (!exists) {
+      if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_NOREPLACE) == 0) {
+        r.paths.erase(std::remove(r.paths.begin(), r.paths.end(), staging_), r.paths.end());
+      } else if (errno == EEXIST) {
+        exists = true;  // made meanwhile: swap with it below (it was empty or a seqtopo set, checked above)
+      } else if ((errno == EINVAL || errno == ENOSYS) && ::rename(staging_.c_str(), target_.c_str()) == 0) {
+        r.paths.erase(std::remove(r.paths.begin(), r.paths.end(), staging_), r.paths.end());
+      } else {
+        throw InputError(dir_.string(), "cannot move the new set into place: " + error_text(errno));
+      }
+    }
+    if (exists) {
+      if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) == 0) {
+        old = staging_;  // the old set now has the staging folder's name (and stays tracked until removed)
+      } else if (errno == EINVAL || errno == ENOSYS || errno == ENOTSUP) {
+        // No exchange on this file system: the old set moves aside, the new one in, the old back on failure.
+        // Between the two renames the folder is absent, never mixed.
+        old = parent / (old_prefix(base) + std::to_string(::getpid()) + "-" + std::to_string(next_serial()));
+        track_locked(r, old);
+        if (::rename(target_.c_str(), old.c_str()) != 0) {
+          const int error = errno;
+          r.paths.pop_back();
+          throw InputError(dir_.string(), "cannot move the old set aside: " + error_text(error));
+        }
+        if (::rename(staging_.c_str(), target_.c_str()) != 0) {
+          const int error = errno;
+          (void)::rename(old.c_str(), target_.c_str());
+          r.paths.pop_back();
+          throw InputError(dir_.string(), "cannot move the new set into place: " + error_text(error));
+        }
+        r.paths.erase(std::remove(r.paths.begin(), r.paths.end(), staging_), r.paths.end());
+      } else {
+        throw InputError(dir_.string(), "cannot replace the old set: " + error_text(errno));
+      }
+    }
+    committed_ = true;
+  }
+  sync_path(parent, true);
+  if (!old.empty()) {
+    remove_tree(old);
+    untrack(old);
+  }
+  if (lock_fd_ >= 0) {
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+  }
+  std::vector<fs::path> written;
+  for (const auto& name : names_) written.push_back(dir_ / name);
   return written;
+}
+
+void remove_staged_outputs_and_exit(int status) {
+  Registry& r = registry();
+  r.mutex.lock();  // never unlocked: no output folder changes after this point
+  for (const auto& p : r.paths) remove_tree(p);
+  ::_exit(status);
 }
 
 }  // namespace seqtopo::io

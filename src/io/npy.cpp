@@ -108,6 +108,26 @@ NpyHeader read_npy_header(const std::filesystem::path& path) {
     }
     h.shape.push_back(value);
   }
+  // The data must be in the file: every size is checked against the file's, without a product that wraps
+  // (a shape of 2^61 rows of 8 bytes would otherwise pass and fail later as "out of memory").
+  const std::size_t item = h.dtype == "<f4" ? 4 : 8;
+  in.seekg(0, std::ios::end);
+  const auto end = in.tellg();
+  if (end < 0) fail(path, "cannot read file size");
+  const auto file_size = static_cast<std::size_t>(end);
+  const std::size_t room = file_size >= h.data_offset ? (file_size - h.data_offset) / item : 0;
+  std::size_t count = 1;
+  for (const std::size_t extent : h.shape) {
+    if (extent == 0) {
+      count = 0;
+      break;
+    }
+    if (count > room / extent) {
+      fail(path, "truncated data: shape " + shape + " needs more than the " +
+                     std::to_string(file_size - std::min(file_size, h.data_offset)) + " data bytes in the file");
+    }
+    count *= extent;
+  }
   return h;
 }
 
@@ -123,8 +143,11 @@ DenseMatrix<T> read_npy_matrix(const std::filesystem::path& path) {
   const std::size_t count = rows * cols;
 
   std::ifstream in(path, std::ios::binary | std::ios::ate);
-  const auto size = static_cast<std::size_t>(in.tellg());
-  if (size < h.data_offset + count * item) {
+  const auto end = in.tellg();
+  if (end < 0) fail(path, "cannot read file size");
+  const auto size = static_cast<std::size_t>(end);
+  // read_npy_header checked the sizes already; checked again without a sum that can wrap
+  if (size < h.data_offset || (size - h.data_offset) / item < count) {
     fail(path, "truncated data: " + std::to_string(rows) + " x " + std::to_string(cols) + " needs " +
                    std::to_string(count * item) + " bytes");
   }

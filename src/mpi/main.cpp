@@ -321,20 +321,23 @@ int main(int argc, char** argv) {
       "sparse", "Sparse alignment of DESCRIPTORS.npy (N x D, cosine) -> alignments.json, identical to one process");
   sparse->add_option("descriptors", opt.descriptors, "N x D descriptors (.npy, float32/float64)")->required();
   sparse->add_option("--out", opt.out, "alignments.json to write")->required();
-  sparse->add_option("--neighbours", opt.neighbours, "candidates per frame (k)")->check(CLI::PositiveNumber);
-  sparse->add_option("--background", opt.background, "score of every non-candidate pair (< 0)");
-  sparse->add_option("--contrast-window", opt.map.contrast_window, "contrast enhancement window [frames]")
-      ->check(CLI::PositiveNumber);
-  sparse->add_option("--contrast-offset", opt.map.contrast_offset,
-                     "subtracted after enhancement [standard deviations]");
-  sparse->add_option("--gap", opt.map.gap, "gap penalty, both sequences")->check(CLI::PositiveNumber);
+  using seqtopo::cli::add_number;
+  add_number(*sparse, "--neighbours", opt.neighbours, {.min = 1, .max = 1 << 20}, "candidates per frame (k)");
+  add_number(*sparse, "--background", opt.background, {.max = 0, .max_exclusive = true},
+             "score of every non-candidate pair (< 0)");
+  add_number(*sparse, "--contrast-window", opt.map.contrast_window, seqtopo::cli::kAtLeastOne,
+             "contrast enhancement window [frames]");
+  add_number(*sparse, "--contrast-offset", opt.map.contrast_offset, seqtopo::cli::kAnyFinite,
+             "subtracted after enhancement [standard deviations]");
+  add_number(*sparse, "--gap", opt.map.gap, seqtopo::cli::kPositive, "gap penalty, both sequences");
   opt.cap = opt.map.cap.value_or(opt.cap);
-  sparse->add_option("--cap", opt.cap, "cap on the cumulative score")->check(CLI::PositiveNumber);
+  add_number(*sparse, "--cap", opt.cap, seqtopo::cli::kPositive, "cap on the cumulative score");
   sparse->add_flag("--no-cap", opt.no_cap, "classical Smith-Waterman, no cap");
-  sparse->add_option("--threshold", opt.map.threshold, "minimum alignment score");
-  sparse->add_option("--min-separation", opt.map.min_separation, "pairs closer in time never count [frames]")
-      ->check(CLI::PositiveNumber);
-  sparse->add_option("--threads", opt.threads, "rank 0: threads for the two passes' fills (1 or 2)");
+  add_number(*sparse, "--threshold", opt.map.threshold, seqtopo::cli::kPositive, "minimum alignment score");
+  add_number(*sparse, "--min-separation", opt.map.min_separation, seqtopo::cli::kAtLeastOne,
+             "pairs closer in time never count [frames]");
+  add_number(*sparse, "--threads", opt.threads, {.min = 1, .max = 2},
+             "rank 0: threads for the two passes' fills (1 or 2)");
   int code = 0;
   try {
     seqtopo::cli::check_all_numeric_options(app);

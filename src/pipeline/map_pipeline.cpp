@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
@@ -12,7 +13,9 @@
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/pipeline/baselines.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
+#include "seqtopo/pipeline/memory_estimate.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
+#include "seqtopo/similarity/memory.hpp"
 #include "seqtopo/trajectory/ekf_map.hpp"
 #include "seqtopo/trajectory/pose_graph.hpp"
 #include "seqtopo/trajectory/trajectory_error.hpp"
@@ -291,6 +294,20 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     odometry_.insert(odometry_.end(), s.odometry.begin(), s.odometry.end());
     inputs_.push_back(s.input);
   }
+  // Every buffer of the run counted (memory_estimate.hpp); one that cannot fit is refused here, before any work.
+  // (A video's frames are counted only while it is read: the similarity step estimates its matrix then.)
+  std::optional<std::size_t> expected = 0;
+  for (const auto& s : sessions_) {
+    if (!s.frames || !expected) {
+      expected.reset();
+      break;
+    }
+    *expected += *s.frames;
+  }
+  if (expected) {
+    memory_note_ = check_map_memory(request_, kind_, *expected, similarity::available_memory_bytes());
+    request_.settings.similarity.note_memory_above = std::numeric_limits<std::size_t>::max();  // ours is printed
+  }
 }
 
 MapRun MapJob::run(const MapObserver& observer) const {
@@ -304,6 +321,7 @@ MapRun MapJob::run(const MapObserver& observer) const {
   for (const auto& s : sessions_) {
     for (const auto& note : s.notes) say(observer, "      " + note);
   }
+  if (!memory_note_.empty()) say(observer, "      " + memory_note_);
   run.streaming = request_.streaming;
   run.odometry = odometry_;
   const auto& files = request_.truth;

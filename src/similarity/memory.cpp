@@ -1,9 +1,15 @@
 #include "seqtopo/similarity/memory.hpp"
 
+#include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <sstream>
+
+#include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/parse_number.hpp"
 
 namespace seqtopo::similarity {
 namespace {
@@ -42,6 +48,31 @@ std::size_t matrix_bytes(std::size_t rows, std::size_t cols) {
 
 std::optional<std::size_t> available_memory_bytes() {
   std::optional<std::size_t> available = mem_available();
+  // A limit the user sets (a shared machine, a test): SEQTOPO_MEMORY_LIMIT=BYTES, with an optional K, M or G.
+  if (const char* limit = std::getenv("SEQTOPO_MEMORY_LIMIT"); limit != nullptr && *limit != '\0') {
+    std::string text = limit;
+    text.erase(0, text.find_first_not_of(" \t"));
+    text.erase(text.find_last_not_of(" \t") + 1);
+    std::size_t scale = 1;
+    const char unit = text.empty() ? '\0' : static_cast<char>(std::toupper(static_cast<unsigned char>(text.back())));
+    if (unit == 'K' || unit == 'M' || unit == 'G') {
+      scale = std::size_t{1} << (unit == 'K' ? 10U : unit == 'M' ? 20U : 30U);
+      text.pop_back();
+    }
+    // At most 2^60 bytes in any unit: the product stays far below SIZE_MAX (never wraps to a small limit).
+    double value = 0;
+    try {
+      value = parse_number<double>("SEQTOPO_MEMORY_LIMIT", text,
+                                   {.min = 0, .max = std::ldexp(1.0, 60) / static_cast<double>(scale)});
+    } catch (const InputError&) {
+      throw InputError("SEQTOPO_MEMORY_LIMIT",
+                       "expected a number of bytes >= 0, optionally with K, M or G (at most "
+                       "2^60 bytes), got '" +
+                           std::string(limit) + "'");
+    }
+    const auto bytes = static_cast<std::size_t>(value * static_cast<double>(scale));
+    available = available ? std::min(*available, bytes) : bytes;
+  }
   // A container's limit is often far below the machine's free memory (cgroup v2 files).
   const auto limit = read_number("/sys/fs/cgroup/memory.max");
   if (limit) {

@@ -56,8 +56,8 @@ TEST_F(Files, OutputDirectoryIsAllOrNothing) {
     staged.write("sub/two.txt", "2");
     // destroyed without commit: as if a later stage had failed
   }
-  ASSERT_TRUE(fs::exists(out));
-  EXPECT_TRUE(fs::is_empty(out)) << "an uncommitted output directory must leave nothing behind";
+  EXPECT_FALSE(fs::exists(out)) << "an uncommitted output directory must leave nothing behind";
+  EXPECT_TRUE(fs::is_empty(dir_.path)) << "nor its staging folder";
   {
     OutputDirectory staged(out);
     staged.write("one.txt", "1");
@@ -69,7 +69,10 @@ TEST_F(Files, OutputDirectoryIsAllOrNothing) {
   EXPECT_TRUE(fs::exists(out / "sub" / "two.txt"));
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++entries;
-  EXPECT_EQ(entries, 2U) << "the staging folder must be gone";
+  EXPECT_EQ(entries, 3U) << "one.txt, sub/ and manifest.json";
+  entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_.path)) ++entries;
+  EXPECT_EQ(entries, 1U) << "the staging folder must be gone";
 }
 
 }  // namespace

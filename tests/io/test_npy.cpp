@@ -112,5 +112,39 @@ TEST_F(Npy, Rejections) {
   expect_rejected(dir_.path / "missing.npy", "cannot open");
 }
 
+// Shapes whose byte count wraps around 2^64 (issue #18, finding 8): (2^61 - 1) x 1 of 8 bytes is 2^64 - 8 bytes,
+// plus the header offset wraps to a small number and once passed the truncation check, so the reader tried to
+// allocate 2^64 bytes ("out of memory", no file named). Every reader names the file and says "truncated".
+TEST_F(Npy, ShapesWhoseByteCountWrapsAreTruncated) {
+  const std::string data = raw(std::vector<double>(8, 1.0));
+  for (const std::string shape :
+       {"(2305843009213693951, 1)", "(1, 2305843009213693951)", "(4611686018427387903, 1)", "(4294967296, 4294967296)",
+        "(18446744073709551615, 1)", "(2305843009213693951,)", "(2, 1152921504606846976, 8)"}) {
+    for (const std::string dtype : {"<f8", "<f4"}) {
+      SCOPED_TRACE(shape + " " + dtype);
+      const auto path =
+          handmade("wrap.npy", "{'descr': '" + dtype + "', 'fortran_order': False, 'shape': " + shape + ", }", data);
+      try {
+        (void)read_npy_header(path);
+        FAIL() << "header accepted";
+      } catch (const InputError& e) {
+        EXPECT_EQ(e.subject(), path.string());
+        EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+      }
+      try {
+        (void)read_npy_matrix<float>(path);
+        FAIL() << "matrix accepted";
+      } catch (const InputError& e) {
+        EXPECT_EQ(e.subject(), path.string());
+      }
+    }
+  }
+  // The exact fit still reads: 8 doubles as 2 x 4 and 8 x 1.
+  EXPECT_NO_THROW((void)read_npy_matrix<float>(
+      handmade("fit.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 4), }", data)));
+  EXPECT_NO_THROW(
+      (void)read_npy_header(handmade("fit1.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (8, 1), }", data)));
+}
+
 }  // namespace
 }  // namespace seqtopo::io

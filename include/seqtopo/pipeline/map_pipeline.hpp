@@ -121,7 +121,8 @@ struct MapObserver {
 };
 
 // A checked request: the constructor reads what is small (the odometry, the number of images where it is
-// known without decoding) and throws InputError on anything wrong, before any long work; run() does the work.
+// known without decoding) and throws InputError on anything wrong, before any long work, a run whose memory
+// estimate (memory_estimate.hpp) exceeds the memory available included; run() does the work.
 class MapJob {
  public:
   explicit MapJob(MapRequest request);
@@ -135,6 +136,7 @@ class MapJob {
   std::vector<PreparedSession> sessions_;
   std::vector<SequenceInput> inputs_;  // the sessions' inputs, with their kept frames
   std::vector<Pose2> odometry_;        // all sessions', concatenated
+  std::string memory_note_;            // the whole run's memory estimate (memory_estimate.hpp)
 };
 
 // MapJob(request).run(observer).

@@ -15,8 +15,9 @@ class MemoryError : public std::runtime_error {
 
 // Bytes of an N x M float matrix (the distance matrix is turned into the similarity matrix in place).
 std::size_t matrix_bytes(std::size_t rows, std::size_t cols);
-// Memory this process may still use [bytes]: the smaller of MemAvailable (/proc/meminfo) and the cgroup
-// limit minus current use; nullopt when neither can be read.
+// Memory this process may still use [bytes]: the smallest of MemAvailable (/proc/meminfo), the cgroup limit minus
+// current use, and the environment variable SEQTOPO_MEMORY_LIMIT (bytes, or with a K, M or G suffix; a bad value
+// throws InputError naming it); nullopt when none can be read.
 std::optional<std::size_t> available_memory_bytes();
 // "12.4 MiB", "3.1 GiB".
 std::string format_bytes(std::size_t bytes);

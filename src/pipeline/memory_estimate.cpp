@@ -1,0 +1,310 @@
+#include "seqtopo/pipeline/memory_estimate.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+#include <thread>
+
+#include "seqtopo/core/input_error.hpp"
+#include "seqtopo/image/image_io.hpp"
+#include "seqtopo/image/joint_histogram.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/similarity/memory.hpp"
+#include "seqtopo/similarity/sparse_histogram.hpp"
+
+namespace seqtopo::pipeline {
+namespace {
+
+constexpr std::size_t kMax = std::numeric_limits<std::size_t>::max();
+
+// Saturating arithmetic: a size beyond addressing stays SIZE_MAX.
+std::size_t add(std::size_t a, std::size_t b) { return a > kMax - b ? kMax : a + b; }
+std::size_t mul(std::size_t a, std::size_t b) { return a != 0 && b > kMax / a ? kMax : a * b; }
+std::size_t sum(std::initializer_list<std::size_t> terms) {
+  std::size_t s = 0;
+  for (const std::size_t t : terms) s = add(s, t);
+  return s;
+}
+
+constexpr std::size_t kFastTile = 32;       // the fast engine's tile side (align/fast_kernels.hpp kTileSide)
+constexpr std::size_t kStreamTile = 256;    // StreamingConfig::tile
+constexpr std::size_t kPictureSide = 2048;  // the largest similarity.png / overview [pixels]
+
+// One pass of the exact engine (align/smith_waterman.cpp): the (N+1)^2 float table, the N^2 forbidden-cell
+// bytes, each row's best and the row buffer.
+std::size_t exact_pass(std::size_t n) { return sum({mul(mul(n + 1, n + 1), 4), mul(n, n), mul(n + 1, 8), mul(n, 4)}); }
+
+// One pass of the fast engine (align/fast_alignment.cpp): int16 checkpoint rows every 32 rows, column
+// checkpoints every 32 columns, the tiles' maxima, and the row ring and scratch rows of its threads.
+std::size_t fast_pass(std::size_t n, unsigned threads) {
+  const std::size_t stride = n + 1 + 64, bands = n / kFastTile + 1;
+  return sum({mul(mul(bands, stride), 2), mul(mul(n + 1, n / kFastTile + 1), 2), mul(mul(bands, bands), 2),
+              mul(mul(64 + 4, stride), 2 * static_cast<std::size_t>(std::max(1U, threads))), mul(n, 16)});
+}
+
+// The engine's passes held at once: forward and reverse run concurrently with more than one thread.
+std::size_t engine_bytes(const MapMemoryInput& in) {
+  const unsigned threads = std::max(1U, in.threads);
+  const bool concurrent = in.reverse && threads > 1;
+  const unsigned per_pass = concurrent ? std::max(1U, threads / 2) : threads;
+  const std::size_t pass = in.fast_engine ? fast_pass(in.images, per_pass) : exact_pass(in.images);
+  return mul(pass, concurrent ? 2 : 1);
+}
+
+// The fast engine traces an alignment back in a window of int16 values and scores (4 bytes a cell) that doubles
+// from 32 until it holds the alignment's start, plus the step bits of its box: for an alignment over half the
+// route (a route driven twice), about 2^k x N/2 cells with 2^k >= N/2 (align/fast_alignment.cpp recover()).
+std::size_t traceback_window(std::size_t n) {
+  const std::size_t length = n / 2;
+  std::size_t reach = kFastTile;
+  while (reach < length) reach *= 2;
+  const std::size_t rows = std::min(n, reach + kFastTile), cols = std::min(reach, length + 1);
+  return mul(mul(rows, cols), 5);
+}
+
+// map.json and alignments.json are built as JSON documents, one after the other: about 256 bytes an aligned pair
+// (formats/map_json.cpp). Before the run the pairs are not known: a route driven twice aligns about N.
+constexpr std::size_t kJsonBytesPerPair = 256;
+
+// The side of a picture of an N x N matrix: upscaled to at least 512, block means down to at most 2048.
+std::size_t picture_side(std::size_t n) {
+  if (n == 0) return 1;
+  if (n < 512) return n * ((512 + n - 1) / n);
+  return std::min(n, kPictureSide);
+}
+
+// A picture of an N x N matrix (plot/matrix_image.cpp, plot/png.cpp): inside matrix_image a sorted copy of the
+// values, the grey levels, the scaled grey, RGB and the RgbImage; then the encoding: the image, BGR, the PNG bytes
+// and their string.
+std::size_t picture_bytes(std::size_t n) {
+  const std::size_t side = picture_side(n), pixels = mul(side, side);
+  return std::max(sum({mul(mul(n, n), 5), mul(pixels, 7)}), mul(pixels, 12));
+}
+
+}  // namespace
+
+std::size_t outputs_extra_bytes(std::size_t images, std::size_t pairs, bool streaming) {
+  const std::size_t json = mul(pairs, kJsonBytesPerPair);
+  if (streaming) {
+    const std::size_t block = std::max<std::size_t>(1, (images + kPictureSide - 1) / kPictureSide);
+    return std::max(picture_bytes((images + block - 1) / block), json);
+  }
+  return std::max({add(mul(mul(images, images), 4), 128), picture_bytes(images), json});
+}
+
+MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
+  MapMemoryEstimate e;
+  const std::size_t n = in.images;
+  const std::size_t f = mul(mul(n, n), 4);  // one N x N float matrix
+  const std::size_t base = in.base_bytes;
+  const auto stage = [&](std::string name, std::size_t bytes) {
+    e.stages.push_back({std::move(name), add(base, bytes)});
+  };
+
+  if (in.streaming) {
+    const std::size_t descriptors = mul(mul(n, in.dimension), 4);
+    const std::size_t tiles_per_band = (n + kStreamTile - 1) / kStreamTile;
+    const std::size_t cache = mul(std::max<std::size_t>(4, mul(3, tiles_per_band)), kStreamTile * kStreamTile * 4);
+    // a thread's tile: the raw tile widened by the window, the tile and its window sums
+    const std::size_t wide = kStreamTile + 2 * in.contrast_window;
+    const std::size_t tile_work =
+        mul(std::max(1U, in.threads), sum({mul(mul(wide, wide), 4), kStreamTile * kStreamTile * 4, kStreamTile * 40}));
+    // the overview of at most 2048 x 2048 block maxima (plot/matrix_overview.hpp)
+    const std::size_t block = std::max<std::size_t>(1, (n + kPictureSide - 1) / kPictureSide);
+    const std::size_t side = (n + block - 1) / block;
+    const std::size_t overview = mul(mul(side, side), 4);
+    const std::size_t aligned = sum({descriptors, cache, tile_work, engine_bytes(in), traceback_window(n)});
+    stage("descriptors", std::max(in.input_read_bytes,
+                                  add(descriptors, in.descriptor_bytes.empty() ? 0 : in.descriptor_bytes.front())));
+    stage("alignment (streamed)", aligned);
+    // what the alignment's threads freed mostly stays with the process (their heaps): counted on
+    stage("similarity overview", add(aligned, overview));
+    stage("outputs",
+          sum({aligned, overview, in.truth_bytes, std::max(picture_bytes(side), mul(mul(n, 2), kJsonBytesPerPair))}));
+  } else {
+    const std::size_t d = std::max<std::size_t>(1, in.descriptor_bytes.size());
+    // 1. the matrices, one after another: the k-th is made while the others are held, beside its descriptors
+    std::size_t similarity = in.input_read_bytes;
+    if (in.similarity_input) {
+      similarity = std::max(similarity, f);
+    } else {
+      for (std::size_t k = 0; k < d; ++k) {
+        similarity = std::max(similarity, sum({mul(k + 1, f), in.descriptor_bytes[k]}));
+      }
+    }
+    stage("similarity", similarity);
+    // 2. alignment_scores
+    const std::size_t matrices = mul(d, f);
+    std::size_t enhancement = 0;
+    if (d == 1) {
+      enhancement = add(matrices, mul(in.contrast_window > 0 ? 2 : 1, f));
+    } else {
+      enhancement = add(matrices, mul(in.contrast_window > 0 ? 3 : 2, f));
+    }
+    stage("contrast enhancement", enhancement);
+    // 3. the alignment, with the scores beside the matrices
+    const std::size_t held = add(matrices, f);
+    stage("alignment", sum({held, engine_bytes(in), in.fast_engine ? traceback_window(n) : 0}));
+    // 4. accuracy: the ground-truth image (read: twice), the baseline's enhanced copy
+    const std::size_t truth = in.truth_bytes;
+    stage("accuracy", sum({held, mul(truth, 2), in.baseline ? f : 0}));
+    // 5. outputs: one encoded .npy or similarity.png at a time
+    stage("outputs", sum({held, truth, outputs_extra_bytes(n, mul(n, 2), false)}));
+  }
+  for (const auto& s : e.stages) {
+    if (s.bytes > e.peak || e.peak_stage.empty()) {
+      e.peak = s.bytes;
+      e.peak_stage = s.name;
+    }
+  }
+  return e;
+}
+
+MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::size_t images) {
+  const MapSettings& s = request.settings;
+  MapMemoryInput in;
+  in.images = images;
+  in.contrast_window = s.map.contrast_window;
+  in.fast_engine = s.map.engine == mapping::MapConfig::Engine::fast;
+  in.reverse = s.map.reverse;
+  const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
+  in.threads = s.map.threads == 0 ? cores : s.map.threads;
+  if (!in.fast_engine && s.map.threads == 0) in.threads = 1;  // the exact engine's passes: concurrent only if > 1
+  in.streaming = request.streaming;
+  in.base_bytes = resident_bytes();
+  const std::filesystem::path& truth = request.truth.same_place;
+  in.baseline = !truth.empty() && !request.streaming;
+  if (!truth.empty() && truth.extension() != ".csv") in.truth_bytes = mul(images, images);
+
+  if (kind == InputKind::descriptors || kind == InputKind::similarity) {
+    const auto header = io::read_npy_header(request.input.path);
+    std::size_t count = 1;
+    for (const std::size_t extent : header.shape) count = mul(count, extent);
+    const std::size_t item = header.dtype == "<f4" ? 4 : 8;
+    in.input_read_bytes = mul(count, item + 4);  // the raw values and their float copy
+    const std::size_t cols = header.shape.size() == 2 ? header.shape[1] : 0;
+    in.similarity_input = kind == InputKind::similarity;
+    in.descriptor_bytes = {in.similarity_input ? 0 : mul(mul(images, cols), 4)};
+    in.dimension = cols;
+    return in;
+  }
+  // Images or a video: each descriptor's vectors (a joint histogram keeps at most one bin per pixel of the first
+  // image, every bin for a video).
+  std::vector<Descriptor> descriptors = s.descriptors;
+  if (descriptors.empty()) descriptors = {Descriptor::joint_histogram};
+  if (request.streaming) descriptors.resize(1);
+  std::size_t pixels = image::JointHistogramConfig::bins;
+  if (kind == InputKind::images) {
+    const auto files = list_images(request.input.path);
+    if (!files.empty()) {
+      try {
+        const RgbImage first = image::load_image(files.front());
+        pixels = static_cast<std::size_t>(first.width) * static_cast<std::size_t>(first.height);
+      } catch (const std::exception&) {
+        // an unreadable image is reported by the run itself
+      }
+    }
+  }
+  in.descriptor_bytes.clear();
+  for (const Descriptor d : descriptors) {
+    std::size_t per_image = 0;
+    if (d == Descriptor::joint_histogram) {
+      const std::size_t bins = std::min<std::size_t>(image::JointHistogramConfig::bins, pixels);
+      per_image = sizeof(similarity::SparseHistogram) + bins * (sizeof(std::uint32_t) + sizeof(float));
+    } else if (d == Descriptor::patch) {
+      per_image = static_cast<std::size_t>(std::max(0, s.similarity.patch.width)) *
+                  static_cast<std::size_t>(std::max(0, s.similarity.patch.height)) * sizeof(float);
+      in.dimension = per_image / sizeof(float);
+    } else if (d == Descriptor::panorama) {
+      per_image = s.similarity.panorama.dimension() * sizeof(float);
+      in.dimension = per_image / sizeof(float);
+    }
+    in.descriptor_bytes.push_back(mul(images, per_image));
+  }
+  return in;
+}
+
+std::string check_map_memory(const MapRequest& request, InputKind kind, std::size_t images,
+                             std::optional<std::size_t> available) {
+  const MapMemoryInput in = map_memory_input(request, kind, images);
+  const MapMemoryEstimate e = estimate_map_memory(in);
+  const auto text = [](std::size_t bytes) {
+    return bytes == kMax ? std::string("more than can be addressed") : similarity::format_bytes(bytes);
+  };
+  const std::string figure =
+      fmt::format("the map of {} images needs about {} at its peak ({})", images, text(e.peak), e.peak_stage);
+  if (!available || e.peak <= *available) {
+    return "memory estimate: " + figure +
+           (available ? ", " + similarity::format_bytes(*available) + " available" : std::string());
+  }
+  // What would fit instead, cheapest change first.
+  std::vector<std::string> fits;
+  const auto consider = [&](const std::string& change, MapMemoryInput alternative) {
+    const auto peak = estimate_map_memory(alternative).peak;
+    if (peak <= *available) fits.push_back(fmt::format("{} (about {})", change, text(peak)));
+  };
+  if (!in.streaming) {
+    if (in.threads > 1 && in.reverse) {
+      MapMemoryInput one = in;
+      one.threads = 1;
+      consider("--threads 1 (one alignment pass at a time)", one);
+    }
+    if (!in.fast_engine) {
+      MapMemoryInput fast = in;
+      fast.fast_engine = true;
+      consider("--engine fast (no N x N alignment table)", fast);
+    }
+    if (!in.similarity_input) {
+      MapMemoryInput streamed = in;
+      streamed.streaming = true;
+      streamed.fast_engine = true;
+      streamed.baseline = false;
+      streamed.descriptor_bytes.resize(1);
+      consider(kind == InputKind::descriptors ? "--streaming (never the N x N matrix)"
+                                              : "--streaming with one vector descriptor (--descriptor patch "
+                                                "--metric cosine; never the N x N matrix)",
+               streamed);
+    }
+  }
+  std::string advice = fits.empty() ? "nothing of --threads 1, --engine fast or --streaming fits either; the sparse "
+                                      "mode aligns without any N x N table (seqtopo-mpi sparse, docs/scaling.md)"
+                                    : "it would fit with " + fits.front();
+  for (std::size_t k = 1; k < fits.size(); ++k) advice += ", or " + fits[k];
+  throw InputError(request.input.path.string(),
+                   figure + ", only " + similarity::format_bytes(*available) + " of memory is available; " + advice);
+}
+
+void check_outputs_memory(const MapRun& run, std::optional<std::size_t> available, const std::string& folder) {
+  if (!available) return;
+  std::size_t pairs = 0;
+  for (const auto& a : run.result.alignments) pairs = add(pairs, a.pairs.size());
+  for (const auto& a : run.result.rejected) pairs = add(pairs, a.pairs.size());
+  const std::size_t need = outputs_extra_bytes(run.result.map.labels.size(), pairs, run.streaming);
+  if (need > *available) {
+    throw InputError(folder, fmt::format("writing the outputs ({} aligned pairs) needs about {} more, only {} of "
+                                         "memory is available; nothing was written",
+                                         pairs, similarity::format_bytes(need), similarity::format_bytes(*available)));
+  }
+}
+
+namespace {
+std::size_t status_kib(const char* key) {
+  std::ifstream in("/proc/self/status");
+  std::string word;
+  while (in >> word) {
+    if (word == key) {
+      std::size_t kib = 0;
+      in >> kib;
+      return kib * 1024;
+    }
+  }
+  return 0;
+}
+}  // namespace
+
+std::size_t resident_bytes() { return status_kib("VmRSS:"); }
+std::size_t peak_resident_bytes() { return status_kib("VmHWM:"); }
+
+}  // namespace seqtopo::pipeline
