@@ -151,7 +151,8 @@ void bind_map(py::module_& m) {
                      bool cap_from_statistics, float cap_factor, std::optional<double> max_e_value, float threshold,
                      double min_revisit_places, bool adapt_offset, std::size_t min_separation, bool place_units,
                      std::optional<double> frames_per_place, bool reverse, const std::string& labelling,
-                     double max_visit_span, PruningConfig pruning, TopologyConfig topology, unsigned threads) {
+                     double max_visit_span, PruningConfig pruning, TopologyConfig topology, unsigned threads,
+                     float contrast_offset_step, float max_contrast_offset, std::size_t fit_alignments) {
           MapConfig config;
           config.contrast_window = contrast_window;
           config.contrast_offset = contrast_offset;
@@ -172,6 +173,9 @@ void bind_map(py::module_& m) {
           config.pruning = pruning;
           config.topology = topology;
           config.threads = threads;
+          config.contrast_offset_step = contrast_offset_step;
+          config.max_contrast_offset = max_contrast_offset;
+          config.fit_alignments = fit_alignments;
           return config;
         }),
         py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
@@ -182,7 +186,8 @@ void bind_map(py::module_& m) {
         py::arg("place_units") = d.place_units, py::arg("frames_per_place") = d.frames_per_place,
         py::arg("reverse") = d.reverse, py::arg("labelling") = labelling_name(d.labelling),
         py::arg("max_visit_span") = d.max_visit_span, py::arg("pruning") = d.pruning, py::arg("topology") = d.topology,
-        py::arg("threads") = d.threads)
+        py::arg("threads") = d.threads, py::arg("contrast_offset_step") = d.contrast_offset_step,
+        py::arg("max_contrast_offset") = d.max_contrast_offset, py::arg("fit_alignments") = d.fit_alignments)
       .def_readwrite("contrast_window", &MapConfig::contrast_window)
       .def_readwrite("contrast_offset", &MapConfig::contrast_offset)
       .def_readwrite("gap", &MapConfig::gap)

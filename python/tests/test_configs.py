@@ -59,13 +59,13 @@ def test_defaults_equal_the_command_line_help(cli):
     """`seqtopo map --help` prints the defaults of the C++ MapConfig."""
     text = run_cli(cli, "map", "--help").stdout
     config = seqtopo.MapConfig()
-    cap = re.search(r"--cap\b[^\n]*\(default: ([0-9.]+) x [^;]*; ([0-9.]+) without --e-value", text)
+    cap = re.search(r"^\s*--cap\b[^\n]*\(default: ([0-9.]+) x [^;]*; ([0-9.]+) without --e-value", text, re.M)
     assert cap, "cap"
     assert (float(cap.group(1)), float(cap.group(2))) == pytest.approx((config.cap_factor, config.cap))
     for option, value in [("gap", config.gap), ("threshold", config.threshold),
                           ("min-separation", config.min_separation), ("contrast-window", config.contrast_window),
                           ("contrast-offset", config.contrast_offset)]:
-        match = re.search(r"--" + option + r"\b[^\n]*\(default ([0-9.]+)", text)
+        match = re.search(r"^\s*--" + option + r"\b[^\n]*\(default ([0-9.]+)", text, re.M)
         assert match, option
         assert float(match.group(1)) == pytest.approx(value), option
 

@@ -305,7 +305,10 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     *expected += *s.frames;
   }
   if (expected) {
-    memory_note_ = check_map_memory(request_, kind_, *expected, similarity::available_memory_bytes());
+    // Sized from the first session's input (its .npy header or first image); the image count is every session's.
+    MapRequest sized = request_;
+    sized.input = inputs_.front();
+    memory_note_ = check_map_memory(sized, kind_, *expected, similarity::available_memory_bytes());
     request_.settings.similarity.note_memory_above = std::numeric_limits<std::size_t>::max();  // ours is printed
   }
 }
