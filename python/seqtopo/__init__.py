@@ -263,7 +263,8 @@ class MapResult:
     ``alignments``: every :class:`Alignment` found, best first; ``kept``: per alignment, whether it
     survived pruning; ``retained_count``: its surviving pairs; ``loop_closures``: ``(K, 2)`` retained
     image pairs ``(i, j)``, ``i > j`` (the rows of ``loop_closures.csv``), with
-    ``loop_closure_scores`` (the score of their alignment) and ``loop_closure_alignments`` (its index);
+    ``loop_closure_scores`` (the score of their alignment), ``loop_closure_confidences`` (the probability
+    that the pair is a revisit, INTERFACE.md) and ``loop_closure_alignments`` (its index);
     ``scores``: the matrix that was aligned (S or its contrast-enhanced form); ``similarities``: for
     :func:`build_map_from_images`, the similarity matrix of each descriptor, else empty.
     """
@@ -278,6 +279,7 @@ class MapResult:
     retained_count: _np.ndarray
     loop_closures: _np.ndarray
     loop_closure_scores: _np.ndarray
+    loop_closure_confidences: _np.ndarray
     loop_closure_alignments: _np.ndarray
     scores: _np.ndarray
     seconds_align: float

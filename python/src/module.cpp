@@ -91,15 +91,18 @@ py::dict map_result(mapping::MapResult&& r) {
   out["retained_count"] = index_array(r.pruning.retained_count);
   std::vector<Index> closures, alignment_of;
   std::vector<float> closure_scores;
+  std::vector<double> closure_confidences;
   for (const auto& p : r.pruning.pairs) {
     closures.push_back(index(p.i));
     closures.push_back(index(p.j));
     alignment_of.push_back(index(p.alignment));
     closure_scores.push_back(p.score);
+    closure_confidences.push_back(p.confidence);
   }
   const auto pairs = static_cast<py::ssize_t>(alignment_of.size());
   out["loop_closures"] = to_array(std::move(closures), {pairs, 2});
   out["loop_closure_scores"] = to_array(std::move(closure_scores));
+  out["loop_closure_confidences"] = to_array(std::move(closure_confidences));
   out["loop_closure_alignments"] = to_array(std::move(alignment_of));
   out["labels"] = to_array(std::move(map.labels));
   py::list places;

@@ -39,6 +39,9 @@ def assert_map_equal(result, out_dir):
     pairs, scores = read_loop_closures(out_dir / "loop_closures.csv")
     assert np.array_equal(result.loop_closures, pairs)
     assert np.array_equal(result.loop_closure_scores, scores)
+    confidences = np.array([float(r["confidence"]) for r in csv.DictReader(open(out_dir / "loop_closures.csv"))])
+    assert np.allclose(result.loop_closure_confidences, confidences, rtol=1e-5, atol=1e-9)
+    assert ((0 <= result.loop_closure_confidences) & (result.loop_closure_confidences <= 1)).all()
     assert np.array_equal(np.load(out_dir / "scores.npy"), result.scores)
 
 

@@ -19,6 +19,7 @@ nlohmann::json alignment_list(const mapping::MapResult& result) {
   for (std::size_t k = 0; k < list.size(); ++k) {
     if (k < result.path_scores.size()) list[k]["path_score"] = result.path_scores[k];
     if (k < result.e_values.size()) list[k]["e_value"] = number_or_null(result.e_values[k]);
+    if (k < result.posteriors.size() && !result.posteriors[k].empty()) list[k]["posteriors"] = result.posteriors[k];
   }
   return list;
 }
@@ -89,11 +90,11 @@ std::string alignments_json(const mapping::MapResult& result) {
 }
 
 std::string loop_closures_csv(const mapping::MapResult& result) {
-  std::string csv = "i,j,score,e_value\n";
+  std::string csv = "i,j,score,e_value,confidence\n";
   for (const auto& p : result.pruning.pairs) {
     const double e = p.alignment < result.e_values.size() ? result.e_values[p.alignment] : std::nan("");
-    csv += std::isfinite(e) ? fmt::format("{},{},{},{:.4g}\n", p.i, p.j, p.score, e)
-                            : fmt::format("{},{},{},\n", p.i, p.j, p.score);
+    csv += std::isfinite(e) ? fmt::format("{},{},{},{:.4g},{:.6g}\n", p.i, p.j, p.score, e, p.confidence)
+                            : fmt::format("{},{},{},,{:.6g}\n", p.i, p.j, p.score, p.confidence);
   }
   return csv;
 }

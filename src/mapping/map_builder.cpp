@@ -9,6 +9,7 @@
 #include <string>
 
 #include "seqtopo/align/fast_alignment.hpp"
+#include "seqtopo/align/pair_posterior.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
@@ -240,6 +241,41 @@ PlaceScale frames_per_place(const std::vector<SimilarityMatrix>& similarities) {
   return {sum / static_cast<double>(found), true};
 }
 
+namespace {
+
+// Per pair: the probability that its alignment is not chance, exp(-E) (no chance alignment this good is
+// expected: Poisson), times the pair's posterior within its alignment (align/pair_posterior.hpp), with lambda
+// from the statistics (1 without them: the scores are then log-odds as they stand).
+void add_confidences(const align::ScoreSource& scores, const align::AlignConfig& engine, const MapConfig& c,
+                     const MapDecisions& d, MapResult& result) {
+  align::PosteriorConfig pc;
+  pc.lambda = d.statistics.valid() ? d.statistics.lambda : 1.0;
+  pc.gap_a = engine.gap_a;
+  pc.gap_b = engine.gap_b;
+  pc.band = std::max<std::size_t>(c.confidence_band, static_cast<std::size_t>(std::ceil(d.frames_per_place)));
+  pc.self = true;
+  pc.min_separation = c.min_separation;
+  pc.tolerance = static_cast<std::size_t>(std::lround(d.frames_per_place));  // within a place: the same place
+  result.posteriors.assign(result.alignments.size(), {});
+  // Only the alignments that contributed pairs: the others are not in the outputs' pairs.
+  std::vector<bool> needed(result.alignments.size(), false);
+  for (const auto& p : result.pruning.pairs) needed[p.alignment] = true;
+  for (std::size_t k = 0; k < result.alignments.size(); ++k) {
+    if (needed[k]) result.posteriors[k] = align::pair_posteriors(result.alignments[k], scores, pc);
+  }
+  for (auto& p : result.pruning.pairs) {
+    const auto& pairs = result.alignments[p.alignment].pairs;
+    const auto at = std::lower_bound(pairs.begin(), pairs.end(), std::pair{p.i, std::size_t{0}});
+    const double posterior = at != pairs.end() && at->first == p.i
+                                 ? result.posteriors[p.alignment][static_cast<std::size_t>(at - pairs.begin())]
+                                 : 0.0;
+    const double e = p.alignment < result.e_values.size() ? result.e_values[p.alignment] : std::nan("");
+    p.confidence = (std::isfinite(e) ? std::exp(-e) : 1.0) * posterior;
+  }
+}
+
+}  // namespace
+
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config, std::span<const Pose2> odometry) {
   return build_map(std::vector<SimilarityMatrix>{similarity}, config, odometry);
 }
@@ -430,6 +466,10 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   }
   result.map = build_topology(labels, result.alignments, result.pruning, c.topology);
   result.seconds_prune_label = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  add_confidences(scores, engine, c, d, result);
+  result.seconds_confidence = seconds_since(start);
   return result;
 }
 

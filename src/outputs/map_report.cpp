@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -16,11 +17,9 @@
 namespace seqtopo::outputs {
 namespace {
 
-// The per-pair value the histogram shows and the pair viewer names "confidence". The per-pair confidence is
-// being added to loop_closures.csv and MapRun by another change; until it is there the alignment's score stands
-// in for it. To switch: put the confidence into pair_json() under its own key and name that key here.
-constexpr const char* kConfidenceKey = "score";
-constexpr const char* kConfidenceLabel = "alignment score (stands in for the confidence)";
+// The per-pair value the histogram shows and the pair viewer names "confidence" (mapping/pruning.hpp).
+constexpr const char* kConfidenceKey = "confidence";
+constexpr const char* kConfidenceLabel = "confidence (P the pair is a revisit)";
 
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -38,7 +37,11 @@ nlohmann::json pairs_json(const pipeline::MapRun& run) {
     const auto& a = result.alignments[p.alignment];
     rows.push_back({{"i", p.i},
                     {"j", p.j},
+                    {"confidence", p.confidence},
                     {"score", p.score},
+                    {"e_value", p.alignment < result.e_values.size() && std::isfinite(result.e_values[p.alignment])
+                                    ? nlohmann::json(result.e_values[p.alignment])
+                                    : nlohmann::json(nullptr)},
                     {"alignment", p.alignment},
                     {"direction", std::string(align::to_string(a.direction))}});
   }
@@ -50,7 +53,9 @@ nlohmann::json pairs_json(const pipeline::MapRun& run) {
           {"fields",
            {{{"key", "i"}, {"label", "image i (later)"}},
             {{"key", "j"}, {"label", "image j (earlier)"}},
+            {{"key", "confidence"}, {"label", "confidence"}},
             {{"key", "score"}, {"label", "alignment score"}},
+            {{"key", "e_value"}, {"label", "alignment E-value"}},
             {{"key", "alignment"}, {"label", "alignment #"}},
             {{"key", "direction"}, {"label", "direction"}}}},
           {"rows", std::move(rows)}};

@@ -200,7 +200,14 @@ void trajectory_and_accuracy(const MapSettings& settings, const std::function<Ma
   const MapTruth truth = load_truth();
   if (truth.same_place) {
     std::vector<evaluation::ScoredPair> pairs;
-    for (const auto& p : run.result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
+    std::vector<double> confidence;
+    std::vector<bool> correct;
+    for (const auto& p : run.result.pruning.pairs) {
+      pairs.push_back({p.i, p.j, static_cast<float>(p.confidence)});
+      confidence.push_back(p.confidence);
+      correct.push_back(truth.same_place(p.i, p.j));
+    }
+    run.calibration = evaluation::calibration(confidence, correct);
     run.metrics = evaluation::evaluate_loop_closures(pairs, n, truth.same_place, run.result.decisions.min_separation);
   }
   if (!truth.places.empty()) {

@@ -182,7 +182,7 @@ def test_pr_curve_and_histogram_show_values_under_the_pointer(browser, map_repor
     tallest = max(bars, key=lambda b: float(b.get_attribute("height")))
     hover(driver, tallest)
     text = driver.find_element("id", "confidence-readout").text
-    assert re.search(r"stands in for the confidence\) [-\d.]+ to [-\d.]+: \d+ pairs", text), text
+    assert re.search(r"confidence \(P the pair is a revisit\) [-\d.]+ to [-\d.]+: \d+ pairs", text), text
     counted = int(re.search(r": (\d+) pairs", text).group(1))
     with open(os.path.join(os.path.dirname(map_report), "loop_closures.csv")) as f:
         assert 0 < counted <= len(f.read().strip().split("\n")) - 1

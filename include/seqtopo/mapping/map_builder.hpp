@@ -72,6 +72,8 @@ struct MapConfig {
   unsigned threads = 2;
   // Declumped alignments found for the statistics' fit (significance/score_statistics.hpp).
   std::size_t fit_alignments = 300;
+  // Half-width of the band the pairs' posteriors sum over [frames]; at least one place.
+  std::size_t confidence_band = 8;
 };
 
 // What a map run decided from the sequence itself (the settings in frames, the statistics), for the report.
@@ -105,7 +107,10 @@ struct MapResult {
   PruningResult pruning;          // the retained pairs (accepted by the labelling, or surviving pruning)
   std::size_t refused_pairs = 0;  // consistent labelling: proposals refused as inconsistent
   TopologicalMap map;
-  double seconds_align = 0, seconds_prune_label = 0;
+  // Per alignment, per pair: the posterior that the pair is aligned (align/pair_posterior.hpp); empty for the
+  // alignments that gave no retained pair. Each retained pair's confidence is in pruning.pairs.
+  std::vector<std::vector<double>> posteriors;
+  double seconds_align = 0, seconds_prune_label = 0, seconds_confidence = 0;
 };
 
 // The pipeline, from the similarity matrices of one sequence:

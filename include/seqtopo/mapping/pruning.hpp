@@ -36,6 +36,9 @@ struct RetainedPair {
   std::size_t i = 0, j = 0;   // image indices, i > j for a self alignment
   std::size_t alignment = 0;  // index into the alignment list
   float score = 0;            // that alignment's score
+  // P(the pair is a revisit): exp(-E-value of the alignment) x the pair's posterior (map_builder.hpp); 1 before
+  // it is computed.
+  double confidence = 1;
   friend bool operator==(const RetainedPair&, const RetainedPair&) = default;
 };
 

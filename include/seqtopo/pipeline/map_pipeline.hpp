@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "seqtopo/core/pose2.hpp"
+#include "seqtopo/evaluation/calibration.hpp"
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
 #include "seqtopo/evaluation/topology_metrics.hpp"
 #include "seqtopo/formats/map_json.hpp"
@@ -92,6 +93,8 @@ struct MapRun {
   mapping::MapResult result;
   std::vector<Pose2> odometry, ekf, pose_graph;
   std::optional<evaluation::LoopClosureMetrics> metrics, baseline_metrics;
+  // The retained pairs' confidence against the ground truth (every pair, not only each image's best).
+  std::optional<evaluation::Calibration> calibration;
   std::string baseline_name;
   std::string baseline_skipped;  // why the baseline did not run (streaming), when it did not
   std::optional<TrajectoryErrors> ate;
