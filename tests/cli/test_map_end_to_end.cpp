@@ -56,14 +56,16 @@ TEST_F(MapCommand, BundledCorridorGoldenRun) {
   std::istringstream csv(read_file(out / "loop_closures.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "i,j,score,e_value");
+  EXPECT_EQ(line, "i,j,score,e_value,confidence");
   int rows = 0;
   while (std::getline(csv, line)) {
     int i = 0, j = 0;
-    double score = 0, e_value = 0;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%lf,%lf", &i, &j, &score, &e_value), 4) << line;
+    double score = 0, e_value = 0, confidence = -1;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%lf,%lf,%lf", &i, &j, &score, &e_value, &confidence), 5) << line;
     EXPECT_GT(i, j);
     EXPECT_LE(e_value, 0.01) << "every retained pair belongs to a significant alignment";
+    EXPECT_GT(confidence, 0.0) << line;
+    EXPECT_LE(confidence, 1.0) << line;
     ++rows;
   }
   EXPECT_GT(rows, 30);
