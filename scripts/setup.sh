@@ -12,6 +12,8 @@ packages=(
   libfaiss-dev libopenmpi-dev openmpi-bin
   python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-pip python3-venv python3-pil
   chromium chromium-driver python3-selenium ccache clang-format
+  # Fuzzing (scripts/fuzz.sh): Debian's clang and its libFuzzer and sanitizer runtimes.
+  clang libclang-rt-14-dev
   libjs-d3
   # Bags (the recording module): ROS 1 through librosbag and the message libraries, ROS 2 .db3 through SQLite,
   # MCAP chunks through zstd and lz4.
