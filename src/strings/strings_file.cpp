@@ -29,6 +29,20 @@ double parse_number(std::string_view field, std::size_t line, const char* what) 
   return value;
 }
 
+// A field of an id or place: no control character (a '\r' would be read back as the line's end).
+void check_text(std::string_view field, std::size_t line, const char* what) {
+  for (char c : field) {
+    if (static_cast<unsigned char>(c) < 32) throw StringsFileError(line, std::string(what) + " contains a control character");
+  }
+}
+
+// The shortest text that reads back as the same double.
+std::string shortest(double v) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return ec == std::errc() ? std::string(buffer, end) : std::to_string(v);
+}
+
 }  // namespace
 
 std::vector<StringRecord> parse_strings_tsv(std::string_view text) {
@@ -51,6 +65,7 @@ std::vector<StringRecord> parse_strings_tsv(std::string_view text) {
     StringRecord r;
     r.id = std::string(fields[0]);
     if (r.id.empty()) throw StringsFileError(line_no, "empty id");
+    check_text(r.id, line_no, "the id");
     if (!ids.insert(r.id).second) throw StringsFileError(line_no, "repeated id '" + r.id + "'");
     r.symbols = std::string(fields[1]);
     for (char c : r.symbols) {
@@ -63,6 +78,7 @@ std::vector<StringRecord> parse_strings_tsv(std::string_view text) {
     }
     if (fields.size() == 5) {
       if (fields[4].empty()) throw StringsFileError(line_no, "empty place");
+      check_text(fields[4], line_no, "the place");
       r.place = std::string(fields[4]);
     }
     records.push_back(std::move(r));
@@ -72,12 +88,11 @@ std::vector<StringRecord> parse_strings_tsv(std::string_view text) {
 
 std::string format_strings_tsv(const std::vector<StringRecord>& records, std::string_view header_comment) {
   std::ostringstream out;
-  out.precision(10);
   if (!header_comment.empty()) out << "# " << header_comment << "\n";
   for (const StringRecord& r : records) {
     out << r.id << '\t' << r.symbols;
     if (r.x && r.y) {
-      out << '\t' << *r.x << '\t' << *r.y;
+      out << '\t' << shortest(*r.x) << '\t' << shortest(*r.y);
       if (r.place) out << '\t' << *r.place;
     }
     out << '\n';

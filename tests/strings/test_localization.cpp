@@ -122,6 +122,27 @@ TEST(StringsFile, ParsesAndRoundTrips) {
   EXPECT_EQ(parse_strings_tsv(format_strings_tsv(records)).size(), 3U);
 }
 
+// Found by the fuzz harness: the largest double was written with 10 digits (above it, not a number), and a place
+// ending in '\r' came back without it.
+TEST(StringsFile, CoordinatesRoundTripToTheBitAndControlCharactersAreRefused) {
+  std::vector<StringRecord> records(2);
+  records[0].id = "a";
+  records[0].x = 1.7976931348623157e308;
+  records[0].y = 0.1 + 0.2;
+  records[1].id = "b";
+  records[1].x = -4.9e-324;
+  records[1].y = 1.5;
+  records[1].place = "p";
+  const auto again = parse_strings_tsv(format_strings_tsv(records));
+  ASSERT_EQ(again.size(), 2U);
+  EXPECT_EQ(again[0].x, records[0].x);
+  EXPECT_EQ(again[0].y, records[0].y);
+  EXPECT_EQ(again[1].x, records[1].x);
+  EXPECT_NE(format_strings_tsv(records).find("\t1.5\t"), std::string::npos) << "short numbers stay short";
+  EXPECT_THROW(parse_strings_tsv("a\tv\t1\t2\tp\r\r\n"), StringsFileError);
+  EXPECT_THROW(parse_strings_tsv("a\x01\tv\n"), StringsFileError);
+}
+
 TEST(StringsFile, MalformedLinesNameTheLine) {
   auto line_of = [](const std::string& text) {
     try {
