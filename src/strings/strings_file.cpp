@@ -32,7 +32,8 @@ double parse_number(std::string_view field, std::size_t line, const char* what) 
 // A field of an id or place: no control character (a '\r' would be read back as the line's end).
 void check_text(std::string_view field, std::size_t line, const char* what) {
   for (char c : field) {
-    if (static_cast<unsigned char>(c) < 32) throw StringsFileError(line, std::string(what) + " contains a control character");
+    if (static_cast<unsigned char>(c) < 32)
+      throw StringsFileError(line, std::string(what) + " contains a control character");
   }
 }
 
