@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "median.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/align/pair_posterior.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
@@ -16,6 +17,8 @@
 
 namespace seqtopo::mapping {
 namespace {
+
+using detail::median;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -58,13 +61,6 @@ std::vector<align::LocalAlignment> run_engine(const align::ScoreSource& scores, 
                    : align::fast_local_alignments(scores, engine, options);
   }
   return reverse ? align::local_alignments_both(scores, engine, threads) : align::local_alignments(scores, engine);
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
 // Chance alignments in the logarithmic phase stay short: their length grows like the log of the search area,
@@ -243,6 +239,20 @@ PlaceScale frames_per_place(const std::vector<SimilarityMatrix>& similarities) {
 
 namespace {
 
+// Keeps alignments `which` (in that order) with their path scores and E-values.
+void select_alignments(MapResult& result, const std::vector<std::size_t>& which) {
+  std::vector<align::LocalAlignment> alignments;
+  std::vector<double> path_scores, e_values;
+  for (std::size_t k : which) {
+    alignments.push_back(std::move(result.alignments[k]));
+    path_scores.push_back(result.path_scores[k]);
+    e_values.push_back(result.e_values[k]);
+  }
+  result.alignments = std::move(alignments);
+  result.path_scores = std::move(path_scores);
+  result.e_values = std::move(e_values);
+}
+
 // Per pair: the probability that its alignment is not chance, exp(-E) (no chance alignment this good is
 // expected: Poisson), times the pair's posterior within its alignment (align/pair_posterior.hpp), with lambda
 // from the statistics (1 without them: the scores are then log-odds as they stand).
@@ -290,8 +300,7 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
   if (estimate) {
     // The travelled distance when there is odometry (a smooth descriptor can look alike over many places);
     // else the decay of the similarity along the sequence.
-    if (!odometry.empty()) scale = frames_per_place_from_odometry(odometry);
-    if (!scale || !scale->found) scale = frames_per_place(similarities);
+    scale = place_scale(odometry, [&] { return frames_per_place(similarities); });
     c.frames_per_place = scale->frames_per_place;
   }
   const MapConfig framed = settings_in_frames(c, c.frames_per_place.value_or(1.0));
@@ -410,38 +419,22 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   }
   // Most significant first: capped scores tie at the cap, their paths' scores do not. Pruning and labels
   // then prefer the strongest of overlapping alignments (parallel shadows of one revisit, crossing chances).
-  {
-    std::vector<std::size_t> order(result.alignments.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t x, std::size_t y) { return result.path_scores[x] > result.path_scores[y]; });
-    std::vector<align::LocalAlignment> sorted;
-    std::vector<double> sorted_path, sorted_e;
-    for (std::size_t k : order) {
-      sorted.push_back(std::move(result.alignments[k]));
-      sorted_path.push_back(result.path_scores[k]);
-      sorted_e.push_back(result.e_values[k]);
-    }
-    result.alignments = std::move(sorted);
-    result.path_scores = std::move(sorted_path);
-    result.e_values = std::move(sorted_e);
-  }
+  std::vector<std::size_t> order(result.alignments.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return result.path_scores[x] > result.path_scores[y]; });
+  select_alignments(result, order);
   if (!odometry.empty() && c.odometry_gate) {
     const std::vector<bool> keep = consistent_with_odometry(result.alignments, odometry, *c.odometry_gate);
-    std::vector<align::LocalAlignment> kept;
-    std::vector<double> kept_path, kept_e;
+    std::vector<std::size_t> kept;
     for (std::size_t k = 0; k < keep.size(); ++k) {
       if (keep[k]) {
-        kept.push_back(std::move(result.alignments[k]));
-        kept_path.push_back(result.path_scores[k]);
-        kept_e.push_back(result.e_values[k]);
+        kept.push_back(k);
       } else {
-        result.rejected.push_back(std::move(result.alignments[k]));
+        result.rejected.push_back(std::move(result.alignments[k]));  // not selected below
       }
     }
-    result.alignments = std::move(kept);
-    result.path_scores = std::move(kept_path);
-    result.e_values = std::move(kept_e);
+    select_alignments(result, kept);
   }
   result.seconds_align = seconds_since(start);
 
@@ -451,9 +444,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     ConsistentLabellingConfig lc;
     lc.min_separation = c.min_separation;
     lc.max_visit_span = in_frames(c.max_visit_span, d.frames_per_place);
-    // The engine's order when there is no path score (the fixed threshold): best first.
-    std::vector<double> priority = result.path_scores;
-    auto labelling = label_consistently(n, result.alignments, priority, lc, c.pruning.min_retained_fraction);
+    auto labelling = label_consistently(n, result.alignments, result.path_scores, lc, c.pruning.min_retained_fraction);
     result.pruning = std::move(labelling.accepted);
     result.refused_pairs = labelling.refused;
     labels = std::move(labelling.labels);

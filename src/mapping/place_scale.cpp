@@ -5,19 +5,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "median.hpp"
+
 namespace seqtopo::mapping {
-namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  if (v.size() % 2 == 1) return *mid;
-  const double upper = *mid;
-  return 0.5 * (upper + *std::max_element(v.begin(), mid));
-}
-
-}  // namespace
+using detail::median;
 
 PlaceScale estimate_frames_per_place(const align::ScoreSource& s, std::size_t max_lag) {
   const std::size_t n = s.rows();
@@ -62,6 +54,14 @@ PlaceScale frames_per_place_from_odometry(std::span<const Pose2> odometry, doubl
   const double step = median(std::move(steps));
   if (!(step > 0) || !std::isfinite(step)) return {};
   return {std::max(1.0, place_length / step), true};
+}
+
+PlaceScale place_scale(std::span<const Pose2> odometry, const std::function<PlaceScale()>& from_similarity) {
+  if (!odometry.empty()) {
+    const PlaceScale travelled = frames_per_place_from_odometry(odometry);
+    if (travelled.found) return travelled;
+  }
+  return from_similarity();
 }
 
 }  // namespace seqtopo::mapping

@@ -140,13 +140,12 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
     }
   };
   if (config.place_units && !config.frames_per_place) {
-    if (!odometry.empty()) place = mapping::frames_per_place_from_odometry(odometry);
-    if (!place || !place->found) {
+    place = mapping::place_scale(odometry, [&] {
       make_streamed(0);
       const auto& raw = *streamed;
-      place = mapping::estimate_frames_per_place(
+      return mapping::estimate_frames_per_place(
           align::ScoreSource::function(n, n, [&raw](std::size_t i, std::size_t j) { return raw.cosine(i, j); }));
-    }
+    });
     config.frames_per_place = place->frames_per_place;
   }
   const mapping::MapConfig framed = mapping::settings_in_frames(config, config.frames_per_place.value_or(1.0));

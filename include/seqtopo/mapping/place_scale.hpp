@@ -15,6 +15,7 @@
 // Worked example: AR(1) descriptors x_{i+1} = rho x_i + sqrt(1 - rho^2) e_i with rho = exp(-1 / L) have
 // cosine similarity close to exp(-k / L) at lag k: the estimate is L ln 2.
 #include <cstddef>
+#include <functional>
 #include <span>
 
 #include "seqtopo/align/score_source.hpp"
@@ -41,5 +42,9 @@ PlaceScale estimate_frames_per_place(const align::ScoreSource& similarity, std::
 // mapping paper's indoor recording interval (one image every 0.25 m, section V), so a sequence recorded as the
 // paper did counts one frame per place, and a 30 fps recording at 1 m/s about 7.5.
 PlaceScale frames_per_place_from_odometry(std::span<const Pose2> odometry, double place_length = 0.25);
+
+// The scale a map run uses: the travelled distance when there is odometry (a smooth descriptor can look alike
+// over many places), else `from_similarity()` (called only then).
+PlaceScale place_scale(std::span<const Pose2> odometry, const std::function<PlaceScale()>& from_similarity);
 
 }  // namespace seqtopo::mapping
