@@ -86,9 +86,46 @@ struct Statement {
   }
 };
 
-class SqliteBag final : public Backend {
+// Both ROS 2 storages hold CDR messages by topic: the topic list and the decoding are shared, the storage
+// only says how to visit one topic's messages in time order.
+class CdrBag : public Backend {
  public:
-  SqliteBag(const std::vector<std::string>& files, std::string subject) : subject_(std::move(subject)) {
+  explicit CdrBag(std::string subject) : subject_(std::move(subject)) {}
+
+  std::vector<Topic> topics() const final {
+    std::vector<Topic> out;
+    for (const auto& [name, t] : topics_) out.push_back(t);
+    return out;
+  }
+
+  void read_images(const std::string& topic, bool with_data,
+                   const std::function<void(RosImage&, std::int64_t)>& visit) const final {
+    const MessageType type = message_type(topics_.at(topic).type);
+    each(topic, [&](std::span<const std::uint8_t> data, std::int64_t t) {
+      decode_image(type, data, with_data, subject_, topic, t, visit);
+    });
+  }
+
+  void read_poses(const std::string& topic,
+                  const std::function<void(const RosPose&, std::int64_t)>& visit) const final {
+    const MessageType type = message_type(topics_.at(topic).type);
+    each(topic, [&](std::span<const std::uint8_t> data, std::int64_t t) {
+      decode_pose(type, data, subject_, topic, t, visit);
+    });
+  }
+
+ protected:
+  using MessageVisit = std::function<void(std::span<const std::uint8_t>, std::int64_t)>;
+  // visit(data, time [ns]) for every message of `topic`, in time order.
+  virtual void each(const std::string& topic, const MessageVisit& visit) const = 0;
+
+  std::string subject_;
+  std::map<std::string, Topic> topics_;
+};
+
+class SqliteBag final : public CdrBag {
+ public:
+  SqliteBag(const std::vector<std::string>& files, std::string subject) : CdrBag(std::move(subject)) {
     for (const auto& f : files) dbs_.push_back(std::make_unique<Db>(f));
     for (const auto& db : dbs_) {
       Statement q(*db,
@@ -103,31 +140,8 @@ class SqliteBag final : public Backend {
     }
   }
 
-  std::vector<Topic> topics() const override {
-    std::vector<Topic> out;
-    for (const auto& [name, t] : topics_) out.push_back(t);
-    return out;
-  }
-
-  void read_images(const std::string& topic, bool with_data,
-                   const std::function<void(RosImage&, std::int64_t)>& visit) const override {
-    const MessageType type = message_type(topics_.at(topic).type);
-    each(topic, [&](std::span<const std::uint8_t> data, std::int64_t t) {
-      decode_image(type, data, with_data, subject_, topic, t, visit);
-    });
-  }
-
-  void read_poses(const std::string& topic,
-                  const std::function<void(const RosPose&, std::int64_t)>& visit) const override {
-    const MessageType type = message_type(topics_.at(topic).type);
-    each(topic, [&](std::span<const std::uint8_t> data, std::int64_t t) {
-      decode_pose(type, data, subject_, topic, t, visit);
-    });
-  }
-
  private:
-  template <typename F>
-  void each(const std::string& topic, F&& f) const {
+  void each(const std::string& topic, const MessageVisit& f) const override {
     for (const auto& db : dbs_) {
       Statement q(*db,
                   "SELECT messages.timestamp, messages.data FROM messages JOIN topics ON messages.topic_id = "
@@ -141,16 +155,14 @@ class SqliteBag final : public Backend {
     }
   }
 
-  std::string subject_;
   std::vector<std::unique_ptr<Db>> dbs_;
-  std::map<std::string, Topic> topics_;
 };
 
 // ---- MCAP -----------------------------------------------------------------------------------------------
 
-class McapBag final : public Backend {
+class McapBag final : public CdrBag {
  public:
-  McapBag(const std::vector<std::string>& files, std::string subject) : subject_(std::move(subject)) {
+  McapBag(const std::vector<std::string>& files, std::string subject) : CdrBag(std::move(subject)) {
     for (const auto& f : files) {
       readers_.emplace_back(f);
       const McapReader& r = readers_.back();
@@ -168,31 +180,8 @@ class McapBag final : public Backend {
     }
   }
 
-  std::vector<Topic> topics() const override {
-    std::vector<Topic> out;
-    for (const auto& [name, t] : topics_) out.push_back(t);
-    return out;
-  }
-
-  void read_images(const std::string& topic, bool with_data,
-                   const std::function<void(RosImage&, std::int64_t)>& visit) const override {
-    const MessageType type = message_type(topics_.at(topic).type);
-    each(topic, [&](std::span<const std::uint8_t> data, std::int64_t t) {
-      decode_image(type, data, with_data, subject_, topic, t, visit);
-    });
-  }
-
-  void read_poses(const std::string& topic,
-                  const std::function<void(const RosPose&, std::int64_t)>& visit) const override {
-    const MessageType type = message_type(topics_.at(topic).type);
-    each(topic, [&](std::span<const std::uint8_t> data, std::int64_t t) {
-      decode_pose(type, data, subject_, topic, t, visit);
-    });
-  }
-
  private:
-  template <typename F>
-  void each(const std::string& topic, F&& f) const {
+  void each(const std::string& topic, const MessageVisit& f) const override {
     for (const auto& r : readers_) {
       std::vector<std::uint16_t> ids;
       for (const auto& [id, c] : r.channels()) {
@@ -204,9 +193,7 @@ class McapBag final : public Backend {
     }
   }
 
-  std::string subject_;
   std::vector<McapReader> readers_;
-  std::map<std::string, Topic> topics_;
 };
 
 }  // namespace
