@@ -446,7 +446,6 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     lc.max_visit_span = in_frames(c.max_visit_span, d.frames_per_place);
     auto labelling = label_consistently(n, result.alignments, result.path_scores, lc, c.pruning.min_retained_fraction);
     result.pruning = std::move(labelling.accepted);
-    result.refused_pairs = labelling.refused;
     labels = std::move(labelling.labels);
   } else {
     result.pruning = prune_per_column(result.alignments, c.pruning);

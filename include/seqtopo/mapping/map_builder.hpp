@@ -104,8 +104,7 @@ struct MapResult {
   std::vector<align::LocalAlignment> insignificant;
   std::vector<double> insignificant_e_values;
   MapDecisions decisions;
-  PruningResult pruning;          // the retained pairs (accepted by the labelling, or surviving pruning)
-  std::size_t refused_pairs = 0;  // consistent labelling: proposals refused as inconsistent
+  PruningResult pruning;  // the retained pairs (accepted by the labelling, or surviving pruning)
   TopologicalMap map;
   // Per alignment, per pair: the posterior that the pair is aligned (align/pair_posterior.hpp); empty for the
   // alignments that gave no retained pair. Each retained pair's confidence is in pruning.pairs.
