@@ -4,7 +4,8 @@
 // time ratio of seqtopo against the SeqSLAM run measured here. Times are CPU seconds on one core.
 //
 //   bench_localize_nordland [--data DIR] [--tolerance 2] [--offset F] [--gap G] [--cap C|none] [--threshold T]
-//                           [--window W] [--score-window W] [--online] [--cache DIR] [--skip-baselines]
+//                           [--window W] [--score-window W] [--max-alignments K] [--online] [--cache DIR]
+//                           [--skip-baselines]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -47,12 +48,13 @@ struct Row {
   double seconds = 0;
 };
 
+// Offline every frame's guess counts, ranked by its confidence; online only the frames in the map, by score.
 evaluation::LocalizationMetrics evaluate(const std::vector<localize::FrameMatch>& frames, std::size_t map_frames,
-                                         std::size_t tolerance) {
+                                         std::size_t tolerance, bool online = false) {
   std::vector<evaluation::LocalizationPrediction> p(frames.size());
   for (std::size_t q = 0; q < frames.size(); ++q) {
-    if (frames[q].covered) p[q].map = frames[q].map;
-    p[q].score = frames[q].score;
+    if (!online || frames[q].covered) p[q].map = frames[q].map;
+    p[q].score = online ? frames[q].score : static_cast<float>(frames[q].confidence);
     p[q].candidates = frames[q].candidates;
   }
   return evaluation::evaluate_localization(p, evaluation::LocalizationTruth::same_index(frames.size(), map_frames),
@@ -88,6 +90,7 @@ int main(int argc, char** argv) {
   std::filesystem::path cache;
   std::size_t tolerance = 2;
   localize::LocalizeConfig config;
+  config.tolerance = tolerance;
   bool online = false, skip_baselines = false;
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
@@ -103,7 +106,7 @@ int main(int argc, char** argv) {
     else if (a == "--cache")
       cache = next();
     else if (a == "--tolerance")
-      tolerance = std::stoul(next());
+      config.tolerance = tolerance = std::stoul(next());
     else if (a == "--offset")
       config.contrast_offset = std::stof(next());
     else if (a == "--gap")
@@ -115,6 +118,8 @@ int main(int argc, char** argv) {
       config.threshold = std::stof(next());
     else if (a == "--window")
       config.contrast_window = std::stoul(next());
+    else if (a == "--max-alignments")
+      config.max_alignments = std::stoul(next());
     else if (a == "--score-window")
       config.score_window = std::stoul(next());
     else if (a == "--online")
@@ -176,7 +181,7 @@ int main(int argc, char** argv) {
         on[q].score = est[q].confidence;
         on[q].candidates = {est[q].map};
       }
-      rows.push_back({"seqtopo localize --online", evaluate(on, m, tolerance), seconds_since(t)});
+      rows.push_back({"seqtopo localize --online", evaluate(on, m, tolerance, true), seconds_since(t)});
     }
 
     for (const auto& r : rows) {

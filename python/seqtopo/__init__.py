@@ -534,8 +534,10 @@ def map_sequence(
 
 
 class LocalizeRun:
-    """Everything one :func:`localize_sequences` computed: per query frame ``.map`` (best map frame, -1 = not in
-    the map) and ``.score``; ``.alignments`` (offline); with ground truth ``.metrics`` (recall@1, AUC, ...) and
+    """Everything one :func:`localize_sequences` computed: per query frame ``.map`` (the best guess; online -1
+    while not in the map), ``.score`` (local alignment score), ``.confidence`` (offline: the probability the guess
+    is right) and ``.in_map`` (confidence >= the minimum); ``.alignments`` (offline); with ground truth
+    ``.metrics`` (recall@1, AUC, ... ranked by confidence), ``.calibration`` (expected calibration error) and
     ``.baselines`` (single frame, SeqSLAM on the same matrix); ``.similarity`` (query x map), ``.timings``;
     online ``.latencies`` (processing per frame, from arrival to answer [s]) and ``.waits``.
     :func:`write_report` writes it as ``seqtopo localize`` does."""
@@ -546,8 +548,9 @@ class LocalizeRun:
         self.inputs = raw.inputs
         self.queries, self.maps = raw.queries, raw.maps
         self.map, self.score = raw.map, raw.score
+        self.confidence, self.in_map = raw.confidence, raw.in_map
         self.alignments = _alignments(raw.alignments)
-        self.metrics, self.baselines = raw.metrics, raw.baselines
+        self.metrics, self.baselines, self.calibration = raw.metrics, raw.baselines, raw.calibration
         self.timings = list(raw.timings)
         self.latencies, self.waits = raw.latencies, raw.waits
         self.tolerance = raw.tolerance
@@ -558,7 +561,7 @@ class LocalizeRun:
         return self._raw.similarity
 
     def __repr__(self) -> str:
-        found = int(_np.count_nonzero(self.map >= 0))
+        found = int(_np.count_nonzero(self.in_map))
         inputs = " in ".join(_os.path.basename(p) for p in self.inputs.split(" in "))
         text = (f"LocalizeRun({inputs}: {self.queries} query frames in {self.maps} map frames, {found} in the "
                 f"map, {'online' if self.online else f'{len(self.alignments)} alignments'}")
@@ -632,15 +635,19 @@ def write_report(run, folder: str | os.PathLike) -> None:
 class LocalizeResult:
     """Where each query frame is in the map (``matches.csv`` and more).
 
-    Per query frame (row of the query x map matrix): ``map`` (int64 best map frame, -1 when the frame is
-    not covered by any alignment: "not in the map"), ``score`` (float32 local alignment score, higher =
-    more confident), ``covered`` (bool), ``direction`` (``"forward"``/``"reverse"``), ``candidates``
-    (``(Q, LocalizeConfig.candidates)`` int64, best first, padded with -1). ``alignments``: every
-    :class:`Alignment` found (a = query, b = map), best first.
+    Per query frame (row of the query x map matrix): ``map`` (int64 best guess of the map frame, given for
+    every frame), ``confidence`` (float64, the probability that the guess is right: exp(-E) of its alignment
+    times the posterior), ``e_value`` (of that alignment; NaN when none or no fit), ``score`` (float32 local
+    alignment score), ``covered`` (bool, in the map: confidence >= ``LocalizeConfig.min_confidence``),
+    ``direction`` (``"forward"``/``"reverse"``), ``candidates`` (``(Q, LocalizeConfig.candidates)`` int64,
+    best first, padded with -1). ``alignments``: every :class:`Alignment` found (a = query, b = map), best
+    first, chance ones included (they are the significance statistics' sample).
     """
 
     map: _np.ndarray
     score: _np.ndarray
+    confidence: _np.ndarray
+    e_value: _np.ndarray
     covered: _np.ndarray
     direction: _np.ndarray
     candidates: _np.ndarray

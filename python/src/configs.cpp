@@ -228,11 +228,14 @@ void bind_localize(py::module_& m) {
       m, "LocalizeConfig",
       "Settings of localize (C++ seqtopo::localize::LocalizeConfig), same names and defaults.\n\n"
       "contrast_window [map frames] (0: whole row), enhance, contrast_offset [standard deviations], gap,\n"
-      "cap (None: none), threshold (minimum alignment score that covers frames), reverse,\n"
-      "max_alignments, score_window [query frames], candidates (kept per frame), threads.");
+      "cap (None: none), threshold (alignments below it count as chance when there are too few for the\n"
+      "significance statistics), reverse, max_alignments, score_window [query frames], candidates (kept per\n"
+      "frame), posterior_band [frames], tolerance [map frames] (the confidence is the probability of a guess\n"
+      "within it of the truth), min_confidence (below: not in the map), threads.");
   c.def(py::init([](std::size_t contrast_window, bool enhance, float contrast_offset, float gap,
                     std::optional<float> cap, float threshold, bool reverse, std::size_t max_alignments,
-                    std::size_t score_window, std::size_t candidates, unsigned threads) {
+                    std::size_t score_window, std::size_t candidates, std::size_t posterior_band, std::size_t tolerance,
+                    double min_confidence, unsigned threads) {
           LocalizeConfig config;
           config.contrast_window = contrast_window;
           config.enhance = enhance;
@@ -244,6 +247,9 @@ void bind_localize(py::module_& m) {
           config.max_alignments = max_alignments;
           config.score_window = score_window;
           config.candidates = candidates;
+          config.posterior_band = posterior_band;
+          config.tolerance = tolerance;
+          config.min_confidence = min_confidence;
           config.threads = threads;
           return config;
         }),
@@ -251,7 +257,9 @@ void bind_localize(py::module_& m) {
         py::arg("contrast_offset") = d.contrast_offset, py::arg("gap") = d.gap, py::arg("cap") = d.cap,
         py::arg("threshold") = d.threshold, py::arg("reverse") = d.reverse,
         py::arg("max_alignments") = d.max_alignments, py::arg("score_window") = d.score_window,
-        py::arg("candidates") = d.candidates, py::arg("threads") = d.threads)
+        py::arg("candidates") = d.candidates, py::arg("posterior_band") = d.posterior_band,
+        py::arg("tolerance") = d.tolerance, py::arg("min_confidence") = d.min_confidence,
+        py::arg("threads") = d.threads)
       .def_readwrite("contrast_window", &LocalizeConfig::contrast_window)
       .def_readwrite("enhance", &LocalizeConfig::enhance)
       .def_readwrite("contrast_offset", &LocalizeConfig::contrast_offset)
@@ -262,10 +270,13 @@ void bind_localize(py::module_& m) {
       .def_readwrite("max_alignments", &LocalizeConfig::max_alignments)
       .def_readwrite("score_window", &LocalizeConfig::score_window)
       .def_readwrite("candidates", &LocalizeConfig::candidates)
+      .def_readwrite("posterior_band", &LocalizeConfig::posterior_band)
+      .def_readwrite("tolerance", &LocalizeConfig::tolerance)
+      .def_readwrite("min_confidence", &LocalizeConfig::min_confidence)
       .def_readwrite("threads", &LocalizeConfig::threads);
   add_repr(c, "LocalizeConfig",
            {"contrast_window", "enhance", "contrast_offset", "gap", "cap", "threshold", "reverse", "max_alignments",
-            "score_window", "candidates", "threads"});
+            "score_window", "candidates", "posterior_band", "tolerance", "min_confidence", "threads"});
 }
 
 void bind_strings(py::module_& m) {

@@ -155,11 +155,14 @@ py::dict localize(const py::handle& query_x_map, const localize::LocalizeConfig&
   const std::size_t width = config.candidates;
   std::vector<Index> map(frames, -1), candidates(frames * width, -1);
   std::vector<float> score(frames);
+  std::vector<double> confidence(frames), e_value(frames);
   std::vector<bool> covered(frames), reverse(frames);
   for (std::size_t q = 0; q < frames; ++q) {
     const auto& f = result.frames[q];
-    if (f.covered) map[q] = index(f.map);
+    map[q] = index(f.map);
     score[q] = f.score;
+    confidence[q] = f.confidence;
+    e_value[q] = f.e_value;
     covered[q] = f.covered;
     reverse[q] = f.direction == align::Direction::reverse;
     for (std::size_t k = 0; k < f.candidates.size() && k < width; ++k)
@@ -168,6 +171,8 @@ py::dict localize(const py::handle& query_x_map, const localize::LocalizeConfig&
   py::dict out;
   out["map"] = to_array(std::move(map));
   out["score"] = to_array(std::move(score));
+  out["confidence"] = to_array(std::move(confidence));
+  out["e_value"] = to_array(std::move(e_value));
   out["covered"] = bool_array(covered);
   out["reverse"] = bool_array(reverse);
   out["candidates"] =
@@ -447,6 +452,26 @@ void bind_localize_run(py::module_& m) {
                                std::vector<float> v;
                                for (const auto& a : r.answers) v.push_back(a.score);
                                return to_array(std::move(v));
+                             })
+      .def_property_readonly("confidence",
+                             [](const pipeline::LocalizeRun& r) {
+                               std::vector<double> v;
+                               for (const auto& a : r.answers) v.push_back(a.confidence);
+                               return to_array(std::move(v));
+                             })
+      .def_property_readonly("in_map",
+                             [](const pipeline::LocalizeRun& r) {
+                               std::vector<bool> v;
+                               for (const auto& a : r.answers) v.push_back(a.in_map);
+                               return bool_array(v);
+                             })
+      .def_property_readonly("calibration",
+                             [](const pipeline::LocalizeRun& r) {
+                               if (!r.calibration) return py::object(py::none());
+                               py::dict d;
+                               d["ece"] = r.calibration->ece;
+                               d["frames"] = r.calibration->detections;
+                               return py::object(d);
                              })
       .def_property_readonly("alignments", [](const pipeline::LocalizeRun& r) { return alignments_list(r.alignments); })
       .def_property_readonly("metrics",

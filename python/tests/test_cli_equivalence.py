@@ -131,15 +131,17 @@ def test_localize_equals_cli(cli, tmp_path):
     assert len(rows) == len(result.map) == 40
     for q, row in enumerate(rows):
         assert int(row["query"]) == q
-        if result.covered[q]:
-            assert int(row["map"]) == result.map[q]
-            assert row["score"] == format(float(result.score[q]), ".6g")
-        else:
-            assert row["map"] == "" and row["score"] == "" and result.map[q] == -1
-    # The query drove through map frames 20..49, then somewhere new.
+        assert int(row["map"]) == result.map[q]  # every frame has its best guess
+        assert row["score"] == format(float(result.score[q]), ".6g")
+        assert row["confidence"] == format(float(result.confidence[q]), ".6g")
+        assert row["in_map"] == ("1" if result.covered[q] else "0")
+    assert np.array_equal(result.covered, result.confidence >= seqtopo.LocalizeConfig().min_confidence)
+    # The query drove through map frames 20..49, then somewhere new: in the map, confidently, then not.
     assert np.all(np.abs(result.map[2:28] - np.arange(22, 48)) <= 1)
+    assert np.all(result.covered[2:28]) and not np.any(result.covered[34:])
+    assert np.all(result.confidence[2:28] > result.confidence[34:].max())
     assert result.candidates.shape == (40, seqtopo.LocalizeConfig().candidates)
-    assert np.all(result.candidates[result.covered, 0] == result.map[result.covered])
+    assert np.all(result.candidates[:, 0] == result.map)
 
 
 def test_localize_with_options_equals_cli(cli, tmp_path):
@@ -154,8 +156,9 @@ def test_localize_with_options_equals_cli(cli, tmp_path):
     with open(tmp_path / "out" / "matches.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     for q, row in enumerate(rows):
-        assert row["map"] == (str(result.map[q]) if result.covered[q] else "")
-        assert row["score"] == (format(float(result.score[q]), ".6g") if result.covered[q] else "")
+        assert row["map"] == str(result.map[q])
+        assert row["score"] == format(float(result.score[q]), ".6g")
+        assert row["confidence"] == format(float(result.confidence[q]), ".6g")
 
 
 @pytest.mark.parametrize("options", [

@@ -95,7 +95,7 @@ def test_localize_sequences_with_ground_truth_and_report(tmp_path):
     assert abs(int(np.median(run.map[:30] - np.arange(20, 50)))) <= 2
     assert "recall@1 %.3f" % run.metrics["recall_at_1"] in repr(run) and len(repr(run)) < 250
     seqtopo.write_report(run, tmp_path / "out")
-    assert (tmp_path / "out" / "matches.csv").read_text().startswith("query,map,score\n")
+    assert (tmp_path / "out" / "matches.csv").read_text().startswith("query,map,score,confidence,e_value,in_map\n")
     assert "Localization accuracy" in (tmp_path / "out" / "report.html").read_text()
     # A query x map similarity in memory, and online: latency and wait per frame.
     s = seqtopo.similarity(query, map_d).similarity

@@ -48,11 +48,35 @@ class Band {
 
 enum State { M = 0, X = 1, Y = 2 };
 
-}  // namespace
+// The forward and backward tables of one alignment's band, and the readouts.
+struct BandTables {
+  Band f, b;
+  double total;
+  std::size_t first;
+  bool reverse;
+  std::size_t cols;
+  std::ptrdiff_t to_u(std::size_t j) const { return static_cast<std::ptrdiff_t>(reverse ? cols - 1 - j : j); }
+  std::size_t to_j(std::ptrdiff_t u) const {
+    return static_cast<std::size_t>(reverse ? static_cast<std::ptrdiff_t>(cols) - 1 - u : u);
+  }
+  // Posterior that row `first + r` is aligned to a path column within +-t of u; with `skipped`, also that the
+  // chain passes the row there skipping it (state X: the row between two matched ones, at the column of the
+  // one before).
+  double posterior(std::size_t r, std::ptrdiff_t u, std::ptrdiff_t t, bool skipped = false) const {
+    double sum = 0;
+    for (std::ptrdiff_t v = u - t; v <= u + t; ++v) {
+      for (int state : {M, X}) {
+        if (state == X && !skipped) break;
+        const double fw = f.get(r, v, state), bw = b.get(r, v, state);
+        if (fw != kNone && bw != kNone) sum += std::exp(fw + bw - total);
+      }
+    }
+    return std::clamp(sum, 0.0, 1.0);
+  }
+};
 
-std::vector<double> pair_posteriors(const LocalAlignment& a, const ScoreSource& scores, const PosteriorConfig& c) {
+BandTables band_tables(const LocalAlignment& a, const ScoreSource& scores, const PosteriorConfig& c) {
   if (!(c.lambda > 0) || !std::isfinite(c.lambda)) throw std::invalid_argument("posterior: lambda must be positive");
-  if (a.pairs.empty()) return {};
   const std::size_t n_rows = scores.rows(), n_cols = scores.cols();
   for (auto [i, j] : a.pairs) {
     if (i >= n_rows || j >= n_cols) {
@@ -63,7 +87,6 @@ std::vector<double> pair_posteriors(const LocalAlignment& a, const ScoreSource& 
   const bool reverse = a.direction == Direction::reverse;
   const auto to_u = [&](std::size_t j) { return static_cast<std::ptrdiff_t>(reverse ? n_cols - 1 - j : j); };
   const auto to_j = [&](std::ptrdiff_t u) { return static_cast<std::size_t>(reverse ? n_cols - 1 - u : u); };
-
   const std::size_t i_first = a.pairs.front().first, i_last = a.pairs.back().first;
   const std::size_t first = i_first >= c.band ? i_first - c.band : 0;
   const std::size_t last = std::min(n_rows - 1, i_last + c.band);
@@ -79,7 +102,7 @@ std::vector<double> pair_posteriors(const LocalAlignment& a, const ScoreSource& 
     const std::ptrdiff_t centre = to_u(pj) + (static_cast<std::ptrdiff_t>(i) - static_cast<std::ptrdiff_t>(pi));
     low[r] = centre - band;
   }
-  Band f(first, rows, 2 * c.band + 1, low), b(first, rows, 2 * c.band + 1, low);
+  Band f(first, rows, 2 * c.band + 1, low), b(first, rows, 2 * c.band + 1, std::move(low));
   const double gap_a = -c.lambda * c.gap_a, gap_b = -c.lambda * c.gap_b;
   const auto allowed = [&](std::size_t i, std::ptrdiff_t u) {
     if (u < 0 || u >= static_cast<std::ptrdiff_t>(n_cols)) return false;
@@ -127,19 +150,47 @@ std::vector<double> pair_posteriors(const LocalAlignment& a, const ScoreSource& 
       b.at(k, Y) = log_add(match_next, y_next);
     }
   }
+  return BandTables{std::move(f), std::move(b), total, first, reverse, n_cols};
+}
+
+}  // namespace
+
+std::vector<double> pair_posteriors(const LocalAlignment& a, const ScoreSource& scores, const PosteriorConfig& c) {
+  if (a.pairs.empty()) {
+    if (!(c.lambda > 0) || !std::isfinite(c.lambda)) throw std::invalid_argument("posterior: lambda must be positive");
+    return {};
+  }
+  const BandTables t = band_tables(a, scores, c);
   std::vector<double> posterior;
   posterior.reserve(a.pairs.size());
-  const auto t = static_cast<std::ptrdiff_t>(c.tolerance);
-  for (auto [i, j] : a.pairs) {
-    const std::size_t r = i - first;
-    double sum = 0;
-    for (std::ptrdiff_t u = to_u(j) - t; u <= to_u(j) + t; ++u) {
-      const double fm = f.get(r, u, M), bm = b.get(r, u, M);
-      if (fm != kNone && bm != kNone) sum += std::exp(fm + bm - total);
-    }
-    posterior.push_back(std::clamp(sum, 0.0, 1.0));
-  }
+  for (auto [i, j] : a.pairs)
+    posterior.push_back(t.posterior(i - t.first, t.to_u(j), static_cast<std::ptrdiff_t>(c.tolerance)));
   return posterior;
+}
+
+std::vector<RowPosterior> row_posteriors(const LocalAlignment& a, const ScoreSource& scores, const PosteriorConfig& c) {
+  if (a.pairs.empty()) {
+    if (!(c.lambda > 0) || !std::isfinite(c.lambda)) throw std::invalid_argument("posterior: lambda must be positive");
+    return {};
+  }
+  const BandTables t = band_tables(a, scores, c);
+  const auto tol = static_cast<std::ptrdiff_t>(c.tolerance);
+  std::vector<RowPosterior> out;
+  out.reserve(t.f.rows());
+  for (std::size_t r = 0; r < t.f.rows(); ++r) {
+    // The most probable cell of the row (the first of equals in path order), and the posterior within
+    // +-tolerance of it.
+    std::ptrdiff_t best = 0;
+    double best_cell = -1;
+    for (std::size_t w = 0; w < t.f.width(); ++w) {
+      const std::ptrdiff_t u = t.f.low(r) + static_cast<std::ptrdiff_t>(w);
+      if (u < 0 || u >= static_cast<std::ptrdiff_t>(t.cols) || t.f.get(r, u, M) == kNone) continue;
+      const double p = t.posterior(r, u, 0, true);
+      if (p > best_cell) best_cell = p, best = u;
+    }
+    if (best_cell >= 0) out.push_back({t.first + r, t.to_j(best), t.posterior(r, best, tol, true)});
+  }
+  return out;
 }
 
 }  // namespace seqtopo::align

@@ -38,6 +38,7 @@ struct LocalizeOptions {
   std::string gt;
   std::size_t tolerance = 2, every = 1, window = 10, score_window = 10;
   float gap = 2.0F, threshold = 10.0F, offset = 0.75F;
+  double min_confidence = localize::LocalizeConfig{}.min_confidence;
   std::optional<float> cap;
   bool online = false, no_reverse = false;
   unsigned threads = 0;
@@ -80,6 +81,8 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o) {
   c.contrast_offset = o.offset;
   c.contrast_window = o.window;
   c.score_window = o.score_window;
+  c.tolerance = o.tolerance;  // the confidence is the probability of a match the evaluation counts as right
+  c.min_confidence = o.min_confidence;
   c.reverse = !o.no_reverse;
   c.threads = std::min(2U, resolve_threads(o.threads));
   try {
@@ -229,7 +232,12 @@ const RegisterCommand registered{
        add_number(app, "--gap", o->gap, kNonNegative,
                   "gap penalty per skipped frame [score units = standard deviations]");
        add_number(app, "--cap", o->cap, kPositive, "upper bound on the cumulative score (default: none)");
-       add_number(app, "--threshold", o->threshold, kAnyFinite, "minimum alignment score (online: minimum confidence)");
+       add_number(app, "--threshold", o->threshold, kAnyFinite,
+                  "online: minimum confidence; offline: alignments below this score count as chance when the "
+                  "sequence is too short for significance statistics");
+       add_number(app, "--min-confidence", o->min_confidence, kProbability,
+                  "a frame whose best guess has a lower confidence (the probability it is right) is reported "
+                  "not in the map");
        add_number(app, "--contrast-offset,--offset", o->offset, kAnyFinite,
                   "subtracted from the contrast-enhanced similarity [standard deviations] (--offset: old name)");
        add_number(app, "--contrast-window,--window", o->window, kNonNegative,
@@ -241,7 +249,8 @@ const RegisterCommand registered{
                       "ground truth: same-index (query k is map k) or a CSV file of query,map pairs; "
                       "also scores the single-frame and SeqSLAM baselines on the same matrix");
        add_number(app, "--tolerance", o->tolerance, kNonNegative,
-                  "a match within +-T map frames of the truth is correct");
+                  "a match within +-T map frames of the truth is correct; the confidence is the probability of "
+                  "such a match");
        app.add_flag("--online", o->online, "take query frames one at a time; print the best map frame after each");
        add_number(app, "--threads", o->threads, kThreads,
                   "worker threads (0 = all cores; more than the cores are not used)");

@@ -143,6 +143,7 @@ inline constexpr NumberLimits kPositive{.min = 0, .min_exclusive = true};
 inline constexpr NumberLimits kNonNegative{.min = 0};
 inline constexpr NumberLimits kAtLeastOne{.min = 1};
 inline constexpr NumberLimits kAnyFinite{};
+inline constexpr NumberLimits kProbability{.min = 0, .max = 1};
 // Worker threads: 0 = every core; resolve_threads() never uses more than the cores.
 inline constexpr NumberLimits kThreads{.min = 0, .max = 4096};
 

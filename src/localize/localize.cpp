@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "seqtopo/align/pair_posterior.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
@@ -32,6 +33,8 @@ void validate(const LocalizeConfig& c) {
   if (!std::isfinite(c.threshold)) throw std::invalid_argument("threshold must be a finite number");
   if (c.max_alignments == 0) throw std::invalid_argument("max_alignments must be >= 1");
   if (c.candidates == 0) throw std::invalid_argument("candidates must be >= 1");
+  if (!(c.min_confidence >= 0 && c.min_confidence <= 1))
+    throw std::invalid_argument("min_confidence must be in [0, 1]");
 }
 
 void score_row(const float* row, std::size_t cols, const LocalizeConfig& c, float* out) {
@@ -51,81 +54,101 @@ SimilarityMatrix score_matrix(const SimilarityMatrix& s, const LocalizeConfig& c
   return out;
 }
 
+namespace {
+
+// path[k]: the alignment's score from its first pair through pair k, gaps included, without the cap.
+std::vector<double> path_prefix(const align::LocalAlignment& a, const SimilarityMatrix& scores, double gap) {
+  std::vector<double> path(a.pairs.size());
+  for (std::size_t k = 0; k < a.pairs.size(); ++k) {
+    const auto [i, j] = a.pairs[k];
+    if (i >= scores.rows || j >= scores.cols) throw std::invalid_argument("alignment pair outside the matrix");
+    double v = scores(i, j);
+    if (k > 0) {
+      const auto [pi, pj] = a.pairs[k - 1];
+      const std::size_t query_gaps = i - pi - 1;
+      const std::size_t map_gaps = (j > pj ? j - pj : pj - j) - 1;
+      v += path[k - 1] - gap * static_cast<double>(query_gaps + map_gaps);
+    }
+    path[k] = v;
+  }
+  return path;
+}
+
+// The alignment's own score gained over its pairs with query index in [q - window, q + window].
+double local_score(const align::LocalAlignment& a, const std::vector<double>& path, const SimilarityMatrix& scores,
+                   std::size_t q, std::size_t window) {
+  const auto lo_q = static_cast<std::ptrdiff_t>(q) - static_cast<std::ptrdiff_t>(window);
+  const auto hi_q = static_cast<std::ptrdiff_t>(q) + static_cast<std::ptrdiff_t>(window);
+  const auto lo = std::lower_bound(a.pairs.begin(), a.pairs.end(), lo_q, [](const auto& p, std::ptrdiff_t v) {
+    return static_cast<std::ptrdiff_t>(p.first) < v;
+  });
+  const auto hi = std::upper_bound(a.pairs.begin(), a.pairs.end(), hi_q, [](std::ptrdiff_t v, const auto& p) {
+    return v < static_cast<std::ptrdiff_t>(p.first);
+  });
+  if (lo >= hi) return 0;
+  const auto first = static_cast<std::size_t>(lo - a.pairs.begin());
+  const auto last = static_cast<std::size_t>(hi - a.pairs.begin()) - 1;
+  return path[last] - path[first] + scores(a.pairs[first].first, a.pairs[first].second);
+}
+
+}  // namespace
+
 std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAlignment>& alignments,
+                                               const std::vector<double>& e_values, double lambda,
                                                const SimilarityMatrix& scores, const LocalizeConfig& c) {
+  if (e_values.size() != alignments.size()) throw std::invalid_argument("one E-value per alignment expected");
   struct Candidate {
+    double confidence;
     float score;
     std::size_t map;
     align::Direction direction;
     std::size_t rank;  // position of the alignment in `alignments` (the engine's best-first order)
   };
   std::vector<std::vector<Candidate>> per_frame(scores.rows);
-  const auto window = static_cast<std::ptrdiff_t>(c.score_window);
+  align::PosteriorConfig pc;
+  pc.lambda = lambda;
+  pc.gap_a = pc.gap_b = c.gap;
+  pc.band = c.posterior_band;
+  pc.tolerance = c.tolerance;
+  const auto source = align::ScoreSource::dense(std::span<const float>(scores.values), scores.rows, scores.cols);
 
   for (std::size_t rank = 0; rank < alignments.size(); ++rank) {
     const auto& a = alignments[rank];
-    if (a.pairs.empty() || a.score < c.threshold) continue;
-    const std::size_t n = a.pairs.size();
-    // path[k]: the alignment's score from its first pair through pair k, gaps included, without the cap.
-    std::vector<double> path(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto [i, j] = a.pairs[k];
-      if (i >= scores.rows || j >= scores.cols) throw std::invalid_argument("alignment pair outside the matrix");
-      double v = scores(i, j);
-      if (k > 0) {
-        const auto [pi, pj] = a.pairs[k - 1];
-        const std::size_t query_gaps = i - pi - 1;
-        const std::size_t map_gaps = (j > pj ? j - pj : pj - j) - 1;
-        v += path[k - 1] - static_cast<double>(c.gap) * static_cast<double>(query_gaps + map_gaps);
-      }
-      path[k] = v;
-    }
-    std::size_t next = 0;  // first pair with query index >= q
-    for (std::size_t q = a.a_begin; q < a.a_end; ++q) {
-      while (next < n && a.pairs[next].first < q) ++next;
-      // Map frame: the pair of q, or interpolated between the pairs around a gap.
-      std::size_t map = 0;
-      if (a.pairs[next].first == q) {
-        map = a.pairs[next].second;
-      } else {
-        const auto [i0, j0] = a.pairs[next - 1];
-        const auto [i1, j1] = a.pairs[next];
-        const double t = static_cast<double>(q - i0) / static_cast<double>(i1 - i0);
-        map = static_cast<std::size_t>(
-            std::lround(static_cast<double>(j0) + t * (static_cast<double>(j1) - static_cast<double>(j0))));
-      }
-      // Local score: pairs with query index in [q - window, q + window].
-      const auto lo_q = static_cast<std::ptrdiff_t>(q) - window;
-      const auto hi_q = static_cast<std::ptrdiff_t>(q) + window;
-      const auto lo = std::lower_bound(a.pairs.begin(), a.pairs.end(), lo_q, [](const auto& p, std::ptrdiff_t v) {
-        return static_cast<std::ptrdiff_t>(p.first) < v;
-      });
-      const auto hi = std::upper_bound(a.pairs.begin(), a.pairs.end(), hi_q, [](std::ptrdiff_t v, const auto& p) {
-        return v < static_cast<std::ptrdiff_t>(p.first);
-      });
-      double local = 0;
-      if (lo < hi) {
-        const auto first = static_cast<std::size_t>(lo - a.pairs.begin());
-        const auto last = static_cast<std::size_t>(hi - a.pairs.begin()) - 1;
-        local = path[last] - path[first] + scores(a.pairs[first].first, a.pairs[first].second);
-      }
-      per_frame[q].push_back({static_cast<float>(local), map, a.direction, rank});
+    if (a.pairs.empty()) continue;
+    const double e = e_values[rank];
+    const double real = std::isfinite(e) ? std::exp(-e) : (a.score >= c.threshold ? 1.0 : 0.0);
+    const std::vector<double> path = path_prefix(a, scores, c.gap);
+    for (const auto& r : align::row_posteriors(a, source, pc)) {
+      per_frame[r.row].push_back({real * r.posterior,
+                                  static_cast<float>(local_score(a, path, scores, r.row, c.score_window)), r.col,
+                                  a.direction, rank});
     }
   }
 
   std::vector<FrameMatch> frames(scores.rows);
   for (std::size_t q = 0; q < scores.rows; ++q) {
     auto& cands = per_frame[q];
-    if (cands.empty()) continue;
+    FrameMatch& f = frames[q];
+    if (cands.empty()) {
+      // No band reaches the frame: its best scored cell, with no confidence.
+      const auto row = scores.row(q);
+      f.map = static_cast<std::size_t>(std::max_element(row.begin(), row.end()) - row.begin());
+      f.candidates = {f.map};
+      continue;
+    }
     std::sort(cands.begin(), cands.end(), [](const Candidate& x, const Candidate& y) {
+      if (x.confidence != y.confidence) return x.confidence > y.confidence;
       if (x.score != y.score) return x.score > y.score;
       return x.rank < y.rank;
     });
-    FrameMatch& f = frames[q];
-    f.covered = true;
-    f.map = cands.front().map;
-    f.score = cands.front().score;
-    f.direction = cands.front().direction;
+    const Candidate& best = cands.front();
+    f.map = best.map;
+    f.score = best.score;
+    f.confidence = best.confidence;
+    f.e_value = e_values[best.rank];
+    f.alignment = best.rank;
+    f.direction = best.direction;
+    f.covered = f.confidence >= c.min_confidence;
     for (const auto& cand : cands) {
       if (f.candidates.size() >= c.candidates) break;
       if (std::find(f.candidates.begin(), f.candidates.end(), cand.map) == f.candidates.end())
@@ -141,12 +164,28 @@ LocalizeResult localize_sequence(const SimilarityMatrix& s, const LocalizeConfig
   ac.gap_a = c.gap;
   ac.gap_b = c.gap;
   ac.cap = c.cap;
-  ac.threshold = c.threshold;
+  ac.threshold = 0.0F;  // every positive alignment: the chance ones are the statistics' sample
   ac.max_alignments = c.max_alignments;
   const auto source = align::ScoreSource::dense(std::span<const float>(scores.values), scores.rows, scores.cols);
   LocalizeResult r;
   r.alignments = c.reverse ? align::local_alignments_both(source, ac, c.threads) : align::local_alignments(source, ac);
-  r.frames = frames_from_alignments(r.alignments, scores, c);
+  // The fit: the alignments' own path scores (a capped alignment's evidence is its path), shadows left out.
+  std::vector<double> path_scores, best_first;
+  for (std::size_t k = 0; k < r.alignments.size(); ++k) {
+    const auto& a = r.alignments[k];
+    path_scores.push_back(c.cap ? significance::path_score(a, source, c.gap, c.gap) : a.score);
+    if (!significance::shadows_earlier(r.alignments, k, significance::kShadowReach)) best_first.push_back(a.score);
+  }
+  r.statistics = significance::fit_declumped_scores(
+      best_first, significance::search_area(scores.rows, scores.cols, false, 0, c.reverse));
+  for (double p : path_scores) r.e_values.push_back(r.statistics.valid() ? r.statistics.e_value(p) : std::nan(""));
+  // Without a fit, lambda from the cells (an upper bound on the gapped one), else 1.
+  double lambda = r.statistics.lambda;
+  if (!r.statistics.valid()) {
+    lambda = significance::ungapped_lambda(scores.values);
+    if (!(lambda > 0)) lambda = 1.0;
+  }
+  r.frames = frames_from_alignments(r.alignments, r.e_values, lambda, scores, c);
   return r;
 }
 

@@ -79,35 +79,6 @@ struct FitRun {
   double chance_length = 0;  // [places]
 };
 
-// Diagonals this close [frames] count as one: a chain of shadows, each within reach of the one before, covers
-// the wide band of similar diagonals around a revisit in a smooth sequence.
-constexpr double kShadowReach = 3.0;
-
-// Whether alignment k lies along one found before it: the same direction, their A ranges overlapping by half
-// of the shorter or more, and their diagonals (i - j forward, i + j reverse, averaged over the pairs) within
-// `reach` frames. Declumping leaves such parallel shadows beside every strong alignment (the diagonals next to
-// a revisit score almost as well); they are part of the revisit, not chance, and stay out of the fit.
-bool shadows_earlier(const std::vector<align::LocalAlignment>& alignments, std::size_t k, double reach) {
-  const auto diagonal = [](const align::LocalAlignment& a) {
-    double sum = 0;
-    for (auto [i, j] : a.pairs) {
-      sum += a.direction == align::Direction::forward ? static_cast<double>(i) - static_cast<double>(j)
-                                                      : static_cast<double>(i + j);
-    }
-    return a.pairs.empty() ? 0.0 : sum / static_cast<double>(a.pairs.size());
-  };
-  const auto& a = alignments[k];
-  const double da = diagonal(a);
-  for (std::size_t e = 0; e < k; ++e) {
-    const auto& b = alignments[e];
-    if (b.direction != a.direction) continue;
-    const std::size_t lo = std::max(a.a_begin, b.a_begin), hi = std::min(a.a_end, b.a_end);
-    const std::size_t shorter = std::min(a.a_end - a.a_begin, b.a_end - b.a_begin);
-    if (hi > lo && 2 * (hi - lo) >= shorter && std::abs(diagonal(b) - da) <= reach) return true;
-  }
-  return false;
-}
-
 // The statistics' run: the best `fit_alignments` declumped alignments of `scores` (any score > 0), with the
 // fast engine and a cap far above chance; the fit uses those that are not shadows of earlier ones.
 // Sequences longer than twice kFitBlock frames are fitted on kFitBlocks diagonal blocks of kFitBlock frames
@@ -162,7 +133,7 @@ FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, doub
     const auto& a = run.alignments[k];
     run.path_scores.push_back(a.score < 0.5F * *engine.cap ? a.score
                                                            : significance::path_score(a, scores, c.gap, c.gap));
-    if (shadows_earlier(run.alignments, k, kShadowReach)) continue;
+    if (significance::shadows_earlier(run.alignments, k, significance::kShadowReach)) continue;
     best_first.push_back(run.alignments[k].score);
     fitted.push_back(k);
   }

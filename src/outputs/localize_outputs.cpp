@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "figures.hpp"
+#include "report_data.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
 #include "seqtopo/plot/pr_curve.hpp"
@@ -44,15 +46,18 @@ double latency_percentile(const pipeline::LocalizeRun& run, double p) {
 }
 
 std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDirectory& out) {
-  std::string csv = "query,map,score\n";
+  // Offline every frame has its best guess and the decision on its confidence; online a frame not in the map has
+  // no guess (empty map and score).
+  std::string csv = "query,map,score,confidence,e_value,in_map\n";
   std::size_t not_in_map = 0;
   for (std::size_t q = 0; q < r.answers.size(); ++q) {
     const auto& a = r.answers[q];
+    not_in_map += a.in_map ? 0 : 1;
     if (a.map) {
-      csv += fmt::format("{},{},{:.6g}\n", q, *a.map, a.score);
+      csv += fmt::format("{},{},{:.6g},{:.6g},{},{}\n", q, *a.map, a.score, a.confidence,
+                         std::isfinite(a.e_value) ? fmt::format("{:.4g}", a.e_value) : std::string(), a.in_map ? 1 : 0);
     } else {
-      csv += fmt::format("{},,\n", q);  // not in the map: empty map and score
-      ++not_in_map;
+      csv += fmt::format("{},,,{:.6g},,0\n", q, a.confidence);
     }
   }
   out.write("matches.csv", csv);
@@ -76,7 +81,23 @@ std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDir
     nlohmann::json j = metrics_json(*r.metrics);
     j["tolerance"] = r.tolerance;
     j["mode"] = r.online ? "online" : "offline";
+    j["ranked_by"] = r.online ? "score" : "confidence";
     j["baselines"] = {{"single_frame", metrics_json(*r.single_frame)}, {"seqslam", metrics_json(*r.seqslam)}};
+    j["baselines"]["seqslam"]["method"] = r.seqslam_method;
+    if (r.decision) {
+      j["in_map"] = {{"min_confidence", r.settings.localize.min_confidence},
+                     {"frames", r.decision->in_map},
+                     {"correct", r.decision->correct},
+                     {"precision", r.decision->precision},
+                     {"recall", r.decision->recall}};
+    }
+    if (r.calibration) j["calibration"] = detail::calibration_json(*r.calibration, "frames");
+    if (r.statistics.valid()) {
+      j["significance"] = {{"lambda", r.statistics.lambda}, {"k", r.statistics.k}, {"area", r.statistics.area}};
+    }
+    nlohmann::json timings = nlohmann::json::array();
+    for (const auto& [stage, seconds] : r.timings) timings.push_back({{"stage", stage}, {"seconds", seconds}});
+    j["timings"] = timings;
     out.write("metrics.json", j.dump(1) + "\n");
 
     std::vector<plot::Curve> curves(3);

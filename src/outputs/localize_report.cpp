@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -14,10 +15,10 @@
 namespace seqtopo::outputs {
 namespace {
 
-// As in map_report.cpp: the per-frame score stands in for the confidence until the per-pair confidence is in
-// LocalizeRun; switch here.
-constexpr const char* kConfidenceKey = "score";
-constexpr const char* kConfidenceLabel = "per-frame score (stands in for the confidence)";
+// Offline every frame has its confidence (the probability its guess is right); online the table value stands in.
+const char* confidence_label(const pipeline::LocalizeRun& r) {
+  return r.online ? "online table value (higher = more confident)" : "confidence (probability the guess is right)";
+}
 
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -41,7 +42,7 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
   const auto& config = r.settings.localize;
   const char* method = r.online ? "seqtopo online" : "seqtopo alignment";
   std::size_t not_in_map = 0;
-  for (const auto& a : r.answers) not_in_map += a.map ? 0 : 1;
+  for (const auto& a : r.answers) not_in_map += a.in_map ? 0 : 1;
   report::HtmlReport html("seqtopo localize: " + r.inputs);
   nlohmann::json data = {{"kind", "localize"}, {"schema", 1}};
   html.heading("Summary");
@@ -49,7 +50,9 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
       {"mode", r.online ? "online (one frame at a time)" : "offline (whole query)"},
       {"query frames", std::to_string(r.queries)},
       {"map frames", std::to_string(r.maps)},
-      {"frames not in the map", std::to_string(not_in_map)},
+      {r.online ? "frames not in the map"
+                : fmt::format("frames not in the map (confidence < {})", config.min_confidence),
+       std::to_string(not_in_map)},
       {"seconds", fmt::format("{:.3f}", r.seconds)}};
   if (!r.online) summary.emplace_back("alignments", std::to_string(r.alignments.size()));
   if (r.online) {
@@ -73,15 +76,21 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
                                       fmt::format("{:.3f}", m.recall)};
     };
     html.table({"method", "recall@1", "recall@5", "AUC", "R@100P", "precision", "recall"},
-               {row(method, *r.metrics), row("SeqSLAM-style (len 30, v 0.9-1.6)", *r.seqslam),
-                row("single frame", *r.single_frame)});
-    html.raw(
-        "<p class=\"note\">Precision-recall, sweeping the per-frame score threshold; seqtopo on top, the "
-        "baselines dashed; hover for the values.</p><div id=\"pr-view\"></div>"
-        "<div class=\"readout\" id=\"pr-readout\"></div>\n");
-    data["pr"] = detail::pr_json({curve_points(method, "#dc1e1e", *r.metrics),
-                                  curve_points("SeqSLAM-style", "#285adc", *r.seqslam),
-                                  curve_points("single frame", "#787878", *r.single_frame)});
+               {row(method, *r.metrics), row("SeqSLAM", *r.seqslam), row("single frame", *r.single_frame)});
+    html.paragraph("Recall@1 counts every query frame's best guess. SeqSLAM: " + r.seqslam_method +
+                   ", on the same matrix; single frame: the most similar map frame.");
+    if (r.decision) {
+      html.paragraph(fmt::format(
+          "In the map (confidence at least {}): {} frames, {} of them right (precision {:.3f}, recall {:.3f}).",
+          config.min_confidence, r.decision->in_map, r.decision->correct, r.decision->precision, r.decision->recall));
+    }
+    html.raw(std::string("<p class=\"note\">Precision-recall, sweeping the ") +
+             (r.online ? "per-frame score" : "confidence") +
+             " threshold; seqtopo on top, the baselines dashed; hover for the values.</p><div id=\"pr-view\"></div>"
+             "<div class=\"readout\" id=\"pr-readout\"></div>\n");
+    data["pr"] =
+        detail::pr_json({curve_points(method, "#dc1e1e", *r.metrics), curve_points("SeqSLAM", "#285adc", *r.seqslam),
+                         curve_points("single frame", "#787878", *r.single_frame)});
   }
 
   html.heading("Similarity matrix");
@@ -102,22 +111,29 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
   for (std::size_t q = 0; q < r.answers.size(); ++q) {
     const auto& a = r.answers[q];
     if (!a.map) continue;
-    nlohmann::json row = {{"i", q}, {"j", *a.map}, {"score", a.score}};
+    nlohmann::json row = {{"i", q}, {"j", *a.map}, {"score", a.score}, {"confidence", a.confidence}};
+    if (!r.online) row["in_map"] = a.in_map ? "yes" : "no";
+    if (std::isfinite(a.e_value)) row["e_value"] = a.e_value;
     if (q < r.latencies.size()) row["latency_ms"] = 1e3 * r.latencies[q];
-    values.push_back(row[kConfidenceKey]);
+    values.push_back(a.confidence);
     rows.push_back(std::move(row));
     wanted_q.push_back(q);
     wanted_m.push_back(*a.map);
   }
   nlohmann::json fields = {{{"key", "i"}, {"label", "query frame"}},
                            {{"key", "j"}, {"label", "map frame"}},
-                           {{"key", "score"}, {"label", "score"}}};
+                           {{"key", "score"}, {"label", "local score"}},
+                           {{"key", "confidence"}, {"label", "confidence"}}};
+  if (!r.online) {
+    fields.push_back({{"key", "e_value"}, {"label", "E-value of its alignment"}});
+    fields.push_back({{"key", "in_map"}, {"label", "in the map"}});
+  }
   if (r.online) fields.push_back({{"key", "latency_ms"}, {"label", "latency [ms]"}});
   data["pairs"] = {{"singular", "Match"},
                    {"css", "match"},
                    {"row_name", "query frame"},
                    {"col_name", "map frame"},
-                   {"confidence", {{"key", kConfidenceKey}, {"label", kConfidenceLabel}}},
+                   {"confidence", {{"key", "confidence"}, {"label", confidence_label(r)}}},
                    {"fields", std::move(fields)},
                    {"rows", std::move(rows)}};
   data["sequences"] = {{"rows", detail::sequence_json(r.query_input, r.queries, wanted_q, "query frame")},
@@ -127,10 +143,11 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
   }
 
   html.heading("Confidence of the matches");
-  html.raw("<p class=\"note\">Histogram of the matched frames' " + report::escape_html(kConfidenceLabel) +
+  html.raw("<p class=\"note\">Histogram of the query frames' " + report::escape_html(confidence_label(r)) +
            "; hover a bar for its count.</p><div id=\"confidence-view\"></div>"
            "<div class=\"readout\" id=\"confidence-readout\"></div>\n");
-  data["histogram"] = {{"label", kConfidenceLabel}, {"unit", "query frames"}, {"values", std::move(values)}};
+  data["histogram"] = {{"label", confidence_label(r)}, {"unit", "query frames"}, {"values", std::move(values)}};
+  if (r.calibration) detail::reliability_section(html, *r.calibration, "query frames");
 
   html.heading("Parameters");
   const std::vector<std::pair<std::string, std::string>> parameters{
@@ -138,6 +155,9 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
       {"gap", fmt::format("{}", config.gap)},
       {"cap", config.cap ? fmt::format("{}", *config.cap) : "none"},
       {"threshold", fmt::format("{}", config.threshold)},
+      {"minimum confidence (in the map)", fmt::format("{}", config.min_confidence)},
+      {"posterior band [frames] / tolerance [map frames]",
+       fmt::format("{} / {}", config.posterior_band, config.tolerance)},
       {"offset [sd]", fmt::format("{}", config.contrast_offset)},
       {"enhancement window [frames]", std::to_string(config.contrast_window)},
       {"score window [frames]", std::to_string(config.score_window)},
@@ -148,8 +168,9 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
   html.heading("Static figures (the PNG files, for papers)");
   html.begin_details(r.metrics ? "similarity.png, pr_curve.png" : "similarity.png");
   if (r.metrics) {
-    html.png("Precision-recall, sweeping the per-frame score threshold", read_file(out.staged("pr_curve.png")),
-             "pr_curve.png");
+    html.png(r.online ? "Precision-recall, sweeping the per-frame score threshold"
+                      : "Precision-recall, sweeping the confidence threshold",
+             read_file(out.staged("pr_curve.png")), "pr_curve.png");
   }
   html.png(r.online ? "Query (rows) x map (columns) similarity"
                     : "Query (rows) x map (columns) similarity with the alignments: forward red, reverse green",

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "figures.hpp"
+#include "report_data.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/map_json.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -173,18 +174,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
         curve.push_back({{"threshold", p.threshold}, {"precision", p.precision}, {"recall", p.recall}});
       metrics["loop_closure"]["pr_curve"] = curve;
       metrics["loop_closure"]["ranked_by"] = "confidence";
-      if (run.calibration) {
-        nlohmann::json bins = nlohmann::json::array();
-        for (const auto& b : run.calibration->bins) {
-          bins.push_back({{"lower", b.lower},
-                          {"upper", b.upper},
-                          {"count", b.count},
-                          {"mean_confidence", b.mean_confidence},
-                          {"accuracy", b.accuracy}});
-        }
-        metrics["loop_closure"]["calibration"] = {
-            {"ece", run.calibration->ece}, {"pairs", run.calibration->detections}, {"bins", bins}};
-      }
+      if (run.calibration) metrics["loop_closure"]["calibration"] = detail::calibration_json(*run.calibration, "pairs");
 
       std::vector<plot::Curve> curves(run.baseline_metrics ? 2 : 1);
       curves[0].label = "seqtopo alignment";

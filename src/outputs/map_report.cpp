@@ -176,7 +176,7 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
     if (!run.baseline_metrics && !run.baseline_skipped.empty())
       html.paragraph("Not compared: " + run.baseline_skipped + ".");
     html.raw(
-        "<p class=\"note\">Precision-recall, sweeping the alignment-score threshold; hover for the values "
+        "<p class=\"note\">Precision-recall, sweeping the pairs' confidence threshold; hover for the values "
         "(the static figure is pr_curve.png).</p><div id=\"pr-view\"></div>"
         "<div class=\"readout\" id=\"pr-readout\"></div>\n");
     std::vector<detail::CurvePoints> curves{curve_points("seqtopo alignment", "#dc1e1e", *run.metrics)};
@@ -197,6 +197,44 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
     html.table({"odometry [m]", "EKF [m]", "pose graph [m]"},
                {{fmt::format("{:.3f}", run.ate->odometry), fmt::format("{:.3f}", run.ate->ekf),
                  fmt::format("{:.3f}", run.ate->pose_graph)}});
+  }
+
+  // What the significance statistics decided, and what the filter removed.
+  const auto& d = result.decisions;
+  if (d.statistics.valid() || !d.notes.empty() || !result.insignificant.empty()) {
+    html.heading("Significance: what was kept and what was removed");
+    std::vector<std::pair<std::string, std::string>> facts{
+        {"frames per place",
+         fmt::format("{:.2f} ({})", d.frames_per_place, d.frames_per_place_estimated ? "estimated" : "given")},
+        {"contrast offset aligned with [sd]", fmt::format("{:.2f}", d.contrast_offset)},
+        {"cap", d.cap ? fmt::format("{:.1f}", *d.cap) : "none"},
+        {"score a revisit needs", fmt::format("{:.1f}", d.score_threshold)}};
+    if (d.statistics.valid()) {
+      facts.emplace_back("lambda, K (extreme-value fit)",
+                         fmt::format("{:.3f}, {:.3g} ({} chance alignments)", d.statistics.lambda, d.statistics.k,
+                                     d.statistics.fitted));
+    }
+    facts.emplace_back("alignments removed as chance or shorter than a revisit",
+                       std::to_string(result.insignificant.size()));
+    html.key_values(facts);
+    for (const auto& note : d.notes) html.paragraph(note);
+    if (!result.insignificant.empty()) {
+      constexpr std::size_t kListed = 20;
+      std::vector<std::vector<std::string>> rows;
+      for (std::size_t k = 0; k < result.insignificant.size() && k < kListed; ++k) {
+        const auto& a = result.insignificant[k];
+        const double e = k < result.insignificant_e_values.size() ? result.insignificant_e_values[k] : std::nan("");
+        rows.push_back({std::to_string(k + 1), std::string(align::to_string(a.direction)),
+                        fmt::format("{:.2f}", a.score), std::isfinite(e) ? fmt::format("{:.3g}", e) : "",
+                        fmt::format("{}-{}", a.a_begin, a.a_end - 1), fmt::format("{}-{}", a.b_begin, a.b_end - 1),
+                        std::to_string(a.pairs.size())});
+      }
+      html.paragraph(
+          fmt::format("The best {} of the removed alignments (all are in alignments.json, "
+                      "\"insignificant\"):",
+                      rows.size()));
+      html.table({"rank", "direction", "score", "E-value", "images i", "images j", "pairs"}, rows);
+    }
   }
 
   // The matrix view: the aligned scores (or their block-max overview), alignments and loop closures over it.
@@ -234,6 +272,11 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   nlohmann::json values = nlohmann::json::array();
   for (const auto& row : data["pairs"]["rows"]) values.push_back(row[kConfidenceKey]);
   data["histogram"] = {{"label", kConfidenceLabel}, {"unit", "pairs"}, {"values", std::move(values)}};
+
+  if (run.calibration) {
+    html.heading("Calibration of the confidence");
+    detail::reliability_section(html, *run.calibration, "loop-closure pairs");
+  }
 
   html.heading("Topological map");
   html.raw(std::string("<p class=\"note\">") +

@@ -161,6 +161,68 @@ nlohmann::json alignment_json(const align::LocalAlignment& a, std::size_t id, bo
           {"path", std::move(path)}};
 }
 
+nlohmann::json calibration_json(const evaluation::Calibration& c, const char* count_name) {
+  nlohmann::json bins = nlohmann::json::array();
+  for (const auto& b : c.bins) {
+    bins.push_back({{"lower", b.lower},
+                    {"upper", b.upper},
+                    {"count", b.count},
+                    {"mean_confidence", b.mean_confidence},
+                    {"accuracy", b.accuracy}});
+  }
+  return {{"ece", c.ece}, {count_name, c.detections}, {"bins", bins}};
+}
+
+void reliability_section(report::HtmlReport& html, const evaluation::Calibration& c, const std::string& what) {
+  // 240 x 240 plot area, 40 px margins: x = mean confidence of the bin, y = share right.
+  constexpr double kSize = 240, kLeft = 44, kTop = 12;
+  std::string svg = fmt::format(
+      R"svg(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif" font-size="11">)svg",
+      kLeft + kSize + 16, kTop + kSize + 40);
+  svg += fmt::format(R"svg(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#888"/>)svg", kLeft, kTop,
+                     kSize, kSize);
+  svg += fmt::format(R"svg(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#888" stroke-dasharray="4 3"/>)svg", kLeft,
+                     kTop + kSize, kLeft + kSize, kTop);
+  for (const auto& b : c.bins) {
+    if (b.count == 0) continue;
+    const double x = kLeft + b.lower * kSize, w = (b.upper - b.lower) * kSize, h = b.accuracy * kSize;
+    svg += fmt::format(
+        R"svg(<rect x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" fill="#285adc" fill-opacity="0.7" stroke="#fff">)svg"
+        R"svg(<title>confidence {:.1f}-{:.1f}: {} {}, mean confidence {:.3f}, right {:.3f}</title></rect>)svg",
+        x, kTop + kSize - h, w, h, b.lower, b.upper, b.count, what, b.mean_confidence, b.accuracy);
+    svg += fmt::format(R"svg(<circle cx="{:.1f}" cy="{:.1f}" r="2.5" fill="#dc1e1e"/>)svg",
+                       kLeft + b.mean_confidence * kSize, kTop + kSize - b.accuracy * kSize);
+  }
+  for (int t = 0; t <= 4; ++t) {
+    const double v = 0.25 * t;
+    svg += fmt::format(R"svg(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">{:.2g}</text>)svg", kLeft + v * kSize,
+                       kTop + kSize + 14, v);
+    svg += fmt::format(R"svg(<text x="{:.1f}" y="{:.1f}" text-anchor="end">{:.2g}</text>)svg", kLeft - 4,
+                       kTop + kSize - v * kSize + 4, v);
+  }
+  svg += fmt::format(R"svg(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">confidence</text>)svg", kLeft + kSize / 2,
+                     kTop + kSize + 30);
+  svg +=
+      fmt::format(R"svg(<text transform="translate(11,{:.1f}) rotate(-90)" text-anchor="middle">share right</text>)svg",
+                  kTop + kSize / 2);
+  svg += "</svg>";
+  html.raw(fmt::format(
+      "<p class=\"note\">Reliability diagram: the {} binned by confidence; each bar is the share of its bin that is "
+      "right against the truth, the red dot its mean confidence. A calibrated confidence sits on the dashed "
+      "diagonal. Expected calibration error {:.3f} over {} {}.</p>\n",
+      report::escape_html(what), c.ece, c.detections, report::escape_html(what)));
+  html.raw("<div class=\"figure\">" + svg + "</div>\n");
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& b : c.bins) {
+    rows.push_back({fmt::format("{:.1f}-{:.1f}", b.lower, b.upper), std::to_string(b.count),
+                    b.count ? fmt::format("{:.3f}", b.mean_confidence) : "",
+                    b.count ? fmt::format("{:.3f}", b.accuracy) : ""});
+  }
+  html.begin_details("the bins");
+  html.table({"confidence", what, "mean confidence", "share right"}, rows);
+  html.end_details();
+}
+
 nlohmann::json pr_json(const std::vector<CurvePoints>& curves) {
   nlohmann::json out = nlohmann::json::array();
   for (std::size_t k = 0; k < curves.size(); ++k) {

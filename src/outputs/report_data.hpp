@@ -10,6 +10,7 @@
 
 #include "seqtopo/align/local_alignment.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
+#include "seqtopo/evaluation/calibration.hpp"
 #include "seqtopo/outputs/report_options.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/plot/pr_curve.hpp"
@@ -42,6 +43,15 @@ struct CurvePoints {
   std::string colour;
   std::vector<std::array<double, 3>> points;  // recall, precision, threshold
 };
+// metrics.json's reliability diagram: {"ece", "<count_name>", "bins": [{"lower", "upper", "count",
+// "mean_confidence", "accuracy"}]}.
+nlohmann::json calibration_json(const evaluation::Calibration& c, const char* count_name);
+
+// The report's reliability diagram: an inline SVG of each bin's share right against its mean confidence (the
+// diagonal is perfect calibration), the expected calibration error, and the bins as a table. `what` names the
+// detections ("loop-closure pairs", "query frames").
+void reliability_section(report::HtmlReport& html, const evaluation::Calibration& c, const std::string& what);
+
 nlohmann::json pr_json(const std::vector<CurvePoints>& curves);
 
 // {"rows": [[stage, seconds]], "wall"}: `rows`, then the report's own time since `report_start`, then the rest

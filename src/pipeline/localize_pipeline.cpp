@@ -1,6 +1,9 @@
 #include "seqtopo/pipeline/localize_pipeline.hpp"
 
+#include <fmt/format.h>
+
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <variant>
 
@@ -22,8 +25,11 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 FrameAnswer answer_of(const localize::FrameMatch& f) {
   FrameAnswer a;
-  if (f.covered) a.map = f.map;
+  a.map = f.map;
+  a.in_map = f.covered;
   a.score = f.score;
+  a.confidence = f.confidence;
+  a.e_value = f.e_value;
   a.candidates = f.candidates;
   return a;
 }
@@ -73,7 +79,14 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
   const auto t1 = Clock::now();
   const auto result = localize::localize_sequence(run.similarity, request.settings.localize);
   run.timings.emplace_back("alignment (forward and reverse)", seconds_since(t1));
-  run.alignments = result.alignments;
+  for (std::size_t k = 0; k < result.alignments.size(); ++k) {
+    const double e = result.e_values[k];
+    if (std::isfinite(e) ? e <= 1.0 : result.alignments[k].score >= request.settings.localize.threshold) {
+      run.alignments.push_back(result.alignments[k]);
+      run.e_values.push_back(e);
+    }
+  }
+  run.statistics = result.statistics;
   for (const auto& f : result.frames) run.answers.push_back(answer_of(f));
 }
 
@@ -158,7 +171,9 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
   auto report = [&](const localize::OnlineEstimate& e, double seconds, double wait) {
     FrameAnswer a;
     if (e.in_map) a.map = e.map;
+    a.in_map = e.in_map;
     a.score = e.confidence;
+    a.confidence = e.confidence;
     a.candidates = {e.map};
     run.answers.push_back(a);
     run.latencies.push_back(seconds);
@@ -261,7 +276,7 @@ LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineFrame
 
 std::vector<evaluation::LocalizationPrediction> predictions(const std::vector<FrameAnswer>& answers) {
   std::vector<evaluation::LocalizationPrediction> p;
-  for (const auto& a : answers) p.push_back({a.map, a.score, a.candidates});
+  for (const auto& a : answers) p.push_back({a.map, static_cast<float>(a.confidence), a.candidates});
   return p;
 }
 
@@ -269,9 +284,33 @@ void evaluate_localization_run(LocalizeRun& run, const evaluation::LocalizationT
                                unsigned threads) {
   run.tolerance = tolerance;
   run.metrics = evaluation::evaluate_localization(predictions(run.answers), truth, tolerance);
+  InMapDecision d;
+  std::vector<double> confidence;
+  std::vector<bool> correct;
+  for (std::size_t q = 0; q < run.answers.size() && q < truth.truth.size(); ++q) {
+    const auto& a = run.answers[q];
+    const bool right = a.map && truth.correct(q, *a.map, tolerance);
+    if (a.in_map) {
+      ++d.in_map;
+      d.correct += right ? 1 : 0;
+    }
+    confidence.push_back(a.confidence);
+    correct.push_back(right);
+  }
+  d.precision = d.in_map == 0 ? 1.0 : static_cast<double>(d.correct) / static_cast<double>(d.in_map);
+  d.recall = run.metrics->queries_with_match == 0
+                 ? 0.0
+                 : static_cast<double>(d.correct) / static_cast<double>(run.metrics->queries_with_match);
+  run.decision = d;
+  if (!run.online) run.calibration = evaluation::calibration(confidence, correct);
   run.single_frame = evaluation::evaluate_localization(single_frame_localization(run.similarity), truth, tolerance);
-  run.seqslam = evaluation::evaluate_localization(
-      seqslam_localization(run.similarity, localization_seqslam_config(threads)), truth, tolerance);
+  const baseline::SeqSlamConfig seqslam = localization_seqslam_config(threads);
+  run.seqslam = evaluation::evaluate_localization(seqslam_localization(run.similarity, seqslam), truth, tolerance);
+  run.seqslam_method = fmt::format(
+      "SeqSLAM (contrast window {}, sequence {}, velocities {}-{} in {} steps; frames with a whole sequence behind "
+      "them answered)",
+      seqslam.contrast_window, seqslam.sequence_length, seqslam.min_velocity, seqslam.max_velocity,
+      seqslam.velocity_steps);
 }
 
 }  // namespace seqtopo::pipeline

@@ -112,4 +112,52 @@ double search_area(std::size_t rows, std::size_t cols, bool self, std::size_t mi
   return both_passes ? 2 * cells : cells;
 }
 
+double ungapped_lambda(std::span<const float> scores) {
+  double mean = 0, high = 0;
+  for (float v : scores) {
+    mean += v;
+    high = std::max(high, static_cast<double>(v));
+  }
+  if (scores.empty() || !(mean < 0) || !(high > 0)) return 0;
+  // f(lambda) = mean(exp(lambda s)) - 1 is convex, 0 at 0 with a negative slope there, so it has one positive
+  // root; bracket it by doubling, then bisect.
+  const auto f = [&](double lambda) {
+    double sum = 0;
+    for (float v : scores) sum += std::exp(lambda * static_cast<double>(v));
+    return sum / static_cast<double>(scores.size()) - 1.0;
+  };
+  double lo = 0, hi = 1.0 / high;
+  while (f(hi) < 0) {
+    lo = hi;
+    hi *= 2;
+    if (hi > 1e6) return 0;
+  }
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) < 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+bool shadows_earlier(const std::vector<align::LocalAlignment>& alignments, std::size_t k, double reach) {
+  const auto diagonal = [](const align::LocalAlignment& a) {
+    double sum = 0;
+    for (auto [i, j] : a.pairs) {
+      sum += a.direction == align::Direction::forward ? static_cast<double>(i) - static_cast<double>(j)
+                                                      : static_cast<double>(i + j);
+    }
+    return a.pairs.empty() ? 0.0 : sum / static_cast<double>(a.pairs.size());
+  };
+  const auto& a = alignments[k];
+  const double da = diagonal(a);
+  for (std::size_t e = 0; e < k; ++e) {
+    const auto& b = alignments[e];
+    if (b.direction != a.direction) continue;
+    const std::size_t lo = std::max(a.a_begin, b.a_begin), hi = std::min(a.a_end, b.a_end);
+    const std::size_t shorter = std::min(a.a_end - a.a_begin, b.a_end - b.a_begin);
+    if (hi > lo && 2 * (hi - lo) >= shorter && std::abs(diagonal(b) - da) <= reach) return true;
+  }
+  return false;
+}
+
 }  // namespace seqtopo::significance

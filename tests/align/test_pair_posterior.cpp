@@ -13,8 +13,9 @@ namespace {
 
 // Every chain (i1 < i2 < ..., j1 < j2 < ...) of a rows x cols matrix, its weight exp(lambda * score): the
 // posterior of each cell is the weight of the chains through it over all chains and the empty one.
+// With `skipped`, a chain also puts every row it skips between two pairs at the column of the pair before.
 std::vector<double> brute_force(const std::vector<float>& s, std::size_t rows, std::size_t cols,
-                                const PosteriorConfig& c) {
+                                const PosteriorConfig& c, bool skipped = false) {
   std::vector<double> through(rows * cols, 0.0);
   double total = 1.0;  // the empty chain
   std::vector<std::pair<std::size_t, std::size_t>> chain;
@@ -22,7 +23,13 @@ std::vector<double> brute_force(const std::vector<float>& s, std::size_t rows, s
     const auto [pi, pj] = chain.back();
     const double w = std::exp(c.lambda * score);
     total += w;
-    for (auto [i, j] : chain) through[i * cols + j] += w;
+    for (std::size_t k = 0; k < chain.size(); ++k) {
+      const auto [i, j] = chain[k];
+      through[i * cols + j] += w;
+      if (skipped && k + 1 < chain.size()) {
+        for (std::size_t r = i + 1; r < chain[k + 1].first; ++r) through[r * cols + j] += w;
+      }
+    }
     for (std::size_t i = pi + 1; i < rows; ++i) {
       for (std::size_t j = pj + 1; j < cols; ++j) {
         chain.emplace_back(i, j);
@@ -72,6 +79,68 @@ TEST(PairPosterior, EqualsTheSumOverEveryChainOnTinyMatrices) {
       double sum = 0;
       for (std::size_t jj = j == 0 ? 0 : j - 1; jj <= std::min(cols - 1, j + 1); ++jj) sum += expected[i * cols + jj];
       EXPECT_NEAR(near[k], std::min(1.0, sum), 1e-9) << trial << " (" << i << ", " << j << ")";
+    }
+  }
+}
+
+TEST(RowPosterior, EveryRowTakesItsMostProbableColumnAsTheBruteForceSumHasIt) {
+  std::mt19937 rng(11);
+  std::normal_distribution<float> noise(0.0F, 1.0F);
+  for (int trial = 0; trial < 12; ++trial) {
+    const std::size_t rows = 4 + trial % 2, cols = 4 + (trial / 2) % 2;
+    std::vector<float> s(rows * cols);
+    for (auto& v : s) v = noise(rng);
+    PosteriorConfig c;
+    c.lambda = 0.6 + 0.1 * trial;
+    c.gap_a = c.gap_b = 0.5;
+    c.band = 8;
+    c.tolerance = trial % 2;
+    // An alignment of one pair in the middle: the band reaches every row before and after it.
+    LocalAlignment a;
+    a.pairs = {{rows / 2, cols / 2}};
+    const auto expected = brute_force(s, rows, cols, c, true);
+    const auto got = row_posteriors(a, ScoreSource::dense(s, rows, cols), c);
+    ASSERT_EQ(got.size(), rows) << trial;
+    for (std::size_t i = 0; i < rows; ++i) {
+      std::size_t best = 0;
+      for (std::size_t j = 1; j < cols; ++j) {
+        if (expected[i * cols + j] > expected[i * cols + best]) best = j;
+      }
+      double within = 0;
+      for (std::size_t jj = best >= c.tolerance ? best - c.tolerance : 0; jj <= std::min(cols - 1, best + c.tolerance);
+           ++jj)
+        within += expected[i * cols + jj];
+      EXPECT_EQ(got[i].row, i);
+      EXPECT_EQ(got[i].col, best) << trial << " row " << i;
+      EXPECT_NEAR(got[i].posterior, std::min(1.0, within), 1e-9) << trial << " row " << i;
+    }
+  }
+}
+
+TEST(RowPosterior, BeyondAnAlignmentsEndTheRowsFollowTheRevisitItStoppedShortOf) {
+  // A revisit on the diagonal +5 of rows 0..39, weak (+0.4) in rows 30..39 where the alignment given ends at 29.
+  const std::size_t n = 60;
+  std::mt19937 rng(4);
+  std::normal_distribution<float> noise(-1.0F, 0.7F);
+  std::vector<float> s(n * n);
+  for (auto& v : s) v = noise(rng);
+  LocalAlignment a;
+  for (std::size_t i = 0; i < 40; ++i) {
+    s[i * n + i + 5] = i < 30 ? 2.5F : 0.4F;
+    if (i < 30) a.pairs.emplace_back(i, i + 5);
+  }
+  PosteriorConfig c;
+  c.band = 8;
+  c.tolerance = 1;
+  const auto rows = row_posteriors(a, ScoreSource::dense(s, n, n), c);
+  ASSERT_EQ(rows.size(), 38U);  // rows 0..29 and 8 after
+  for (const auto& r : rows) {
+    if (r.row < 30) {
+      EXPECT_EQ(r.col, r.row + 5) << r.row;
+      EXPECT_GT(r.posterior, 0.9) << r.row;
+    } else {
+      EXPECT_NEAR(static_cast<double>(r.col), static_cast<double>(r.row + 5), 1.0) << r.row;
+      EXPECT_LT(r.posterior, rows[20].posterior) << "less sure past the end";
     }
   }
 }

@@ -74,5 +74,46 @@ TEST(SeqSlam, EqualsBruteForceDefinition) {
   }
 }
 
+TEST(SeqSlam, EqualsBruteForceDefinitionAcrossSequencesWithHalfFrameSteps) {
+  // Velocity 1.5 puts every other step exactly half way between two columns (rounded up, away from zero).
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> u(-1.0F, 1.0F);
+  for (int round = 0; round < 20; ++round) {
+    const std::size_t rows = 10 + rng() % 15, cols = 10 + rng() % 25;
+    SimilarityMatrix s(rows, cols);
+    for (auto& v : s.values) v = u(rng);
+    SeqSlamConfig config;
+    config.sequence_length = 6;
+    config.contrast_window = 0;
+    config.min_velocity = 0.5F;
+    config.max_velocity = 1.5F;
+    config.velocity_steps = 3;
+    config.threads = 1 + round % 2;
+    const auto got = seqslam_matches(s, config);
+    for (std::size_t q = 0; q < rows; ++q) {
+      float best = 0;
+      std::size_t best_j = 0;
+      bool valid = false;
+      for (std::size_t j = 0; j < cols; ++j) {
+        for (float v : {0.5F, 1.0F, 1.5F}) {
+          double sum = 0;
+          int count = 0;
+          for (std::size_t k = 0; k < 6 && k <= q; ++k) {
+            const double col = static_cast<double>(j) - static_cast<double>(v) * static_cast<double>(k);
+            if (col < 0) break;
+            sum += s(q - k, static_cast<std::size_t>(std::lround(col)));
+            ++count;
+          }
+          const auto score = static_cast<float>(sum / count);
+          if (!valid || score > best) valid = true, best = score, best_j = j;
+        }
+      }
+      ASSERT_TRUE(got[q].valid);
+      EXPECT_EQ(got[q].match, best_j) << round << " query " << q;
+      EXPECT_EQ(got[q].score, best) << round << " query " << q;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace seqtopo::baseline

@@ -60,24 +60,54 @@ TEST_F(LocalizeCli, WritesMatchesMetricsAndReport) {
   for (const char* name : {"matches.csv", "metrics.json", "pr_curve.png", "report.html", "similarity.png"}) {
     EXPECT_TRUE(fs::exists(out / name)) << name;
   }
-  std::istringstream csv(read_file(out / "matches.csv"));
-  std::string line;
-  std::getline(csv, line);
-  EXPECT_EQ(line, "query,map,score");
-  std::size_t rows = 0, empty = 0;
-  while (std::getline(csv, line)) {
-    const std::size_t q = std::stoul(line.substr(0, line.find(',')));
-    const std::string rest = line.substr(line.find(',') + 1);
-    if (rest == ",") {
-      ++empty;
-      EXPECT_GE(q, 28U) << "frames on the planted path are in the map";
-    } else if (q >= 2 && q < 28) {
-      EXPECT_EQ(std::stoul(rest.substr(0, rest.find(','))), q + 20) << line;
+  // query,map,score,confidence,e_value,in_map: every frame has a guess; "not in the map" is the decision.
+  const auto read_rows = [](const fs::path& file) {
+    std::istringstream csv(read_file(file));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "query,map,score,confidence,e_value,in_map");
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(csv, line)) {
+      std::vector<std::string> fields;
+      std::istringstream in(line);
+      for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
+      if (!line.empty() && line.back() == ',') fields.emplace_back();
+      EXPECT_EQ(fields.size(), 6U) << line;
+      rows.push_back(fields);
     }
-    ++rows;
+    return rows;
+  };
+  const auto rows = read_rows(out / "matches.csv");
+  ASSERT_EQ(rows.size(), 50U);
+  std::size_t not_in_map = 0;
+  for (const auto& f : rows) {
+    const std::size_t q = std::stoul(f[0]);
+    ASSERT_FALSE(f[1].empty()) << q << ": every frame has a guess";
+    const double confidence = std::stod(f[3]);
+    EXPECT_EQ(f[5] == "1", confidence >= 0.5) << q;
+    if (q >= 2 && q < 28) {
+      EXPECT_EQ(std::stoul(f[1]), q + 20) << q;
+      EXPECT_EQ(f[5], "1") << q << ": frames on the planted path are in the map";
+    }
+    not_in_map += f[5] == "0" ? 1 : 0;
   }
-  EXPECT_EQ(rows, 50U);
-  EXPECT_GE(empty, 15U) << "the 20 frames off the map are reported as not in the map";
+  EXPECT_GE(not_in_map, 15U) << "the 20 frames off the map are reported as not in the map";
+  // The decision moves with --min-confidence and nothing else.
+  for (const char* threshold : {"0", "1"}) {
+    const auto again = dir_.path / (std::string("out_") + threshold);
+    ASSERT_EQ(
+        localize("--map " + s.string() + " --tolerance 0 --min-confidence " + threshold + " --out " + again.string())
+            .status,
+        0);
+    const auto moved = read_rows(again / "matches.csv");
+    ASSERT_EQ(moved.size(), rows.size());
+    for (std::size_t q = 0; q < rows.size(); ++q) {
+      EXPECT_EQ(moved[q][1], rows[q][1]);
+      EXPECT_EQ(moved[q][3], rows[q][3]);
+      const bool in = std::stod(moved[q][3]) >= std::stod(threshold);
+      EXPECT_EQ(moved[q][5], in ? "1" : "0") << threshold << " " << q;
+    }
+  }
   EXPECT_NE(read_file(out / "metrics.json").find("\"recall_at_100_precision\""), std::string::npos);
 }
 

@@ -8,6 +8,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "seqtopo/align/pair_posterior.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/localize/localize.hpp"
 
@@ -50,7 +51,7 @@ TEST(Localize, RecoversPlantedDiagonalAtAnotherSpeed) {
       if (q < 2 || q + 2 >= nq) {
         if (!r.frames[q].covered) continue;
       }
-      ASSERT_TRUE(r.frames[q].covered) << q;
+      ASSERT_TRUE(r.frames[q].covered) << q << " confidence " << r.frames[q].confidence << " E " << r.frames[q].e_value;
       EXPECT_LE(distance(r.frames[q].map, truth(q)), 1U) << q;
       EXPECT_EQ(r.frames[q].direction, align::Direction::forward);
     }
@@ -69,7 +70,7 @@ TEST(Localize, RecoversSlowerQueryWithRepeatedMapFrames) {
   const auto r = localize_sequence(s, config);
   for (std::size_t q = 0; q < nq; ++q) {
     if ((q < 2 || q + 2 >= nq) && !r.frames[q].covered) continue;
-    ASSERT_TRUE(r.frames[q].covered) << q;
+    ASSERT_TRUE(r.frames[q].covered) << q << " confidence " << r.frames[q].confidence << " E " << r.frames[q].e_value;
     EXPECT_LE(distance(r.frames[q].map, truth(q)), 1U) << q;
   }
 }
@@ -81,7 +82,7 @@ TEST(Localize, RecoversQueryDrivenTheOtherWay) {
   for (std::size_t q = 0; q < nq; ++q) s(q, 90 - q) = 1.0F;
   const auto r = localize_sequence(s, plain_config());
   for (std::size_t q = 0; q < nq; ++q) {
-    ASSERT_TRUE(r.frames[q].covered) << q;
+    ASSERT_TRUE(r.frames[q].covered) << q << " confidence " << r.frames[q].confidence << " E " << r.frames[q].e_value;
     EXPECT_EQ(r.frames[q].map, 90 - q) << q;
     EXPECT_EQ(r.frames[q].direction, align::Direction::reverse) << q;
   }
@@ -102,7 +103,7 @@ TEST(Localize, RecoversQueryDrivenTheOtherWayAtAnotherSpeed) {
   const auto r = localize_sequence(s, LocalizeConfig{});
   for (std::size_t q = 0; q < nq; ++q) {
     if ((q < 2 || q + 2 >= nq) && !r.frames[q].covered) continue;
-    ASSERT_TRUE(r.frames[q].covered) << q;
+    ASSERT_TRUE(r.frames[q].covered) << q << " confidence " << r.frames[q].confidence << " E " << r.frames[q].e_value;
     EXPECT_LE(distance(r.frames[q].map, truth(q)), 1U) << q;
     EXPECT_EQ(r.frames[q].direction, align::Direction::reverse) << q;
   }
@@ -119,7 +120,7 @@ TEST(Localize, FramesOutsideTheMapAreNotCoveredAndJumpsAreFollowed) {
   for (std::size_t q = 0; q < nq; ++q) {
     const bool inside = q < 30 || (q >= 50 && q < 80);
     if (inside) {
-      ASSERT_TRUE(r.frames[q].covered) << q;
+      ASSERT_TRUE(r.frames[q].covered) << q << " confidence " << r.frames[q].confidence << " E " << r.frames[q].e_value;
       EXPECT_EQ(r.frames[q].map, q < 30 ? q + 10 : q + 50) << q;
     } else {
       // The ends of an alignment may run a frame or two into the noise, never far.
@@ -142,13 +143,14 @@ TEST(Localize, BridgesAShortBadStretch) {
   config.contrast_offset = 0.45F;  // noise costs less, so a few frames without evidence do not break the alignment
   const auto r = localize_sequence(s, config);
   for (std::size_t q = 0; q < nq; ++q) {
-    ASSERT_TRUE(r.frames[q].covered) << q;
+    ASSERT_TRUE(r.frames[q].covered) << q << " confidence " << r.frames[q].confidence << " E " << r.frames[q].e_value;
     EXPECT_LE(distance(r.frames[q].map, q + 10), 1U) << q;
   }
 }
 
-TEST(Localize, FrameMatchesFollowTheAlignmentsWithWindowedScores) {
-  // Reference: for every alignment and covered frame, the local score by brute force over the path.
+TEST(Localize, EveryFrameTakesItsMostConfidentAlignmentsPosteriorGuessWithItsWindowedScore) {
+  // Reference: per frame, the best over the alignments of exp(-E) x the row posterior (align::row_posteriors
+  // called directly), and the local score of that alignment by brute force over its path.
   std::mt19937 rng(6);
   std::uniform_real_distribution<float> u(-1.0F, 1.0F);
   for (int round = 0; round < 15; ++round) {
@@ -162,45 +164,48 @@ TEST(Localize, FrameMatchesFollowTheAlignmentsWithWindowedScores) {
     c.score_window = rng() % 4;
     const auto r = localize_sequence(s, c);
     const auto scores = score_matrix(s, c);
-    std::vector<float> best(s.rows, -1e30F);
-    std::vector<std::size_t> best_map(s.rows);
-    for (const auto& a : r.alignments) {
-      ASSERT_GE(a.score, c.threshold);
-      for (std::size_t q = a.a_begin; q < a.a_end; ++q) {
-        double local = 0;
-        bool started = false;
-        std::size_t pi = 0, pj = 0;
-        for (const auto& [i, j] : a.pairs) {
-          if (distance(i, q) > c.score_window) continue;
-          local += scores(i, j);
-          if (started) local -= c.gap * static_cast<double>((i - pi - 1) + distance(j, pj) - 1);
-          started = true;
-          pi = i;
-          pj = j;
-        }
-        std::size_t map = 0;
-        for (std::size_t k = 0; k < a.pairs.size(); ++k) {
-          if (a.pairs[k].first == q) map = a.pairs[k].second;
-          if (a.pairs[k].first < q && k + 1 < a.pairs.size() && a.pairs[k + 1].first > q) {
-            const double t = static_cast<double>(q - a.pairs[k].first) /
-                             static_cast<double>(a.pairs[k + 1].first - a.pairs[k].first);
-            map = static_cast<std::size_t>(
-                std::lround(static_cast<double>(a.pairs[k].second) +
-                            t * (static_cast<double>(a.pairs[k + 1].second) - static_cast<double>(a.pairs[k].second))));
-          }
-        }
-        if (static_cast<float>(local) > best[q] + 1e-4F) {
-          best[q] = static_cast<float>(local);
-          best_map[q] = map;
-        }
-      }
+    ASSERT_EQ(r.e_values.size(), r.alignments.size());
+    double lambda = r.statistics.valid() ? r.statistics.lambda : significance::ungapped_lambda(scores.values);
+    if (!(lambda > 0)) lambda = 1.0;
+    align::PosteriorConfig pc;
+    pc.lambda = lambda;
+    pc.gap_a = pc.gap_b = c.gap;
+    pc.band = c.posterior_band;
+    pc.tolerance = c.tolerance;
+    std::vector<double> best(s.rows, -1.0);
+    for (std::size_t k = 0; k < r.alignments.size(); ++k) {
+      const double e = r.e_values[k];
+      const double real = std::isfinite(e) ? std::exp(-e) : (r.alignments[k].score >= c.threshold ? 1.0 : 0.0);
+      for (const auto& row : align::row_posteriors(
+               r.alignments[k], align::ScoreSource::dense(scores.values, scores.rows, scores.cols), pc))
+        best[row.row] = std::max(best[row.row], real * row.posterior);
     }
     for (std::size_t q = 0; q < s.rows; ++q) {
-      const bool covered = best[q] > -1e29F;
-      ASSERT_EQ(r.frames[q].covered, covered) << q;
-      if (!covered) continue;
-      EXPECT_NEAR(r.frames[q].score, best[q], 1e-3F) << q;
-      EXPECT_EQ(r.frames[q].candidates.front(), r.frames[q].map);
+      const auto& f = r.frames[q];
+      ASSERT_FALSE(f.candidates.empty());
+      EXPECT_EQ(f.candidates.front(), f.map);
+      EXPECT_EQ(f.covered, f.confidence >= c.min_confidence) << q;
+      if (best[q] < 0) {
+        EXPECT_EQ(f.alignment, FrameMatch::npos) << q;
+        EXPECT_EQ(f.confidence, 0.0);
+        continue;
+      }
+      EXPECT_NEAR(f.confidence, best[q], 1e-12) << round << " frame " << q;
+      ASSERT_LT(f.alignment, r.alignments.size());
+      // The local score of the alignment that gave the guess.
+      const auto& a = r.alignments[f.alignment];
+      double local = 0;
+      bool started = false;
+      std::size_t pi = 0, pj = 0;
+      for (const auto& [i, j] : a.pairs) {
+        if (distance(i, q) > c.score_window) continue;
+        local += scores(i, j);
+        if (started) local -= c.gap * static_cast<double>((i - pi - 1) + distance(j, pj) - 1);
+        started = true;
+        pi = i;
+        pj = j;
+      }
+      EXPECT_NEAR(f.score, local, 1e-3) << round << " frame " << q;
     }
   }
 }

@@ -40,4 +40,18 @@ struct PosteriorConfig {
 std::vector<double> pair_posteriors(const LocalAlignment& alignment, const ScoreSource& scores,
                                     const PosteriorConfig& config);
 
+// Posterior decoding of every row of the band (the alignment's rows, and `band` rows before its first pair and
+// after its last): where the chains put the row. A chain puts row i at column j when it pairs them, or when it
+// skips i between two pairs, the one before at column j (a traversal slower than the other repeats frames:
+// its row between two matched ones is still at the earlier one's place). The row's most probable column and
+// the posterior within +-tolerance of it. Rows the band leaves no cell in are left out. Beyond the alignment's ends
+// this is where a chain extending it would most likely put the row, with the probability that one does: how
+// localization reaches the ends of a revisit the alignment's own maximum stopped short of.
+struct RowPosterior {
+  std::size_t row = 0, col = 0;
+  double posterior = 0;
+};
+std::vector<RowPosterior> row_posteriors(const LocalAlignment& alignment, const ScoreSource& scores,
+                                         const PosteriorConfig& config);
+
 }  // namespace seqtopo::align

@@ -9,7 +9,7 @@
 // an anti-diagonal line and is found by the reverse pass.
 //
 //   SimilarityMatrix s = ...;                       // query x map, higher = more similar
-//   LocalizeResult r = localize_sequence(s);        // r.frames[q].map, .score, .covered
+//   LocalizeResult r = localize_sequence(s);        // r.frames[q].map, .confidence, .covered
 //
 // Scores. Each row is first contrast-enhanced (score_matrix): every cell becomes its z-score against the
 // cells of the same row within +-contrast_window map frames, minus `contrast_offset`. The alignment then rewards a
@@ -21,19 +21,37 @@
 // frame skipped (faster) or every query frame repeated on one map frame (slower) costs one gap. The path still
 // pays while a matched frame gains more than the gaps per frame cost, e.g. at half speed gain > gap.
 //
-// Per-frame result. A query frame is covered when it lies in the query range of an alignment scoring at
-// least `threshold`. Its map frame is the alignment's partner of that frame (for a frame skipped by a gap,
-// the partner interpolated between the neighbouring pairs). Its score is the alignment's own score gained
-// within +-score_window query frames around it (cell scores of the pairs there minus the gaps there), so a
-// long alignment that wanders off the true path for a while gets a low score exactly there. Among several
-// covering alignments the one with the higher local score wins; the others are the frame's runner-up
-// candidates (for recall@5). A frame that no alignment covers is "not in the map" - a normal result.
+// Significance (significance/score_statistics.hpp). The alignments are found down to any positive score, best
+// first, and the declumped ones that are not shadows of earlier ones are a sample of chance alignments once the
+// real ones at the top are set aside: their extreme-value fit gives every alignment an E-value, the number of
+// alignments this good expected by chance in a search of this query against this map (both directions).
+//
+// Per-frame result: posterior decoding (align/pair_posterior.hpp). Every alignment's band (+-posterior_band
+// map frames around its path, and posterior_band query frames before its first pair and after its last)
+// gives each of its rows the map frame of highest posterior and the posterior within +-tolerance map frames of
+// it; past the alignment's ends the band follows the revisit the alignment's maximum stopped short of. The
+// frame's confidence that this map frame is right is
+//   confidence = exp(-E) * posterior,
+// exp(-E) being the probability that no chance alignment scores this well (Poisson), so the alignment is
+// real, and the posterior the probability that the revisit passes there, with lambda from the fit. Without a
+// fit (a search too small for one, or one with too few chance alignments) exp(-E) is replaced by 1 for
+// alignments scoring at least `threshold`, 0 below, and lambda is Karlin & Altschul's of the cells
+// (significance::ungapped_lambda). Among the
+// alignments whose band reaches a frame the most confident wins (then the higher local score, then the
+// better-ranked alignment); the others give the runner-up candidates (recall@5). A frame no band reaches
+// takes the best cell of its scored row, confidence 0. Every frame so has a best guess; it is "in the map"
+// when its confidence is at least `min_confidence`, a decision on the confidence the user can move.
+//
+// Local score: the alignment's own score within +-score_window query frames of the frame (cell scores of its
+// pairs there minus the gaps there), kept beside the confidence as the evidence in score units.
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
+#include "seqtopo/significance/score_statistics.hpp"
 
 namespace seqtopo::localize {
 
@@ -45,25 +63,39 @@ struct LocalizeConfig {
   float contrast_offset = 0.75F;  // subtracted after enhancement [standard deviations]
   float gap = 2.0F;               // gap penalty, both directions [score units]
   std::optional<float> cap;       // upper bound on the cumulative score (mapping paper); nullopt = none
-  float threshold = 10.0F;        // minimum alignment score for an alignment to cover frames
-  bool reverse = true;            // also search the map driven backwards
-  std::size_t max_alignments = 1000;
-  std::size_t score_window = 10;  // [query frames] half-width of the per-frame score window
-  std::size_t candidates = 5;     // best map frames kept per query frame (for recall@k)
-  unsigned threads = 1;           // forward and reverse passes in parallel when > 1; result does not depend on it
+  // Alignments scoring below this count as chance when the statistics cannot be fitted (see above); the online
+  // localizer's minimum confidence.
+  float threshold = 10.0F;
+  bool reverse = true;  // also search the map driven backwards
+  // Alignments found, best first: the real ones and a sample of chance ones for the statistics (as the map's fit).
+  std::size_t max_alignments = 300;
+  std::size_t score_window = 10;   // [query frames] half-width of the per-frame score window
+  std::size_t candidates = 5;      // best map frames kept per query frame (for recall@k)
+  std::size_t posterior_band = 8;  // [frames] the posterior's band either side of a path, and past its ends
+  // [map frames] the posterior counts the guess's neighbours within this: the confidence is the probability of
+  // a guess within +-tolerance of the truth, what the evaluation counts as right (seqtopo localize --tolerance).
+  std::size_t tolerance = 2;
+  double min_confidence = 0.5;  // a frame's guess below this confidence is "not in the map"
+  unsigned threads = 1;         // forward and reverse passes in parallel when > 1; result does not depend on it
 };
 
 struct FrameMatch {
-  bool covered = false;  // false = "not in the map"
-  std::size_t map = 0;   // best map frame (meaningful when covered)
-  float score = 0;       // local alignment score around this frame (higher = more confident)
+  bool covered = false;           // "in the map": confidence >= min_confidence (false = "not in the map")
+  std::size_t map = 0;            // best guess of the map frame, given for every frame
+  float score = 0;                // local alignment score around this frame (0 when no alignment reaches it)
+  double confidence = 0;          // probability the guess is right (see above)
+  double e_value = std::nan("");  // of the alignment that gave the guess (NaN: none, or no fit)
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  std::size_t alignment = npos;  // index of that alignment in LocalizeResult::alignments (npos: none)
   align::Direction direction = align::Direction::forward;
-  std::vector<std::size_t> candidates;  // best first, distinct alignments; candidates[0] == map when covered
+  std::vector<std::size_t> candidates;  // best first, distinct; candidates[0] == map
 };
 
 struct LocalizeResult {
   std::vector<FrameMatch> frames;                 // one per query frame (row)
   std::vector<align::LocalAlignment> alignments;  // every alignment found, best first (a = query, b = map)
+  std::vector<double> e_values;                   // one per alignment (NaN without a fit)
+  significance::ScoreStatistics statistics;       // the fit (valid() false when there was none)
 };
 
 // The matrix the alignment scores: contrast-enhanced rows minus the contrast offset (see above). Throws
@@ -75,9 +107,11 @@ void score_row(const float* similarity_row, std::size_t cols, const LocalizeConf
 // Throws std::invalid_argument on an empty matrix, non-finite values or a negative/NaN setting.
 LocalizeResult localize_sequence(const SimilarityMatrix& query_x_map, const LocalizeConfig& config = {});
 
-// Per-frame result from alignments already found on `scores` (the matrix the alignments scored): the
-// second half of localize_sequence, exposed for callers that run the engine themselves.
+// Per-frame result from alignments already found on `scores` (the matrix the alignments scored), best first,
+// with their E-values (NaN = no fit) and lambda: the second half of localize_sequence, exposed for callers
+// that run the engine themselves.
 std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAlignment>& alignments,
+                                               const std::vector<double>& e_values, double lambda,
                                                const SimilarityMatrix& scores, const LocalizeConfig& config);
 
 // The single-image baseline: each query frame takes the most similar map frame (ties: the smaller index);

@@ -8,6 +8,7 @@
 //   request.map = {"summer"};
 //   request.query = {"winter"};
 //   pipeline::LocalizeRun run = pipeline::localize_sequences(request);   // run.answers[q].map
+#include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/evaluation/calibration.hpp"
 #include "seqtopo/evaluation/localization_metrics.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
@@ -48,9 +50,20 @@ struct LocalizeRequest {
 
 // One query frame's answer, whichever mode produced it.
 struct FrameAnswer {
-  std::optional<std::size_t> map;       // nullopt = "not in the map"
-  float score = 0;                      // higher = more confident
+  // The best guess: offline given for every frame; online nullopt while the frame is "not in the map".
+  std::optional<std::size_t> map;
+  bool in_map = false;  // the decision: confidence >= the minimum confidence (online: score >= threshold)
+  float score = 0;      // local alignment score (online: the table value)
+  // Offline: the probability that the guess is right (localize/localize.hpp); online: the table value.
+  double confidence = 0;
+  double e_value = std::nan("");        // offline: of the alignment that gave the guess (NaN: none or no fit)
   std::vector<std::size_t> candidates;  // best first
+};
+
+// The frames reported "in the map" (confidence >= the minimum), scored against the truth.
+struct InMapDecision {
+  std::size_t in_map = 0, correct = 0;
+  double precision = 1, recall = 0;  // correct / in_map; correct / query frames with a true match
 };
 
 struct LocalizeRun {
@@ -61,7 +74,12 @@ struct LocalizeRun {
   std::size_t queries = 0, maps = 0;
   std::vector<std::size_t> map_session_frames;  // map frames of each map session (one entry for one map)
   std::vector<FrameAnswer> answers;
-  std::vector<align::LocalAlignment> alignments;  // offline
+  // Offline: the alignments that may be real (E-value at most 1, or without a fit scoring at least the
+  // threshold), best first, and their E-values (NaN without a fit). The chance ones behind the statistics and
+  // the low-confidence guesses are not kept.
+  std::vector<align::LocalAlignment> alignments;
+  std::vector<double> e_values;
+  significance::ScoreStatistics statistics;  // offline
   // Online, per frame [s]: the latency is the processing, from the frame's arrival (its path or file read) to its
   // answer (decoding, describing, aligning); the wait is the time before it arrived, since the previous answer.
   std::vector<double> latencies, waits;
@@ -70,6 +88,9 @@ struct LocalizeRun {
   double seconds = 0;  // the localization's wall time
   // With ground truth (evaluate_localization_run):
   std::optional<evaluation::LocalizationMetrics> metrics, single_frame, seqslam;
+  std::string seqslam_method;                          // the baseline's configuration, as the report names it
+  std::optional<evaluation::Calibration> calibration;  // offline: the confidence against the truth
+  std::optional<InMapDecision> decision;
   std::size_t tolerance = 0;
 };
 

@@ -58,6 +58,23 @@ ScoreStatistics fit_declumped_scores(std::span<const double> scores, double area
 // this is the evidence the cap hides; for an uncapped one it equals the engine's score.
 double path_score(const align::LocalAlignment& alignment, const align::ScoreSource& scores, double gap_a, double gap_b);
 
+// Karlin & Altschul's lambda of the cell scores themselves, the positive root of mean(exp(lambda s)) = 1: the
+// exact value for ungapped alignments, an upper bound on the gapped one. For searches too small for the fit it
+// still makes lambda * score a log-odds in the scores' own scale. 0 when there is no root (no positive score,
+// or a mean score that is not negative).
+double ungapped_lambda(std::span<const float> scores);
+
+// Diagonals this close [frames] count as one: a chain of shadows, each within reach of the one before, covers
+// the wide band of similar diagonals around a revisit in a smooth sequence.
+inline constexpr double kShadowReach = 3.0;
+
+// Whether alignment k of a best-first list lies along one found before it: the same direction, their A ranges
+// overlapping by half of the shorter or more, and their diagonals (i - j forward, i + j reverse, averaged over
+// the pairs) within `reach` frames. Declumping leaves such parallel shadows beside every strong alignment (the
+// diagonals next to a revisit score almost as well); they are part of the revisit, not chance, and stay out
+// of the fit.
+bool shadows_earlier(const std::vector<align::LocalAlignment>& alignments, std::size_t k, double reach);
+
 // Cells the engine searches: rows x cols, or for a self search the pairs with i - j >= min_separation; times two
 // when the reverse pass runs too.
 double search_area(std::size_t rows, std::size_t cols, bool self, std::size_t min_separation, bool both_passes);

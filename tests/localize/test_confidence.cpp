@@ -1,0 +1,148 @@
+// The per-frame confidence of offline localization on synthetic queries with known truth: it reads as a
+// probability (binned by confidence, the share of right guesses matches), a wrong pair inside a long correct
+// alignment is less sure than its neighbours, and every frame has a guess whose "in the map" decision is the
+// confidence against the threshold.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "seqtopo/localize/localize.hpp"
+
+namespace seqtopo::localize {
+namespace {
+
+// A route of `frames` AR(1) descriptors (neighbouring frames alike over about 3 frames), unit-free.
+std::vector<std::vector<double>> route(std::size_t frames, std::size_t dim, std::mt19937& rng) {
+  std::normal_distribution<double> g(0.0, 1.0);
+  const double rho = std::exp(-1.0 / 3.0);
+  std::vector<std::vector<double>> out(frames, std::vector<double>(dim));
+  for (std::size_t d = 0; d < dim; ++d) out[0][d] = g(rng);
+  for (std::size_t i = 1; i < frames; ++i) {
+    for (std::size_t d = 0; d < dim; ++d) out[i][d] = rho * out[i - 1][d] + std::sqrt(1 - rho * rho) * g(rng);
+  }
+  return out;
+}
+
+double cosine(const std::vector<double>& a, const std::vector<double>& b) {
+  double ab = 0, aa = 0, bb = 0;
+  for (std::size_t d = 0; d < a.size(); ++d) ab += a[d] * b[d], aa += a[d] * a[d], bb += b[d] * b[d];
+  return ab / std::sqrt(aa * bb);
+}
+
+struct Case {
+  SimilarityMatrix similarity;
+  std::vector<long> truth;  // map frame of each query frame, -1 = not in the map
+};
+
+// The query drives map frames [40, 140) with noise of standard deviation `noise` on every descriptor, then 30
+// frames somewhere new.
+Case drive(double noise, unsigned seed) {
+  std::mt19937 rng(seed);
+  const std::size_t map_frames = 180, dim = 24;
+  const auto map = route(map_frames, dim, rng);
+  const auto elsewhere = route(30, dim, rng);
+  std::normal_distribution<double> g(0.0, noise);
+  std::vector<std::vector<double>> query;
+  Case c;
+  for (std::size_t k = 0; k < 100; ++k) {
+    auto f = map[40 + k];
+    for (auto& v : f) v += g(rng);
+    query.push_back(f);
+    c.truth.push_back(static_cast<long>(40 + k));
+  }
+  for (const auto& f : elsewhere) {
+    query.push_back(f);
+    c.truth.push_back(-1);
+  }
+  c.similarity = SimilarityMatrix(query.size(), map_frames);
+  for (std::size_t q = 0; q < query.size(); ++q) {
+    for (std::size_t m = 0; m < map_frames; ++m) c.similarity(q, m) = static_cast<float>(cosine(query[q], map[m]));
+  }
+  return c;
+}
+
+TEST(Confidence, ReadsAsAProbabilityOnQueriesOfEveryDifficulty) {
+  // From easy (noise 0.5: almost every frame right) to hard (noise 2.5: few are), 24 queries of 130 frames.
+  constexpr int kBins = 10;
+  std::vector<double> sum_confidence(kBins, 0), right(kBins, 0), count(kBins, 0);
+  double frames = 0;
+  const LocalizeConfig config;
+  for (int trial = 0; trial < 24; ++trial) {
+    const Case c = drive(0.5 + 0.25 * (trial % 9), 100 + static_cast<unsigned>(trial));
+    const auto r = localize_sequence(c.similarity, config);
+    for (std::size_t q = 0; q < r.frames.size(); ++q) {
+      const auto& f = r.frames[q];
+      ASSERT_GE(f.confidence, 0.0);
+      ASSERT_LE(f.confidence, 1.0);
+      const bool ok =
+          c.truth[q] >= 0 && std::abs(static_cast<long>(f.map) - c.truth[q]) <= static_cast<long>(config.tolerance);
+      const int bin = std::min(kBins - 1, static_cast<int>(f.confidence * kBins));
+      sum_confidence[static_cast<std::size_t>(bin)] += f.confidence;
+      right[static_cast<std::size_t>(bin)] += ok ? 1 : 0;
+      count[static_cast<std::size_t>(bin)] += 1;
+      frames += 1;
+    }
+  }
+  // Expected calibration error, computed here from its definition.
+  double ece = 0;
+  for (int b = 0; b < kBins; ++b) {
+    const auto k = static_cast<std::size_t>(b);
+    if (count[k] == 0) continue;
+    ece += count[k] / frames * std::abs(right[k] / count[k] - sum_confidence[k] / count[k]);
+  }
+  EXPECT_LT(ece, 0.08);
+  // The confident end is right, the unsure end mostly wrong.
+  ASSERT_GT(count[kBins - 1], 100);
+  EXPECT_GT(right[kBins - 1] / count[kBins - 1], 0.9);
+  ASSERT_GT(count[0], 100);
+  EXPECT_LT(right[0] / count[0], 0.3);
+}
+
+TEST(Confidence, AWrongPairInsideALongCorrectAlignmentIsLessSureThanItsNeighbours) {
+  // Query frames 0..79 drive map frames 20..99; frame 40 looks unlike its partner and like a map frame 30
+  // frames away (an aliased image in the middle of the ride).
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0F, 0.5F);
+  SimilarityMatrix s(80, 150);
+  for (auto& v : s.values) v = u(rng);
+  for (std::size_t q = 0; q < 80; ++q) s(q, q + 20) = 1.0F;
+  s(40, 60) = 0.0F;
+  s(40, 90) = 1.0F;
+  const auto r = localize_sequence(s);
+  EXPECT_NEAR(static_cast<double>(r.frames[40].map), 60.0, 2.0) << "the ride carries the frame through";
+  for (std::size_t q : {30U, 35U, 45U, 50U}) {
+    EXPECT_LT(r.frames[40].confidence, r.frames[q].confidence) << q;
+    EXPECT_GT(r.frames[q].confidence, 0.9) << q;
+  }
+}
+
+TEST(Confidence, EveryFrameHasAGuessAndTheThresholdDecidesWhatIsInTheMap) {
+  const Case c = drive(0.8, 7);
+  for (double threshold : {0.0, 0.3, 0.5, 0.9, 1.0}) {
+    LocalizeConfig config;
+    config.min_confidence = threshold;
+    const auto r = localize_sequence(c.similarity, config);
+    std::size_t in_map = 0;
+    for (const auto& f : r.frames) {
+      ASSERT_LT(f.map, c.similarity.cols);
+      ASSERT_FALSE(f.candidates.empty());
+      EXPECT_EQ(f.candidates.front(), f.map);
+      EXPECT_EQ(f.covered, f.confidence >= threshold);
+      in_map += f.covered ? 1 : 0;
+    }
+    if (threshold == 0.0) {
+      EXPECT_EQ(in_map, r.frames.size());
+    }
+  }
+  // The frames somewhere new are not in the map at the default threshold; the driven ones are.
+  const auto r = localize_sequence(c.similarity);
+  std::size_t driven_in = 0, new_in = 0;
+  for (std::size_t q = 0; q < r.frames.size(); ++q) (c.truth[q] >= 0 ? driven_in : new_in) += r.frames[q].covered;
+  EXPECT_GE(driven_in, 90U);
+  EXPECT_LE(new_in, 3U);
+}
+
+}  // namespace
+}  // namespace seqtopo::localize
