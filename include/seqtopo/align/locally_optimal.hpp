@@ -41,10 +41,11 @@
 //    admissible scores from u, over the cells where they stay positive; each cell of it that passes the
 //    tests ends one locally optimal alignment.
 //
-// Relation to the non-intersecting set: the best score is the same (the maximum of H), and every revisit
-// that the non-intersecting set reports as one alignment appears here too, usually with near copies that
-// start or end a few cells away (the paper prunes them per column, section IV-C). A non-intersecting
-// alignment found after others were declumped may itself not be locally optimal.
+// Relation to the non-intersecting set: the best score is the same (the maximum of H; tested). A strong
+// revisit usually appears here with near copies that start or end a few cells away, sharing pairs with it
+// (the paper prunes them per column, section IV-C); a non-intersecting alignment found after others were
+// declumped need not be locally optimal, and a locally optimal one that crosses a better one is not in the
+// non-intersecting set.
 //
 // Cost: one float per cell for the scores of the pass and one byte per cell for H (O(N^2) memory, 52 + 13 MB
 // for N = 3,600), and per start the cells where its scores stay positive: about N^2 in all on noise, and up
