@@ -145,15 +145,16 @@ void bind_map(py::module_& m) {
       "place_units (False: windows in frames, as the paper), frames_per_place (None: estimated),\n"
       "reverse (also search paths revisited backwards), labelling ('consistent' or 'pruned_transitive'),\n"
       "max_visit_span [places], pruning (PruningConfig), topology (TopologyConfig), threads (forward and\n"
-      "reverse passes in parallel when > 1; the result does not depend on it).");
-  c.def(py::init([labelling_value](std::size_t contrast_window, float contrast_offset, float gap,
-                                   std::optional<float> cap, bool cap_from_statistics, float cap_factor,
-                                   std::optional<double> max_e_value, float threshold, double min_revisit_places,
-                                   bool adapt_offset, std::size_t min_separation, bool place_units,
-                                   std::optional<double> frames_per_place, bool reverse, const std::string& labelling,
-                                   double max_visit_span, PruningConfig pruning, TopologyConfig topology,
-                                   unsigned threads, float contrast_offset_step, float max_contrast_offset,
-                                   std::size_t fit_alignments, std::size_t confidence_band) {
+      "reverse passes in parallel when > 1; the result does not depend on it), alignment_set\n"
+      "('non-intersecting' or 'locally-optimal', docs/alignment_sets.md).");
+  c.def(py::init([labelling_value](
+                     std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap,
+                     bool cap_from_statistics, float cap_factor, std::optional<double> max_e_value, float threshold,
+                     double min_revisit_places, bool adapt_offset, std::size_t min_separation, bool place_units,
+                     std::optional<double> frames_per_place, bool reverse, const std::string& labelling,
+                     double max_visit_span, PruningConfig pruning, TopologyConfig topology, unsigned threads,
+                     float contrast_offset_step, float max_contrast_offset, std::size_t fit_alignments,
+                     std::size_t confidence_band, const std::string& alignment_set) {
           MapConfig config;
           config.contrast_window = contrast_window;
           config.contrast_offset = contrast_offset;
@@ -178,6 +179,7 @@ void bind_map(py::module_& m) {
           config.max_contrast_offset = max_contrast_offset;
           config.fit_alignments = fit_alignments;
           config.confidence_band = confidence_band;
+          config.alignment_set = align::parse_alignment_set(alignment_set);
           return config;
         }),
         py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
@@ -190,7 +192,8 @@ void bind_map(py::module_& m) {
         py::arg("max_visit_span") = d.max_visit_span, py::arg("pruning") = d.pruning, py::arg("topology") = d.topology,
         py::arg("threads") = d.threads, py::arg("contrast_offset_step") = d.contrast_offset_step,
         py::arg("max_contrast_offset") = d.max_contrast_offset, py::arg("fit_alignments") = d.fit_alignments,
-        py::arg("confidence_band") = d.confidence_band)
+        py::arg("confidence_band") = d.confidence_band,
+        py::arg("alignment_set") = std::string(align::to_string(d.alignment_set)))
       .def_readwrite("contrast_window", &MapConfig::contrast_window)
       .def_readwrite("contrast_offset", &MapConfig::contrast_offset)
       .def_readwrite("gap", &MapConfig::gap)
@@ -215,10 +218,14 @@ void bind_map(py::module_& m) {
       .def_readwrite("topology", &MapConfig::topology)
       .def_readwrite("threads", &MapConfig::threads)
       .def_readwrite("fit_alignments", &MapConfig::fit_alignments)
-      .def_readwrite("confidence_band", &MapConfig::confidence_band);
+      .def_readwrite("confidence_band", &MapConfig::confidence_band)
+      .def_property(
+          "alignment_set", [](const MapConfig& x) { return std::string(align::to_string(x.alignment_set)); },
+          [](MapConfig& x, const std::string& name) { x.alignment_set = align::parse_alignment_set(name); });
   add_repr(c, "MapConfig",
            {"contrast_window", "contrast_offset", "gap", "cap", "cap_from_statistics", "max_e_value", "threshold",
-            "min_separation", "frames_per_place", "reverse", "labelling", "pruning", "topology", "threads"});
+            "min_separation", "frames_per_place", "reverse", "labelling", "pruning", "topology", "threads",
+            "alignment_set"});
 }
 
 void bind_localize(py::module_& m) {

@@ -101,3 +101,13 @@ def test_presets():
     d = seqtopo.EditCosts()
     assert (a1.deletion, a1.insertion, a1.colour_difference, a1.coincidence, a1.discordance) == \
         (d.deletion, d.insertion, d.colour_difference, d.coincidence, d.discordance)
+
+
+def test_alignment_set_default_is_the_headers():
+    text = (SOURCE_DIR / "include" / "seqtopo" / "mapping" / "map_builder.hpp").read_text()
+    default = re.search(r"alignment_set = align::AlignmentSet::(\w+);", text).group(1).replace("_", "-")
+    assert seqtopo.MapConfig().alignment_set == default
+    other = "locally-optimal" if default == "non-intersecting" else "non-intersecting"
+    assert seqtopo.MapConfig(alignment_set=other).alignment_set == other
+    with pytest.raises(ValueError, match="locally-optimal or non-intersecting"):
+        seqtopo.MapConfig(alignment_set="all")

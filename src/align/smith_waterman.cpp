@@ -310,7 +310,11 @@ std::vector<LocalAlignment> merge_directions(std::vector<LocalAlignment> forward
     if (x.score != y.score) return x.score > y.score;
     if (x.direction != y.direction) return x.direction == Direction::forward;
     if (x.a_begin != y.a_begin) return x.a_begin < y.a_begin;
-    return x.b_begin < y.b_begin;
+    if (x.b_begin != y.b_begin) return x.b_begin < y.b_begin;
+    // Only alignments that may share pairs (the locally optimal set) get this far.
+    if (x.a_end != y.a_end) return x.a_end < y.a_end;
+    if (x.b_end != y.b_end) return x.b_end < y.b_end;
+    return x.pairs < y.pairs;
   });
   if (all.size() > max_alignments) all.resize(max_alignments);
   return all;

@@ -41,6 +41,7 @@ struct MapOptions {
   std::optional<double> e_value, frames_per_place, cap_factor;
   std::optional<std::string> odometry_gate;
   std::optional<std::string> engine;  // default exact, fast with --streaming
+  std::optional<std::string> alignment_set;
   std::optional<std::size_t> min_separation, contrast_window;
   std::optional<float> contrast_offset;
   bool no_reverse = false;
@@ -84,6 +85,14 @@ Settings resolve_settings(const MapOptions& o) {
   } else if (engine != "exact") {
     throw InputError("--engine", "expected exact or fast, got '" + engine + "'");
   }
+  if (o.alignment_set) {
+    try {
+      s.map.alignment_set = align::parse_alignment_set(*o.alignment_set);
+    } catch (const std::invalid_argument&) {
+      throw InputError("--alignment-set",
+                       "expected locally-optimal or non-intersecting, got '" + *o.alignment_set + "'");
+    }
+  }
   if (o.odometry_gate) {
     if (*o.odometry_gate == "none") {
       s.map.odometry_gate.reset();
@@ -119,6 +128,9 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
   }
   if (s.map.engine != mapping::MapConfig::Engine::fast) {
     throw InputError("--engine", "exact fills an N x N table; --streaming needs the fast engine (its default)");
+  }
+  if (s.map.alignment_set == align::AlignmentSet::locally_optimal) {
+    throw InputError("--alignment-set", "locally-optimal keeps the N x N scores; --streaming never holds them");
   }
   if (kind == pipeline::InputKind::similarity) {
     throw InputError("--streaming",
@@ -280,6 +292,11 @@ const RegisterCommand registered{
        app.add_option("--engine", o->engine,
                       "exact (scalar reference, N x N table) or fast (vectorized, no N x N table, scores quantized "
                       "to 1/512); default exact, fast with --streaming");
+       app.add_option("--alignment-set", o->alignment_set,
+                      fmt::format("non-intersecting (Waterman-Eggert: no two revisits share a pair) or locally-optimal "
+                                  "(every alignment no shortening or extension improves, after Schmidt; "
+                                  "docs/alignment_sets.md); default {}",
+                                  align::to_string(mapping::MapConfig{}.alignment_set)));
        app.add_flag("--streaming", o->streaming,
                     "never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor "
                     "(descriptors.npy, or patch/panorama with --metric cosine) computed on the fly, fast engine; "

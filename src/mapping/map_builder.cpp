@@ -375,7 +375,10 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   d.score_threshold = engine.threshold;
 
   const align::ScoreSource scores = minus(enhanced, offset);
-  auto found = run_engine(scores, engine, c.engine, c.reverse, c.threads);
+  auto found = c.alignment_set == align::AlignmentSet::locally_optimal
+                   ? (c.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
+                                : align::locally_optimal_alignments(scores, engine))
+                   : run_engine(scores, engine, c.engine, c.reverse, c.threads);
   for (auto& a : found) {
     const double path = significance::path_score(a, scores, c.gap, c.gap);
     const double e = d.statistics.valid() ? d.statistics.e_value(path) : std::nan("");

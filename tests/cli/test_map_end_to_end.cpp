@@ -124,6 +124,9 @@ TEST_F(MapCommand, BadInputsGiveOneLineAndNoOutput) {
   r = run_cli("map --odometry-gate 2,-1 --out " + out.string());
   EXPECT_NE(r.status, 0);
   EXPECT_EQ(r.err.rfind("seqtopo: error: --odometry-gate", 0), 0U) << r.err;
+  r = run_cli("map --alignment-set all --out " + out.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.err, "seqtopo: error: --alignment-set: expected locally-optimal or non-intersecting, got 'all'\n");
 
   // nothing was left behind: the output folder is absent or empty
   EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out));

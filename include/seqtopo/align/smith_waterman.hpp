@@ -51,7 +51,8 @@ std::vector<LocalAlignment> local_alignments_both(const ScoreSource& scores, Ali
                                                   unsigned threads = 2);
 
 // The merge of local_alignments_both (every engine's two passes use it): best first by score, then
-// forward before reverse, then by a_begin, b_begin; at most max_alignments.
+// forward before reverse, then by a_begin, b_begin (then a_end, b_end and the pairs, which only
+// alignments that may share pairs need); at most max_alignments.
 std::vector<LocalAlignment> merge_directions(std::vector<LocalAlignment> forward, std::vector<LocalAlignment> reverse,
                                              std::size_t max_alignments);
 

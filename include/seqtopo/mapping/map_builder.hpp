@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/align/locally_optimal.hpp"
 #include "seqtopo/align/score_source.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/mapping/consistent_labels.hpp"
@@ -58,6 +59,11 @@ struct MapConfig {
   // 1/512 of a unit with the default cap: the same alignments as the exact engine on those scores.
   enum class Engine { exact, fast };
   Engine engine = Engine::exact;
+  // The revisits reported (align/locally_optimal.hpp): non_intersecting, the Waterman-Eggert set (no two
+  // alignments share a pair; the configured engine); locally_optimal, every locally optimal alignment after
+  // Schmidt and Sellers (the float implementation whatever the engine: one float and one byte per cell).
+  // The significance statistics are fitted on the non-intersecting set in both cases (docs/alignment_sets.md).
+  align::AlignmentSet alignment_set = align::AlignmentSet::non_intersecting;
   // Applied when odometry is given to build_map: alignments it contradicts are dropped before pruning.
   // Chosen on the simulated worlds (bench/worlds.sh); the real sequences in the README have no odometry.
   std::optional<OdometryGate> odometry_gate = OdometryGate{};
