@@ -10,26 +10,32 @@ namespace {
 
 using Adjacency = std::vector<std::set<PlaceLabel>>;
 
-// Whether the two traversals of an alignment come from (or go to) different places at pair (i, j).
-// step = -1 looks at predecessors, +1 at successors, along the alignment's own direction.
 // Whether images a and a + 1 are consecutive in one session.
 bool joined(const std::set<std::size_t>& session_starts, long a) {
   return !session_starts.count(static_cast<std::size_t>(a + 1));
 }
 
+// Whether the two traversals of an alignment come from (or go to) different places at pair (i, j).
+// step = -1 looks at predecessors, +1 at successors, along the alignment's own direction.
 bool diverges(const std::vector<PlaceLabel>& labels, std::size_t i, std::size_t j, int step, align::Direction direction,
               std::size_t u_turn_separation, const std::set<std::size_t>& session_starts) {
   const auto n = static_cast<long>(labels.size());
-  const long ni = static_cast<long>(i) + step;
-  const long nj = static_cast<long>(j) + (direction == align::Direction::forward ? step : -step);
-  if (ni < 0 || ni >= n || nj < 0 || nj >= n) return false;
-  // A neighbour across a session boundary is no neighbour: the session starts or ends there.
-  if (!joined(session_starts, std::min<long>(ni, static_cast<long>(i))) ||
-      !joined(session_starts, std::min<long>(nj, static_cast<long>(j)))) {
-    return false;
-  }
   const std::size_t separation = i > j ? i - j : j - i;
   if (direction == align::Direction::reverse && separation <= u_turn_separation) return false;
+  // The place each traversal came from (or goes to): the first image along it in another place than its own (a
+  // slow pass holds a place for a few images). None before the session's end: the path starts or stops there.
+  const auto neighbour = [&](std::size_t x, int d) -> long {
+    long at = static_cast<long>(x);
+    while (true) {
+      const long next = at + d;
+      if (next < 0 || next >= n || !joined(session_starts, std::min(next, at))) return -1;
+      at = next;
+      if (labels[static_cast<std::size_t>(at)] != labels[x]) return at;
+    }
+  };
+  const long ni = neighbour(i, step);
+  const long nj = neighbour(j, direction == align::Direction::forward ? step : -step);
+  if (ni < 0 || nj < 0) return false;
   return labels[static_cast<std::size_t>(ni)] != labels[static_cast<std::size_t>(nj)];
 }
 
@@ -91,11 +97,31 @@ TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
 
   const std::set<std::size_t> session_starts(config.session_starts.begin(), config.session_starts.end());
   Adjacency adjacency(static_cast<std::size_t>(count));
+  std::map<std::pair<PlaceLabel, PlaceLabel>, std::size_t> traversals;
   for (std::size_t k = 1; k < labels.size(); ++k) {
     const PlaceLabel a = labels[k - 1], b = labels[k];
     if (a == b || session_starts.count(k)) continue;
     adjacency[a].insert(b);
     adjacency[b].insert(a);
+    ++traversals[std::minmax(a, b)];
+  }
+  if (config.reduce_transitive) {
+    // Decided on the unreduced graph, then removed together: what is removed does not depend on the order.
+    const auto count_of = [&](PlaceLabel a, PlaceLabel b) { return traversals.at(std::minmax(a, b)); };
+    std::vector<std::pair<PlaceLabel, PlaceLabel>> redundant;
+    for (const auto& [edge, n] : traversals) {
+      const auto [p, q] = edge;
+      for (PlaceLabel x : adjacency[p]) {
+        if (x != q && adjacency[q].count(x) && count_of(p, x) > n && count_of(x, q) > n) {
+          redundant.push_back(edge);
+          break;
+        }
+      }
+    }
+    for (auto [p, q] : redundant) {
+      adjacency[p].erase(q);
+      adjacency[q].erase(p);
+    }
   }
   for (PlaceLabel p = 0; p < count; ++p) {
     for (PlaceLabel q : adjacency[p]) {

@@ -26,6 +26,7 @@ MapSettings map_preset(std::string_view name) {
   s.map.min_revisit_places = 0;
   s.map.odometry_gate.reset();  // odometry only draws the picture (paper IV-D)
   s.map.labelling = mapping::MapConfig::Labelling::pruned_transitive;
+  s.map.clean_graph = false;  // the paper reads the map from the labels as they are
   return s;
 }
 

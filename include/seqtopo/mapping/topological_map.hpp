@@ -10,6 +10,9 @@
 //    at the last pair they leave to different places. Boundaries at the ends of the sequence
 //    (no predecessor/successor) and U-turns (a reverse alignment meeting itself, |i - j| <=
 //    u_turn_separation) are not junctions: the path starts, stops or turns back there.
+//
+// With reduce_transitive, the edges are those left by graph_cleanup.hpp's rule 4, and the degree test counts
+// them.
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -43,6 +46,9 @@ struct TopologyConfig {
   // and image k of such a k were not taken one after the other, so no edge joins their places, and neither is
   // the other's predecessor or successor for the junction test (as at the ends of a single sequence).
   std::vector<std::size_t> session_starts;
+  // Transitive reduction (graph_cleanup.hpp, rule 4): an edge p - q traversed less often than both edges of a
+  // route p - x - q is left out (a pass that went past x between two images).
+  bool reduce_transitive = false;
 };
 
 TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
