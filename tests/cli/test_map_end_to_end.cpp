@@ -130,3 +130,32 @@ TEST_F(MapCommand, BadInputsGiveOneLineAndNoOutput) {
 }
 
 }  // namespace
+
+namespace {
+
+// --preset paper uses odometry only for the picture: the bundled corridor with odometry that puts every image
+// 1 m further along a straight line (so no revisit is possible by it) gives the same map as without, and the
+// metric picture; the default preset, whose odometry gate reads the same file, drops the revisit.
+TEST_F(MapCommand, PaperPresetUsesOdometryOnlyForThePicture) {
+  const fs::path odometry = dir_.path / "straight.csv";
+  {
+    std::ofstream f(odometry);
+    f << "index,x,y,theta\n";
+    for (int k = 0; k < 84; ++k) f << k << "," << k << ",0,0\n";
+  }
+  const fs::path plain = dir_.path / "plain", with = dir_.path / "with", gated = dir_.path / "gated";
+  ASSERT_EQ(run_cli("map --preset paper --out " + plain.string()).status, 0);
+  const auto r = run_cli("map --preset paper --odometry " + odometry.string() + " --out " + with.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_file(with / "map.json"), read_file(plain / "map.json"));
+  EXPECT_EQ(read_file(with / "loop_closures.csv"), read_file(plain / "loop_closures.csv"));
+  EXPECT_TRUE(fs::exists(with / "metric_map.png"));
+  const auto alignments = nlohmann::json::parse(read_file(with / "alignments.json"));
+  EXPECT_TRUE(!alignments.contains("rejected_by_odometry") || alignments.at("rejected_by_odometry").empty());
+
+  ASSERT_EQ(run_cli("map --odometry " + odometry.string() + " --out " + gated.string()).status, 0);
+  const auto vetoed = nlohmann::json::parse(read_file(gated / "alignments.json"));
+  EXPECT_FALSE(vetoed.at("rejected_by_odometry").empty());
+}
+
+}  // namespace
