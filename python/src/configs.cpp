@@ -211,6 +211,7 @@ void bind_map(py::module_& m) {
           "labelling", [labelling_name](const MapConfig& x) { return labelling_name(x.labelling); },
           [labelling_value](MapConfig& x, const std::string& name) { x.labelling = labelling_value(name); })
       .def_readwrite("max_visit_span", &MapConfig::max_visit_span)
+      .def_readwrite("clean_graph", &MapConfig::clean_graph)
       .def_readwrite("pruning", &MapConfig::pruning)
       .def_readwrite("topology", &MapConfig::topology)
       .def_readwrite("threads", &MapConfig::threads)

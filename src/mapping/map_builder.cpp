@@ -472,6 +472,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
 
   start = std::chrono::steady_clock::now();
   add_confidences(scores, engine, c, d, result);
+  describe_junctions(result.map, result.alignments, result.pruning, topology);  // with the pairs' confidences
   result.seconds_confidence = seconds_since(start);
   return result;
 }

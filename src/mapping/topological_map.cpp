@@ -161,7 +161,89 @@ TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
     if (adjacency[p].size() != 2) stops.insert(p);
   }
   map.segments = collapse_segments(adjacency, stops);
+  describe_junctions(map, alignments, pruning, config);
   return map;
+}
+
+void describe_junctions(TopologicalMap& map, const std::vector<align::LocalAlignment>& alignments,
+                        const PruningResult& pruning, const TopologyConfig& config) {
+  const auto& labels = map.labels;
+  const std::set<std::size_t> starts(config.session_starts.begin(), config.session_starts.end());
+  const auto session_of = [&](std::size_t k) {
+    return static_cast<std::size_t>(std::distance(starts.begin(), starts.upper_bound(k)));
+  };
+  std::map<PlaceLabel, std::size_t> index;
+  map.junction_evidence.assign(map.junctions.size(), {});
+  for (std::size_t k = 0; k < map.junctions.size(); ++k) {
+    map.junction_evidence[k].place = map.junctions[k];
+    index[map.junctions[k]] = k;
+  }
+  std::vector<std::set<PlaceLabel>> branches(map.junctions.size());
+  for (auto [p, q] : map.edges) {
+    if (index.count(p)) branches[index[p]].insert(q);
+    if (index.count(q)) branches[index[q]].insert(p);
+  }
+  // Passes: maximal runs of consecutive images of one session in one place.
+  for (std::size_t b = 0; b < labels.size();) {
+    std::size_t e = b + 1;
+    while (e < labels.size() && labels[e] == labels[b] && !starts.count(e)) ++e;
+    if (auto it = index.find(labels[b]); it != index.end()) {
+      JunctionPass pass{b, e - 1, -1, -1, session_of(b)};
+      if (b > 0 && !starts.count(b)) pass.from = labels[b - 1];
+      if (e < labels.size() && !starts.count(e)) pass.to = labels[e];
+      map.junction_evidence[it->second].passes.push_back(pass);
+    }
+    b = e;
+  }
+  std::vector<std::set<std::size_t>> images(map.junctions.size()), kept(map.junctions.size());
+  for (std::size_t k = 0; k < map.junctions.size(); ++k) {
+    auto& j = map.junction_evidence[k];
+    j.branches.assign(branches[k].begin(), branches[k].end());
+    j.by_degree = j.branches.size() >= 3;
+    std::map<PlaceLabel, std::size_t> arrivals, departures;
+    for (const auto& pass : j.passes) {
+      ++arrivals[pass.from];
+      ++departures[pass.to];
+    }
+    std::set<std::size_t> sessions;
+    for (const auto& pass : j.passes) {
+      sessions.insert(pass.session);
+      // A pass whose neighbour no other pass shares joins (or leaves) the others here.
+      if (pass.from >= 0 && arrivals[pass.from] == 1 && j.passes.size() > 1) images[k].insert(pass.first_image);
+      if (pass.to >= 0 && departures[pass.to] == 1 && j.passes.size() > 1) images[k].insert(pass.last_image);
+    }
+    j.sessions.assign(sessions.begin(), sessions.end());
+  }
+  std::map<std::size_t, std::pair<RetainedPair, RetainedPair>> ends;
+  for (const auto& pair : pruning.pairs) {
+    for (std::size_t x : {pair.i, pair.j}) {
+      if (auto it = index.find(labels[x]); it != index.end()) {
+        auto& c = map.junction_evidence[it->second].confidence;
+        c = std::max(c, pair.confidence);
+      }
+    }
+    auto [it, fresh] = ends.try_emplace(pair.alignment, pair, pair);
+    if (fresh) continue;
+    if (pair.i < it->second.first.i) it->second.first = pair;
+    if (pair.i > it->second.second.i) it->second.second = pair;
+  }
+  for (const auto& [a, first_last] : ends) {
+    const auto direction = alignments[a].direction;
+    for (const auto& [pair, step] : {std::pair{first_last.first, -1}, std::pair{first_last.second, 1}}) {
+      const auto it = index.find(labels[pair.i]);
+      if (it == index.end() || labels[pair.j] != labels[pair.i]) continue;
+      kept[it->second].insert(a);
+      if (diverges(labels, pair.i, pair.j, step, direction, config.u_turn_separation, starts)) {
+        map.junction_evidence[it->second].by_alignment = true;
+        images[it->second].insert(pair.i);
+        images[it->second].insert(pair.j);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < map.junctions.size(); ++k) {
+    map.junction_evidence[k].images.assign(images[k].begin(), images[k].end());
+    map.junction_evidence[k].alignments.assign(kept[k].begin(), kept[k].end());
+  }
 }
 
 }  // namespace seqtopo::mapping
