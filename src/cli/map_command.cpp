@@ -58,6 +58,7 @@ using Settings = pipeline::MapSettings;
 Settings resolve_settings(const MapOptions& o) {
   Settings s = option_value("--preset", [&] { return pipeline::map_preset(o.preset); });
   if (o.descriptor) {
+    s.detect_panoramas = false;  // the descriptors asked for are the descriptors used
     s.descriptors = option_value("--descriptor", [&] {
       std::vector<pipeline::Descriptor> list;
       std::stringstream names(*o.descriptor);

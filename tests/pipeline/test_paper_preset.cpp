@@ -56,3 +56,29 @@ TEST(PaperPreset, OdometryNeverChangesTheMap) {
 
 }  // namespace
 }  // namespace seqtopo::pipeline
+
+namespace seqtopo::pipeline {
+namespace {
+
+TEST(PanoramaDefaults, RecognisesPanoramasByTheirAspect) {
+  EXPECT_TRUE(looks_panoramic(360, 60));    // seqtopo simulate
+  EXPECT_TRUE(looks_panoramic(120, 40));    // exactly 3:1
+  EXPECT_FALSE(looks_panoramic(119, 40));   // just under
+  EXPECT_FALSE(looks_panoramic(512, 384));  // the bundled corridor (4:3)
+  EXPECT_FALSE(looks_panoramic(64, 32));    // Nordland (2:1)
+  EXPECT_FALSE(looks_panoramic(0, 0));
+  EXPECT_FALSE(looks_panoramic(-360, -60));
+}
+
+TEST(PanoramaDefaults, ReplacesThePatchThumbnail) {
+  using D = Descriptor;
+  EXPECT_EQ(panorama_descriptors({D::joint_histogram, D::patch}), (std::vector<D>{D::joint_histogram, D::panorama}));
+  EXPECT_EQ(panorama_descriptors({D::joint_histogram}), (std::vector<D>{D::joint_histogram, D::panorama}));
+  EXPECT_EQ(panorama_descriptors({D::panorama, D::patch}), (std::vector<D>{D::panorama, D::patch}));
+  EXPECT_EQ(panorama_descriptors(map_preset("default").descriptors), (std::vector<D>{D::joint_histogram, D::panorama}));
+  EXPECT_TRUE(map_preset("default").detect_panoramas);
+  EXPECT_FALSE(map_preset("paper").detect_panoramas);
+}
+
+}  // namespace
+}  // namespace seqtopo::pipeline
