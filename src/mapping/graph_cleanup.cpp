@@ -236,9 +236,24 @@ std::size_t pop_bubbles(std::vector<PlaceLabel>& labels, const PruningResult& pr
           k = e;
         }
         if (!ok) continue;
-        if (chain_passes == route_passes &&
+        if (chain_passes == route_passes && !config.pop_ties_by_time &&
             !std::all_of(runs.begin(), runs.end(), [&](auto run) { return spanned(run.first - 1, run.second); }))
           continue;
+        if (chain_passes == route_passes && config.pop_ties_by_time) {
+          // The first visit defines the places; a later pass's detour is the one merged.
+          std::size_t route_first = labels.size();
+          if (route.size() == 2) {
+            for (std::size_t k : g.images[p]) {
+              if ((k + 1 < labels.size() && labels[k + 1] == q && sessions.joined(k)) ||
+                  (k > 0 && labels[k - 1] == q && sessions.joined(k - 1)))
+                route_first = std::min(route_first, k);
+            }
+          } else {
+            for (std::size_t r = 1; r + 1 < route.size(); ++r)
+              route_first = std::min(route_first, g.images[route[r]].front());
+          }
+          if (images.front() < route_first) continue;
+        }
         for (auto [b, e] : runs) {
           std::vector<PlaceLabel> r = route;
           if (labels[b - 1] == q) std::reverse(r.begin(), r.end());

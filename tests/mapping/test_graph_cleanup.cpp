@@ -94,17 +94,40 @@ TEST(GraphCleanup, PopsABubbleTheAlignmentSpans) {
   EXPECT_TRUE(map.junctions.empty());
 }
 
-// The same bubble with no alignment across it, and both routes seen once: no evidence which is right.
-TEST(GraphCleanup, LeavesABubbleWithoutEvidence) {
+// The same bubble with no alignment across it, and both routes seen once: by time, the later pass's detour is
+// merged into the first visit's places; asked for an alignment's evidence, it stays.
+TEST(GraphCleanup, BubbleWithoutAnAlignmentAcrossIt) {
   std::vector<PlaceLabel> labels(30);
   std::iota(labels.begin(), labels.begin() + 20, 0);
   for (std::size_t k = 20; k < 30; ++k) labels[k] = static_cast<PlaceLabel>(k - 20);
   labels[25] = 20;
   const Case c = make_case(labels, {{align::Direction::forward, {{21, 1}, {22, 2}, {23, 3}}},
                                     {align::Direction::forward, {{27, 7}, {28, 8}, {29, 9}}}});
+  const GraphCleanup by_time = clean_graph(c.labels, c.alignments, c.pruning, config_of(c));
+  EXPECT_EQ(by_time.popped_images, 1U);
+  EXPECT_EQ(by_time.labels[25], by_time.labels[5]);
+  EXPECT_EQ(by_time.labels[5], 5);  // the first visit keeps its place
+  GraphCleanupConfig strict = config_of(c);
+  strict.pop_ties_by_time = false;
+  EXPECT_EQ(clean_graph(c.labels, c.alignments, c.pruning, strict).popped_images, 0U);
+  EXPECT_EQ(cleaned_map(c, strict).places.size(), 21U);
+}
+
+// A detour longer than the shortest revisit is a route of its own: two passes between places 4 and 9, one
+// through 5..8 and one through four places of its own.
+TEST(GraphCleanup, KeepsALongDetour) {
+  std::vector<PlaceLabel> labels(30);
+  std::iota(labels.begin(), labels.begin() + 20, 0);
+  for (std::size_t k = 20; k < 30; ++k) labels[k] = static_cast<PlaceLabel>(k - 20);
+  for (std::size_t k = 25; k < 29; ++k) labels[k] = static_cast<PlaceLabel>(k - 5);  // places 20..23
+  Pairs pairs;
+  for (std::size_t k = 20; k < 30; ++k) {
+    if (k < 25 || k > 28) pairs.emplace_back(k, k - 20);
+  }
+  const Case c = make_case(labels, {{align::Direction::forward, pairs}});
   const GraphCleanup cleanup = clean_graph(c.labels, c.alignments, c.pruning, config_of(c));
   EXPECT_EQ(cleanup.popped_images, 0U);
-  EXPECT_EQ(cleaned_map(c, config_of(c)).places.size(), 21U);
+  EXPECT_EQ(cleaned_map(c, config_of(c)).places.size(), 24U);
 }
 
 // The bundled corridor's shape: image 0, before the loop, was never aligned; 13..24 revisit 1..12.

@@ -21,10 +21,12 @@
 //     place p to a place q, with at most `max_bubble_frames` images, and another route from p to q of at most
 //     as many places: the route seen by fewer passes is merged into the other. The chain's images are spread
 //     over the other route in their order (halves to p and q when the other route is the edge p - q). When
-//     both are seen equally often the chain is merged only when an accepted alignment spans it, pairing the
-//     images just before and just after it (its images were skipped by a gap: the alignment says the pass
-//     followed the other route). A chain that comes back to the place it left (a hairpin: a U-turn whose two
-//     legs were not merged), of single-pass places and at most `max_bubble_frames` images, becomes one place.
+//     both are seen equally often, the route first driven later is merged (pop_ties_by_time: the first visit
+//     defines the places, and a detour shorter than any revisit is no route of its own; Velvet likewise pops
+//     a bubble of alike paths whatever its coverage), or, with pop_ties_by_time off, only a chain an accepted
+//     alignment spans, pairing the images just before and just after it (skipped by a gap). A chain that comes back to
+//     the place it left (a hairpin: a U-turn whose two legs were not merged), of single-pass places and at most
+//     `max_bubble_frames` images, becomes one place.
 //  4. Redundant edges (miniasm's transitive reduction): an edge p - q, traversed less often than both edges
 //     of a route p - x - q, is a pass that went past x between two images (a faster pass); topological_map
 //     drops it (TopologyConfig::reduce_transitive).
@@ -40,10 +42,14 @@
 namespace seqtopo::mapping {
 
 struct GraphCleanupConfig {
-  double hang_fraction = 0.2;               // longest overhang extended, as a fraction of the alignment's pairs
-  std::size_t max_tip_frames = 3;           // [frames] longest tip clipped
-  std::size_t max_bubble_frames = 3;        // [frames] longest chain of a bubble that is popped
-  std::size_t min_separation = 10;          // [frames] images closer in time are one pass
+  double hang_fraction = 0.2;         // longest overhang extended, as a fraction of the alignment's pairs
+  std::size_t max_tip_frames = 3;     // [frames] longest tip clipped
+  std::size_t max_bubble_frames = 3;  // [frames] longest chain of a bubble that is popped
+  std::size_t min_separation = 10;    // [frames] images closer in time are one pass
+  // Rule 3 when both routes are seen by as many passes: true merges the route first driven later (the first
+  // visit defines the places; a detour shorter than any revisit is no route of its own, as Velvet pops a bubble
+  // whatever its coverage when its paths are alike), false only a chain an accepted alignment spans.
+  bool pop_ties_by_time = true;
   std::vector<std::size_t> session_starts;  // the first image of each session after the first
 };
 
