@@ -114,16 +114,20 @@ void bind_map(py::module_& m) {
   py::class_<TopologyConfig> topology(
       m, "TopologyConfig",
       "Topology (C++ seqtopo::mapping::TopologyConfig). u_turn_separation [frames]: a reverse\n"
-      "alignment meeting itself closer than this is a U-turn, not a junction.");
+      "alignment meeting itself closer than this is a U-turn, not a junction. reduce_transitive: leave out an\n"
+      "edge p - q traversed less often than both edges of a route p - x - q (set by MapConfig.clean_graph).");
   topology
-      .def(py::init([](std::size_t u_turn_separation) {
+      .def(py::init([](std::size_t u_turn_separation, bool reduce_transitive) {
              TopologyConfig c;
              c.u_turn_separation = u_turn_separation;
+             c.reduce_transitive = reduce_transitive;
              return c;
            }),
-           py::kw_only(), py::arg("u_turn_separation") = dt.u_turn_separation)
-      .def_readwrite("u_turn_separation", &TopologyConfig::u_turn_separation);
-  add_repr(topology, "TopologyConfig", {"u_turn_separation"});
+           py::kw_only(), py::arg("u_turn_separation") = dt.u_turn_separation,
+           py::arg("reduce_transitive") = dt.reduce_transitive)
+      .def_readwrite("u_turn_separation", &TopologyConfig::u_turn_separation)
+      .def_readwrite("reduce_transitive", &TopologyConfig::reduce_transitive);
+  add_repr(topology, "TopologyConfig", {"u_turn_separation", "reduce_transitive"});
 
   const MapConfig d{};
   auto labelling_name = [](MapConfig::Labelling l) {
@@ -144,7 +148,8 @@ void bind_map(py::module_& m) {
       "adapt_offset (raise the offset until chance alignments stay short), min_separation [places],\n"
       "place_units (False: windows in frames, as the paper), frames_per_place (None: estimated),\n"
       "reverse (also search paths revisited backwards), labelling ('consistent' or 'pruned_transitive'),\n"
-      "max_visit_span [places], pruning (PruningConfig), topology (TopologyConfig), threads (forward and\n"
+      "max_visit_span [places], clean_graph (the place graph's clean-up, mapping/graph_cleanup.hpp), pruning "
+      "(PruningConfig), topology (TopologyConfig), threads (forward and\n"
       "reverse passes in parallel when > 1; the result does not depend on it), alignment_set\n"
       "('non-intersecting' or 'locally-optimal', docs/alignment_sets.md).");
   c.def(py::init([labelling_value](
@@ -152,9 +157,9 @@ void bind_map(py::module_& m) {
                      bool cap_from_statistics, float cap_factor, std::optional<double> max_e_value, float threshold,
                      double min_revisit_places, bool adapt_offset, std::size_t min_separation, bool place_units,
                      std::optional<double> frames_per_place, bool reverse, const std::string& labelling,
-                     double max_visit_span, PruningConfig pruning, TopologyConfig topology, unsigned threads,
-                     float contrast_offset_step, float max_contrast_offset, std::size_t fit_alignments,
-                     std::size_t confidence_band, const std::string& alignment_set) {
+                     double max_visit_span, bool clean_graph, PruningConfig pruning, TopologyConfig topology,
+                     unsigned threads, float contrast_offset_step, float max_contrast_offset,
+                     std::size_t fit_alignments, std::size_t confidence_band, const std::string& alignment_set) {
           MapConfig config;
           config.contrast_window = contrast_window;
           config.contrast_offset = contrast_offset;
@@ -172,6 +177,7 @@ void bind_map(py::module_& m) {
           config.reverse = reverse;
           config.labelling = labelling_value(labelling);
           config.max_visit_span = max_visit_span;
+          config.clean_graph = clean_graph;
           config.pruning = pruning;
           config.topology = topology;
           config.threads = threads;
@@ -189,8 +195,9 @@ void bind_map(py::module_& m) {
         py::arg("adapt_offset") = d.adapt_offset, py::arg("min_separation") = d.min_separation,
         py::arg("place_units") = d.place_units, py::arg("frames_per_place") = d.frames_per_place,
         py::arg("reverse") = d.reverse, py::arg("labelling") = labelling_name(d.labelling),
-        py::arg("max_visit_span") = d.max_visit_span, py::arg("pruning") = d.pruning, py::arg("topology") = d.topology,
-        py::arg("threads") = d.threads, py::arg("contrast_offset_step") = d.contrast_offset_step,
+        py::arg("max_visit_span") = d.max_visit_span, py::arg("clean_graph") = d.clean_graph,
+        py::arg("pruning") = d.pruning, py::arg("topology") = d.topology, py::arg("threads") = d.threads,
+        py::arg("contrast_offset_step") = d.contrast_offset_step,
         py::arg("max_contrast_offset") = d.max_contrast_offset, py::arg("fit_alignments") = d.fit_alignments,
         py::arg("confidence_band") = d.confidence_band,
         py::arg("alignment_set") = std::string(align::to_string(d.alignment_set)))
@@ -214,6 +221,7 @@ void bind_map(py::module_& m) {
           "labelling", [labelling_name](const MapConfig& x) { return labelling_name(x.labelling); },
           [labelling_value](MapConfig& x, const std::string& name) { x.labelling = labelling_value(name); })
       .def_readwrite("max_visit_span", &MapConfig::max_visit_span)
+      .def_readwrite("clean_graph", &MapConfig::clean_graph)
       .def_readwrite("pruning", &MapConfig::pruning)
       .def_readwrite("topology", &MapConfig::topology)
       .def_readwrite("threads", &MapConfig::threads)

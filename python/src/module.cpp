@@ -292,6 +292,7 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
   request.settings = pipeline::map_preset(preset);
   request.settings.map = config;
   if (!descriptors.empty()) {
+    request.settings.detect_panoramas = false;  // as --descriptor: the descriptors asked for are used
     request.settings.descriptors.clear();
     for (const auto& d : descriptors) request.settings.descriptors.push_back(pipeline::parse_descriptor(d));
   }

@@ -45,6 +45,7 @@ struct MapOptions {
   std::optional<std::size_t> min_separation, contrast_window;
   std::optional<float> contrast_offset;
   bool no_reverse = false;
+  std::optional<bool> graph_cleanup;
   bool streaming = false;
   std::string ground_truth, gt_places, gt_poses;
   std::optional<double> gt_radius;
@@ -58,6 +59,7 @@ using Settings = pipeline::MapSettings;
 Settings resolve_settings(const MapOptions& o) {
   Settings s = option_value("--preset", [&] { return pipeline::map_preset(o.preset); });
   if (o.descriptor) {
+    s.detect_panoramas = false;  // the descriptors asked for are the descriptors used
     s.descriptors = option_value("--descriptor", [&] {
       std::vector<pipeline::Descriptor> list;
       std::stringstream names(*o.descriptor);
@@ -114,6 +116,7 @@ Settings resolve_settings(const MapOptions& o) {
   if (o.contrast_window) s.map.contrast_window = *o.contrast_window;
   if (o.contrast_offset) s.map.contrast_offset = *o.contrast_offset;
   s.map.reverse = !o.no_reverse;
+  if (o.graph_cleanup) s.map.clean_graph = *o.graph_cleanup;
   s.map.threads = resolve_threads(o.threads);
   return s;
 }
@@ -337,6 +340,10 @@ const RegisterCommand registered{
                   fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
                               mapping::MapConfig{}.contrast_offset));
        app.add_flag("--no-reverse", o->no_reverse, "do not look for paths revisited in the opposite direction");
+       app.add_option("--graph-cleanup", o->graph_cleanup,
+                      "clean the place graph before reading the topology: overhangs, tips, bubbles, redundant edges "
+                      "(mapping/graph_cleanup.hpp); true by default, false with --preset paper")
+           ->type_name("true|false");
        app.add_option("--odometry", o->odometry_files,
                       "odometry: CSV index,x,y,theta (cumulative) or index,dx,dy,dtheta, CSV timestamp,x,y,yaw, "
                       "TUM or KITTI poses; with several inputs, once per session")

@@ -55,11 +55,36 @@ std::string map_json(const mapping::MapResult& result, std::span<const MapSessio
   for (auto [p, q] : map.edges) edges.push_back({p, q});
   nlohmann::json segments = nlohmann::json::array();
   for (const auto& s : map.segments) segments.push_back(s.places);
+  nlohmann::json evidence = nlohmann::json::array();
+  for (const auto& j : map.junction_evidence) {
+    nlohmann::json passes = nlohmann::json::array();
+    const auto place_or_null = [](mapping::PlaceLabel p) {
+      return p < 0 ? nlohmann::json(nullptr) : nlohmann::json(p);
+    };
+    for (const auto& pass : j.passes) {
+      passes.push_back({{"images", {pass.first_image, pass.last_image + 1}},
+                        {"from", place_or_null(pass.from)},
+                        {"to", place_or_null(pass.to)},
+                        {"session", pass.session}});
+    }
+    nlohmann::json reasons = nlohmann::json::array();
+    if (j.by_degree) reasons.push_back("degree");
+    if (j.by_alignment) reasons.push_back("alignment_boundary");
+    evidence.push_back({{"place", j.place},
+                        {"branches", j.branches},
+                        {"images", j.images},
+                        {"alignments", j.alignments},
+                        {"sessions", j.sessions},
+                        {"passes", passes},
+                        {"reasons", reasons},
+                        {"confidence", j.confidence}});
+  }
   nlohmann::json document = {{"images", map.labels.size()},
                              {"labels", map.labels},
                              {"places", places},
                              {"edges", edges},
                              {"junctions", map.junctions},
+                             {"junction_evidence", evidence},
                              {"segments", segments},
                              {"alignments", alignment_list(result)}};
   if (sessions.size() > 1) {

@@ -12,6 +12,7 @@
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/align/pair_posterior.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/mapping/graph_cleanup.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
@@ -428,11 +429,24 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     for (const auto& p : result.pruning.pairs) same_place.emplace_back(p.i, p.j);
     labels = label_places(n, same_place);
   }
-  result.map = build_topology(labels, result.alignments, result.pruning, c.topology);
+  TopologyConfig topology = c.topology;
+  if (c.clean_graph) {
+    GraphCleanupConfig cleanup;
+    cleanup.min_separation = c.min_separation;
+    // Nothing shorter than the shortest revisit can be told apart from the place beside it.
+    const std::size_t shortest = std::max<std::size_t>(1, in_frames(c.min_revisit_places, d.frames_per_place));
+    cleanup.max_tip_frames = shortest;
+    cleanup.max_bubble_frames = shortest;
+    cleanup.session_starts = c.topology.session_starts;
+    labels = clean_graph(labels, result.alignments, result.pruning, cleanup).labels;
+    topology.reduce_transitive = true;
+  }
+  result.map = build_topology(labels, result.alignments, result.pruning, topology);
   result.seconds_prune_label = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
   add_confidences(scores, engine, c, d, result);
+  describe_junctions(result.map, result.alignments, result.pruning, topology);  // with the pairs' confidences
   result.seconds_confidence = seconds_since(start);
   return result;
 }

@@ -10,26 +10,32 @@ namespace {
 
 using Adjacency = std::vector<std::set<PlaceLabel>>;
 
-// Whether the two traversals of an alignment come from (or go to) different places at pair (i, j).
-// step = -1 looks at predecessors, +1 at successors, along the alignment's own direction.
 // Whether images a and a + 1 are consecutive in one session.
 bool joined(const std::set<std::size_t>& session_starts, long a) {
   return !session_starts.count(static_cast<std::size_t>(a + 1));
 }
 
+// Whether the two traversals of an alignment come from (or go to) different places at pair (i, j).
+// step = -1 looks at predecessors, +1 at successors, along the alignment's own direction.
 bool diverges(const std::vector<PlaceLabel>& labels, std::size_t i, std::size_t j, int step, align::Direction direction,
               std::size_t u_turn_separation, const std::set<std::size_t>& session_starts) {
   const auto n = static_cast<long>(labels.size());
-  const long ni = static_cast<long>(i) + step;
-  const long nj = static_cast<long>(j) + (direction == align::Direction::forward ? step : -step);
-  if (ni < 0 || ni >= n || nj < 0 || nj >= n) return false;
-  // A neighbour across a session boundary is no neighbour: the session starts or ends there.
-  if (!joined(session_starts, std::min<long>(ni, static_cast<long>(i))) ||
-      !joined(session_starts, std::min<long>(nj, static_cast<long>(j)))) {
-    return false;
-  }
   const std::size_t separation = i > j ? i - j : j - i;
   if (direction == align::Direction::reverse && separation <= u_turn_separation) return false;
+  // The place each traversal came from (or goes to): the first image along it in another place than its own (a
+  // slow pass holds a place for a few images). None before the session's end: the path starts or stops there.
+  const auto neighbour = [&](std::size_t x, int d) -> long {
+    long at = static_cast<long>(x);
+    while (true) {
+      const long next = at + d;
+      if (next < 0 || next >= n || !joined(session_starts, std::min(next, at))) return -1;
+      at = next;
+      if (labels[static_cast<std::size_t>(at)] != labels[x]) return at;
+    }
+  };
+  const long ni = neighbour(i, step);
+  const long nj = neighbour(j, direction == align::Direction::forward ? step : -step);
+  if (ni < 0 || nj < 0) return false;
   return labels[static_cast<std::size_t>(ni)] != labels[static_cast<std::size_t>(nj)];
 }
 
@@ -91,11 +97,31 @@ TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
 
   const std::set<std::size_t> session_starts(config.session_starts.begin(), config.session_starts.end());
   Adjacency adjacency(static_cast<std::size_t>(count));
+  std::map<std::pair<PlaceLabel, PlaceLabel>, std::size_t> traversals;
   for (std::size_t k = 1; k < labels.size(); ++k) {
     const PlaceLabel a = labels[k - 1], b = labels[k];
     if (a == b || session_starts.count(k)) continue;
     adjacency[a].insert(b);
     adjacency[b].insert(a);
+    ++traversals[std::minmax(a, b)];
+  }
+  if (config.reduce_transitive) {
+    // Decided on the unreduced graph, then removed together: what is removed does not depend on the order.
+    const auto count_of = [&](PlaceLabel a, PlaceLabel b) { return traversals.at(std::minmax(a, b)); };
+    std::vector<std::pair<PlaceLabel, PlaceLabel>> redundant;
+    for (const auto& [edge, n] : traversals) {
+      const auto [p, q] = edge;
+      for (PlaceLabel x : adjacency[p]) {
+        if (x != q && adjacency[q].count(x) && count_of(p, x) > n && count_of(x, q) > n) {
+          redundant.push_back(edge);
+          break;
+        }
+      }
+    }
+    for (auto [p, q] : redundant) {
+      adjacency[p].erase(q);
+      adjacency[q].erase(p);
+    }
   }
   for (PlaceLabel p = 0; p < count; ++p) {
     for (PlaceLabel q : adjacency[p]) {
@@ -135,7 +161,89 @@ TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
     if (adjacency[p].size() != 2) stops.insert(p);
   }
   map.segments = collapse_segments(adjacency, stops);
+  describe_junctions(map, alignments, pruning, config);
   return map;
+}
+
+void describe_junctions(TopologicalMap& map, const std::vector<align::LocalAlignment>& alignments,
+                        const PruningResult& pruning, const TopologyConfig& config) {
+  const auto& labels = map.labels;
+  const std::set<std::size_t> starts(config.session_starts.begin(), config.session_starts.end());
+  const auto session_of = [&](std::size_t k) {
+    return static_cast<std::size_t>(std::distance(starts.begin(), starts.upper_bound(k)));
+  };
+  std::map<PlaceLabel, std::size_t> index;
+  map.junction_evidence.assign(map.junctions.size(), {});
+  for (std::size_t k = 0; k < map.junctions.size(); ++k) {
+    map.junction_evidence[k].place = map.junctions[k];
+    index[map.junctions[k]] = k;
+  }
+  std::vector<std::set<PlaceLabel>> branches(map.junctions.size());
+  for (auto [p, q] : map.edges) {
+    if (index.count(p)) branches[index[p]].insert(q);
+    if (index.count(q)) branches[index[q]].insert(p);
+  }
+  // Passes: maximal runs of consecutive images of one session in one place.
+  for (std::size_t b = 0; b < labels.size();) {
+    std::size_t e = b + 1;
+    while (e < labels.size() && labels[e] == labels[b] && !starts.count(e)) ++e;
+    if (auto it = index.find(labels[b]); it != index.end()) {
+      JunctionPass pass{b, e - 1, -1, -1, session_of(b)};
+      if (b > 0 && !starts.count(b)) pass.from = labels[b - 1];
+      if (e < labels.size() && !starts.count(e)) pass.to = labels[e];
+      map.junction_evidence[it->second].passes.push_back(pass);
+    }
+    b = e;
+  }
+  std::vector<std::set<std::size_t>> images(map.junctions.size()), kept(map.junctions.size());
+  for (std::size_t k = 0; k < map.junctions.size(); ++k) {
+    auto& j = map.junction_evidence[k];
+    j.branches.assign(branches[k].begin(), branches[k].end());
+    j.by_degree = j.branches.size() >= 3;
+    std::map<PlaceLabel, std::size_t> arrivals, departures;
+    for (const auto& pass : j.passes) {
+      ++arrivals[pass.from];
+      ++departures[pass.to];
+    }
+    std::set<std::size_t> sessions;
+    for (const auto& pass : j.passes) {
+      sessions.insert(pass.session);
+      // A pass whose neighbour no other pass shares joins (or leaves) the others here.
+      if (pass.from >= 0 && arrivals[pass.from] == 1 && j.passes.size() > 1) images[k].insert(pass.first_image);
+      if (pass.to >= 0 && departures[pass.to] == 1 && j.passes.size() > 1) images[k].insert(pass.last_image);
+    }
+    j.sessions.assign(sessions.begin(), sessions.end());
+  }
+  std::map<std::size_t, std::pair<RetainedPair, RetainedPair>> ends;
+  for (const auto& pair : pruning.pairs) {
+    for (std::size_t x : {pair.i, pair.j}) {
+      if (auto it = index.find(labels[x]); it != index.end()) {
+        auto& c = map.junction_evidence[it->second].confidence;
+        c = std::max(c, pair.confidence);
+      }
+    }
+    auto [it, fresh] = ends.try_emplace(pair.alignment, pair, pair);
+    if (fresh) continue;
+    if (pair.i < it->second.first.i) it->second.first = pair;
+    if (pair.i > it->second.second.i) it->second.second = pair;
+  }
+  for (const auto& [a, first_last] : ends) {
+    const auto direction = alignments[a].direction;
+    for (const auto& [pair, step] : {std::pair{first_last.first, -1}, std::pair{first_last.second, 1}}) {
+      const auto it = index.find(labels[pair.i]);
+      if (it == index.end() || labels[pair.j] != labels[pair.i]) continue;
+      kept[it->second].insert(a);
+      if (diverges(labels, pair.i, pair.j, step, direction, config.u_turn_separation, starts)) {
+        map.junction_evidence[it->second].by_alignment = true;
+        images[it->second].insert(pair.i);
+        images[it->second].insert(pair.j);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < map.junctions.size(); ++k) {
+    map.junction_evidence[k].images.assign(images[k].begin(), images[k].end());
+    map.junction_evidence[k].alignments.assign(kept[k].begin(), kept[k].end());
+  }
 }
 
 }  // namespace seqtopo::mapping

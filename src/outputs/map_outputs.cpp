@@ -32,12 +32,25 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
          "fontsize=8, style=filled, fillcolor=\"#dddddd\"];\n";
   std::vector<bool> junction(map.places.size(), false);
   for (auto j : map.junctions) junction[j] = true;
+  // The edges that leave a junction, each branch in its own colour, so the branching is seen at a glance.
+  const auto branch_style = [&](mapping::PlaceLabel p, mapping::PlaceLabel q) -> std::string {
+    static constexpr const char* kColours[] = {"#e41a1c", "#ff7f00", "#4daf4a", "#984ea3", "#a65628", "#f781bf"};
+    for (const auto& j : map.junction_evidence) {
+      for (std::size_t b = 0; b < j.branches.size(); ++b) {
+        if ((j.place == p && j.branches[b] == q) || (j.place == q && j.branches[b] == p))
+          return fmt::format(" [penwidth=3, color=\"{}\"]", kColours[b % std::size(kColours)]);
+      }
+    }
+    return "";
+  };
   auto node = [&](const mapping::Place& place) {
     dot << "  p" << place.id << " [label=\"" << place.id << "\", tooltip=\"images";
     for (std::size_t k = 0; k < place.images.size() && k < 12; ++k) dot << ' ' << place.images[k];
     dot << "\"";
     if (junction[place.id]) {
-      dot << ", fillcolor=\"#e41a1c\", width=0.4";
+      // A junction stands out: a larger red double circle named J<place>, its branches listed in the tooltip.
+      dot << ", shape=doublecircle, fillcolor=\"#e41a1c\", fontcolor=white, width=0.5, fontsize=9, xlabel=\"J"
+          << place.id << "\"";
     } else if (place.images.size() > 1) {
       dot << ", fillcolor=\"#377eb8\", fontcolor=white";
     }
@@ -45,7 +58,7 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
   };
   if (map.places.size() <= kMaxDrawnPlaces) {
     for (const auto& place : map.places) node(place);
-    for (auto [p, q] : map.edges) dot << "  p" << p << " -- p" << q << ";\n";
+    for (auto [p, q] : map.edges) dot << "  p" << p << " -- p" << q << branch_style(p, q) << ";\n";
   } else {
     // Each segment's inner places as a chain of at most 8 runs (node label: its number of places), so that the
     // picture keeps the segment's shape: a loop is drawn as a ring, not as one edge from a node to itself.

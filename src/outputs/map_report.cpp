@@ -126,8 +126,31 @@ nlohmann::json topology_json(const mapping::TopologicalMap& map) {
   nlohmann::json places = nlohmann::json::array();
   for (const auto& p : map.places) places.push_back(p.images);
   nlohmann::json junctions = nlohmann::json::array();
-  // Junction details (evidence) drop in here as an object per junction; the page lists its keys.
-  for (auto j : map.junctions) junctions.push_back({{"place", j}, {"evidence", nullptr}});
+  // The evidence of each junction (topological_map.hpp), as text the page lists key by key.
+  const auto joined = [](const auto& values) {
+    std::string text;
+    for (const auto& v : values) text += (text.empty() ? "" : ", ") + fmt::format("{}", v);
+    return text.empty() ? std::string("none") : text;
+  };
+  for (const auto& j : map.junction_evidence) {
+    std::string passes;
+    for (const auto& p : j.passes) {
+      const auto place = [](mapping::PlaceLabel q) { return q < 0 ? std::string("start/end") : fmt::format("{}", q); };
+      passes += fmt::format("{}images {}-{}: {} -> {} (session {})", passes.empty() ? "" : "; ", p.first_image,
+                            p.last_image, place(p.from), place(p.to), p.session);
+    }
+    std::string reasons = j.by_degree ? "three or more neighbouring places" : "";
+    if (j.by_alignment) reasons += std::string(reasons.empty() ? "" : "; ") + "an alignment's traversals part here";
+    junctions.push_back({{"place", j.place},
+                         {"evidence",
+                          {{"why", reasons},
+                           {"branches", joined(j.branches)},
+                           {"join / leave images", joined(j.images)},
+                           {"alignments", joined(j.alignments)},
+                           {"sessions", joined(j.sessions)},
+                           {"passes", passes},
+                           {"confidence", fmt::format("{:.3f}", j.confidence)}}}});
+  }
   return {{"collapsed", collapsed},
           {"nodes", std::move(nodes)},
           {"links", std::move(links)},

@@ -9,6 +9,7 @@
 
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
+#include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/pipeline/baselines.hpp"
@@ -300,6 +301,28 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     odometry_.insert(odometry_.end(), s.odometry.begin(), s.odometry.end());
     inputs_.push_back(s.input);
   }
+  // 360-degree panoramas get the heading-invariant descriptor (presets.hpp), decided on the first image.
+  if (request_.settings.detect_panoramas && kind_ == InputKind::images && !request_.streaming) {
+    const auto listing = list_input_images(inputs_.front());
+    if (!listing.files.empty()) {
+      try {
+        const RgbImage first = image::load_image(listing.files.front());
+        if (looks_panoramic(first.width, first.height)) {
+          const auto chosen = panorama_descriptors(request_.settings.descriptors);
+          if (chosen != request_.settings.descriptors) {
+            request_.settings.descriptors = chosen;
+            std::string names;
+            for (auto d : chosen) names += (names.empty() ? "" : ",") + std::string(descriptor_name(d));
+            panorama_note_ =
+                fmt::format("{} x {} images look like 360-degree panoramas (at least {}:1): descriptors {}",
+                            first.width, first.height, kPanoramaAspect, names);
+          }
+        }
+      } catch (const std::exception&) {
+        // an unreadable image is reported by the run itself
+      }
+    }
+  }
   // Every buffer of the run counted (memory_estimate.hpp); one that cannot fit is refused here, before any work.
   // (A video's frames are counted only while it is read: the similarity step estimates its matrix then.)
   std::optional<std::size_t> expected = 0;
@@ -331,6 +354,7 @@ MapRun MapJob::run(const MapObserver& observer) const {
     for (const auto& note : s.notes) say(observer, "      " + note);
   }
   if (!memory_note_.empty()) say(observer, "      " + memory_note_);
+  if (!panorama_note_.empty()) say(observer, "      " + panorama_note_);
   run.streaming = request_.streaming;
   run.odometry = odometry_;
   const auto& files = request_.truth;

@@ -51,6 +51,15 @@ def map_report(scratch):
 
 
 @pytest.fixture(scope="session")
+def junction_report(scratch):
+    """report.html of the bundled corridor without the graph clean-up: its unaligned first image leaves a
+    junction (the default map is one cycle without any)."""
+    out = os.path.join(scratch, "map-junction")
+    run_seqtopo(["map", "--graph-cleanup", "false", "--out", out], cwd=scratch)
+    return os.path.join(out, "report.html")
+
+
+@pytest.fixture(scope="session")
 def localize_report(scratch):
     """report.html of `seqtopo localize`: the corridor's second walk (images 41-84) in its first (1-40)."""
     corridor = os.path.join(DATA, "rtabmap-corridor")

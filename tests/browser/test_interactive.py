@@ -141,7 +141,18 @@ def test_the_matrix_zooms(browser, map_report):
     assert not console_errors(driver)
 
 
-def test_clicking_a_junction_shows_its_images(browser, map_report):
+def test_the_corridor_map_has_no_junction(browser, map_report):
+    with open(os.path.join(os.path.dirname(map_report), "map.json")) as f:
+        truth = json.load(f)
+    assert truth["junctions"] == []
+    driver = open_report(browser, map_report)
+    assert driver.find_elements("css selector", "#topology-svg circle.node.junction") == []
+    assert len(driver.find_elements("css selector", "#topology-svg circle.node")) == len(truth["places"])
+    assert not console_errors(driver)
+
+
+def test_clicking_a_junction_shows_its_images(browser, junction_report):
+    map_report = junction_report
     driver = open_report(browser, map_report)
     with open(os.path.join(os.path.dirname(map_report), "map.json")) as f:
         truth = json.load(f)
@@ -158,6 +169,10 @@ def test_clicking_a_junction_shows_its_images(browser, map_report):
     place = int(re.search(r"junction, place (\d+)", text).group(1))
     assert place in truth["junctions"], text
     assert "connects" in text
+    # its evidence (map.json junction_evidence) is listed: the images where the traversals join or leave
+    evidence = truth["junction_evidence"][truth["junctions"].index(place)]
+    assert "join / leave images" in text and "confidence" in text, text
+    assert ", ".join(str(i) for i in evidence["images"]) in text, (text, evidence)
     images = truth["places"][place]["images"]
     thumbs = shown_thumbnails(driver, "#place-viewer")
     assert sorted(int(t[0]) for t in thumbs) == sorted(images)[:len(thumbs)] and thumbs, (thumbs, images)

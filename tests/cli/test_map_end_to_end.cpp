@@ -133,3 +133,80 @@ TEST_F(MapCommand, BadInputsGiveOneLineAndNoOutput) {
 }
 
 }  // namespace
+
+namespace {
+
+// --preset paper uses odometry only for the picture: the bundled corridor with odometry that puts every image
+// 1 m further along a straight line (so no revisit is possible by it) gives the same map as without, and the
+// metric picture; the default preset, whose odometry gate reads the same file, drops the revisit.
+TEST_F(MapCommand, PaperPresetUsesOdometryOnlyForThePicture) {
+  const fs::path odometry = dir_.path / "straight.csv";
+  {
+    std::ofstream f(odometry);
+    f << "index,x,y,theta\n";
+    for (int k = 0; k < 84; ++k) f << k << "," << k << ",0,0\n";
+  }
+  const fs::path plain = dir_.path / "plain", with = dir_.path / "with", gated = dir_.path / "gated";
+  ASSERT_EQ(run_cli("map --preset paper --out " + plain.string()).status, 0);
+  const auto r = run_cli("map --preset paper --odometry " + odometry.string() + " --out " + with.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_file(with / "map.json"), read_file(plain / "map.json"));
+  EXPECT_EQ(read_file(with / "loop_closures.csv"), read_file(plain / "loop_closures.csv"));
+  EXPECT_TRUE(fs::exists(with / "metric_map.png"));
+  const auto alignments = nlohmann::json::parse(read_file(with / "alignments.json"));
+  EXPECT_TRUE(!alignments.contains("rejected_by_odometry") || alignments.at("rejected_by_odometry").empty());
+
+  ASSERT_EQ(run_cli("map --odometry " + odometry.string() + " --out " + gated.string()).status, 0);
+  const auto vetoed = nlohmann::json::parse(read_file(gated / "alignments.json"));
+  EXPECT_FALSE(vetoed.at("rejected_by_odometry").empty());
+}
+
+}  // namespace
+
+namespace {
+
+// A figure-eight (images 30..39 revisit 10..19, the mapping paper's Fig. 1) given as similarity.npy: map.json
+// lists the two junctions with their evidence, topology.dot draws them as junctions, the report carries them.
+TEST_F(MapCommand, JunctionsCarryTheirEvidence) {
+  constexpr std::size_t n = 50;
+  seqtopo::DenseMatrix<float> s(n, n, -0.5F);
+  for (std::size_t i = 0; i < n; ++i) {
+    s(i, i) = 1.0F;
+    if (i + 1 < n) s(i, i + 1) = s(i + 1, i) = 0.5F;
+  }
+  for (std::size_t k = 0; k < 10; ++k) s(30 + k, 10 + k) = s(10 + k, 30 + k) = 1.0F;
+  seqtopo::io::write_npy(dir_.path / "eight.npy", s);
+  const fs::path out = dir_.path / "eight";
+  const auto r =
+      run_cli("map " + (dir_.path / "eight.npy").string() +
+              " --input-kind similarity --contrast-window 0 --e-value none --threshold 4 --cap 5 --min-separation 5 "
+              "--frames-per-place 1 --out " +
+              out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto map = nlohmann::json::parse(read_file(out / "map.json"));
+  const auto& labels = map.at("labels");
+  ASSERT_EQ(map.at("junctions"), nlohmann::json({labels[10], labels[19]})) << map.dump();
+  const auto& evidence = map.at("junction_evidence");
+  ASSERT_EQ(evidence.size(), 2U);
+  EXPECT_EQ(evidence[0].at("place"), labels[10]);
+  EXPECT_EQ(evidence[0].at("images"), nlohmann::json({10, 30}));  // the lead-in and the loop join here
+  EXPECT_EQ(evidence[1].at("images"), nlohmann::json({19, 39}));  // the loop and the exit leave here
+  EXPECT_EQ(evidence[0].at("branches").size(), 3U);
+  EXPECT_EQ(evidence[0].at("passes").size(), 2U);
+  EXPECT_EQ(evidence[0].at("passes")[1].at("from"), labels[29]);
+  EXPECT_EQ(evidence[0].at("alignments").size(), 1U);
+  EXPECT_EQ(evidence[0].at("reasons"), nlohmann::json({"degree", "alignment_boundary"}));
+  EXPECT_GT(evidence[0].at("confidence").get<double>(), 0.0);
+  EXPECT_LE(evidence[0].at("confidence").get<double>(), 1.0);
+  const std::string dot = read_file(out / "topology.dot");
+  for (const auto& j : map.at("junctions")) {
+    const std::string node = "  p" + std::to_string(j.get<int>()) + " [";
+    const auto at = dot.find(node);
+    ASSERT_NE(at, std::string::npos) << node;
+    EXPECT_NE(dot.substr(at, dot.find('\n', at) - at).find("doublecircle"), std::string::npos);
+  }
+  const std::string report = read_file(out / "report.html");
+  EXPECT_NE(report.find("join / leave images"), std::string::npos);
+}
+
+}  // namespace

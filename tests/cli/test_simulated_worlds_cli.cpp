@@ -111,6 +111,22 @@ TEST(SimulatedWorlds, CorridorWalkedBackIsFoundWithThePanoramaDescriptor) {
     reverse_kept = reverse_kept || (a.at("kept").get<bool>() && a.at("direction") == "reverse");
   }
   EXPECT_TRUE(reverse_kept);
+
+  // With no descriptor option the 120 x 24 panoramas are recognised and get the same descriptors: the same map.
+  // Asked for explicitly, the patch thumbnail is used as told.
+  const std::string truth = " --min-separation 10 --odometry " + world + "/odometry.csv --ground-truth " + world +
+                            "/ground_truth.png --gt-places " + world + "/places.csv";
+  const auto automatic = run_cli("map " + world + "/panoramas" + truth + " --out " + out + "-auto");
+  ASSERT_EQ(automatic.status, 0) << automatic.err;
+  EXPECT_NE(automatic.err.find("120 x 24 images look like 360-degree panoramas"), std::string::npos) << automatic.err;
+  EXPECT_EQ(seqtopo::test_support::read_file(out + "-auto/map.json"),
+            seqtopo::test_support::read_file(out + "/map.json"));
+  const auto patch =
+      run_cli("map " + world + "/panoramas --descriptor joint-histogram,patch" + truth + " --out " + out + "-patch");
+  ASSERT_EQ(patch.status, 0) << patch.err;
+  EXPECT_EQ(patch.err.find("360-degree panoramas"), std::string::npos) << patch.err;
+  EXPECT_NE(seqtopo::test_support::read_file(out + "-patch/map.json"),
+            seqtopo::test_support::read_file(out + "/map.json"));
 }
 
 }  // namespace

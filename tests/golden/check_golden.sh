@@ -13,6 +13,33 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 files=(map.json alignments.json loop_closures.csv metrics.json scores.npy similarity.npy topology.dot)
 
+# The topology of a map.json: places, independent cycles (edges - places + components), junctions, dead ends;
+# fails unless they are the expected ones (an independent count from the edge list, not the map's own).
+topology() {  # map.json, places_min, places_max, cycles, junctions_max, dead_ends
+  python3 - "$@" <<'PY'
+import json, sys
+path, lo, hi, cycles, junctions, dead_ends = sys.argv[1], *map(int, sys.argv[2:])
+m = json.load(open(path))
+places, edges = len(m["places"]), m["edges"]
+parent = list(range(places))
+def find(x):
+    while parent[x] != x:
+        parent[x] = parent[parent[x]]
+        x = parent[x]
+    return x
+degree = [0] * places
+for p, q in edges:
+    parent[find(p)] = find(q)
+    degree[p] += 1
+    degree[q] += 1
+components = len({find(x) for x in range(places)})
+got = (places, len(edges) - places + components, len(m["junctions"]), sum(d >= 3 for d in degree), degree.count(1))
+print(f"golden: {path}: {got[0]} places, {got[1]} independent cycles, {got[2]} junctions, {got[4]} dead ends")
+ok = lo <= got[0] <= hi and got[1] == cycles and got[2] <= junctions and got[3] <= junctions and got[4] == dead_ends
+sys.exit(0 if ok else 1)
+PY
+}
+
 check() {  # name, then the map command's arguments
   local name=$1
   shift
@@ -30,6 +57,8 @@ check() {  # name, then the map command's arguments
 }
 
 check corridor
+# The corridor is one loop gone round about 1.1 times: one cycle of about 40 places, no branch.
+topology "$tmp/corridor/map.json" 38 44 1 1 0 || { echo "golden: the corridor is not one cycle"; exit 1; }
 nordland="$source/../shared/data/nordland-64x32"
 if [ -d "$nordland" ]; then
   mkdir -p "$tmp/frames"
@@ -42,4 +71,6 @@ if [ -d "$nordland" ]; then
   done
   { echo "index,x,y,theta"; for ((k = 0; k < 3600; k++)); do echo "$k,$((k % 1800)),0,0"; done; } >"$tmp/poses.csv"
   check nordland "$tmp/frames" --ground-truth "$tmp/poses.csv" --gt-radius 2
+  # One path seen twice; as one folder, summer's last frame and winter's first are joined (one invented cycle).
+  topology "$tmp/nordland/map.json" 1780 1820 1 0 0 || { echo "golden: Nordland is not one path seen twice"; exit 1; }
 fi

@@ -58,6 +58,44 @@ TEST(Topology, FigureEightFromHandBuiltAlignment) {
   expect_figure_eight(build_topology(labels, alignments, pruning));
 }
 
+// The evidence of the figure-eight's two junctions, counted by hand: where each pass came from and went to.
+TEST(Topology, JunctionEvidenceOfTheFigureEight) {
+  align::LocalAlignment a;
+  a.score = 10;
+  a.pairs = revisit_pairs();
+  a.a_begin = 30;
+  a.a_end = 40;
+  a.b_begin = 10;
+  a.b_end = 20;
+  const std::vector<align::LocalAlignment> alignments{a};
+  auto pruning = prune_per_column(alignments);
+  for (auto& p : pruning.pairs) p.confidence = p.i == 30 ? 0.9 : 0.5;
+  const auto labels = label_places(kImages, revisit_pairs());
+  const TopologicalMap map = build_topology(labels, alignments, pruning);
+  ASSERT_EQ(map.junction_evidence.size(), 2U);
+  const auto& merge = map.junction_evidence[0];  // images 10 and 30: arrived from the lead-in and from the loop
+  EXPECT_EQ(merge.place, labels[10]);
+  EXPECT_EQ(merge.branches, (std::vector<PlaceLabel>{labels[9], labels[11], labels[29]}));
+  ASSERT_EQ(merge.passes.size(), 2U);
+  EXPECT_EQ(merge.passes[0].first_image, 10U);
+  EXPECT_EQ(merge.passes[0].from, labels[9]);
+  EXPECT_EQ(merge.passes[0].to, labels[11]);
+  EXPECT_EQ(merge.passes[1].first_image, 30U);
+  EXPECT_EQ(merge.passes[1].from, labels[29]);
+  EXPECT_EQ(merge.passes[1].to, labels[31]);
+  EXPECT_EQ(merge.images, (std::vector<std::size_t>{10, 30}));
+  EXPECT_EQ(merge.alignments, std::vector<std::size_t>{0});
+  EXPECT_EQ(merge.sessions, std::vector<std::size_t>{0});
+  EXPECT_TRUE(merge.by_degree);
+  EXPECT_TRUE(merge.by_alignment);
+  EXPECT_DOUBLE_EQ(merge.confidence, 0.9);        // the best retained pair with an image here: (30, 10)
+  const auto& branch = map.junction_evidence[1];  // images 19 and 39: leave to the loop and to the exit
+  EXPECT_EQ(branch.place, labels[19]);
+  EXPECT_EQ(branch.branches, (std::vector<PlaceLabel>{labels[18], labels[20], labels[40]}));
+  EXPECT_EQ(branch.images, (std::vector<std::size_t>{19, 39}));
+  EXPECT_DOUBLE_EQ(branch.confidence, 0.5);
+}
+
 TEST(Topology, FigureEightFromSimilarityMatrix) {
   // Similarity: consecutive images alike, the revisited section alike, everything else not.
   SimilarityMatrix s(kImages, kImages, -0.5F);

@@ -6,6 +6,7 @@
 //  * localize against a map of two sessions gives the answers of the same map as one folder.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -84,6 +85,25 @@ TEST(Sessions, NordlandSummerAndWinterAsTwoSessions) {
   EXPECT_EQ(map2.at("image_sessions")[n - 1], 0);
   EXPECT_EQ(map2.at("image_sessions")[n], 1);
   EXPECT_FALSE(map1.contains("sessions"));  // a single input's map.json is as before
+  // One path seen twice: as two sessions a path of about n places (no cycle, no junction, two dead ends), where
+  // nearly every winter frame shares the place of its summer frame; as one folder, the same closed into one cycle
+  // by the invented transition.
+  for (const auto* map : {&map1, &map2}) {
+    const std::size_t places = map->at("places").size(), edges = map->at("edges").size();
+    std::vector<int> degree(places, 0);
+    for (const auto& e : map->at("edges")) {
+      ++degree[e[0].get<std::size_t>()];
+      ++degree[e[1].get<std::size_t>()];
+    }
+    EXPECT_NEAR(static_cast<double>(places), static_cast<double>(n), 0.02 * static_cast<double>(n));
+    EXPECT_EQ(edges, map == &map2 ? places - 1 : places);  // one component each (the labels' walk is connected)
+    EXPECT_TRUE(map->at("junctions").empty()) << map->at("junctions").dump();
+    EXPECT_EQ(std::count(degree.begin(), degree.end(), 1), map == &map2 ? 2 : 0);
+    EXPECT_EQ(std::count_if(degree.begin(), degree.end(), [](int d) { return d >= 3; }), 0);
+    std::size_t shared = 0;
+    for (std::size_t k = 0; k < n; ++k) shared += map->at("labels")[k] == map->at("labels")[n + k] ? 1 : 0;
+    EXPECT_GE(static_cast<double>(shared), 0.95 * static_cast<double>(n));
+  }
   std::cerr << "Nordland: F1 single folder " << f1_single << ", two sessions " << f1_two << "\n";
 }
 

@@ -74,6 +74,9 @@ struct MapConfig {
   Labelling labelling = Labelling::consistent;
   double max_visit_span = 2;  // [places]
   PruningConfig pruning;
+  // Clean-up of the place graph before its topology is read (graph_cleanup.hpp: overhangs, tips, bubbles,
+  // redundant edges), with thresholds of min_revisit_places and the alignments' own lengths.
+  bool clean_graph = true;
   TopologyConfig topology;
   unsigned threads = 2;
   // Declumped alignments found for the statistics' fit (significance/score_statistics.hpp).
@@ -129,7 +132,7 @@ struct MapResult {
 //     score a revisit needs follow from the fit (MapDecisions);
 //  4. forward and reverse self alignments with the cap (the configured engine), every alignment's E-value
 //     from its uncapped path score, revisits shorter than min_revisit_places dropped; the odometry gate;
-//  5. per-column pruning, transitive labels, topology.
+//  5. consistent labels (or per-column pruning and transitive labels), the graph clean-up, topology.
 // Throws std::invalid_argument for a non-square or empty matrix, or odometry of another length.
 // `odometry` (one pose per image, or empty) feeds config.odometry_gate.
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config = {},

@@ -10,6 +10,9 @@
 //    at the last pair they leave to different places. Boundaries at the ends of the sequence
 //    (no predecessor/successor) and U-turns (a reverse alignment meeting itself, |i - j| <=
 //    u_turn_separation) are not junctions: the path starts, stops or turns back there.
+//
+// With reduce_transitive, the edges are those left by graph_cleanup.hpp's rule 4, and the degree test counts
+// them.
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -29,12 +32,38 @@ struct PathSegment {
   std::vector<PlaceLabel> places;  // from one end (a junction or an end of the path) to the other
 };
 
+// What makes a place a junction, for a person to check: every pass of the robot through it (where it came from
+// and went to), the alignments that begin or end there, the sessions involved, and a confidence.
+struct JunctionPass {
+  std::size_t first_image = 0, last_image = 0;  // the pass's images in the place, [first, last]
+  PlaceLabel from = -1, to = -1;                // the places before and after it; -1 at a session's start or end
+  std::size_t session = 0;
+};
+
+struct JunctionEvidence {
+  PlaceLabel place = 0;
+  std::vector<PlaceLabel> branches;  // the neighbouring places, sorted
+  std::vector<JunctionPass> passes;  // in time order
+  // Images where two traversals join or leave each other here: the first or last retained pair of an alignment
+  // (both images), and the first image of a pass that arrives from, or the last of one that leaves to, a place no
+  // other pass comes from or goes to.
+  std::vector<std::size_t> images;      // sorted, unique
+  std::vector<std::size_t> alignments;  // indices of kept alignments whose first or last retained pair is here
+  std::vector<std::size_t> sessions;    // the sessions of the passes, sorted, unique
+  bool by_degree = false;               // three or more neighbouring places
+  bool by_alignment = false;            // an alignment's traversals arrive from or leave to different places here
+  // The largest confidence of the retained pairs that merged the place (the probability that the place is a
+  // revisit at all, without which it would be no junction); 0 when no retained pair has an image here.
+  double confidence = 0;
+};
+
 struct TopologicalMap {
   std::vector<PlaceLabel> labels;                        // one per image
   std::vector<Place> places;                             // indexed by label
   std::vector<std::pair<PlaceLabel, PlaceLabel>> edges;  // (p, q) with p < q, sorted, unique
   std::vector<PlaceLabel> junctions;                     // sorted
   std::vector<PathSegment> segments;                     // sorted by first place
+  std::vector<JunctionEvidence> junction_evidence;       // one per junction, in the order of `junctions`
 };
 
 struct TopologyConfig {
@@ -43,10 +72,17 @@ struct TopologyConfig {
   // and image k of such a k were not taken one after the other, so no edge joins their places, and neither is
   // the other's predecessor or successor for the junction test (as at the ends of a single sequence).
   std::vector<std::size_t> session_starts;
+  // Transitive reduction (graph_cleanup.hpp, rule 4): an edge p - q traversed less often than both edges of a
+  // route p - x - q is left out (a pass that went past x between two images).
+  bool reduce_transitive = false;
 };
 
 TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
                               const std::vector<align::LocalAlignment>& alignments, const PruningResult& pruning,
                               const TopologyConfig& config = {});
+
+// Fills map.junction_evidence from the map, its alignments and their retained pairs (with their confidences).
+void describe_junctions(TopologicalMap& map, const std::vector<align::LocalAlignment>& alignments,
+                        const PruningResult& pruning, const TopologyConfig& config = {});
 
 }  // namespace seqtopo::mapping

@@ -140,6 +140,7 @@ class MapJob {
   std::vector<SequenceInput> inputs_;  // the sessions' inputs, with their kept frames
   std::vector<Pose2> odometry_;        // all sessions', concatenated
   std::string memory_note_;            // the whole run's memory estimate (memory_estimate.hpp)
+  std::string panorama_note_;          // the descriptors chosen for 360-degree panoramas (presets.hpp)
 };
 
 // MapJob(request).run(observer).
