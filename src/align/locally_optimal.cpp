@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <future>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -290,19 +289,7 @@ std::vector<LocalAlignment> locally_optimal_alignments(const ScoreSource& scores
 
 std::vector<LocalAlignment> locally_optimal_alignments_both(const ScoreSource& scores, AlignConfig config,
                                                             unsigned threads) {
-  AlignConfig forward = config, reverse = config;
-  forward.direction = Direction::forward;
-  reverse.direction = Direction::reverse;
-  std::vector<LocalAlignment> fwd, rev;
-  if (threads > 1) {
-    auto rev_future = std::async(std::launch::async, [&] { return locally_optimal_alignments(scores, reverse); });
-    fwd = locally_optimal_alignments(scores, forward);
-    rev = rev_future.get();
-  } else {
-    fwd = locally_optimal_alignments(scores, forward);
-    rev = locally_optimal_alignments(scores, reverse);
-  }
-  return merge_directions(std::move(fwd), std::move(rev), config.max_alignments);
+  return both_directions(&locally_optimal_alignments, scores, config, threads);
 }
 
 }  // namespace seqtopo::align

@@ -320,20 +320,25 @@ std::vector<LocalAlignment> merge_directions(std::vector<LocalAlignment> forward
   return all;
 }
 
-std::vector<LocalAlignment> local_alignments_both(const ScoreSource& scores, AlignConfig config, unsigned threads) {
+std::vector<LocalAlignment> both_directions(AlignmentPass pass, const ScoreSource& scores, AlignConfig config,
+                                            unsigned threads) {
   AlignConfig forward = config, reverse = config;
   forward.direction = Direction::forward;
   reverse.direction = Direction::reverse;
   std::vector<LocalAlignment> fwd, rev;
   if (threads > 1) {
-    auto rev_future = std::async(std::launch::async, [&] { return local_alignments(scores, reverse); });
-    fwd = local_alignments(scores, forward);
+    auto rev_future = std::async(std::launch::async, [&] { return pass(scores, reverse); });
+    fwd = pass(scores, forward);
     rev = rev_future.get();
   } else {
-    fwd = local_alignments(scores, forward);
-    rev = local_alignments(scores, reverse);
+    fwd = pass(scores, forward);
+    rev = pass(scores, reverse);
   }
   return merge_directions(std::move(fwd), std::move(rev), config.max_alignments);
+}
+
+std::vector<LocalAlignment> local_alignments_both(const ScoreSource& scores, AlignConfig config, unsigned threads) {
+  return both_directions(&local_alignments, scores, config, threads);
 }
 
 }  // namespace seqtopo::align

@@ -56,4 +56,10 @@ std::vector<LocalAlignment> local_alignments_both(const ScoreSource& scores, Ali
 std::vector<LocalAlignment> merge_directions(std::vector<LocalAlignment> forward, std::vector<LocalAlignment> reverse,
                                              std::size_t max_alignments);
 
+// One pass of an engine over `scores` in config.direction, and both passes of it (concurrently when threads > 1;
+// the result does not depend on it) merged by merge_directions().
+using AlignmentPass = std::vector<LocalAlignment> (*)(const ScoreSource& scores, const AlignConfig& config);
+std::vector<LocalAlignment> both_directions(AlignmentPass pass, const ScoreSource& scores, AlignConfig config,
+                                            unsigned threads);
+
 }  // namespace seqtopo::align
