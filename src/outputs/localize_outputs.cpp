@@ -85,7 +85,9 @@ std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDir
     j["baselines"] = {{"single_frame", metrics_json(*r.single_frame)}, {"seqslam", metrics_json(*r.seqslam)}};
     j["baselines"]["seqslam"]["method"] = r.seqslam_method;
     if (r.decision) {
-      j["in_map"] = {{"min_confidence", r.settings.localize.min_confidence},
+      // Online the table value is the confidence and the threshold its minimum.
+      j["in_map"] = {{"min_confidence", r.online ? static_cast<double>(r.settings.localize.threshold)
+                                                 : r.settings.localize.min_confidence},
                      {"frames", r.decision->in_map},
                      {"correct", r.decision->correct},
                      {"precision", r.decision->precision},
