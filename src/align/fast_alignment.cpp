@@ -28,6 +28,7 @@
 #include <thread>
 #include <tuple>
 
+#include "check_config.hpp"
 #include "fast_kernels.hpp"
 #include "plateau.hpp"
 #include "search_region.hpp"
@@ -111,18 +112,6 @@ Kernels kernels_for(Isa wanted) {
     k.lanes8 = 16;
   }
   return k;
-}
-
-void validate(std::size_t rows, std::size_t cols, const AlignConfig& config) {
-  auto bad = [](Score v) { return std::isnan(v) || v < 0; };
-  if (bad(config.gap_a) || bad(config.gap_b)) throw std::invalid_argument("gap penalties must be >= 0");
-  if (config.cap && (std::isnan(*config.cap) || *config.cap <= 0)) throw std::invalid_argument("cap must be > 0");
-  if (std::isnan(config.threshold)) throw std::invalid_argument("threshold must be a number");
-  if (config.self && rows != cols) {
-    throw std::invalid_argument("self alignment needs a square score matrix, got " + std::to_string(rows) + " x " +
-                                std::to_string(cols));
-  }
-  if (config.self && config.min_separation == 0) throw std::invalid_argument("min_separation must be >= 1");
 }
 
 bool whole(float v) { return std::nearbyint(v) == v; }
@@ -1039,7 +1028,7 @@ float checked_scale(const AlignConfig& config, const FastOptions& options) {
 template <typename MakeRows>
 std::vector<LocalAlignment> run_pass(std::size_t m, std::size_t n, const AlignConfig& config,
                                      const FastOptions& options, MakeRows make_rows) {
-  validate(m, n, config);
+  detail::check_config(m, n, config);
   const float scale = checked_scale(config, options);
   const Steps steps = steps_for(config, scale);
   if (m == 0 || n == 0 || config.max_alignments == 0) return {};
@@ -1050,7 +1039,7 @@ std::vector<LocalAlignment> run_pass(std::size_t m, std::size_t n, const AlignCo
 
 template <typename MakeRows>
 Score best_pass(std::size_t m, std::size_t n, AlignConfig config, const FastOptions& options, MakeRows make_rows) {
-  validate(m, n, config);
+  detail::check_config(m, n, config);
   const float scale = checked_scale(config, options);
   const Steps steps = steps_for(config, scale);
   if (m == 0 || n == 0) return 0;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "check_config.hpp"
 #include "search_region.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 
@@ -26,18 +27,6 @@ AlignmentSet parse_alignment_set(std::string_view text) {
 namespace {
 
 constexpr Score kNegInf = -std::numeric_limits<Score>::infinity();
-
-void validate(const ScoreSource& scores, const AlignConfig& config) {
-  auto bad = [](Score v) { return std::isnan(v) || v < 0; };
-  if (bad(config.gap_a) || bad(config.gap_b)) throw std::invalid_argument("gap penalties must be >= 0");
-  if (config.cap && (std::isnan(*config.cap) || *config.cap <= 0)) throw std::invalid_argument("cap must be > 0");
-  if (std::isnan(config.threshold)) throw std::invalid_argument("threshold must be a number");
-  if (config.self && scores.rows() != scores.cols()) {
-    throw std::invalid_argument("self alignment needs a square score matrix, got " + std::to_string(scores.rows()) +
-                                " x " + std::to_string(scores.cols()));
-  }
-  if (config.self && config.min_separation == 0) throw std::invalid_argument("min_separation must be >= 1");
-}
 
 enum Step : std::uint8_t { none = 0, diagonal = 1, vertical = 2, horizontal = 3 };
 
@@ -220,14 +209,7 @@ class LocallyOptimalPass {
         });
       }
     }
-    std::sort(out.begin(), out.end(), [](const LocalAlignment& x, const LocalAlignment& y) {
-      if (x.score != y.score) return x.score > y.score;
-      if (x.a_begin != y.a_begin) return x.a_begin < y.a_begin;
-      if (x.b_begin != y.b_begin) return x.b_begin < y.b_begin;
-      if (x.a_end != y.a_end) return x.a_end < y.a_end;
-      if (x.b_end != y.b_end) return x.b_end < y.b_end;
-      return x.pairs < y.pairs;
-    });
+    std::sort(out.begin(), out.end(), best_first);  // one pass: one direction
     if (out.size() > c.max_alignments) out.resize(c.max_alignments);
     return out;
   }
@@ -282,7 +264,7 @@ class LocallyOptimalPass {
 }  // namespace
 
 std::vector<LocalAlignment> locally_optimal_alignments(const ScoreSource& scores, const AlignConfig& config) {
-  validate(scores, config);
+  detail::check_config(scores.rows(), scores.cols(), config);
   if (scores.rows() == 0 || scores.cols() == 0 || config.max_alignments == 0) return {};
   return LocallyOptimalPass(scores, config).run();
 }

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "check_config.hpp"
 #include "plateau.hpp"
 #include "search_region.hpp"
 #include "step_box.hpp"
@@ -19,18 +20,6 @@ std::string_view to_string(Direction direction) { return direction == Direction:
 namespace {
 
 constexpr Score kNegInf = -std::numeric_limits<Score>::infinity();
-
-void validate(const ScoreSource& scores, const AlignConfig& config) {
-  auto bad = [](Score v) { return std::isnan(v) || v < 0; };
-  if (bad(config.gap_a) || bad(config.gap_b)) throw std::invalid_argument("gap penalties must be >= 0");
-  if (config.cap && (std::isnan(*config.cap) || *config.cap <= 0)) throw std::invalid_argument("cap must be > 0");
-  if (std::isnan(config.threshold)) throw std::invalid_argument("threshold must be a number");
-  if (config.self && scores.rows() != scores.cols()) {
-    throw std::invalid_argument("self alignment needs a square score matrix, got " + std::to_string(scores.rows()) +
-                                " x " + std::to_string(scores.cols()));
-  }
-  if (config.self && config.min_separation == 0) throw std::invalid_argument("min_separation must be >= 1");
-}
 
 // The dynamic-programming table of one pass. Cells use 1-based (i, j); column j of the pass is column
 // j-1 of B, or column n-j of B for the reverse pass. Cells outside the searched region stay 0.
@@ -296,9 +285,20 @@ class Pass {
 }  // namespace
 
 std::vector<LocalAlignment> local_alignments(const ScoreSource& scores, const AlignConfig& config) {
-  validate(scores, config);
+  detail::check_config(scores.rows(), scores.cols(), config);
   if (scores.rows() == 0 || scores.cols() == 0 || config.max_alignments == 0) return {};
   return Pass(scores, config).run();
+}
+
+bool best_first(const LocalAlignment& x, const LocalAlignment& y) {
+  if (x.score != y.score) return x.score > y.score;
+  if (x.direction != y.direction) return x.direction == Direction::forward;
+  if (x.a_begin != y.a_begin) return x.a_begin < y.a_begin;
+  if (x.b_begin != y.b_begin) return x.b_begin < y.b_begin;
+  // Only alignments that may share pairs (the locally optimal set) get this far.
+  if (x.a_end != y.a_end) return x.a_end < y.a_end;
+  if (x.b_end != y.b_end) return x.b_end < y.b_end;
+  return x.pairs < y.pairs;
 }
 
 std::vector<LocalAlignment> merge_directions(std::vector<LocalAlignment> forward, std::vector<LocalAlignment> reverse,
@@ -306,16 +306,7 @@ std::vector<LocalAlignment> merge_directions(std::vector<LocalAlignment> forward
   std::vector<LocalAlignment> all = std::move(forward);
   all.reserve(all.size() + reverse.size());
   std::move(reverse.begin(), reverse.end(), std::back_inserter(all));
-  std::stable_sort(all.begin(), all.end(), [](const LocalAlignment& x, const LocalAlignment& y) {
-    if (x.score != y.score) return x.score > y.score;
-    if (x.direction != y.direction) return x.direction == Direction::forward;
-    if (x.a_begin != y.a_begin) return x.a_begin < y.a_begin;
-    if (x.b_begin != y.b_begin) return x.b_begin < y.b_begin;
-    // Only alignments that may share pairs (the locally optimal set) get this far.
-    if (x.a_end != y.a_end) return x.a_end < y.a_end;
-    if (x.b_end != y.b_end) return x.b_end < y.b_end;
-    return x.pairs < y.pairs;
-  });
+  std::stable_sort(all.begin(), all.end(), best_first);
   if (all.size() > max_alignments) all.resize(max_alignments);
   return all;
 }

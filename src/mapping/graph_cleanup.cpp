@@ -65,15 +65,9 @@ std::vector<PlaceLabel> renumbered(const std::vector<PlaceLabel>& labels) {
 // Rule 1: extends kept alignments whose one traversal ends within the overhang allowed of its session's end.
 std::size_t extend_overhangs(std::vector<PlaceLabel>& labels, const std::vector<align::LocalAlignment>& alignments,
                              const PruningResult& pruning, const GraphCleanupConfig& config, const Sessions& sessions) {
-  std::map<std::size_t, std::pair<RetainedPair, RetainedPair>> ends;  // first and last accepted pair
+  const auto ends = retained_ends(pruning);  // first and last accepted pair
   std::map<std::size_t, std::size_t> accepted;
-  for (const auto& pair : pruning.pairs) {
-    ++accepted[pair.alignment];
-    auto [it, fresh] = ends.try_emplace(pair.alignment, pair, pair);
-    if (fresh) continue;
-    if (pair.i < it->second.first.i) it->second.first = pair;
-    if (pair.i > it->second.second.i) it->second.second = pair;
-  }
+  for (const auto& pair : pruning.pairs) ++accepted[pair.alignment];
   // Images beyond x in direction d (+1 / -1) within x's session.
   auto hang = [&](std::size_t x, int d) { return d > 0 ? sessions.end(x) - 1 - x : x - sessions.begin(x); };
   std::size_t moved = 0;

@@ -54,4 +54,15 @@ PruningResult prune_per_column(const std::vector<align::LocalAlignment>& alignme
   return result;
 }
 
+std::map<std::size_t, std::pair<RetainedPair, RetainedPair>> retained_ends(const PruningResult& pruning) {
+  std::map<std::size_t, std::pair<RetainedPair, RetainedPair>> ends;
+  for (const auto& pair : pruning.pairs) {
+    auto [it, fresh] = ends.try_emplace(pair.alignment, pair, pair);
+    if (fresh) continue;
+    if (pair.i < it->second.first.i) it->second.first = pair;
+    if (pair.i > it->second.second.i) it->second.second = pair;
+  }
+  return ends;
+}
+
 }  // namespace seqtopo::mapping

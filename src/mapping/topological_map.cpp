@@ -214,7 +214,6 @@ void describe_junctions(TopologicalMap& map, const std::vector<align::LocalAlign
     }
     j.sessions.assign(sessions.begin(), sessions.end());
   }
-  std::map<std::size_t, std::pair<RetainedPair, RetainedPair>> ends;
   for (const auto& pair : pruning.pairs) {
     for (std::size_t x : {pair.i, pair.j}) {
       if (auto it = index.find(labels[x]); it != index.end()) {
@@ -222,12 +221,8 @@ void describe_junctions(TopologicalMap& map, const std::vector<align::LocalAlign
         c = std::max(c, pair.confidence);
       }
     }
-    auto [it, fresh] = ends.try_emplace(pair.alignment, pair, pair);
-    if (fresh) continue;
-    if (pair.i < it->second.first.i) it->second.first = pair;
-    if (pair.i > it->second.second.i) it->second.second = pair;
   }
-  for (const auto& [a, first_last] : ends) {
+  for (const auto& [a, first_last] : retained_ends(pruning)) {
     const auto direction = alignments[a].direction;
     for (const auto& [pair, step] : {std::pair{first_last.first, -1}, std::pair{first_last.second, 1}}) {
       const auto it = index.find(labels[pair.i]);

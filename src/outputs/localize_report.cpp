@@ -82,7 +82,8 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
     if (r.decision) {
       html.paragraph(fmt::format(
           "In the map (confidence at least {}): {} frames, {} of them right (precision {:.3f}, recall {:.3f}).",
-          r.online ? static_cast<double>(config.threshold) : config.min_confidence, r.decision->in_map, r.decision->correct, r.decision->precision, r.decision->recall));
+          r.online ? static_cast<double>(config.threshold) : config.min_confidence, r.decision->in_map,
+          r.decision->correct, r.decision->precision, r.decision->recall));
     }
     html.raw(std::string("<p class=\"note\">Precision-recall, sweeping the ") +
              (r.online ? "per-frame score" : "confidence") +

@@ -50,9 +50,12 @@ std::vector<LocalAlignment> local_alignments(const ScoreSource& scores, const Al
 std::vector<LocalAlignment> local_alignments_both(const ScoreSource& scores, AlignConfig config = {},
                                                   unsigned threads = 2);
 
-// The merge of local_alignments_both (every engine's two passes use it): best first by score, then
-// forward before reverse, then by a_begin, b_begin (then a_end, b_end and the pairs, which only
-// alignments that may share pairs need); at most max_alignments.
+// The engines' order of alignments: best first by score, then forward before reverse, then by a_begin, b_begin
+// (then a_end, b_end and the pairs, which only alignments that may share pairs need).
+bool best_first(const LocalAlignment& x, const LocalAlignment& y);
+
+// The merge of local_alignments_both (every engine's two passes use it): in best_first order, at most
+// max_alignments.
 std::vector<LocalAlignment> merge_directions(std::vector<LocalAlignment> forward, std::vector<LocalAlignment> reverse,
                                              std::size_t max_alignments);
 

@@ -20,6 +20,7 @@
 //    survive (and at least one does). Pairs of alignments that are not kept are dropped as well, so
 //    no fragment of a mostly pruned alignment is left behind.
 #include <cstddef>
+#include <map>
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
@@ -49,5 +50,9 @@ struct PruningResult {
 };
 
 PruningResult prune_per_column(const std::vector<align::LocalAlignment>& alignments, const PruningConfig& config = {});
+
+// The first and the last retained pair (smallest and largest i; the first of equals) of every alignment that has
+// one, by alignment index.
+std::map<std::size_t, std::pair<RetainedPair, RetainedPair>> retained_ends(const PruningResult& pruning);
 
 }  // namespace seqtopo::mapping
