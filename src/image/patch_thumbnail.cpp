@@ -1,5 +1,6 @@
 #include "seqtopo/image/patch_thumbnail.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -49,8 +50,9 @@ std::vector<float> patch_thumbnail(const RgbImage& image, const PatchConfig& con
       const double scale = var > 0.01 ? 1.0 / std::sqrt(var) : 0.0;
       for (int y = py; y < ye; ++y) {
         for (int x = px; x < xe; ++x) {
+          const double z = (small.at<float>(y, x) - mean) * scale;
           out[static_cast<std::size_t>(y) * static_cast<std::size_t>(config.width) + static_cast<std::size_t>(x)] =
-              static_cast<float>((small.at<float>(y, x) - mean) * scale);
+              static_cast<float>(std::clamp(std::nearbyint(z * kPatchGrid), -127.0, 127.0) / kPatchGrid);
         }
       }
     }

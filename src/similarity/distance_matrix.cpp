@@ -40,7 +40,52 @@ namespace {
 struct Prepared {
   std::vector<double> sum;    // sparse: sum of the values (chi2, L1)
   std::vector<double> norm2;  // sum of squares (cosine)
+  // Sparse: each histogram's bins renumbered among the bins that either sequence uses (in the same order),
+  // so the eight scattered rows take (used bins) x 8 floats instead of (all bins) x 8: a few hundred KB that
+  // stay in cache instead of 655 KB that do not (20,480 joint-histogram bins, a few thousand used).
+  std::vector<std::uint32_t> compact_bins;
+  std::vector<std::size_t> compact_begin;  // item i's bins: compact_bins[compact_begin[i] .. compact_begin[i + 1])
+  // Dense on a byte grid (kernels.hpp): the rows as bytes, and the grid step.
+  std::vector<std::uint8_t> bytes;
+  double step = 0;
 };
+
+// The smallest shift on whose byte grid every value of both sets lies, or -1.
+int common_byte_grid(const DescriptorSet& a, const DescriptorSet& b) {
+  for (int shift = 0; shift <= 7; ++shift) {
+    if (detail::on_byte_grid(a.dense.values.data(), a.dense.values.size(), shift) &&
+        (&a == &b || detail::on_byte_grid(b.dense.values.data(), b.dense.values.size(), shift)))
+      return shift;
+  }
+  return -1;
+}
+
+void prepare_bytes(const DescriptorSet& set, int shift, Prepared& p) {
+  p.bytes.resize(set.dense.values.size());
+  detail::to_bytes(set.dense.values.data(), set.dense.values.size(), shift, p.bytes.data());
+  p.step = std::ldexp(1.0, -shift);
+}
+
+// The bins either set uses, numbered in increasing order.
+std::vector<std::uint32_t> used_bins(const DescriptorSet& a, const DescriptorSet& b, std::uint32_t& count) {
+  std::vector<std::uint32_t> compact(a.dimension(), 0);
+  for (const DescriptorSet* set : {&a, &b}) {
+    for (const auto& h : set->sparse) {
+      for (std::uint32_t bin : h.bins) compact[bin] = 1;
+    }
+  }
+  count = 0;
+  for (auto& c : compact) c = c ? count++ : 0;
+  return compact;
+}
+
+void prepare_compact(const DescriptorSet& set, const std::vector<std::uint32_t>& compact, Prepared& p) {
+  p.compact_begin.assign(1, 0);
+  for (const auto& h : set.sparse) {
+    for (std::uint32_t bin : h.bins) p.compact_bins.push_back(compact[bin]);
+    p.compact_begin.push_back(p.compact_bins.size());
+  }
+}
 
 void validate(const DescriptorSet& set, Distance metric, const char* which) {
   if (set.is_sparse()) {
@@ -109,13 +154,14 @@ void fill_sparse_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa,
     if (col_end <= t.col_begin) continue;
     for (std::size_t r = 0; r < g; ++r) {
       const SparseHistogram& h = a.sparse[i0 + r];
-      for (std::size_t k = 0; k < h.bins.size(); ++k)
-        scratch[static_cast<std::size_t>(h.bins[k]) * G + r] = h.values[k];
+      const std::uint32_t* bins = pa.compact_bins.data() + pa.compact_begin[i0 + r];
+      for (std::size_t k = 0; k < h.bins.size(); ++k) scratch[static_cast<std::size_t>(bins[k]) * G + r] = h.values[k];
     }
     double sums[G];
     for (std::size_t j = t.col_begin; j < col_end; ++j) {
       const SparseHistogram& col = b.sparse[j];
-      detail::sparse_sums(kind, scratch.data(), col.bins.data(), col.values.data(), col.bins.size(), sums);
+      detail::sparse_sums(kind, scratch.data(), pb.compact_bins.data() + pb.compact_begin[j], col.values.data(),
+                          col.bins.size(), sums);
       for (std::size_t r = 0; r < g; ++r) {
         const std::size_t i = i0 + r;
         if (t.diagonal && j >= i) continue;
@@ -123,13 +169,38 @@ void fill_sparse_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa,
       }
     }
     for (std::size_t r = 0; r < g; ++r) {
-      for (std::uint32_t bin : a.sparse[i0 + r].bins) scratch[static_cast<std::size_t>(bin) * G + r] = 0.0F;
+      const std::size_t i = i0 + r;
+      for (std::size_t k = pa.compact_begin[i]; k < pa.compact_begin[i + 1]; ++k)
+        scratch[static_cast<std::size_t>(pa.compact_bins[k]) * G + r] = 0.0F;
     }
+  }
+}
+
+// L1 / SAD of rows on a byte grid, four columns per pass over the row: the same doubles as dense_l1.
+void fill_byte_tile(const Tile& t, const Prepared& pa, const Prepared& pb, std::size_t n, Distance metric,
+                    DenseMatrix<float>& out) {
+  auto value = [&](std::uint64_t sum) {
+    const double l1 = static_cast<double>(sum) * pa.step;  // exact, as dense_l1's sum is
+    return static_cast<float>(metric == Distance::sad ? l1 / static_cast<double>(n) : l1);
+  };
+  for (std::size_t i = t.row_begin; i < t.row_end; ++i) {
+    const std::size_t col_end = t.diagonal ? std::min(t.col_end, i) : t.col_end;
+    const std::uint8_t* x = pa.bytes.data() + i * n;
+    std::size_t j = t.col_begin;
+    for (; j + 4 <= col_end; j += 4) {
+      const std::uint8_t* const y[4] = {pb.bytes.data() + j * n, pb.bytes.data() + (j + 1) * n,
+                                        pb.bytes.data() + (j + 2) * n, pb.bytes.data() + (j + 3) * n};
+      std::uint64_t sums[4];
+      detail::byte_l1_4(x, y, n, sums);
+      for (std::size_t c = 0; c < 4; ++c) out(i, j + c) = value(sums[c]);
+    }
+    for (; j < col_end; ++j) out(i, j) = value(detail::byte_l1(x, pb.bytes.data() + j * n, n));
   }
 }
 
 void fill_dense_tile(const Tile& t, const DescriptorSet& a, const Prepared& pa, const DescriptorSet& b,
                      const Prepared& pb, Distance metric, DenseMatrix<float>& out) {
+  if (!pa.bytes.empty()) return fill_byte_tile(t, pa, pb, a.dense.cols, metric, out);
   for (std::size_t i = t.row_begin; i < t.row_end; ++i) {
     const std::size_t col_end = t.diagonal ? std::min(t.col_end, i) : t.col_end;
     const float* x = a.dense.row(i).data();
@@ -174,9 +245,23 @@ DenseMatrix<float> compute(const DescriptorSet& a, const DescriptorSet& b, bool 
              "a " + std::to_string(rows) + " x " + std::to_string(cols) + " distance matrix");
   DenseMatrix<float> out(rows, cols, 0.0F);
   if (rows == 0 || cols == 0) return out;
+  std::size_t scratch_size = 0;
 
-  const Prepared pa = prepare(a);
-  const Prepared pb = symmetric ? Prepared{} : prepare(b);
+  Prepared pa = prepare(a);
+  Prepared pb = symmetric ? Prepared{} : prepare(b);
+  if (a.is_sparse()) {
+    std::uint32_t used = 0;
+    const auto compact = used_bins(a, b, used);
+    prepare_compact(a, compact, pa);
+    if (!symmetric) prepare_compact(b, compact, pb);
+    scratch_size = static_cast<std::size_t>(used) * detail::kRows;
+  } else if (metric == Distance::l1 || metric == Distance::sad) {
+    const int shift = common_byte_grid(a, b);
+    if (shift >= 0) {
+      prepare_bytes(a, shift, pa);
+      if (!symmetric) prepare_bytes(b, shift, pb);
+    }
+  }
   const Prepared& pb_ref = symmetric ? pa : pb;
 
   const unsigned threads = config.threads > 0 ? config.threads : std::max(1U, std::thread::hardware_concurrency());
@@ -196,7 +281,6 @@ DenseMatrix<float> compute(const DescriptorSet& a, const DescriptorSet& b, bool 
   std::size_t done = 0;  // guarded by progress_mutex
   std::mutex progress_mutex;
 
-  const std::size_t scratch_size = a.is_sparse() ? a.dimension() * detail::kRows : 0;
   // Plain threads taking tiles from a shared counter: no thread ever waits for another until the end, which
   // matters on machines where the cores are shared (spinning barriers then cost whole time slices).
   std::atomic<std::size_t> next{0};

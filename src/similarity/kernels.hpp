@@ -32,6 +32,16 @@ double sparse_sum(const float* values, std::size_t n);
 double sparse_sum_squares(const float* values, std::size_t n);
 
 double dense_chi2(const float* a, const float* b, std::size_t n);  // 0/0 terms skipped (paper eq. 1)
+
+// Dense vectors on a grid of 2^-shift (every value q * 2^-shift with an integer |q| <= 127, as the patch
+// thumbnails are) are stored as q + 128 in one byte each, and their L1 distance is the integer sum of |q_a -
+// q_b| (psadbw: 32 bytes an instruction), times 2^-shift. That is exactly dense_l1 of the float values: each
+// |x - y| and every partial sum of dense_l1 is then a multiple of 2^-shift below 2^53 of them, so exact.
+bool on_byte_grid(const float* values, std::size_t n, int shift);
+void to_bytes(const float* values, std::size_t n, int shift, std::uint8_t* out);
+// out[c] = sum_k |a[k] - b[c][k]| for the four vectors b[0..3] (one pass over a).
+void byte_l1_4(const std::uint8_t* a, const std::uint8_t* const (&b)[4], std::size_t n, std::uint64_t (&out)[4]);
+std::uint64_t byte_l1(const std::uint8_t* a, const std::uint8_t* b, std::size_t n);
 double dense_l1(const float* a, const float* b, std::size_t n);
 double dense_dot(const float* a, const float* b, std::size_t n);
 

@@ -43,12 +43,16 @@ TEST(PatchThumbnail, EveryPatchHasMeanZeroAndUnitDeviation) {
       for (int y = py; y < std::min(12, py + 8); ++y) {
         for (int x = px; x < std::min(20, px + 8); ++x, ++n) {
           const double v = t[static_cast<std::size_t>(y * 20 + x)];
+          // On the 1/16 grid within +-127/16, which the distance's byte kernel needs.
+          EXPECT_EQ(v * kPatchGrid, std::nearbyint(v * kPatchGrid));
+          EXPECT_LE(std::fabs(v * kPatchGrid), 127.0);
           sum += v;
           sum2 += v * v;
         }
       }
-      EXPECT_NEAR(sum / n, 0.0, 1e-4);
-      EXPECT_NEAR(sum2 / n, 1.0, 1e-3);
+      // Rounding to the grid moves each value by at most half a step (1/32).
+      EXPECT_NEAR(sum / n, 0.0, 0.5 / kPatchGrid);
+      EXPECT_NEAR(sum2 / n, 1.0, 0.02);
     }
   }
 }
@@ -61,7 +65,7 @@ TEST(PatchThumbnail, InvariantToBrightnessAndContrast) {
   ASSERT_EQ(a.size(), b.size());
   double worst = 0;
   for (std::size_t k = 0; k < a.size(); ++k) worst = std::max(worst, static_cast<double>(std::fabs(a[k] - b[k])));
-  EXPECT_LT(worst, 0.05);  // rounding to 8 bits only
+  EXPECT_LE(worst, 1.0 / kPatchGrid);  // the 8-bit image and the 1/16 grid: at most one step apart
 }
 
 TEST(PatchThumbnail, FlatImageGivesZerosAndMisuseThrows) {

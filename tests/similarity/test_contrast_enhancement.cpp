@@ -1,8 +1,10 @@
 // Local contrast enhancement against its definition computed directly, and its invariants.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
@@ -40,6 +42,45 @@ TEST(ContrastEnhancement, EqualsDirectDefinition) {
         EXPECT_NEAR(e(r, c), expected, 1e-4 * (1 + std::abs(expected))) << r << "," << c;
       }
     }
+  }
+}
+
+// The header's fixed arithmetic, one cell at a time: the vectorised kernels must give these very bits.
+TEST(ContrastEnhancement, BitsOfTheFixedArithmetic) {
+  for (unsigned seed = 0; seed < 12; ++seed) {
+    const std::size_t rows = 4 + seed % 5, cols = 17 + 13 * seed, window = 1 + (seed * 7) % 23;
+    const auto s = random_matrix(rows, cols, 100 + seed);
+    const auto e = enhance_contrast(s, window);
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (std::size_t c = 0; c < cols; ++c) {
+        const std::size_t lo = c > window ? c - window : 0, hi = std::min(cols, c + window + 1);
+        double sum = 0, sum2 = 0;
+        for (std::size_t k = lo; k < hi; ++k) {
+          const double x = s(r, k);
+          sum += x;
+          sum2 += x * x;
+        }
+        const double count = static_cast<double>(hi - lo), mean = sum / count;
+        const double sd = std::sqrt(std::max(0.0, sum2 / count - mean * mean));
+        ASSERT_EQ(e(r, c), static_cast<float>((s(r, c) - mean) / std::max(sd, 1e-9))) << seed << ": " << r << "," << c;
+      }
+    }
+  }
+}
+
+TEST(ContrastEnhancement, WindowSumsDownColumnsInOrder) {
+  const auto s = random_matrix(9, 37, 5);  // 37 columns: two blocks of 16 and a tail
+  std::vector<double> sum(37), sum2(37);
+  window_sums(sum.data(), sum2.data(), s.values.data(), s.cols, s.rows, s.cols);
+  for (std::size_t b = 0; b < s.cols; ++b) {
+    double a = 0, q = 0;
+    for (std::size_t t = 0; t < s.rows; ++t) {
+      const double x = s(t, b);
+      a += x;
+      q += x * x;
+    }
+    EXPECT_EQ(sum[b], a) << b;
+    EXPECT_EQ(sum2[b], q) << b;
   }
 }
 

@@ -1,6 +1,8 @@
 // The tiled multi-threaded matrix against the pairwise functions, and its invariants.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <random>
@@ -63,6 +65,54 @@ TEST(DistanceMatrix, DenseRectangularCellsEqualPairwiseFunction) {
       for (std::size_t j = 0; j < d.cols; ++j) {
         EXPECT_EQ(d(i, j), static_cast<float>(distance(m, a.dense.row(i), b.dense.row(j))));
       }
+    }
+  }
+}
+
+// Values q * 2^-shift with |q| <= 127 (as patch thumbnails are): the matrix compares them in byte lanes.
+DenseMatrix<float> grid_rows(std::mt19937& rng, std::size_t n, std::size_t d, int shift) {
+  std::uniform_int_distribution<int> q(-127, 127);
+  DenseMatrix<float> m(n, d);
+  for (auto& v : m.values) v = std::ldexp(static_cast<float>(q(rng)), -shift);
+  if (!m.values.empty()) m.values.front() = std::ldexp(127.0F, -shift), m.values.back() = std::ldexp(-127.0F, -shift);
+  return m;
+}
+
+TEST(DistanceMatrix, ByteGridCellsEqualThePairwiseFloatFunction) {
+  std::mt19937 rng(24);
+  for (const std::size_t dim : {1UL, 31UL, 32UL, 33UL, 70UL, 2048UL}) {
+    for (const int shift : {0, 4, 7}) {
+      const auto set = DescriptorSet::from_dense(grid_rows(rng, 23, dim, shift));
+      for (Distance m : {Distance::l1, Distance::sad}) {
+        const auto d = distance_matrix(set, m, {.threads = 2, .tile = 6, .progress = {}});
+        for (std::size_t i = 0; i < d.rows; ++i) {
+          for (std::size_t j = 0; j < d.cols; ++j) {
+            // Brute force in double, independent of both kernels: exact on the grid.
+            double l1 = 0;
+            for (std::size_t k = 0; k < dim; ++k)
+              l1 += std::fabs(static_cast<double>(set.dense(i, k)) - static_cast<double>(set.dense(j, k)));
+            const double expected = m == Distance::sad ? l1 / static_cast<double>(dim) : l1;
+            ASSERT_EQ(d(i, j), static_cast<float>(expected)) << dim << " " << shift << ": " << i << "," << j;
+            ASSERT_EQ(d(i, j), static_cast<float>(distance(m, set.dense.row(i), set.dense.row(j))));
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(DistanceMatrix, ByteGridOfTwoSetsTakesTheFinerStep) {
+  std::mt19937 rng(25);
+  auto a = DescriptorSet::from_dense(grid_rows(rng, 9, 45, 1));
+  for (auto& v : a.dense.values) v = std::clamp(v, -31.0F, 31.0F);  // within +-31.75: also on the 2^-2 grid
+  auto b = DescriptorSet::from_dense(grid_rows(rng, 13, 45, 2));
+  auto off = b;  // one value off every grid: the float kernel, the same cells
+  off.dense.values[5] += 1e-3F;
+  for (const DescriptorSet* other : {&b, &off}) {
+    const auto d = distance_matrix(a, *other, Distance::sad, {.threads = 2, .tile = 4, .progress = {}});
+    for (std::size_t i = 0; i < d.rows; ++i) {
+      for (std::size_t j = 0; j < d.cols; ++j)
+        ASSERT_EQ(d(i, j), static_cast<float>(distance(Distance::sad, a.dense.row(i), other->dense.row(j))));
     }
   }
 }
