@@ -86,19 +86,19 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   // A descriptors.npy or similarity.npy input is one matrix, whatever descriptors were asked for.
   if (kind == InputKind::descriptors || kind == InputKind::similarity) descriptors.resize(1);
   clock.begin(" matrix");
-  for (auto descriptor : descriptors) {
-    auto config = settings.similarity;
-    config.descriptor = descriptor;
-    if (!config.note && observer.progress) config.note = observer.progress;
-    if (!config.progress) config.progress = clock.similarity_progress();
-    run.similarities.push_back(compute_similarity(inputs, config));
-    if (run.sessions.empty()) record_sessions(inputs, run.similarities.back().session_rows, run);
+  auto config = settings.similarity;
+  if (!config.note && observer.progress) config.note = observer.progress;
+  if (!config.progress) config.progress = clock.similarity_progress();
+  // Every descriptor from one pass over the images.
+  run.similarities = compute_similarities(inputs, descriptors, config);
+  record_sessions(inputs, run.similarities.front().session_rows, run);
+  for (std::size_t k = 0; k < run.similarities.size(); ++k) {
     run.descriptor_names.emplace_back(kind == InputKind::similarity    ? "similarity.npy"
                                       : kind == InputKind::descriptors ? "descriptors.npy"
-                                                                       : descriptor_name(descriptor));
-    run.matrices.push_back(std::move(run.similarities.back().similarity));  // kept once, in run.matrices
+                                                                       : descriptor_name(descriptors[k]));
+    run.matrices.push_back(std::move(run.similarities[k].similarity));  // kept once, in run.matrices
     say(observer, fmt::format("      {}: {} images, kappa {:.4g}", run.descriptor_names.back(),
-                              run.matrices.back().rows, run.similarities.back().kappa));
+                              run.matrices.back().rows, run.similarities[k].kappa));
   }
   clock.end();
   const std::size_t n = run.matrices.front().rows;

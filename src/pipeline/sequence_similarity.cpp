@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -231,28 +232,45 @@ void check_memory(const Source& a, const Source* b, Descriptor d, const Similari
   }
 }
 
+// Every descriptor asked for, from one pass over the images (each image is read and decoded once).
+using Descriptors = std::span<const Descriptor>;
+
 struct Described {
-  similarity::DescriptorSet set;
+  std::vector<similarity::DescriptorSet> sets;  // one per descriptor, in the order asked
   std::vector<std::string> names;
   std::vector<std::size_t> session_rows;
 };
 
 // Descriptor of one image into slot i of `out`.
-void describe_image(const RgbImage& image, Descriptor d, const SimilarityConfig& c, std::size_t i, Described& out) {
-  if (d == Descriptor::joint_histogram) {
-    out.set.sparse[i] = joint_histogram(image, c.joint_histogram);
-  } else {
-    const std::vector<float> v = dense_descriptor(image, d, c);
-    std::copy(v.begin(), v.end(), out.set.dense.row(i).begin());
+void describe_image(const RgbImage& image, Descriptors ds, const SimilarityConfig& c, std::size_t i, Described& out) {
+  for (std::size_t k = 0; k < ds.size(); ++k) {
+    if (ds[k] == Descriptor::joint_histogram) {
+      out.sets[k].sparse[i] = joint_histogram(image, c.joint_histogram);
+    } else {
+      const std::vector<float> v = dense_descriptor(image, ds[k], c);
+      std::copy(v.begin(), v.end(), out.sets[k].dense.row(i).begin());
+    }
   }
 }
 
-void prepare_slots(Described& out, Descriptor d, std::size_t n, const SimilarityConfig& c) {
-  if (d == Descriptor::joint_histogram) {
-    out.set.sparse.resize(n);
-  } else {
-    out.set.dense = DenseMatrix<float>(n, dense_dimension(d, c));
+void prepare_slots(Described& out, Descriptors ds, std::size_t n, const SimilarityConfig& c) {
+  out.sets.resize(ds.size());
+  for (std::size_t k = 0; k < ds.size(); ++k) {
+    if (ds[k] == Descriptor::joint_histogram) {
+      out.sets[k].sparse.resize(n);
+    } else {
+      out.sets[k].dense = DenseMatrix<float>(n, dense_dimension(ds[k], c));
+    }
   }
+}
+
+bool has_joint_histogram(Descriptors ds) { return std::ranges::find(ds, Descriptor::joint_histogram) != ds.end(); }
+
+// The names of the descriptors that resize every image, for the warning about images of different sizes.
+std::string resizing_names(Descriptors ds) {
+  std::string names;
+  for (Descriptor d : ds) names += (names.empty() ? "" : ", ") + std::string(descriptor_name(d));
+  return names;
 }
 
 // Runs describe(i) for i in [0, n) on the configured threads; the error of the lowest failing index is
@@ -280,21 +298,21 @@ void parallel_items(std::size_t n, unsigned threads, F&& describe) {
 // Images of different sizes: an error for the joint histogram (its fixed 3x3 and 5x5 windows would see
 // another scale in each), a warning for the descriptors that resize every image (patch, panorama).
 void check_sizes(const std::vector<std::pair<int, int>>& sizes, const std::vector<std::string>& names,
-                 const std::vector<fs::path>& files, Descriptor d, const SimilarityConfig& c) {
+                 const std::vector<fs::path>& files, Descriptors ds, const SimilarityConfig& c) {
   for (std::size_t k = 1; k < sizes.size(); ++k) {
     if (sizes[k] == sizes[0]) continue;
     const std::string what = std::to_string(sizes[k].first) + " x " + std::to_string(sizes[k].second) +
                              " pixels, the first image " + names[0] + " is " + std::to_string(sizes[0].first) + " x " +
                              std::to_string(sizes[0].second);
-    if (d == Descriptor::joint_histogram) {
+    if (has_joint_histogram(ds)) {
       throw InputError(files[k].string(),
                        "is " + what +
                            ": the joint-histogram descriptor does not resize (its 3x3 and 5x5 windows would see "
                            "a different scale in each); give images of one size, or --descriptor patch");
     }
     if (c.note) {
-      c.note("warning: images of different sizes (" + names[k] + " is " + what + "); the " +
-             std::string(descriptor_name(d)) + " descriptor resizes every image");
+      c.note("warning: images of different sizes (" + names[k] + " is " + what + "); the " + resizing_names(ds) +
+             " descriptor resizes every image");
     }
     return;
   }
@@ -308,10 +326,10 @@ void warn_skipped(const Source& s, const SimilarityConfig& c) {
          s.input.path.string() + ": " + list);
 }
 
-Described describe_images(const Source& s, Descriptor d, const SimilarityConfig& c) {
+Described describe_images(const Source& s, Descriptors ds, const SimilarityConfig& c) {
   Described out;
   const std::size_t n = s.images.size();
-  prepare_slots(out, d, n, c);
+  prepare_slots(out, ds, n, c);
   out.names.reserve(n);
   for (const auto& p : s.images) out.names.push_back(image_name(s.input.path, p, s.input.recursive));
   warn_skipped(s, c);
@@ -323,7 +341,7 @@ Described describe_images(const Source& s, Descriptor d, const SimilarityConfig&
     const RgbImage image = load_image(path);
     sizes[i] = {image.width, image.height};
     try {
-      describe_image(image, d, c, i, out);
+      describe_image(image, ds, c, i, out);
     } catch (const std::invalid_argument& e) {
       throw InputError(path.string(), e.what());
     }
@@ -333,17 +351,17 @@ Described describe_images(const Source& s, Descriptor d, const SimilarityConfig&
       c.progress("descriptors", now, n);
     }
   });
-  check_sizes(sizes, out.names, s.images, d, c);
+  check_sizes(sizes, out.names, s.images, ds, c);
   return out;
 }
 
 // The frames of a video or a bag, in order: produce(visit) calls visit(name, image) once per kept frame.
 using FrameProducer = std::function<void(const std::function<void(std::string, const RgbImage&)>&)>;
 
-Described describe_stream(const Source& s, Descriptor d, const SimilarityConfig& c, const FrameProducer& produce);
+Described describe_stream(const Source& s, Descriptors ds, const SimilarityConfig& c, const FrameProducer& produce);
 
-Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& c) {
-  return describe_stream(s, d, c, [&](const std::function<void(std::string, const RgbImage&)>& visit) {
+Described describe_video(const Source& s, Descriptors ds, const SimilarityConfig& c) {
+  return describe_stream(s, ds, c, [&](const std::function<void(std::string, const RgbImage&)>& visit) {
     std::size_t next = 0;
     const auto& frames = s.input.frames;
     for_each_video_frame(s.input.path, s.input.every, [&](std::size_t index, const RgbImage& frame) {
@@ -360,49 +378,54 @@ Described describe_video(const Source& s, Descriptor d, const SimilarityConfig& 
   });
 }
 
-Described describe_bag(const Source& s, Descriptor d, const SimilarityConfig& c) {
+Described describe_bag(const Source& s, Descriptors ds, const SimilarityConfig& c) {
 #ifdef SEQTOPO_HAVE_RECORDING
   const recording::Recording bag(s.input.path);
-  return describe_stream(s, d, c, [&](const std::function<void(std::string, const RgbImage&)>& visit) {
+  return describe_stream(s, ds, c, [&](const std::function<void(std::string, const RgbImage&)>& visit) {
     bag.for_each_image(s.image_topic, s.input.every, s.input.frames,
                        [&](std::size_t index, double, const RgbImage& image) {
                          visit(s.image_topic + " " + std::to_string(index), image);
                        });
   });
 #else
-  (void)d;
+  (void)ds;
   (void)c;
   throw InputError(s.input.path.string(), "this seqtopo was built without bag support");
 #endif
 }
 
-Described describe_stream(const Source& s, Descriptor d, const SimilarityConfig& c, const FrameProducer& produce) {
+Described describe_stream(const Source& s, Descriptors ds, const SimilarityConfig& c, const FrameProducer& produce) {
   // Frames are decoded in order and described in batches, so a long video never sits in memory whole.
   Described out;
   std::vector<RgbImage> batch;
   std::vector<std::string> indices;
   const unsigned threads = thread_count(c.threads);
   const std::size_t batch_size = 8 * static_cast<std::size_t>(threads);
-  std::vector<similarity::SparseHistogram> histograms;
-  std::vector<std::vector<float>> rows;
+  std::vector<std::vector<similarity::SparseHistogram>> histograms(ds.size());
+  std::vector<std::vector<std::vector<float>>> rows(ds.size());
+  std::size_t described = 0;
   auto flush = [&] {
-    const std::size_t first = d == Descriptor::joint_histogram ? histograms.size() : rows.size();
-    if (d == Descriptor::joint_histogram) {
-      histograms.resize(first + batch.size());
-    } else {
-      rows.resize(first + batch.size());
+    for (std::size_t k = 0; k < ds.size(); ++k) {
+      if (ds[k] == Descriptor::joint_histogram) {
+        histograms[k].resize(described + batch.size());
+      } else {
+        rows[k].resize(described + batch.size());
+      }
     }
-    parallel_items(batch.size(), threads, [&](std::size_t k) {
+    parallel_items(batch.size(), threads, [&](std::size_t b) {
       try {
-        if (d == Descriptor::joint_histogram) {
-          histograms[first + k] = joint_histogram(batch[k], c.joint_histogram);
-        } else {
-          rows[first + k] = dense_descriptor(batch[k], d, c);
+        for (std::size_t k = 0; k < ds.size(); ++k) {
+          if (ds[k] == Descriptor::joint_histogram) {
+            histograms[k][described + b] = joint_histogram(batch[b], c.joint_histogram);
+          } else {
+            rows[k][described + b] = dense_descriptor(batch[b], ds[k], c);
+          }
         }
       } catch (const std::invalid_argument& e) {
-        throw InputError(s.input.path.string(), indices[k] + ": " + e.what());
+        throw InputError(s.input.path.string(), indices[b] + ": " + e.what());
       }
     });
+    described += batch.size();
     for (auto& name : indices) out.names.push_back(std::move(name));
     batch.clear();
     indices.clear();
@@ -417,11 +440,11 @@ Described describe_stream(const Source& s, Descriptor d, const SimilarityConfig&
       const std::string what = name + " is " + std::to_string(frame.width) + " x " + std::to_string(frame.height) +
                                " pixels, the first frame " + std::to_string(first_size->first) + " x " +
                                std::to_string(first_size->second);
-      if (d == Descriptor::joint_histogram) {
+      if (has_joint_histogram(ds)) {
         throw InputError(s.input.path.string(), what + ": the joint-histogram descriptor does not resize");
       }
       if (c.note) {
-        c.note("warning: frames of different sizes (" + what + "); the " + std::string(descriptor_name(d)) +
+        c.note("warning: frames of different sizes (" + what + "); the " + resizing_names(ds) +
                " descriptor resizes every frame");
       }
       size_warned = true;
@@ -431,13 +454,16 @@ Described describe_stream(const Source& s, Descriptor d, const SimilarityConfig&
     if (batch.size() >= batch_size) flush();
   });
   if (!batch.empty()) flush();
-  if (d == Descriptor::joint_histogram) {
-    out.set.sparse = std::move(histograms);
-  } else {
-    const std::size_t dim = dense_dimension(d, c);
-    out.set.dense = DenseMatrix<float>(rows.size(), dim);
-    for (std::size_t i = 0; i < rows.size(); ++i)
-      std::copy(rows[i].begin(), rows[i].end(), out.set.dense.row(i).begin());
+  out.sets.resize(ds.size());
+  for (std::size_t k = 0; k < ds.size(); ++k) {
+    if (ds[k] == Descriptor::joint_histogram) {
+      out.sets[k].sparse = std::move(histograms[k]);
+      continue;
+    }
+    const std::size_t dim = dense_dimension(ds[k], c);
+    out.sets[k].dense = DenseMatrix<float>(rows[k].size(), dim);
+    for (std::size_t i = 0; i < rows[k].size(); ++i)
+      std::copy(rows[k][i].begin(), rows[k][i].end(), out.sets[k].dense.row(i).begin());
   }
   return out;
 }
@@ -464,19 +490,20 @@ std::vector<std::string> row_names(std::size_t n, const char* word) {
   return names;
 }
 
-Described describe(const Source& s, Descriptor d, const SimilarityConfig& c) {
+Described describe(const Source& s, Descriptors ds, const SimilarityConfig& c) {
   switch (s.kind) {
     case InputKind::images:
-      return describe_images(s, d, c);
+      return describe_images(s, ds, c);
     case InputKind::video:
-      return describe_video(s, d, c);
+      return describe_video(s, ds, c);
     case InputKind::bag:
-      return describe_bag(s, d, c);
+      return describe_bag(s, ds, c);
     case InputKind::descriptors: {
-      Described out;
-      out.set = similarity::DescriptorSet::from_dense(kept_rows(io::read_npy_matrix<float>(s.input.path), s.input));
-      if (out.set.dense.empty()) throw InputError(s.input.path.string(), "no descriptors (empty array)");
-      out.names = row_names(out.set.dense.rows, "row");
+      Described out;  // one set, the file's rows, whatever was asked (effective_descriptor)
+      out.sets.push_back(
+          similarity::DescriptorSet::from_dense(kept_rows(io::read_npy_matrix<float>(s.input.path), s.input)));
+      if (out.sets[0].dense.empty()) throw InputError(s.input.path.string(), "no descriptors (empty array)");
+      out.names = row_names(out.sets[0].dense.rows, "row");
       return out;
     }
     default:
@@ -535,30 +562,34 @@ std::vector<Source> resolve_all(std::span<const SequenceInput> inputs) {
 }
 
 // One side's descriptors, session after session (names prefixed with the session's input when several).
-Described describe_all(const std::vector<Source>& sources, Descriptor d, const SimilarityConfig& c) {
+Described describe_all(const std::vector<Source>& sources, Descriptors ds, const SimilarityConfig& c) {
   if (sources.size() == 1) {
-    Described one = describe(sources.front(), d, c);
+    Described one = describe(sources.front(), ds, c);
     one.session_rows = {one.names.size()};
     return one;
   }
   Described all;
+  all.sets.resize(ds.size());
   for (const auto& s : sources) {
-    Described one = describe(s, d, c);
+    Described one = describe(s, ds, c);
     all.session_rows.push_back(one.names.size());
     const std::string prefix = s.input.path.filename().string() + "/";
     for (auto& name : one.names) all.names.push_back(prefix + name);
-    if (d == Descriptor::joint_histogram) {
-      for (auto& h : one.set.sparse) all.set.sparse.push_back(std::move(h));
-      continue;
+    for (std::size_t k = 0; k < ds.size(); ++k) {
+      auto& to = all.sets[k];
+      auto& from = one.sets[k];
+      if (ds[k] == Descriptor::joint_histogram) {
+        for (auto& h : from.sparse) to.sparse.push_back(std::move(h));
+        continue;
+      }
+      if (!to.dense.empty() && to.dense.cols != from.dense.cols) {
+        throw InputError(s.input.path.string(), "its descriptors have " + std::to_string(from.dense.cols) +
+                                                    " columns, the first session's " + std::to_string(to.dense.cols));
+      }
+      to.dense.cols = from.dense.cols;
+      to.dense.rows += from.dense.rows;
+      to.dense.values.insert(to.dense.values.end(), from.dense.values.begin(), from.dense.values.end());
     }
-    if (!all.set.dense.empty() && all.set.dense.cols != one.set.dense.cols) {
-      throw InputError(s.input.path.string(), "its descriptors have " + std::to_string(one.set.dense.cols) +
-                                                  " columns, the first session's " +
-                                                  std::to_string(all.set.dense.cols));
-    }
-    all.set.dense.cols = one.set.dense.cols;
-    all.set.dense.rows += one.set.dense.rows;
-    all.set.dense.values.insert(all.set.dense.values.end(), one.set.dense.values.begin(), one.set.dense.values.end());
   }
   return all;
 }
@@ -579,6 +610,7 @@ Source combined(const std::vector<Source>& sources) {
 }
 
 Descriptor side_descriptor(const std::vector<Source>& sources, const SimilarityConfig& c) {
+  // effective_descriptor: c.descriptor, or npy for a descriptors.npy input
   const Descriptor d = effective_descriptor(sources.front(), c);
   for (const auto& s : sources) {
     if (effective_descriptor(s, c) != d) {
@@ -588,11 +620,13 @@ Descriptor side_descriptor(const std::vector<Source>& sources, const SimilarityC
   return d;
 }
 
-SimilarityResult run(std::span<const SequenceInput> inputs_a, std::span<const SequenceInput> inputs_b, bool two,
-                     const SimilarityConfig& c) {
+// One matrix per descriptor in `requested` (c.descriptor is ignored), the images described in one pass.
+std::vector<SimilarityResult> run(std::span<const SequenceInput> inputs_a, std::span<const SequenceInput> inputs_b,
+                                  bool two, const SimilarityConfig& c, Descriptors requested) {
   check_kappa(c);
+  if (requested.empty()) throw std::invalid_argument("no descriptor asked for");
   const std::vector<Source> a = resolve_all(inputs_a);
-  if (a.front().kind == InputKind::similarity) return from_similarity_file(a.front(), !two);
+  if (a.front().kind == InputKind::similarity) return {from_similarity_file(a.front(), !two)};
   std::vector<Source> b;
   if (two) {
     b = resolve_all(inputs_b);
@@ -602,46 +636,61 @@ SimilarityResult run(std::span<const SequenceInput> inputs_a, std::span<const Se
       }
     }
   }
-  const Descriptor d = side_descriptor(a, c);
-  if (two && side_descriptor(b, c) != d) {
-    throw InputError(b.front().input.path.string(), "both sequences must have the same kind of descriptor");
-  }
-  const Distance metric = c.distance.value_or(default_distance(d));
   const Source all_a = combined(a);
   std::optional<Source> all_b;
   if (two) all_b = combined(b);
-  check_memory(all_a, all_b ? &*all_b : nullptr, d, c);
+  std::vector<Descriptor> ds;
+  for (Descriptor wanted : requested) {
+    SimilarityConfig ck = c;
+    ck.descriptor = wanted;
+    const Descriptor d = side_descriptor(a, ck);
+    if (two && side_descriptor(b, ck) != d) {
+      throw InputError(b.front().input.path.string(), "both sequences must have the same kind of descriptor");
+    }
+    if (d == Descriptor::npy && requested.size() > 1) {
+      throw InputError(all_a.input.path.string(), "a descriptors.npy input is one descriptor, not several");
+    }
+    check_memory(all_a, all_b ? &*all_b : nullptr, d, c);
+    ds.push_back(d);
+  }
 
-  SimilarityResult r;
   const auto t0 = Clock::now();
-  Described da = describe_all(a, d, c);
+  Described da = describe_all(a, ds, c);
   std::optional<Described> db;
-  if (two) db = describe_all(b, d, c);
-  r.seconds_descriptors = seconds_since(t0);
+  if (two) db = describe_all(b, ds, c);
+  const double seconds_descriptors = seconds_since(t0);
 
   similarity::MatrixConfig mc;
   mc.threads = c.threads;
   mc.tile = c.tile;
   if (c.progress) mc.progress = [&c](std::size_t done, std::size_t total) { c.progress("matrix", done, total); };
-  const auto t1 = Clock::now();
-  DenseMatrix<float> distances;
-  try {
-    distances =
-        db ? similarity::distance_matrix(da.set, db->set, metric, mc) : similarity::distance_matrix(da.set, metric, mc);
-  } catch (const similarity::MemoryError& e) {
-    throw InputError(all_a.input.path.string(), e.what());
-  } catch (const std::invalid_argument& e) {
-    if (d == Descriptor::npy) throw InputError(all_a.input.path.string(), e.what());
-    throw;
+  std::vector<SimilarityResult> results;
+  for (std::size_t k = 0; k < ds.size(); ++k) {
+    const Distance metric = c.distance.value_or(default_distance(ds[k]));
+    SimilarityResult r;
+    r.seconds_descriptors = k == 0 ? seconds_descriptors : 0.0;  // the one pass is counted once
+    const auto t1 = Clock::now();
+    DenseMatrix<float> distances;
+    try {
+      distances = db ? similarity::distance_matrix(da.sets[k], db->sets[k], metric, mc)
+                     : similarity::distance_matrix(da.sets[k], metric, mc);
+    } catch (const similarity::MemoryError& e) {
+      throw InputError(all_a.input.path.string(), e.what());
+    } catch (const std::invalid_argument& e) {
+      if (ds[k] == Descriptor::npy) throw InputError(all_a.input.path.string(), e.what());
+      throw;
+    }
+    da.sets[k] = {};  // its descriptors are not needed any more
+    if (db) db->sets[k] = {};
+    similarity_from(std::move(distances), !db, c, r);
+    r.seconds_matrix = seconds_since(t1);
+    r.distance = metric;
+    r.frame_names = da.names;
+    r.column_names = db ? db->names : r.frame_names;
+    r.session_rows = da.session_rows;
+    results.push_back(std::move(r));
   }
-
-  similarity_from(std::move(distances), !db, c, r);
-  r.seconds_matrix = seconds_since(t1);
-  r.distance = metric;
-  r.frame_names = std::move(da.names);
-  r.column_names = db ? std::move(db->names) : r.frame_names;
-  r.session_rows = std::move(da.session_rows);
-  return r;
+  return results;
 }
 
 }  // namespace
@@ -658,8 +707,8 @@ DescriptorResult compute_descriptors(std::span<const SequenceInput> inputs, cons
   }
   DescriptorResult r;
   const auto t0 = Clock::now();
-  Described described = describe_all(sources, d, config);
-  r.descriptors = std::move(described.set.dense);
+  Described described = describe_all(sources, std::span(&d, 1), config);
+  r.descriptors = std::move(described.sets[0].dense);
   if (r.descriptors.empty()) throw InputError(s.input.path.string(), "no images");
   r.descriptor = d;
   r.frame_names = std::move(described.names);
@@ -709,20 +758,26 @@ SimilarityResult similarity_of_descriptors(const DenseMatrix<float>& a, const De
 }
 
 SimilarityResult compute_similarity(const SequenceInput& input, const SimilarityConfig& config) {
-  return run(std::span<const SequenceInput>(&input, 1), {}, false, config);
+  return compute_similarity(std::span<const SequenceInput>(&input, 1), config);
 }
 
 SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput& b, const SimilarityConfig& config) {
-  return run(std::span<const SequenceInput>(&a, 1), std::span<const SequenceInput>(&b, 1), true, config);
+  return compute_similarity(std::span<const SequenceInput>(&a, 1), std::span<const SequenceInput>(&b, 1), config);
 }
 
 SimilarityResult compute_similarity(std::span<const SequenceInput> sessions, const SimilarityConfig& config) {
-  return run(sessions, {}, false, config);
+  return std::move(run(sessions, {}, false, config, std::span(&config.descriptor, 1)).front());
 }
 
 SimilarityResult compute_similarity(std::span<const SequenceInput> a, std::span<const SequenceInput> b,
                                     const SimilarityConfig& config) {
-  return run(a, b, true, config);
+  return std::move(run(a, b, true, config, std::span(&config.descriptor, 1)).front());
+}
+
+std::vector<SimilarityResult> compute_similarities(std::span<const SequenceInput> sessions,
+                                                   std::span<const Descriptor> descriptors,
+                                                   const SimilarityConfig& config) {
+  return run(sessions, {}, false, config, descriptors);
 }
 
 }  // namespace seqtopo::pipeline

@@ -78,6 +78,12 @@ SimilarityResult compute_similarity(const SequenceInput& a, const SequenceInput&
 SimilarityResult compute_similarity(std::span<const SequenceInput> sessions, const SimilarityConfig& config = {});
 SimilarityResult compute_similarity(std::span<const SequenceInput> a, std::span<const SequenceInput> b,
                                     const SimilarityConfig& config = {});
+// One matrix per descriptor (config.descriptor is ignored), in that order, from one pass over the images: each
+// image is read and decoded once for all of them. A similarity.npy input gives its one matrix; a
+// descriptors.npy input is one descriptor. The pass's time is in the first result's seconds_descriptors.
+std::vector<SimilarityResult> compute_similarities(std::span<const SequenceInput> sessions,
+                                                   std::span<const Descriptor> descriptors,
+                                                   const SimilarityConfig& config = {});
 
 // The same computation on descriptors already in memory (rows = images, as a descriptors.npy input; default
 // distance cosine): N x N, or N x M against `against` (rows = `descriptors`). Throws std::invalid_argument
