@@ -104,18 +104,23 @@ SimilarityMatrix enhance_contrast(const SimilarityMatrix& s, std::size_t window)
 
 SimilarityMatrix enhance_contrast_symmetric(const SimilarityMatrix& s, std::size_t window, float offset) {
   if (!s.square()) throw std::invalid_argument("symmetric contrast enhancement needs a square matrix");
-  const SimilarityMatrix e = enhance_contrast(s, window);
-  SimilarityMatrix out(s.rows, s.cols);
-  // In 64 x 64 blocks, so that the transposed reads stay in cache; each cell is written once.
+  SimilarityMatrix out = enhance_contrast(s, window);
+  // In place, each pair (i, j), (j, i) once (addition commutes, so both get the same bits), in 64 x 64
+  // blocks so that the transposed side stays in cache; block rows are independent.
   constexpr std::size_t kBlock = 64;
-  const auto blocks = static_cast<long>((s.rows + kBlock - 1) / kBlock);
-#pragma omp parallel for schedule(static)
+  const std::size_t n = s.rows;
+  const auto blocks = static_cast<long>((n + kBlock - 1) / kBlock);
+#pragma omp parallel for schedule(dynamic, 1)
   for (long bi = 0; bi < blocks; ++bi) {
-    const std::size_t i0 = static_cast<std::size_t>(bi) * kBlock, i1 = std::min(s.rows, i0 + kBlock);
-    for (std::size_t j0 = 0; j0 < s.cols; j0 += kBlock) {
-      const std::size_t j1 = std::min(s.cols, j0 + kBlock);
+    const std::size_t i0 = static_cast<std::size_t>(bi) * kBlock, i1 = std::min(n, i0 + kBlock);
+    for (std::size_t j0 = i0; j0 < n; j0 += kBlock) {
+      const std::size_t j1 = std::min(n, j0 + kBlock);
       for (std::size_t i = i0; i < i1; ++i) {
-        for (std::size_t j = j0; j < j1; ++j) out(i, j) = 0.5F * (e(i, j) + e(j, i)) - offset;
+        for (std::size_t j = std::max(j0, i); j < j1; ++j) {
+          const float v = 0.5F * (out(i, j) + out(j, i)) - offset;
+          out(i, j) = v;
+          out(j, i) = v;
+        }
       }
     }
   }
