@@ -155,24 +155,15 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
                                                  "matrix per descriptor)",
                                                  s.descriptors.size()));
   }
-  if (kind != pipeline::InputKind::descriptors) {  // images or a video: the descriptor is computed
-    if (!o.descriptor) {
-      throw InputError("--descriptor",
-                       "--streaming needs one vector descriptor for images (patch or panorama, with "
-                       "--metric cosine); the default fuses joint-histogram and patch");
-    }
+  // Without --descriptor or --metric the job streams the nearest vector descriptor by cosine (engine_choice.hpp).
+  if (kind != pipeline::InputKind::descriptors && o.descriptor) {  // images or a video: the descriptor is computed
     if (s.descriptors.front() == pipeline::Descriptor::npy) {
       throw InputError("--descriptor", "npy needs a descriptors.npy input");
     }
     if (s.descriptors.front() == pipeline::Descriptor::joint_histogram) {
       throw InputError("--descriptor",
                        "joint-histogram is a sparse histogram without a vector form; --streaming "
-                       "needs patch or panorama (with --metric cosine)");
-    }
-    if (!o.metric_name) {
-      throw InputError("--metric", "--streaming scores by cosine similarity: give --metric cosine (" +
-                                       std::string(pipeline::descriptor_name(s.descriptors.front())) +
-                                       " defaults to sad)");
+                       "needs patch or panorama (compared by cosine)");
     }
   }
   if (!o.ground_truth.empty()) {
@@ -235,6 +226,7 @@ void run(MapOptions o) {
   }
   request.truth = {o.ground_truth, o.gt_radius, o.gt_places, o.gt_poses};
   request.streaming = o.streaming;
+  request.choose_engine = !o.engine && !o.streaming;
   const pipeline::MapJob job(request);
   if (o.streaming) check_streaming(o, request.settings, job.input_kind());
   std::vector<std::filesystem::path> inputs(o.inputs.begin(), o.inputs.end());
@@ -294,7 +286,8 @@ const RegisterCommand registered{
                   fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
        app.add_option("--engine", o->engine,
                       "exact (scalar reference, N x N table) or fast (vectorized, no N x N table, scores quantized "
-                      "to 1/512); default exact, fast with --streaming");
+                      "to 1/512); default: chosen by the memory the run needs (exact, fast, then --streaming), "
+                      "said on stderr");
        app.add_option("--alignment-set", o->alignment_set,
                       fmt::format("non-intersecting (Waterman-Eggert: no two revisits share a pair) or locally-optimal "
                                   "(every alignment no shortening or extension improves, after Schmidt; "
@@ -302,7 +295,8 @@ const RegisterCommand registered{
                                   align::to_string(mapping::MapConfig{}.alignment_set)));
        app.add_flag("--streaming", o->streaming,
                     "never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor "
-                    "(descriptors.npy, or patch/panorama with --metric cosine) computed on the fly, fast engine; "
+                    "(descriptors.npy rows, or images' patch or panorama thumbnails, by cosine) computed on the fly, "
+                    "fast engine; "
                     "no scores.npy, similarity.npy nor SeqSLAM baseline, similarity.png a block-max overview");
        app.add_option(
            "--odometry-gate", o->odometry_gate,

@@ -13,6 +13,7 @@
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/pipeline/baselines.hpp"
+#include "seqtopo/pipeline/engine_choice.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/pipeline/memory_estimate.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
@@ -333,6 +334,14 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     }
     *expected += *s.frames;
   }
+  if (expected && request_.choose_engine) {
+    MapRequest sized = request_;
+    sized.input = inputs_.front();
+    engine_note_ =
+        apply_engine_choice(request_, kind_, choose_engine(sized, kind_, *expected, similarity::memory_budget_bytes()));
+  } else if (request_.streaming) {
+    engine_note_ = streaming_settings(request_.settings, kind_);
+  }
   if (expected) {
     // Sized from the first session's input (its .npy header or first image); the image count is every session's.
     MapRequest sized = request_;
@@ -355,6 +364,7 @@ MapRun MapJob::run(const MapObserver& observer) const {
   }
   if (!memory_note_.empty()) say(observer, "      " + memory_note_);
   if (!panorama_note_.empty()) say(observer, "      " + panorama_note_);
+  if (!engine_note_.empty()) say(observer, "      " + engine_note_);
   run.streaming = request_.streaming;
   run.odometry = odometry_;
   const auto& files = request_.truth;

@@ -137,12 +137,9 @@ MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
     stage("similarity", similarity);
     // 2. alignment_scores
     const std::size_t matrices = mul(d, f);
-    std::size_t enhancement = 0;
-    if (d == 1) {
-      enhancement = add(matrices, mul(in.contrast_window > 0 ? 2 : 1, f));
-    } else {
-      enhancement = add(matrices, mul(in.contrast_window > 0 ? 3 : 2, f));
-    }
+    // One matrix: its enhanced copy (symmetrised in place) or, with a window of 0, a plain copy; several: the
+    // fused sum and the enhanced copy of the one being added.
+    const std::size_t enhancement = add(matrices, mul(d == 1 ? 1 : 2, f));
     stage("contrast enhancement", enhancement);
     // 3. the alignment, with the scores beside the matrices
     const std::size_t held = add(matrices, f);

@@ -25,31 +25,25 @@ std::optional<std::size_t> read_number(const char* path) {
   }
 }
 
-std::optional<std::size_t> mem_available() {
+std::optional<std::size_t> meminfo(const std::string& which) {
   std::ifstream in("/proc/meminfo");
   std::string key;
   std::size_t kib = 0;
   std::string unit;
   while (in >> key >> kib) {
     std::getline(in, unit);
-    if (key == "MemAvailable:") return kib * 1024;
+    if (key == which) return kib * 1024;
   }
   return std::nullopt;
 }
 
-}  // namespace
+std::optional<std::size_t> mem_available() { return meminfo("MemAvailable:"); }
 
-std::size_t matrix_bytes(std::size_t rows, std::size_t cols) {
-  constexpr std::size_t max = std::numeric_limits<std::size_t>::max();
-  if (rows != 0 && cols > max / rows) return max;
-  const std::size_t cells = rows * cols;
-  return cells > max / sizeof(float) ? max : cells * sizeof(float);
-}
-
-std::optional<std::size_t> available_memory_bytes() {
-  std::optional<std::size_t> available = mem_available();
-  // A limit the user sets (a shared machine, a test): SEQTOPO_MEMORY_LIMIT=BYTES, with an optional K, M or G.
-  if (const char* limit = std::getenv("SEQTOPO_MEMORY_LIMIT"); limit != nullptr && *limit != '\0') {
+// A limit the user sets (a shared machine, a test): SEQTOPO_MEMORY_LIMIT=BYTES, with an optional K, M or G.
+std::optional<std::size_t> user_limit() {
+  const char* limit = std::getenv("SEQTOPO_MEMORY_LIMIT");
+  if (limit == nullptr || *limit == '\0') return std::nullopt;
+  {
     std::string text = limit;
     text.erase(0, text.find_first_not_of(" \t"));
     text.erase(text.find_last_not_of(" \t") + 1);
@@ -70,9 +64,30 @@ std::optional<std::size_t> available_memory_bytes() {
                        "2^60 bytes), got '" +
                            std::string(limit) + "'");
     }
-    const auto bytes = static_cast<std::size_t>(value * static_cast<double>(scale));
-    available = available ? std::min(*available, bytes) : bytes;
+    return static_cast<std::size_t>(value * static_cast<double>(scale));
   }
+}
+
+}  // namespace
+
+std::size_t matrix_bytes(std::size_t rows, std::size_t cols) {
+  constexpr std::size_t max = std::numeric_limits<std::size_t>::max();
+  if (rows != 0 && cols > max / rows) return max;
+  const std::size_t cells = rows * cols;
+  return cells > max / sizeof(float) ? max : cells * sizeof(float);
+}
+
+std::optional<std::size_t> memory_budget_bytes() {
+  std::optional<std::size_t> budget = meminfo("MemTotal:");
+  if (const auto limit = user_limit()) budget = budget ? std::min(*budget, *limit) : *limit;
+  if (const auto cgroup = read_number("/sys/fs/cgroup/memory.max"))
+    budget = budget ? std::min(*budget, *cgroup) : *cgroup;
+  return budget;
+}
+
+std::optional<std::size_t> available_memory_bytes() {
+  std::optional<std::size_t> available = mem_available();
+  if (const auto limit = user_limit()) available = available ? std::min(*available, *limit) : *limit;
   // A container's limit is often far below the machine's free memory (cgroup v2 files).
   const auto limit = read_number("/sys/fs/cgroup/memory.max");
   if (limit) {

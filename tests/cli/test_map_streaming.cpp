@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -199,6 +200,42 @@ TEST_F(MapStreaming, ImageFolderWithOneVectorDescriptor) {
   EXPECT_FALSE(map.at("alignments").empty());
 }
 
+// Without --descriptor / --metric, images stream the nearest vector descriptor (patch, by cosine), and say so:
+// the same map as when both are given.
+TEST_F(MapStreaming, ImageFolderStreamsTheNearestVectorDescriptor) {
+  const std::string corridor = std::string(SEQTOPO_SOURCE_DIR) + "/data/rtabmap-corridor";
+  const auto chosen = run_cli("map " + corridor + " --streaming --out " + path("chosen"));
+  ASSERT_EQ(chosen.status, 0) << chosen.err;
+  EXPECT_NE(chosen.err.find("images compared by the patch descriptor's cosine"), std::string::npos) << chosen.err;
+  const auto given =
+      run_cli("map " + corridor + " --streaming --descriptor patch --metric cosine --out " + path("given"));
+  ASSERT_EQ(given.status, 0) << given.err;
+  EXPECT_EQ(given.err.find("descriptor's cosine"), std::string::npos) << given.err;  // nothing was changed
+  for (const char* file : {"map.json", "alignments.json", "loop_closures.csv"})
+    EXPECT_EQ(read_file(fs::path(path("chosen")) / file), read_file(fs::path(path("given")) / file)) << file;
+}
+
+// No engine given: exact while the run fits a quarter of the memory budget, streamed when only that fits
+// (SEQTOPO_MEMORY_LIMIT simulates a small machine), one line saying which; an engine given is used as is.
+TEST_F(MapStreaming, EngineChosenByTheMemoryTheRunNeeds) {
+  write_walk(3000, 8);
+  const std::string walk = path("walk.npy");
+  const auto plain = run_cli("map " + walk + " --out " + path("plain"));
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  EXPECT_NE(plain.err.find("engine exact: "), std::string::npos) << plain.err;
+  ASSERT_EQ(setenv("SEQTOPO_MEMORY_LIMIT", "400M", 1), 0);
+  const auto small = run_cli("map " + walk + " --out " + path("small"));
+  unsetenv("SEQTOPO_MEMORY_LIMIT");
+  ASSERT_EQ(small.status, 0) << small.err;
+  EXPECT_NE(small.err.find("engine streaming: "), std::string::npos) << small.err;
+  const auto forced = run_cli("map " + walk + " --streaming --out " + path("forced"));
+  ASSERT_EQ(forced.status, 0) << forced.err;
+  EXPECT_EQ(read_file(fs::path(path("small")) / "map.json"), read_file(fs::path(path("forced")) / "map.json"));
+  const auto given = run_cli("map " + walk + " --engine fast --out " + path("given"));
+  ASSERT_EQ(given.status, 0) << given.err;
+  EXPECT_EQ(given.err.find("engine "), std::string::npos) << given.err;
+}
+
 TEST_F(MapStreaming, RefusesWhatNeedsTheMatrixInOneLine) {
   write_walk(60, 8);
   const std::string corridor = std::string(SEQTOPO_SOURCE_DIR) + "/data/rtabmap-corridor";
@@ -215,8 +252,6 @@ TEST_F(MapStreaming, RefusesWhatNeedsTheMatrixInOneLine) {
       {walk + " --kappa 2", "--kappa"},
       {walk + " --ground-truth " + bmp, "--ground-truth"},
       {walk + " --ground-truth " + path("poses.csv"), "--gt-radius"},
-      {corridor, "--descriptor"},                      // the default fuses two descriptors
-      {corridor + " --descriptor patch", "--metric"},  // patch defaults to sad
       {corridor + " --descriptor joint-histogram --metric cosine", "--descriptor"},
   };
   const fs::path out = path("out");

@@ -64,6 +64,9 @@ struct MapRequest {
   // Never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor, computed when the
   // engine reads them (scale/streaming_similarity.hpp). Needs the fast engine.
   bool streaming = false;
+  // No engine asked for: the run chooses exact, fast or streaming by the memory it needs (engine_choice.hpp)
+  // and says which and why.
+  bool choose_engine = false;
   // For `input` (session_input.hpp): the image times of a timestamped `odometry` file, a bag's odometry
   // topic, and one frame kept per D metres of odometry.
   std::filesystem::path times;
@@ -141,6 +144,7 @@ class MapJob {
   std::vector<Pose2> odometry_;        // all sessions', concatenated
   std::string memory_note_;            // the whole run's memory estimate (memory_estimate.hpp)
   std::string panorama_note_;          // the descriptors chosen for 360-degree panoramas (presets.hpp)
+  std::string engine_note_;            // the engine chosen, or the settings adapted to streaming
 };
 
 // MapJob(request).run(observer).

@@ -6,8 +6,8 @@
 // The dense path (N images, D descriptors fused; F = 4 N^2 bytes, one float matrix):
 //   similarity   the D similarity matrices, made one after another (D F), with the descriptors of the one
 //                being made (or the .npy input read: its raw values and their float copy)
-//   enhancement  mapping::alignment_scores: the D matrices, the fused sum (F) and enhance_contrast_symmetric's
-//                two temporaries (2 F); one matrix and a window of 0: a copy (F)
+//   enhancement  mapping::alignment_scores: the D matrices, the fused sum (F) and the enhanced copy of the one
+//                being added (F, symmetrised in place); one matrix: its enhanced copy, or with a window of 0 a copy (F)
 //   alignment    the D matrices and the scores (F), with each pass of the engine: the exact engine's float
 //                table and forbidden-cell bytes (5 N^2), the fast engine's int16 checkpoint rows and columns
 //                (about N^2 / 8); forward and reverse run at once with more than one thread
