@@ -46,7 +46,8 @@ struct MapOptions {
   std::optional<float> contrast_offset;
   bool no_reverse = false;
   std::optional<bool> graph_cleanup;
-  bool streaming = false;
+  bool streaming = false, sparse = false;
+  std::optional<std::size_t> neighbours;
   std::string ground_truth, gt_places, gt_poses;
   std::optional<double> gt_radius;
   unsigned threads = 0;
@@ -182,6 +183,8 @@ void run(MapOptions o) {
   // Everything the user gave is checked before the long computation starts (and before any progress
   // output), so a mistake costs one line and no time.
   pipeline::MapRequest request;
+  if (o.neighbours && !o.sparse) throw InputError("--neighbours", "is the sparse mode's: give --sparse too");
+  if (o.sparse) o.streaming = true;  // the sparse mode streams the scores at its candidates
   request.settings = resolve_settings(o);
   request.preset = o.preset;
   const bool bundled_default = o.inputs.empty();
@@ -227,6 +230,8 @@ void run(MapOptions o) {
   request.truth = {o.ground_truth, o.gt_radius, o.gt_places, o.gt_poses};
   request.streaming = o.streaming;
   request.choose_engine = !o.engine && !o.streaming;
+  request.sparse = o.sparse;
+  if (o.neighbours) request.sparse_neighbours = *o.neighbours;
   const pipeline::MapJob job(request);
   if (o.streaming) check_streaming(o, request.settings, job.input_kind());
   std::vector<std::filesystem::path> inputs(o.inputs.begin(), o.inputs.end());
@@ -298,6 +303,12 @@ const RegisterCommand registered{
                     "(descriptors.npy rows, or images' patch or panorama thumbnails, by cosine) computed on the fly, "
                     "fast engine; "
                     "no scores.npy, similarity.npy nor SeqSLAM baseline, similarity.png a block-max overview");
+       app.add_flag("--sparse", o->sparse,
+                    "as --streaming, but align only each frame's nearest neighbours (FAISS candidates; every other "
+                    "pair scores -1): maps of 10^6 frames in a few GB, the same map where the candidates cover "
+                    "the revisits (docs/scaling.md)");
+       add_number(app, "--neighbours", o->neighbours, kAtLeastOne,
+                  "--sparse: candidates per frame (default 10), nearest first");
        app.add_option(
            "--odometry-gate", o->odometry_gate,
            fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "

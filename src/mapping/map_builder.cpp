@@ -294,7 +294,7 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
 }
 
 MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config,
-                                  std::span<const Pose2> odometry) {
+                                  std::span<const Pose2> odometry, const AlignmentRun& run_alignment) {
   const std::size_t n = enhanced.rows();
   if (n == 0 || enhanced.cols() != n) {
     throw std::invalid_argument("score source must be square and non-empty, got " + std::to_string(n) + " x " +
@@ -376,7 +376,8 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   d.score_threshold = engine.threshold;
 
   const align::ScoreSource scores = minus(enhanced, offset);
-  auto found = c.alignment_set == align::AlignmentSet::locally_optimal
+  auto found = run_alignment ? run_alignment(engine, offset)
+               : c.alignment_set == align::AlignmentSet::locally_optimal
                    ? (c.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
                                 : align::locally_optimal_alignments(scores, engine))
                    : run_engine(scores, engine, c.engine, c.reverse, c.threads);

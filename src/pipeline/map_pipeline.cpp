@@ -16,6 +16,8 @@
 #include "seqtopo/pipeline/engine_choice.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/pipeline/memory_estimate.hpp"
+#include "seqtopo/scale/sparse_alignment.hpp"
+#include "seqtopo/scale/sparse_candidates.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
 #include "seqtopo/similarity/memory.hpp"
 #include "seqtopo/trajectory/ekf_map.hpp"
@@ -112,6 +114,31 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 }
 
+plot::MatrixOverview sparse_overview(const scale::SparseScores& scores, float offset, std::size_t max_side) {
+  plot::MatrixOverview overview;
+  const std::size_t n = scores.rows();
+  overview.block = std::max<std::size_t>(1, (n + max_side - 1) / max_side);
+  const std::size_t b = overview.block, side = (n + b - 1) / b;
+  overview.cells = DenseMatrix<float>(side, side, -std::numeric_limits<float>::infinity());
+  std::vector<std::size_t> stored(side * side, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto cols = scores.row_columns(i);
+    const auto values = scores.row_values(i);
+    for (std::size_t k = 0; k < cols.size(); ++k) {
+      float& cell = overview.cells(i / b, cols[k] / b);
+      cell = std::max(cell, values[k] - offset);
+      ++stored[(i / b) * side + cols[k] / b];
+    }
+  }
+  for (std::size_t r = 0; r < side; ++r) {
+    for (std::size_t c = 0; c < side; ++c) {
+      const std::size_t cells = (std::min(n, (r + 1) * b) - r * b) * (std::min(n, (c + 1) * b) - c * b);
+      if (stored[r * side + c] < cells) overview.cells(r, c) = std::max(overview.cells(r, c), scores.background());
+    }
+  }
+  return overview;
+}
+
 // The streamed replacement of stages 1 and 2: descriptors, then the map on scores computed when the engine
 // reads them. Leaves run.result.scores empty and fills run.overview for similarity.png.
 void map_streamed(const MapRequest& request, std::span<const SequenceInput> inputs, const std::vector<Pose2>& odometry,
@@ -153,10 +180,40 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   const mapping::MapConfig framed = mapping::settings_in_frames(config, config.frames_per_place.value_or(1.0));
   make_streamed(framed.contrast_window);
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
+  // --sparse: the contrast-enhanced score at each frame's nearest neighbours (FAISS), the background elsewhere.
+  std::optional<scale::SparseScores> candidates;
+  if (request.sparse) {
+    scale::CandidateConfig cc;
+    cc.neighbours = request.sparse_neighbours;
+    cc.exclude = framed.min_separation;
+    scale::CandidateStats stats;
+    candidates = scale::sparse_map_scores(*streamed, request.sparse_background, cc, &stats);
+    run.sparse_pairs = stats.pairs;
+    say(observer, fmt::format("      sparse: {} candidate pairs ({} nearest neighbours per frame), background {:.3g}",
+                              stats.pairs, cc.neighbours, request.sparse_background));
+  }
   clock.end();
 
-  clock.begin(" (fast engine)");
-  run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry);
+  // The sparse engine on the candidates minus the offset the run aligns with (the statistics stay those of the
+  // streamed scores, mapping::build_map_from_enhanced).
+  mapping::AlignmentRun sparse_run;
+  if (candidates) {
+    sparse_run = [&](const align::AlignConfig& engine, float offset) {
+      std::vector<scale::SparseEntry> entries;
+      entries.reserve(candidates->entries());
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto cols = candidates->row_columns(i);
+        const auto values = candidates->row_values(i);
+        for (std::size_t k = 0; k < cols.size(); ++k)
+          entries.push_back({static_cast<std::uint32_t>(i), cols[k], values[k] - offset});
+      }
+      const scale::SparseScores shifted(n, n, candidates->background(), std::move(entries));
+      return config.reverse ? scale::sparse_local_alignments_both(shifted, engine, settings.map.threads)
+                            : scale::sparse_local_alignments(shifted, engine);
+    };
+  }
+  clock.begin(candidates ? " (sparse engine on the candidates)" : " (fast engine)");
+  run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run);
   run.result.decisions.frames_per_place_estimated = place.has_value();
   if (place && !place->found) {
     run.result.decisions.notes.insert(run.result.decisions.notes.begin(), mapping::kNoPlaceScaleNote);
@@ -168,6 +225,14 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   run.streamed_cells = stats.cells_computed;
   run.streamed_cache_bytes = stats.cache_bytes;
 
+  if (candidates) {
+    // The overview of the scores the sparse engine aligned: each block's largest candidate, or the background
+    // where the block has cells without one (what matrix_overview would read from candidates->source()).
+    clock.begin(" for similarity.png (from the candidates)");
+    run.overview = sparse_overview(*candidates, run.result.decisions.contrast_offset, 2048);
+    clock.end({{"similarity overview (candidates)", 0}});
+    return;
+  }
   clock.begin(" for similarity.png (one more streamed pass over the lower triangle)");
   // The streamed scores are 0.5 (E + E^T), symmetric bit for bit: half the reads suffice. The overview shows
   // them minus the offset the run aligned with.

@@ -2,6 +2,7 @@
 // The mapping paper end to end, from a similarity matrix: forward and reverse self alignments with
 // the score cap -> per-column pruning -> transitive labels -> topological map, with the significance of
 // every alignment (E-values from the sequence's own score statistics). One call, pure.
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -145,8 +146,12 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
 // with the window in frames: settings_in_frames). config.frames_per_place is the scale (1 when nullopt). The
 // exact engine fills an N x N table whatever the source; a source that is not held in memory wants
 // Engine::fast (1/8 byte per cell, docs/engine.md). seconds_align includes the reads of `enhanced`.
+// `run_alignment`, when given, replaces the engine of step 4 (the statistics' run of step 3 stays the fast engine on
+// `enhanced`): it gets the engine settings and the offset the scores it must align are `enhanced` minus, and
+// returns their alignments best first. The sparse mode aligns its candidate cells this way (pipeline).
+using AlignmentRun = std::function<std::vector<align::LocalAlignment>(const align::AlignConfig& engine, float offset)>;
 MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config = {},
-                                  std::span<const Pose2> odometry = {});
+                                  std::span<const Pose2> odometry = {}, const AlignmentRun& run_alignment = {});
 
 // Steps 3-5 on scores aligned as they are (no offset, no place units): the engine's own view.
 MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config = {},

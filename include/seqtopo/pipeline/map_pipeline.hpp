@@ -64,6 +64,11 @@ struct MapRequest {
   // Never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor, computed when the
   // engine reads them (scale/streaming_similarity.hpp). Needs the fast engine.
   bool streaming = false;
+  // With `streaming`: align only each frame's nearest neighbours (FAISS candidates, scale/sparse_candidates.hpp)
+  // with the sparse engine (scale/sparse_alignment.hpp); every other pair scores `sparse_background`.
+  bool sparse = false;
+  std::size_t sparse_neighbours = 10;
+  float sparse_background = -1.0F;
   // No engine asked for: the run chooses exact, fast or streaming by the memory it needs (engine_choice.hpp)
   // and says which and why.
   bool choose_engine = false;
@@ -111,6 +116,7 @@ struct MapRun {
   plot::MatrixOverview overview;
   std::uint64_t streamed_cells = 0;      // similarity cells computed by the alignment, recomputations included
   std::size_t streamed_cache_bytes = 0;  // the tile cache's capacity [bytes]
+  std::size_t sparse_pairs = 0;          // --sparse: candidate cells aligned (both triangles)
 };
 
 // Lines about the work as it goes (stages, sizes, memory estimates); the library never prints.
