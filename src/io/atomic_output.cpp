@@ -81,6 +81,11 @@ void sync_path(const fs::path& p, bool directory) {
 void write_bytes(const fs::path& path, std::initializer_list<std::string_view> pieces, const std::string& subject) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) throw InputError(subject, "cannot open for writing: " + error_text(errno));
+  // The file's blocks at once, not page by page as the writes come: several times faster for the large .npy
+  // files. KEEP_SIZE: a failed write never leaves a zero tail that looks like content. Advisory (EOPNOTSUPP).
+  std::size_t total = 0;
+  for (const std::string_view bytes : pieces) total += bytes.size();
+  if (total > 0) (void)::fallocate(fd, FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(total));
   for (const std::string_view bytes : pieces) {
     std::size_t done = 0;
     while (done < bytes.size()) {
