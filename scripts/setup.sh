@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
   libopencv-dev libeigen3-dev libceres-dev libtbb-dev
-  libcli11-dev nlohmann-json3-dev libfmt-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   emboss libedlib-dev libparasail-dev graphviz
   libfaiss-dev libopenmpi-dev openmpi-bin

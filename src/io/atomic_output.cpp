@@ -78,19 +78,26 @@ void sync_path(const fs::path& p, bool directory) {
   if (rc != 0 && !directory && error != EINVAL) throw InputError(p.string(), "cannot sync: " + error_text(error));
 }
 
-void write_bytes(const fs::path& path, std::string_view bytes, const std::string& subject) {
+void write_bytes(const fs::path& path, std::initializer_list<std::string_view> pieces, const std::string& subject) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) throw InputError(subject, "cannot open for writing: " + error_text(errno));
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int error = errno;
-      ::close(fd);
-      throw InputError(subject, "write failed: " + error_text(error));
+  // The file's blocks at once, not page by page as the writes come: several times faster for the large .npy
+  // files. KEEP_SIZE: a failed write never leaves a zero tail that looks like content. Advisory (EOPNOTSUPP).
+  std::size_t total = 0;
+  for (const std::string_view bytes : pieces) total += bytes.size();
+  if (total > 0) (void)::fallocate(fd, FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(total));
+  for (const std::string_view bytes : pieces) {
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const int error = errno;
+        ::close(fd);
+        throw InputError(subject, "write failed: " + error_text(error));
+      }
+      done += static_cast<std::size_t>(n);
     }
-    done += static_cast<std::size_t>(n);
   }
   if (::fsync(fd) != 0 && errno != EINVAL) {
     const int error = errno;
@@ -428,7 +435,7 @@ void write_file_atomic(const fs::path& path, std::string_view bytes) {
     track_locked(r, tmp);
   }
   try {
-    write_bytes(tmp, bytes, path.string());
+    write_bytes(tmp, {bytes}, path.string());
   } catch (...) {
     fs::remove(tmp, ec);
     untrack(tmp);
@@ -581,10 +588,15 @@ fs::path OutputDirectory::staged(const std::string& name) {
   return path;
 }
 
-void OutputDirectory::write(const std::string& name, std::string_view bytes) {
+void OutputDirectory::write(const std::string& name, std::string_view bytes) { write_pieces(name, {bytes}); }
+
+void OutputDirectory::write_pieces(const std::string& name, std::initializer_list<std::string_view> pieces) {
   const fs::path path = staged(name);
-  write_bytes(path, bytes, (dir_ / name).string());
-  hashes_[fs::path(name).generic_string()] = {bytes.size(), sha256_hex(bytes)};
+  write_bytes(path, pieces, (dir_ / name).string());
+  Sha256 h;
+  std::uint64_t size = 0;
+  for (const std::string_view bytes : pieces) h.update(bytes), size += bytes.size();
+  hashes_[fs::path(name).generic_string()] = {size, h.hex()};
 }
 
 std::vector<fs::path> OutputDirectory::commit() {
@@ -611,7 +623,7 @@ std::vector<fs::path> OutputDirectory::commit() {
     }
     manifest.files.push_back(std::move(e));
   }
-  write_bytes(staging_ / kManifestName, manifest_json(manifest), (dir_ / kManifestName).string());
+  write_bytes(staging_ / kManifestName, {manifest_json(manifest)}, (dir_ / kManifestName).string());
   for (const auto& f : tree.folders) sync_path(staging_ / f, true);
   sync_path(staging_, true);
 

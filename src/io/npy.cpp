@@ -173,7 +173,7 @@ DenseMatrix<T> read_npy_matrix(const std::filesystem::path& path) {
 }
 
 template <typename T>
-std::string encode_npy(const DenseMatrix<T>& matrix) {
+std::string npy_header(const DenseMatrix<T>& matrix) {
   static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>);
   std::string dict = std::string("{'descr': '") + (sizeof(T) == 4 ? "<f4" : "<f8") +
                      "', 'fortran_order': False, 'shape': (" + std::to_string(matrix.rows) + ", " +
@@ -188,7 +188,18 @@ std::string encode_npy(const DenseMatrix<T>& matrix) {
   const auto len = static_cast<std::uint16_t>(dict.size());
   out.append(reinterpret_cast<const char*>(&len), 2);
   out += dict;
-  out.append(reinterpret_cast<const char*>(matrix.values.data()), matrix.values.size() * sizeof(T));
+  return out;
+}
+
+template <typename T>
+std::string_view npy_body(const DenseMatrix<T>& matrix) {
+  return {reinterpret_cast<const char*>(matrix.values.data()), matrix.values.size() * sizeof(T)};
+}
+
+template <typename T>
+std::string encode_npy(const DenseMatrix<T>& matrix) {
+  std::string out = npy_header(matrix);
+  out += npy_body(matrix);
   return out;
 }
 
@@ -199,6 +210,10 @@ void write_npy(const std::filesystem::path& path, const DenseMatrix<T>& matrix) 
 
 template DenseMatrix<float> read_npy_matrix<float>(const std::filesystem::path&);
 template DenseMatrix<double> read_npy_matrix<double>(const std::filesystem::path&);
+template std::string npy_header<float>(const DenseMatrix<float>&);
+template std::string npy_header<double>(const DenseMatrix<double>&);
+template std::string_view npy_body<float>(const DenseMatrix<float>&);
+template std::string_view npy_body<double>(const DenseMatrix<double>&);
 template std::string encode_npy<float>(const DenseMatrix<float>&);
 template std::string encode_npy<double>(const DenseMatrix<double>&);
 template void write_npy<float>(const std::filesystem::path&, const DenseMatrix<float>&);

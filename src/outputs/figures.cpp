@@ -2,25 +2,36 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace seqtopo::outputs {
 
-plot::MatrixFigureConfig map_similarity_figure(const pipeline::MapRun& run) {
+DrawnMatrix::DrawnMatrix(const pipeline::MapRun& run) {
+  if (run.streaming) {
+    cells_ = &run.overview.cells;
+    block_ = run.overview.block;
+  } else if (std::max(run.result.scores.rows, run.result.scores.cols) > kMaxDrawnSide) {
+    own_ = plot::matrix_overview(run.result.scores, kMaxDrawnSide);
+    cells_ = &own_.cells;
+    block_ = own_.block;
+  } else {
+    cells_ = &run.result.scores;
+  }
+}
+
+plot::MatrixFigureConfig map_similarity_figure(const pipeline::MapRun& run, std::size_t block) {
   plot::MatrixFigureConfig c;
   const std::size_t n = run.result.map.labels.size();
   c.rows = c.cols = n;
   c.row_label = "image i";
   c.column_label = "image j";
-  if (run.streaming && run.overview.block > 1) {
-    c.block = run.overview.block;
-    c.title = fmt::format("Contrast-enhanced similarity of {} images (block maxima, {} x {} per pixel)", n,
-                          run.overview.block, run.overview.block);
-    c.value_label = "score [sd]";
-  } else if (run.streaming || run.map_config.contrast_window > 0) {  // a streamed overview of block 1: the scores
-    c.title = fmt::format("Contrast-enhanced similarity of {} images", n);
-    c.value_label = "score [sd]";
-  } else {
-    c.title = fmt::format("Similarity S = 1 - kappa D of {} images", n);
-    c.value_label = "similarity S";
+  const bool contrast = run.streaming || run.map_config.contrast_window > 0;
+  c.title = contrast ? fmt::format("Contrast-enhanced similarity of {} images", n)
+                     : fmt::format("Similarity S = 1 - kappa D of {} images", n);
+  c.value_label = contrast ? "score [sd]" : "similarity S";
+  if (block > 1) {
+    c.block = block;
+    c.title += fmt::format(" (block maxima, {} x {} per pixel)", block, block);
   }
   c.legend = {{"alignment, pruned", {40, 110, 255}, plot::LegendEntry::Mark::line},
               {"retained loop closures", {255, 30, 30}, plot::LegendEntry::Mark::line}};

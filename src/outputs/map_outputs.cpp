@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <future>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -134,31 +135,20 @@ std::vector<plot::Polyline> alignment_overlays(const pipeline::MapRun& run, std:
   return lines;
 }
 
-}  // namespace
+// The PNG figures of a run: pure computation on the run, so they may be encoded beside the file writes.
+struct MapFigures {
+  std::string similarity, metric_map, pr_curve;  // empty: not drawn
+};
 
-void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
+MapFigures encode_map_figures(const pipeline::MapRun& run) {
+  MapFigures f;
   const auto& result = run.result;
-  const auto& map = result.map;
-
-  out.write("map.json", formats::map_json(result, run.sessions));
-  out.write("alignments.json", formats::alignments_json(result));
-  out.write("loop_closures.csv", formats::loop_closures_csv(result));
-
-  if (run.streaming) {
-    out.write("similarity.png",
-              plot::encode_png(plot::matrix_figure(run.overview.cells, alignment_overlays(run, run.overview.block),
-                                                   map_similarity_figure(run))));
-  } else {
-    out.write("similarity.npy", io::encode_npy(run.matrices.front()));
-    out.write("scores.npy", io::encode_npy(result.scores));
+  {
     // The picture shows what was aligned: S itself, or its contrast-enhanced form (see the report).
-    out.write("similarity.png", plot::encode_png(plot::matrix_figure(result.scores, alignment_overlays(run, 1),
-                                                                     map_similarity_figure(run))));
+    const DrawnMatrix drawn(run);
+    f.similarity = plot::encode_png(plot::matrix_figure(drawn.cells(), alignment_overlays(run, drawn.block()),
+                                                        map_similarity_figure(run, drawn.block())));
   }
-
-  out.write("topology.dot", topology_dot(map));
-  render_svg(out.staged("topology.dot"), out.staged("topology.svg"));
-
   if (!run.odometry.empty()) {
     std::vector<std::pair<std::size_t, std::size_t>> loops;
     for (const auto& p : result.pruning.pairs) loops.emplace_back(p.i, p.j);
@@ -168,8 +158,48 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
     } else {
       panels.push_back({"(b) topological map with odometry (pose graph)", run.pose_graph});
     }
-    out.write("metric_map.png", plot::encode_png(plot::trajectory_map_image(panels, map.labels, loops)));
+    f.metric_map = plot::encode_png(plot::trajectory_map_image(panels, result.map.labels, loops));
   }
+  if (run.metrics) {
+    std::vector<plot::Curve> curves(run.baseline_metrics ? 2 : 1);
+    curves[0].label = "seqtopo alignment";
+    curves[0].rgb = {220, 30, 30};
+    for (const auto& p : run.metrics->curve) curves[0].recall_precision.emplace_back(p.recall, p.precision);
+    if (run.baseline_metrics) {
+      curves[1].label = "SeqSLAM-style baseline";
+      curves[1].rgb = {40, 90, 220};
+      for (const auto& p : run.baseline_metrics->curve) curves[1].recall_precision.emplace_back(p.recall, p.precision);
+    }
+    f.pr_curve = plot::encode_png(plot::pr_curve_image(curves));
+  }
+  return f;
+}
+
+}  // namespace
+
+void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
+  const auto& result = run.result;
+  const auto& map = result.map;
+  // The figures (PNG encoding of a large matrix is a good part of this stage) are drawn on a second thread while
+  // the files are written, unless the run has one thread; their bytes are the same either way.
+  auto figures = std::async(run.map_config.threads > 1 ? std::launch::async : std::launch::deferred,
+                            [&run] { return encode_map_figures(run); });
+
+  out.write("map.json", formats::map_json(result, run.sessions));
+  out.write("alignments.json", formats::alignments_json(result));
+  out.write("loop_closures.csv", formats::loop_closures_csv(result));
+  if (!run.streaming) {
+    out.write_pieces("similarity.npy", {io::npy_header(run.matrices.front()), io::npy_body(run.matrices.front())});
+    out.write_pieces("scores.npy", {io::npy_header(result.scores), io::npy_body(result.scores)});
+  }
+
+  out.write("topology.dot", topology_dot(map));
+  render_svg(out.staged("topology.dot"), out.staged("topology.svg"));
+
+  const MapFigures f = figures.get();
+  out.write("similarity.png", f.similarity);
+  if (!f.metric_map.empty()) out.write("metric_map.png", f.metric_map);
+  if (!f.pr_curve.empty()) out.write("pr_curve.png", f.pr_curve);
 
   if (run.metrics || run.ate || run.topology) {
     nlohmann::json metrics = nlohmann::json::object();
@@ -188,18 +218,6 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
       metrics["loop_closure"]["pr_curve"] = curve;
       metrics["loop_closure"]["ranked_by"] = "confidence";
       if (run.calibration) metrics["loop_closure"]["calibration"] = detail::calibration_json(*run.calibration, "pairs");
-
-      std::vector<plot::Curve> curves(run.baseline_metrics ? 2 : 1);
-      curves[0].label = "seqtopo alignment";
-      curves[0].rgb = {220, 30, 30};
-      for (const auto& p : run.metrics->curve) curves[0].recall_precision.emplace_back(p.recall, p.precision);
-      if (run.baseline_metrics) {
-        curves[1].label = "SeqSLAM-style baseline";
-        curves[1].rgb = {40, 90, 220};
-        for (const auto& p : run.baseline_metrics->curve)
-          curves[1].recall_precision.emplace_back(p.recall, p.precision);
-      }
-      out.write("pr_curve.png", plot::encode_png(plot::pr_curve_image(curves)));
     }
     if (run.topology) {
       const auto& t = *run.topology;

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "figures.hpp"
 #include "report_data.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 #include "seqtopo/report/html_report.hpp"
@@ -262,17 +263,18 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
 
   // The matrix view: the aligned scores (or their block-max overview), alignments and loop closures over it.
   html.heading("Similarity matrix and alignments");
+  const DrawnMatrix drawn(run);  // what similarity.png draws
   const std::string what = run.streaming ? "Contrast-enhanced similarity (streamed: block maxima)"
-                           : run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity"
-                                                                : "Similarity S = 1 - kappa D";
+                                         : (run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity"
+                                                                               : "Similarity S = 1 - kappa D") +
+                                               (drawn.block() > 1 ? std::string(" (block maxima)") : std::string());
   html.raw(detail::matrix_view_markup(
       what +
       " of every pair of images (bright = similar): kept alignments red, pruned ones dashed blue, each "
       "retained loop-closure pair a yellow marker. Scroll or use the buttons to zoom, drag to pan; hover a "
       "marker to see its two images, click a cell for any pair."));
   html.raw("<div id=\"alignment-table\"></div>\n");
-  const auto& cells = run.streaming ? run.overview.cells : result.scores;
-  data["matrix"] = detail::matrix_json(cells, n, n, "image i", "image j",
+  data["matrix"] = detail::matrix_json(drawn.cells(), n, n, "image i", "image j",
                                        run.streaming || run.map_config.contrast_window > 0 ? "score [sd]" : "S");
   nlohmann::json alignments = nlohmann::json::array();
   for (std::size_t k = 0; k < result.alignments.size(); ++k) {
@@ -330,9 +332,11 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
                                         static_cast<double>(run.streamed_cells) / (nn * nn)));
     parameters.emplace_back("tile cache [MB]",
                             fmt::format("{:.1f}", static_cast<double>(run.streamed_cache_bytes) / 1e6));
+  }
+  if (drawn.block() > 1) {
     parameters.emplace_back("similarity.png", fmt::format("an overview: each pixel the maximum of a block of {0} x {0} "
                                                           "scores, the alignments drawn over it",
-                                                          run.overview.block));
+                                                          drawn.block()));
   }
   std::string names;
   for (std::size_t k = 0; k < run.descriptor_names.size(); ++k) {
@@ -358,15 +362,16 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   if (run.metrics) {
     html.png("Precision-recall, sweeping the score threshold", read_file(out.staged("pr_curve.png")), "pr_curve.png");
   }
-  const std::string similarity_png = read_file(out.staged("similarity.png"));
-  if (similarity_png.size() <= detail::kMaxInlinedFigure) {
-    html.png(what + " (bright = similar) with the alignments: kept pairs red, pruned blue", similarity_png,
-             "similarity.png");
+  // Its size first: a large figure is not read back only to be left out.
+  const auto similarity_bytes = std::filesystem::file_size(out.staged("similarity.png"));
+  if (similarity_bytes <= detail::kMaxInlinedFigure) {
+    html.png(what + " (bright = similar) with the alignments: kept pairs red, pruned blue",
+             read_file(out.staged("similarity.png")), "similarity.png");
   } else {
     html.paragraph(
         fmt::format("similarity.png ({:.1f} MB) is in the folder beside this report, not inlined: the "
                     "interactive view above shows the same matrix.",
-                    static_cast<double>(similarity_png.size()) / 1e6));
+                    static_cast<double>(similarity_bytes) / 1e6));
   }
   html.svg(result.map.places.size() <= kMaxDrawnPlaces
                ? "Places (red: junctions, blue: revisited places) and their connections"

@@ -40,6 +40,27 @@ MatrixOverview matrix_overview(const align::ScoreSource& scores, const OverviewC
   return overview;
 }
 
+MatrixOverview matrix_overview(const DenseMatrix<float>& scores, std::size_t max_side) {
+  if (max_side == 0) throw std::invalid_argument("overview max_side must be at least 1");
+  MatrixOverview overview;
+  const std::size_t rows = scores.rows, cols = scores.cols;
+  overview.block = std::max<std::size_t>(1, (std::max(rows, cols) + max_side - 1) / max_side);
+  const std::size_t b = overview.block;
+  overview.cells = DenseMatrix<float>((rows + b - 1) / b, (cols + b - 1) / b, -std::numeric_limits<float>::infinity());
+  for (std::size_t i = 0; i < rows; ++i) {
+    const float* row = scores.values.data() + i * cols;
+    float* out = overview.cells.values.data() + (i / b) * overview.cells.cols;
+    for (std::size_t c = 0, j = 0; c < overview.cells.cols; ++c) {
+      float cell = out[c];
+      for (const std::size_t end = std::min(cols, j + b); j < end; ++j) {
+        if (row[j] > cell) cell = row[j];  // false for NaN: skipped
+      }
+      out[c] = cell;
+    }
+  }
+  return overview;
+}
+
 double overview_coordinate(double x, std::size_t block) {
   // matrix_image() draws cell c at (c + 0.5) pixels per cell; cell x of the matrix covers
   // [x, x + 1) / block in overview cells, whose centre is (x + 0.5) / block.

@@ -1,11 +1,16 @@
 // `seqtopo map` as a user runs it: on the bundled corridor data with its ground truth (golden: the
-// accuracy must stay within the stated band), deterministic for any thread count, and clean errors.
+// accuracy must stay within the stated band), deterministic for any thread count (the figures, encoded beside the
+// file writes, too), a large matrix drawn as its overview, and clean errors.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "common/cli_run.hpp"
 #include "common/temp_dir.hpp"
@@ -90,9 +95,52 @@ TEST_F(MapCommand, SameOutputsForAnyThreadCount) {
   ASSERT_EQ(run_cli("map --threads 1 --out " + one.string()).status, 0);
   ASSERT_EQ(run_cli("map --threads 2 --out " + two.string()).status, 0);
   for (const char* name : {"map.json", "alignments.json", "loop_closures.csv", "similarity.npy", "scores.npy",
-                           "metrics.json", "topology.dot", "similarity.png"}) {
+                           "metrics.json", "topology.dot", "topology.svg", "similarity.png", "pr_curve.png"}) {
     EXPECT_EQ(read_file(one / name), read_file(two / name)) << name;
   }
+}
+
+// The width and height of a PNG, from its IHDR chunk.
+std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& png) {
+  const auto word = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 4; ++k) v = v << 8U | static_cast<unsigned char>(png.at(at + k));
+    return v;
+  };
+  EXPECT_EQ(png.substr(12, 4), "IHDR");
+  return {word(16), word(20)};
+}
+
+// A matrix of more than 2048 images is drawn as its overview of block maxima (2100 images: 2 x 2 scores per
+// pixel, 1050 pixels a side plus the axes' margins), with the same bytes for any thread count; a smaller one
+// keeps one pixel per image or more (the corridor: 84 images drawn 7 pixels each, 588).
+TEST_F(MapCommand, LargeMatrixFigureIsItsBlockMaxOverview) {
+  constexpr std::size_t n = 2100;
+  seqtopo::DenseMatrix<float> s(n, n, 0.2F);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> noise(0.2F, 0.3F);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j <= i; ++j) s(i, j) = s(j, i) = noise(rng);
+  }
+  for (std::size_t i = 1200; i < n; ++i) s(i, i - 1200) = s(i - 1200, i) = 0.9F;  // a revisit
+  for (std::size_t i = 0; i < n; ++i) s(i, i) = 1.0F;
+  seqtopo::io::write_npy(dir_.path / "big.npy", s);
+  const fs::path one = dir_.path / "one", two = dir_.path / "two";
+  auto r = run_cli("map " + (dir_.path / "big.npy").string() + " --threads 1 --out " + one.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run_cli("map " + (dir_.path / "big.npy").string() + " --threads 2 --out " + two.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string png = read_file(one / "similarity.png");
+  EXPECT_EQ(png, read_file(two / "similarity.png"));
+  const auto [width, height] = png_size(png);
+  EXPECT_EQ(width, 78U + 1050U + 118U);  // margins: row axis 78, colour bar 118 (plot/matrix_image.cpp)
+  EXPECT_GT(height, 1050U);
+  EXPECT_LT(height, 1050U + 200U);
+  EXPECT_NE(read_file(one / "report.html").find("each pixel the maximum of a block of 2 x 2 scores"),
+            std::string::npos);
+
+  ASSERT_EQ(run_cli("map --threads 2 --out " + (dir_.path / "corridor").string()).status, 0);
+  EXPECT_EQ(png_size(read_file(dir_.path / "corridor" / "similarity.png")).first, 78U + 588U + 118U);
 }
 
 TEST_F(MapCommand, BadInputsGiveOneLineAndNoOutput) {

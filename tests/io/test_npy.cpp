@@ -72,6 +72,10 @@ TEST_F(Npy, RoundTripFloatAndDouble) {
       EXPECT_EQ(header.dtype, "<f8");
       EXPECT_EQ(header.shape, (std::vector<std::size_t>{rows, cols}));
       EXPECT_EQ(header.data_offset % 64, 0U) << "numpy aligns the data to 64 bytes";
+      // The two parts written without a copy are the same bytes.
+      EXPECT_EQ(npy_header(d) + std::string(npy_body(d)), encode_npy(d));
+      EXPECT_EQ(npy_header(f).size(), header.data_offset);
+      EXPECT_EQ(npy_header(f) + std::string(npy_body(f)), encode_npy(f));
     }
   }
 }

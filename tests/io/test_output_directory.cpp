@@ -96,6 +96,27 @@ TEST_F(OutputDirectoryTest, CommitReplacesTheWholeSet) {
   EXPECT_EQ(entries(dir_.path), 1U) << "no staging folder or old set left beside it";
 }
 
+// A file written in pieces is their concatenation, and the manifest has its size and hash (an .npy's header and
+// values, written without a copy into one buffer).
+TEST_F(OutputDirectoryTest, PiecesAreOneFile) {
+  const std::string header = "\x93NUMPY header\n", body(100000, '\x7f');
+  {
+    OutputDirectory out(out_);
+    out.write_pieces("m.npy", {header, "", body});
+    out.write_pieces("empty.bin", {});
+    out.commit();
+  }
+  EXPECT_EQ(read_file(out_ / "m.npy"), header + body);
+  EXPECT_EQ(read_file(out_ / "empty.bin"), "");
+  const Manifest m = read_manifest(out_);
+  ASSERT_EQ(m.files.size(), 2U);
+  EXPECT_EQ(m.files[1].name, "m.npy");
+  EXPECT_EQ(m.files[1].bytes, header.size() + body.size());
+  EXPECT_EQ(m.files[1].sha256, sha256_hex(header + body));
+  EXPECT_EQ(m.files[0].sha256, sha256_hex(""));
+  EXPECT_EQ(verify_manifest(out_), "");
+}
+
 TEST_F(OutputDirectoryTest, FilesWrittenByOthersAreListedToo) {
   {
     OutputDirectory out(out_, {.inputs = {}, .command = "seqtopo test"});

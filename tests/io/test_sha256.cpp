@@ -1,10 +1,11 @@
 // io::Sha256 beyond the short test vectors (test_output_directory.cpp): a message whose padding takes a third block,
 // every length around the padding's block boundaries against coreutils' sha256sum (another implementation), and the
-// incremental interface against the one-shot one for every split of a message.
+// incremental interface against the one-shot one for every split of a message, and moves.
 #include <gtest/gtest.h>
 
 #include <cstddef>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,24 @@ TEST(Sha256, PiecesGiveTheDigestOfTheWhole) {
     }
     EXPECT_EQ(bytes.hex(), whole) << "length " << length;
   }
+}
+
+// The digest object owns OpenSSL's context: a move hands it over; a spent or moved-from object refuses input
+// instead of hashing into freed state.
+TEST(Sha256, MovesAndMisuse) {
+  const std::string m = message(1000);
+  Sha256 h;
+  h.update(std::string_view(m).substr(0, 400));
+  Sha256 moved = std::move(h);
+  moved.update(std::string_view(m).substr(400));
+  EXPECT_EQ(moved.hex(), sha256_hex(m));
+  EXPECT_THROW(moved.update("x"), std::logic_error);
+  EXPECT_THROW((void)moved.hex(), std::logic_error);
+  EXPECT_THROW(h.update("x"), std::logic_error);  // NOLINT(bugprone-use-after-move): the moved-from state is defined
+  Sha256 assigned;
+  assigned = Sha256();
+  assigned.update("abc");
+  EXPECT_EQ(assigned.hex(), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
 }
 
 }  // namespace

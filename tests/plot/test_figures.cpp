@@ -1,12 +1,14 @@
 // The static figures have what a paper needs, checked on their pixels: the matrix figure's axes (tick marks in
 // the margins at the tick positions), its colour bar (a gradient from white to black) and its legend; the PR
 // curve's precision label beside its axis (not on the 1.0 tick), a curve at precision 1.0 inside the frame and
-// the first method drawn on top; the metric map's legend.
+// the first method drawn on top; the metric map's legend. The display range of a large matrix from a sample.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <random>
 #include <set>
 
 #include "seqtopo/plot/matrix_image.hpp"
@@ -121,6 +123,51 @@ TEST(MatrixFigure, HasIndexTicksAColourBarAndALegend) {
                     return is(img, a, b, {40, 110, 255});
                   }),
             20);
+}
+
+// The exact percentiles (a full sort) of the finite values.
+ValueRange sorted_percentiles(const DenseMatrix<float>& m) {
+  std::vector<float> v;
+  for (float x : m.values) {
+    if (std::isfinite(x)) v.push_back(x);
+  }
+  std::sort(v.begin(), v.end());
+  return {v[v.size() / 100], v[v.size() - 1 - v.size() / 100]};
+}
+
+// Up to kDisplayRangeSample values the display range is exact; above, the percentiles of a strided sample that
+// sees every column, near the exact ones.
+TEST(DisplayRange, ExactWhenSmallSampledWhenLarge) {
+  std::mt19937 rng(7);
+  std::normal_distribution<float> noise(0.0F, 1.0F);
+  DenseMatrix<float> small(1000, 1000);  // 10^6 values <= 2^20: every value
+  for (auto& v : small.values) v = noise(rng);
+  small(3, 4) = std::numeric_limits<float>::quiet_NaN();
+  const ValueRange exact = sorted_percentiles(small), got = display_range(small);
+  EXPECT_EQ(got.lo, exact.lo);
+  EXPECT_EQ(got.hi, exact.hi);
+
+  DenseMatrix<float> large(3600, 3600);
+  for (auto& v : large.values) v = noise(rng);
+  const ValueRange reference = sorted_percentiles(large), sampled = display_range(large);
+  EXPECT_NEAR(sampled.lo, reference.lo, 0.02);  // the 1st percentile of N(0, 1) is -2.33
+  EXPECT_NEAR(sampled.hi, reference.hi, 0.02);
+  const ValueRange again = display_range(large);
+  EXPECT_EQ(again.lo, sampled.lo);
+  EXPECT_EQ(again.hi, sampled.hi);
+
+  // 1100 x 1100 values give stride 2, which would see only the even columns: the stride is raised to one coprime
+  // to the row length, and the odd columns' value is seen.
+  DenseMatrix<float> stripes(1100, 1100);
+  for (std::size_t i = 0; i < stripes.rows; ++i) {
+    for (std::size_t j = 0; j < stripes.cols; ++j) stripes(i, j) = static_cast<float>(j % 2);
+  }
+  const ValueRange r = display_range(stripes);
+  EXPECT_EQ(r.lo, 0.0F);
+  EXPECT_EQ(r.hi, 1.0F);
+  // min..max (not robust) looks at every value
+  large(1234, 2345) = 40.0F;
+  EXPECT_EQ(display_range(large, false).hi, 40.0F);
 }
 
 TEST(PrCurve, PrecisionOneInsideTheFrameAndTheMethodOnTop) {

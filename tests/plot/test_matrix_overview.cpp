@@ -1,4 +1,5 @@
-// The block-max overview against a brute-force block maximum, for full and symmetric reads.
+// The block-max overview against a brute-force block maximum, for full and symmetric reads and for a matrix in
+// memory.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -82,6 +83,36 @@ TEST(MatrixOverview, SkipsNaNAndRefusesMisuse) {
   EXPECT_EQ(overview.cells(0, 0), 0.25F);
   EXPECT_THROW(matrix_overview(align::ScoreSource::dense(m.values, 4, 4), {.max_side = 0}), std::invalid_argument);
   EXPECT_THROW(matrix_overview(align::ScoreSource::dense(m.values, 2, 8), {.symmetric = true}), std::invalid_argument);
+}
+
+// The overview of a matrix in memory (a large dense figure): the documented block and size, the same cells as a
+// brute-force block maximum and as the score-source overview, NaN skipped.
+TEST(MatrixOverview, DenseEqualsBruteForceBlockMax) {
+  struct Case {
+    std::size_t rows, cols, max_side, block;
+  };
+  const Case cases[] = {{1, 1, 4, 1},       {7, 7, 7, 1},      {7, 7, 6, 2},       {23, 23, 5, 5},
+                        {50, 31, 8, 7},     {31, 50, 8, 7},    {101, 101, 10, 11}, {2049, 2049, 2048, 2},
+                        {3600, 7, 2048, 2}, {4097, 3, 2048, 3}};
+  for (const Case& c : cases) {
+    auto m = random_matrix(c.rows, c.cols, static_cast<unsigned>(c.rows * 7 + c.cols), false);
+    m.values[m.values.size() / 2] = std::numeric_limits<float>::quiet_NaN();
+    const auto overview = matrix_overview(m, c.max_side);
+    EXPECT_EQ(overview.block, c.block) << c.rows << " x " << c.cols;
+    EXPECT_EQ(overview.cells.rows, (c.rows + c.block - 1) / c.block);
+    EXPECT_EQ(overview.cells.cols, (c.cols + c.block - 1) / c.block);
+    EXPECT_LE(std::max(overview.cells.rows, overview.cells.cols), c.max_side);
+    EXPECT_EQ(overview.cells.values, brute_force(m, c.block).values) << c.rows << " x " << c.cols;
+    EXPECT_EQ(
+        overview.cells.values,
+        matrix_overview(align::ScoreSource::dense(m.values, c.rows, c.cols), {.max_side = c.max_side}).cells.values);
+  }
+  // 3,600 images: 1800 x 1800 cells of 2 x 2 scores
+  const DenseMatrix<float> nordland(3600, 3600, 0.5F);
+  const auto overview = matrix_overview(nordland);
+  EXPECT_EQ(overview.block, 2U);
+  EXPECT_EQ(overview.cells.rows, 1800U);
+  EXPECT_THROW(matrix_overview(nordland, 0), std::invalid_argument);
 }
 
 TEST(MatrixOverview, CoordinatesLandInTheCellThatHoldsThePosition) {

@@ -18,6 +18,7 @@
 // that writes beside them; remove_staged_outputs_and_exit() removes this process's own (signal handlers).
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <string_view>
@@ -71,6 +72,8 @@ class OutputDirectory {
   // Writes `name` and keeps its SHA-256 for the manifest: a file written here is not rewritten through staged()
   // (commit() hashes again only files whose size differs from what write() wrote, and those writers made).
   void write(const std::string& name, std::string_view bytes);
+  // The same for a file of several pieces, one after the other (a header and a large body not copied into one).
+  void write_pieces(const std::string& name, std::initializer_list<std::string_view> pieces);
   // Writes the manifest and puts the staged set in place of the folder's old one; returns the final paths of
   // the staged names (not the manifest's).
   std::vector<std::filesystem::path> commit();

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "seqtopo/core/dense_matrix.hpp"
@@ -30,5 +31,11 @@ void write_npy(const std::filesystem::path& path, const DenseMatrix<T>& matrix);
 // The same bytes, for callers that stage files themselves.
 template <typename T>
 std::string encode_npy(const DenseMatrix<T>& matrix);
+// encode_npy() in two parts, the header and the values as they are in memory (a view of `matrix`), for writing
+// a large matrix without a copy.
+template <typename T>
+std::string npy_header(const DenseMatrix<T>& matrix);
+template <typename T>
+std::string_view npy_body(const DenseMatrix<T>& matrix);
 
 }  // namespace seqtopo::io

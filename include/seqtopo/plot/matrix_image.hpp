@@ -31,10 +31,14 @@ struct MatrixImageConfig {
 RgbImage matrix_image(const DenseMatrix<float>& matrix, const std::vector<Polyline>& overlays = {},
                       const MatrixImageConfig& config = {});
 
-// The values drawn black and white: the 1st and 99th percentiles (robust) or the minimum and maximum.
+// The values drawn black and white: the 1st and 99th percentiles (robust) or the minimum and maximum of the
+// finite values. A matrix of more than kDisplayRangeSample values has the percentiles of a deterministic sample:
+// every s-th value in row-major order, s = ceil(size / kDisplayRangeSample) raised to the first stride coprime
+// to the number of columns (so that every column is sampled). Smaller matrices use every value.
 struct ValueRange {
   float lo = 0, hi = 1;
 };
+inline constexpr std::size_t kDisplayRangeSample = std::size_t{1} << 20U;
 ValueRange display_range(const DenseMatrix<float>& matrix, bool robust = true);
 
 // A grey-level PNG (one channel) of the matrix alone, one pixel per cell up to max_size (block means above),

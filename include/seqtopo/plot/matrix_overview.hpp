@@ -30,6 +30,10 @@ struct MatrixOverview {
 // skipped (a block of NaN only is -infinity).
 MatrixOverview matrix_overview(const align::ScoreSource& scores, const OverviewConfig& config = {});
 
+// The same overview of a matrix in memory (a figure of a large dense matrix: block maxima, as for a streamed one).
+// max_side = 0 throws std::invalid_argument.
+MatrixOverview matrix_overview(const DenseMatrix<float>& scores, std::size_t max_side = 2048);
+
 // Where matrix position x (a row or column, in score cells) falls in the overview, in overview cells,
 // such that matrix_image() draws it at the centre of the overview cell that holds it.
 double overview_coordinate(double x, std::size_t block);
