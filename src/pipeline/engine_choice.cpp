@@ -47,7 +47,8 @@ namespace {
 std::size_t peak_of(MapRequest request, InputKind kind, std::size_t images, MapEngine engine) {
   request.settings.map.engine =
       engine == MapEngine::exact ? mapping::MapConfig::Engine::exact : mapping::MapConfig::Engine::fast;
-  request.streaming = engine == MapEngine::streaming;
+  request.streaming = engine == MapEngine::streaming || engine == MapEngine::sparse;
+  request.sparse = engine == MapEngine::sparse;
   if (request.streaming) streaming_settings(request.settings, kind);
   return estimate_map_memory(map_memory_input(request, kind, images)).peak;
 }
@@ -79,6 +80,14 @@ EngineChoice choose_engine(const MapRequest& request, InputKind kind, std::size_
                           "a quarter of {}; streamed it needs about {}",
                           similarity::format_bytes(fast), total, similarity::format_bytes(streamed))};
     }
+    const std::size_t sparse = peak_of(request, kind, images, MapEngine::sparse);
+    if (sparse <= *budget / 2) {
+      return {MapEngine::sparse,
+              fmt::format("engine sparse: streamed every pair the run would need {}, more than half of {}; aligning "
+                          "each frame's {} nearest neighbours it needs about {}",
+                          similarity::format_bytes(streamed), total, request.sparse_neighbours,
+                          similarity::format_bytes(sparse))};
+    }
   }
   return {MapEngine::fast,
           fmt::format("engine fast: the run needs about {}{}", similarity::format_bytes(fast),
@@ -88,7 +97,8 @@ EngineChoice choose_engine(const MapRequest& request, InputKind kind, std::size_
 std::string apply_engine_choice(MapRequest& request, InputKind kind, const EngineChoice& choice) {
   request.settings.map.engine =
       choice.engine == MapEngine::exact ? mapping::MapConfig::Engine::exact : mapping::MapConfig::Engine::fast;
-  request.streaming = choice.engine == MapEngine::streaming;
+  request.streaming = choice.engine == MapEngine::streaming || choice.engine == MapEngine::sparse;
+  request.sparse = choice.engine == MapEngine::sparse;
   if (!request.streaming) return choice.why;
   const std::string changed = streaming_settings(request.settings, kind);
   return changed.empty() ? choice.why : choice.why + "; " + changed;

@@ -115,7 +115,15 @@ MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
     const std::size_t block = std::max<std::size_t>(1, (n + kPictureSide - 1) / kPictureSide);
     const std::size_t side = (n + block - 1) / block;
     const std::size_t overview = mul(mul(side, side), 4);
-    const std::size_t aligned = sum({descriptors, cache, tile_work, engine_bytes(in), traceback_window(n)});
+    // The sparse mode aligns its candidates instead of every pair: 2 N k cells (both triangles), stored as
+    // column and score (8 bytes) in the candidates and again minus the offset, built from 12-byte entries; the
+    // FAISS index (a copy of the descriptors) and its search results; the fill's positive cells (12 bytes each,
+    // a few per candidate) and the overview's block counts.
+    const std::size_t pairs = mul(mul(n, in.neighbours), 2);
+    const std::size_t sparse = sum({mul(pairs, 8 + 8 + 12), descriptors, mul(mul(n, in.neighbours), 12),
+                                    mul(pairs, 4 * 12), mul(kPictureSide * kPictureSide, 8)});
+    const std::size_t aligned = in.sparse ? sum({descriptors, cache, tile_work, sparse})
+                                          : sum({descriptors, cache, tile_work, engine_bytes(in), traceback_window(n)});
     stage("descriptors", std::max(in.input_read_bytes,
                                   add(descriptors, in.descriptor_bytes.empty() ? 0 : in.descriptor_bytes.front())));
     stage("alignment (streamed)", aligned);
@@ -170,6 +178,8 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   in.threads = s.map.threads == 0 ? cores : s.map.threads;
   if (!in.fast_engine && s.map.threads == 0) in.threads = 1;  // the exact engine's passes: concurrent only if > 1
   in.streaming = request.streaming;
+  in.sparse = request.streaming && request.sparse;
+  in.neighbours = request.sparse_neighbours;
   in.base_bytes = resident_bytes();
   const std::filesystem::path& truth = request.truth.same_place;
   in.baseline = !truth.empty() && !request.streaming;

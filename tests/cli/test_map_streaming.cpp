@@ -236,6 +236,29 @@ TEST_F(MapStreaming, EngineChosenByTheMemoryTheRunNeeds) {
   EXPECT_EQ(given.err.find("engine "), std::string::npos) << given.err;
 }
 
+// --sparse aligns only the candidates (each frame's nearest neighbours) and -1 elsewhere: with enough neighbours
+// to cover both revisits, the same loop closures as the streamed map of every pair; with --neighbours it is
+// refused without --sparse.
+TEST_F(MapStreaming, SparseEqualsStreamedWhereTheCandidatesCoverTheRevisits) {
+  write_walk(600, 8);
+  const std::string walk = path("walk.npy"), truth = " --ground-truth " + path("poses.csv") + " --gt-radius 0.5";
+  const auto streamed = run_cli("map " + walk + " --streaming" + truth + " --out " + path("streamed"));
+  ASSERT_EQ(streamed.status, 0) << streamed.err;
+  const auto sparse = run_cli("map " + walk + " --sparse --neighbours 40" + truth + " --out " + path("sparse"));
+  ASSERT_EQ(sparse.status, 0) << sparse.err;
+  EXPECT_NE(sparse.err.find("candidate pairs (40 nearest neighbours per frame)"), std::string::npos) << sparse.err;
+  EXPECT_EQ(read_file(fs::path(path("sparse")) / "loop_closures.csv"),
+            read_file(fs::path(path("streamed")) / "loop_closures.csv"));
+  const auto scored = [&](const char* run) {
+    return nlohmann::json::parse(read_file(fs::path(path(run)) / "metrics.json")).at("loop_closure");
+  };
+  EXPECT_GT(scored("sparse").at("tp").get<int>(), 100);  // both revisits found
+  EXPECT_EQ(scored("sparse").at("f1"), scored("streamed").at("f1"));
+  const auto refused = run_cli("map " + walk + " --neighbours 5 --out " + path("refused"));
+  EXPECT_NE(refused.status, 0);
+  EXPECT_EQ(refused.err.rfind("seqtopo: error: --neighbours: ", 0), 0U) << refused.err;
+}
+
 TEST_F(MapStreaming, RefusesWhatNeedsTheMatrixInOneLine) {
   write_walk(60, 8);
   const std::string corridor = std::string(SEQTOPO_SOURCE_DIR) + "/data/rtabmap-corridor";

@@ -10,9 +10,10 @@
 namespace seqtopo::pipeline {
 namespace {
 
-std::size_t peak(MapRequest request, std::size_t n, bool fast, bool streaming) {
+std::size_t peak(MapRequest request, std::size_t n, bool fast, bool streaming, bool sparse = false) {
   request.settings.map.engine = fast ? mapping::MapConfig::Engine::fast : mapping::MapConfig::Engine::exact;
   request.streaming = streaming;
+  request.sparse = sparse;
   return estimate_map_memory(map_memory_input(request, InputKind::descriptors, n)).peak;
 }
 
@@ -25,19 +26,22 @@ TEST(EngineChoice, CheapestInAccuracyThatFitsTheBudget) {
   MapRequest request;
   request.input.path = file;
   const std::size_t exact = peak(request, n, false, false), fast = peak(request, n, true, false),
-                    streamed = peak(request, n, true, true);
+                    streamed = peak(request, n, true, true), sparse = peak(request, n, true, true, true);
   // The estimates include this process's resident memory, which moves a little between calls: margins of m.
   const std::size_t m = std::size_t{64} << 20;
   ASSERT_LT(4 * fast + 2 * m, 4 * exact);
   ASSERT_LT(2 * streamed + 2 * m, 4 * fast);
+  ASSERT_LT(2 * sparse + 2 * m, 2 * streamed);
   const auto engine = [&](std::size_t budget) { return choose_engine(request, InputKind::descriptors, n, budget); };
   EXPECT_EQ(engine(4 * exact + m).engine, MapEngine::exact);
   EXPECT_EQ(engine(4 * exact - m).engine, MapEngine::fast);
   EXPECT_EQ(engine(4 * fast + m).engine, MapEngine::fast);
   EXPECT_EQ(engine(4 * fast - m).engine, MapEngine::streaming);
   EXPECT_EQ(engine(2 * streamed + m).engine, MapEngine::streaming);
+  EXPECT_EQ(engine(2 * streamed - m).engine, MapEngine::sparse);
+  EXPECT_EQ(engine(2 * sparse + m).engine, MapEngine::sparse);
   // Nothing fits: fast, and the memory check refuses the run with what would fit.
-  EXPECT_EQ(engine(2 * streamed - m).engine, MapEngine::fast);
+  EXPECT_EQ(engine(2 * sparse - m).engine, MapEngine::fast);
   EXPECT_EQ(choose_engine(request, InputKind::descriptors, n, std::nullopt).engine, MapEngine::exact);
   EXPECT_NE(engine(4 * fast - m).why.find("engine streaming: "), std::string::npos);
 
@@ -69,7 +73,10 @@ TEST(EngineChoice, StreamingSettingsTakeOneVectorDescriptorByCosine) {
   MapRequest request;
   const auto note = apply_engine_choice(request, InputKind::images, {MapEngine::streaming, "engine streaming: x"});
   EXPECT_TRUE(request.streaming);
+  EXPECT_FALSE(request.sparse);
   EXPECT_EQ(request.settings.map.engine, mapping::MapConfig::Engine::fast);
+  apply_engine_choice(request, InputKind::images, {MapEngine::sparse, "engine sparse: x"});
+  EXPECT_TRUE(request.streaming && request.sparse);
   EXPECT_EQ(note.rfind("engine streaming: x; images compared by the patch", 0), 0U) << note;
 }
 

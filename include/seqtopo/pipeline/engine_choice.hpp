@@ -6,6 +6,7 @@
 //              measured input, docs/engine.md), while that peak is within a quarter;
 //   streaming  never the N x N matrix: contrast-enhanced cosine scores of one vector descriptor computed when
 //              the engine reads them, while its peak is within half the budget and the settings can stream;
+//   sparse     only each frame's nearest neighbours aligned (--sparse), while its peak is within half the budget;
 //   otherwise fast again, and the memory check refuses the run naming what would fit.
 // The budget is similarity::memory_budget_bytes() (the machine's memory, its cgroup limit, SEQTOPO_MEMORY_LIMIT),
 // not what happens to be free, so the choice, and with it the map, is the same on every run on one machine.
@@ -17,7 +18,7 @@
 
 namespace seqtopo::pipeline {
 
-enum class MapEngine { exact, fast, streaming };
+enum class MapEngine { exact, fast, streaming, sparse };
 
 struct EngineChoice {
   MapEngine engine = MapEngine::exact;

@@ -17,7 +17,8 @@
 //                and alignments.json (about 256 bytes an aligned pair; 2 N pairs assumed before the run, the
 //                real count checked again after it: check_outputs_memory)
 // An N x N ground-truth image (N^2 bytes) is held from the accuracy stage on. --streaming holds the normalised
-// descriptors, the tile cache (3 bands of 256 x 256 floats) and the fast engine's passes instead.
+// descriptors, the tile cache (3 bands of 256 x 256 floats) and the fast engine's passes instead; --sparse its
+// candidates, their FAISS index and the sparse engine's cells instead of the fast engine's passes.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -42,6 +43,8 @@ struct MapMemoryInput {
   bool baseline = false;        // ground truth given: the SeqSLAM-style baseline runs (dense path)
   std::size_t truth_bytes = 0;  // an N x N ground-truth image
   bool streaming = false;
+  bool sparse = false;  // with streaming: --sparse, `neighbours` candidates per frame
+  std::size_t neighbours = 10;
   std::size_t dimension = 0;   // --streaming: floats per descriptor
   std::size_t base_bytes = 0;  // the process before the run: code, libraries, what it read so far
 };
