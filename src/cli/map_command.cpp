@@ -16,6 +16,7 @@
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
+#include "seqtopo/outputs/report_options.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
 #include "seqtopo/pipeline/memory_estimate.hpp"
 #include "seqtopo/similarity/memory.hpp"
@@ -245,8 +246,14 @@ void run(MapOptions o) {
   }
   const double setup_seconds = progress.elapsed();
   const auto line = [&progress](std::string_view text) { progress.line(text); };
-  pipeline::MapRun run =
-      job.run({.progress = line, .stage = progress.observer(), .later_stages = {"files and figures", "report"}});
+  // The report's thumbnails are made while the similarity stage reads the images (one image folder).
+  int thumbnail_side = 0;
+  if (job.sessions().size() == 1 && job.input_kind() == pipeline::InputKind::images && job.sessions()[0].frames)
+    thumbnail_side = outputs::report_thumbnail_side(*job.sessions()[0].frames);
+  pipeline::MapRun run = job.run({.progress = line,
+                                  .stage = progress.observer(),
+                                  .later_stages = {"files and figures", "report"},
+                                  .thumbnail_side = thumbnail_side});
   run.timings.insert(run.timings.begin(), {"start-up, options, inputs checked", setup_seconds});
 
   // The pairs are known now: outputs that would not fit are refused before any is written.

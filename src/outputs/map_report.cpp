@@ -285,7 +285,8 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   data["pairs"] = pairs_json(run);
   std::vector<std::size_t> wanted;
   for (const auto& p : result.pruning.pairs) wanted.push_back(p.i), wanted.push_back(p.j);
-  data["sequences"] = {{"rows", detail::sequence_json(run.sequence, n, wanted, "image")}, {"cols", "rows"}};
+  data["sequences"] = {{"rows", detail::sequence_json(run.sequence, n, wanted, "image", &run.thumbnails)},
+                       {"cols", "rows"}};
   if (data["sequences"]["rows"]["note"] != "") {
     html.paragraph("Images: " + data["sequences"]["rows"]["note"].get<std::string>() + ".");
   }

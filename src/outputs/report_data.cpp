@@ -19,21 +19,17 @@
 namespace seqtopo::outputs::detail {
 namespace {
 
-// Larger sequences get smaller thumbnails, so that the page stays a few megabytes.
-int thumbnail_side(std::size_t frames) {
-  if (frames <= 600) return 200;
-  if (frames <= 4000) return 96;
-  return 64;
-}
+std::string jpeg_uri(const std::string& jpeg) { return "data:image/jpeg;base64," + report::base64(jpeg); }
 
 std::string thumbnail_uri(const RgbImage& image, int side) {
-  return "data:image/jpeg;base64," + report::base64(plot::encode_jpeg(plot::shrink(image, side), 75));
+  return jpeg_uri(plot::encode_jpeg(plot::shrink(image, side), 75));
 }
 
 }  // namespace
 
 nlohmann::json sequence_json(const pipeline::SequenceInput& input, std::size_t frames,
-                             const std::vector<std::size_t>& wanted, const std::string& noun) {
+                             const std::vector<std::size_t>& wanted, const std::string& noun,
+                             const std::vector<std::string>* jpegs) {
   nlohmann::json s = {{"count", frames}, {"noun", noun}};
   std::vector<std::string> names(frames);
   nlohmann::json thumbs = nlohmann::json::array();
@@ -46,7 +42,7 @@ nlohmann::json sequence_json(const pipeline::SequenceInput& input, std::size_t f
       if (k < frames && !embed[k] && budget > 0) embed[k] = true, --budget;
     }
   }
-  const int side = thumbnail_side(frames);
+  const int side = report_thumbnail_side(frames);
   std::string note;
   if (input.path.empty()) {
     note = "no images: the sequence was given in memory, or as several sessions";
@@ -59,8 +55,15 @@ nlohmann::json sequence_json(const pipeline::SequenceInput& input, std::size_t f
             note = fmt::format("no images: the folder has {} images, the run {} frames", files.size(), frames);
             break;
           }
-          // Decoding the images is most of the report's time: on every core, each thread its own frames.
           std::vector<std::string> uris(frames);
+          if (jpegs != nullptr && jpegs->size() == frames) {  // made when the run read the images
+            for (std::size_t k = 0; k < frames; ++k) {
+              names[k] = files[k].filename().string();
+              if (embed[k] && !(*jpegs)[k].empty()) thumbs[k] = jpeg_uri((*jpegs)[k]);
+            }
+            break;
+          }
+          // Decoding the images is most of the report's time: on every core, each thread its own frames.
           const unsigned workers = std::max(1U, std::min(8U, std::thread::hardware_concurrency()));
           std::vector<std::thread> pool;
           std::exception_ptr failure;

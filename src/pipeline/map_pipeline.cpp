@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
@@ -16,6 +17,7 @@
 #include "seqtopo/pipeline/engine_choice.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/pipeline/memory_estimate.hpp"
+#include "seqtopo/plot/png.hpp"
 #include "seqtopo/scale/sparse_alignment.hpp"
 #include "seqtopo/scale/sparse_candidates.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
@@ -92,6 +94,15 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   auto config = settings.similarity;
   if (!config.note && observer.progress) config.note = observer.progress;
   if (!config.progress) config.progress = clock.similarity_progress();
+  std::mutex thumbnails;
+  if (observer.thumbnail_side > 0 && inputs.size() == 1 && kind == InputKind::images) {
+    config.on_image = [&run, &thumbnails, side = observer.thumbnail_side](std::size_t i, const RgbImage& image) {
+      std::string jpeg = plot::encode_jpeg(plot::shrink(image, side), 75);
+      const std::lock_guard lock(thumbnails);
+      if (run.thumbnails.size() <= i) run.thumbnails.resize(i + 1);
+      run.thumbnails[i] = std::move(jpeg);
+    };
+  }
   // Every descriptor from one pass over the images.
   run.similarities = compute_similarities(inputs, descriptors, config);
   record_sessions(inputs, run.similarities.front().session_rows, run);

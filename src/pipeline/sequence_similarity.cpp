@@ -340,6 +340,7 @@ Described describe_images(const Source& s, Descriptors ds, const SimilarityConfi
     const fs::path& path = s.images[i];
     const RgbImage image = load_image(path);
     sizes[i] = {image.width, image.height};
+    if (c.on_image) c.on_image(i, image);
     try {
       describe_image(image, ds, c, i, out);
     } catch (const std::invalid_argument& e) {

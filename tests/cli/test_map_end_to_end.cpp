@@ -14,7 +14,11 @@
 
 #include "common/cli_run.hpp"
 #include "common/temp_dir.hpp"
+#include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/outputs/report_options.hpp"
+#include "seqtopo/plot/png.hpp"
+#include "seqtopo/report/html_report.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -141,6 +145,23 @@ TEST_F(MapCommand, LargeMatrixFigureIsItsBlockMaxOverview) {
 
   ASSERT_EQ(run_cli("map --threads 2 --out " + (dir_.path / "corridor").string()).status, 0);
   EXPECT_EQ(png_size(read_file(dir_.path / "corridor" / "similarity.png")).first, 78U + 588U + 118U);
+}
+
+// The report's thumbnails are made while the run reads the images (pipeline::MapObserver::thumbnail_side): the
+// very data the report would embed from decoding each image again.
+TEST_F(MapCommand, ReportThumbnailsFromTheRunAreTheDecodedImages) {
+  const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  const fs::path out = dir_.path / "out";
+  const auto r = run_cli("map " + corridor.string() + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = read_file(out / "report.html");
+  for (int k = 1; k <= 84; ++k) {
+    const auto image = seqtopo::image::load_image(corridor / (std::to_string(k) + ".jpg"));
+    const std::string uri =
+        "data:image/jpeg;base64," + seqtopo::report::base64(seqtopo::plot::encode_jpeg(
+                                        seqtopo::plot::shrink(image, seqtopo::outputs::report_thumbnail_side(84)), 75));
+    EXPECT_NE(html.find(uri), std::string::npos) << k;
+  }
 }
 
 TEST_F(MapCommand, BadInputsGiveOneLineAndNoOutput) {

@@ -1,5 +1,6 @@
 #pragma once
 // What a report is told about the run around it, and what it says back.
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -11,6 +12,14 @@ struct ReportOptions {
   // stages' sum.
   std::optional<double> seconds_before;
 };
+
+// The side of the report's image thumbnails [pixels]: larger sequences get smaller ones, so that the page
+// stays a few megabytes.
+inline int report_thumbnail_side(std::size_t frames) {
+  if (frames <= 600) return 200;
+  if (frames <= 4000) return 96;
+  return 64;
+}
 
 struct ReportResult {
   bool interactive = true;  // false: D3 was not found and the report is static

@@ -117,6 +117,7 @@ struct MapRun {
   std::uint64_t streamed_cells = 0;      // similarity cells computed by the alignment, recomputations included
   std::size_t streamed_cache_bytes = 0;  // the tile cache's capacity [bytes]
   std::size_t sparse_pairs = 0;          // --sparse: candidate cells aligned (both triangles)
+  std::vector<std::string> thumbnails;   // MapObserver::thumbnail_side: JPEG bytes per image (empty: none)
 };
 
 // Lines about the work as it goes (stages, sizes, memory estimates); the library never prints.
@@ -130,6 +131,9 @@ struct MapObserver {
   std::function<void(std::string_view)> progress = {};
   StageObserver stage = {};
   std::vector<std::string> later_stages = {};
+  // > 0: a single image folder's images are kept shrunk to this side as JPEG (quality 75) in
+  // MapRun::thumbnails as they are read, for the report (outputs), which then need not decode them again.
+  int thumbnail_side = 0;
 };
 
 // A checked request: the constructor reads what is small (the odometry, the number of images where it is
