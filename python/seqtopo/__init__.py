@@ -470,6 +470,8 @@ def map_sequence(
     gt_junctions=None,
     gt_poses=None,
     streaming: bool = False,
+    sparse: bool = False,
+    neighbours: int = 10,
     names: list[str] | None = None,
     **overrides,
 ) -> "MapRun":
@@ -485,7 +487,8 @@ def map_sequence(
     ``--gt-radius``, ``--gt-places``, ``--gt-poses``) or as arrays for an array input: ``odometry`` N x 3
     (x, y, theta [m, m, rad], cumulative), ``ground_truth`` an N x N same-place matrix or N x 2 positions with
     ``gt_radius`` [m], ``gt_places`` the true place per image (``gt_junctions``: the true junction places),
-    ``gt_poses`` N x 3 true poses. ``names``: one per matrix, for the report."""
+    ``gt_poses`` N x 3 true poses. ``names``: one per matrix, for the report. ``streaming`` and ``sparse``
+    (with ``neighbours`` candidates per frame) are the command's ``--streaming`` and ``--sparse``."""
     if config is None:
         config = map_preset(preset)["config"]
     config = _config(config, MapConfig, overrides)
@@ -529,7 +532,7 @@ def map_sequence(
         return "" if p is None else _os.fspath(p)
     raw = _core.map_sequence(_os.fspath(path), preset, config, list(descriptors or []), metric, kappa, input_kind,
                              every, threads, fs(odometry), fs(ground_truth), gt_radius, fs(gt_places), fs(gt_poses),
-                             streaming)
+                             streaming, sparse, neighbours)
     return MapRun(raw)
 
 

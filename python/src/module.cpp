@@ -286,7 +286,8 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
                               const std::string& input_kind, std::size_t every, unsigned threads,
                               const std::filesystem::path& odometry, const std::filesystem::path& ground_truth,
                               std::optional<double> gt_radius, const std::filesystem::path& gt_places,
-                              const std::filesystem::path& gt_poses, bool streaming) {
+                              const std::filesystem::path& gt_poses, bool streaming, bool sparse,
+                              std::size_t neighbours) {
   pipeline::MapRequest request;
   request.preset = preset;
   request.settings = pipeline::map_preset(preset);
@@ -304,7 +305,10 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
   request.input = {path, pipeline::parse_input_kind(input_kind), every};
   request.odometry = odometry;
   request.truth = {ground_truth, gt_radius, gt_places, gt_poses};
-  request.streaming = streaming;
+  if (neighbours == 0) throw std::invalid_argument("neighbours must be >= 1");
+  request.streaming = streaming || sparse;
+  request.sparse = sparse;
+  request.sparse_neighbours = neighbours;
   const py::gil_scoped_release release;
   return pipeline::map_sequence(request);
 }
@@ -610,7 +614,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("map_sequence", &map_sequence, py::arg("path"), py::arg("preset"), py::arg("config"), py::arg("descriptors"),
         py::arg("metric"), py::arg("kappa"), py::arg("input_kind"), py::arg("every"), py::arg("threads"),
         py::arg("odometry"), py::arg("ground_truth"), py::arg("gt_radius"), py::arg("gt_places"), py::arg("gt_poses"),
-        py::arg("streaming"));
+        py::arg("streaming"), py::arg("sparse"), py::arg("neighbours"));
   m.def("write_map_outputs", &write_map_outputs, py::arg("run"), py::arg("folder"));
   m.def("map_similarities", &map_similarities, py::arg("similarities"), py::arg("names"), py::arg("config"),
         py::arg("odometry"), py::arg("same_place"), py::arg("true_places"), py::arg("true_junctions"),

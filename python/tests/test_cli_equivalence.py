@@ -264,3 +264,25 @@ def test_paper_preset_from_python_equals_cli(cli, tmp_path):
     assert preset["descriptors"] == ["joint-histogram"] and preset["metric"] == "chi2"
     result = seqtopo.build_map_from_images(corridor, preset="paper")
     assert_map_equal(result, tmp_path / "cli")
+
+
+def test_sparse_map_sequence_equals_cli(cli, tmp_path):
+    # A walk through descriptor space revisited forward and backward: --sparse from Python and the command line.
+    rng = np.random.default_rng(11)
+    n = 600
+    x = np.zeros((n, 8), np.float32)
+    x[0] = rng.standard_normal(8)
+    for i in range(1, n):
+        base = x[i - 1]
+        if n // 2 <= i < n // 2 + n // 5:
+            base = x[i - n // 2]
+        elif n // 2 + n // 5 <= i < n // 2 + 2 * (n // 5):
+            base = x[n - i]
+        x[i] = base + 0.4 * rng.standard_normal(8)
+    np.save(tmp_path / "walk.npy", x)
+    run_cli(cli, "map", tmp_path / "walk.npy", "--sparse", "--neighbours", "40", "--out", tmp_path / "cli")
+    run = seqtopo.map_sequence(tmp_path / "walk.npy", sparse=True, neighbours=40)
+    seqtopo.write_report(run, tmp_path / "py")
+    for name in ("map.json", "alignments.json", "loop_closures.csv"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert len((tmp_path / "cli" / "loop_closures.csv").read_text().splitlines()) > 100
