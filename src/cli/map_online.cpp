@@ -106,12 +106,11 @@ void run_map_online(const OnlineCliOptions& o) {
   const fs::path live = out.staged("events.jsonl");
   std::ofstream events(live);
   if (!events) throw InputError(live.string(), "cannot be written");
-  std::cerr << "seqtopo map: events.jsonl is written to " << live.string() << " as the frames arrive (moved to "
-            << o.out << " at the end)\n";
   std::map<std::string, std::size_t> counts;
+  bool announced = false;
   const auto start = std::chrono::steady_clock::now();
   const pipeline::OnlineMapRun run =
-      pipeline::run_online_map(request, [&](std::size_t, std::span<const mapping::OnlineEvent> frame_events) {
+      pipeline::run_online_map(request, [&](std::size_t frame, std::span<const mapping::OnlineEvent> frame_events) {
         for (const auto& e : frame_events) {
           events << pipeline::online_event_json(e) << '\n';
           std::cout << pipeline::online_event_summary(e) << '\n';
@@ -121,6 +120,12 @@ void run_map_online(const OnlineCliOptions& o) {
         events.flush();
         std::cout.flush();
         if (!events) throw InputError(live.string(), "write failed");
+        // Announced once the first frame is in, so that input refused at once costs one line.
+        if (frame == 0 && !announced) {
+          announced = true;
+          std::cerr << "seqtopo map: events.jsonl is written to " << live.string() << " as the frames arrive (moved to "
+                    << o.out << " at the end)\n";
+        }
       });
   events.close();
   const double online_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -377,11 +377,46 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
   const std::size_t t = frames_;
   const std::size_t n = row.size();
   const std::size_t reach = config_.reach;
-  // Continue the live tracks: the best cell near the predicted column (first maximum).
+  // Continue the live tracks: the best cell near the predicted column (first maximum). A track that falls below
+  // the threshold (or x_drop below its best) is dormant, without loop closures, while the path it followed lives
+  // on in the table (a cell still carries its start cell): a stretch of poor frames inside one revisit.
   std::vector<std::size_t> ended;
   for (std::size_t k = 0; k < tracks_.size(); ++k) {
     Track& track = tracks_[k];
     if (track.direction != direction) continue;
+    const std::uint64_t own_start = cell(track.first_i, track.first_j);
+    if (track.dormant) {
+      long best = -1;
+      for (std::size_t j = 0; j < n; ++j) {
+        if (starts[j] == own_start && (best < 0 || row[j] > row[static_cast<std::size_t>(best)])) {
+          best = static_cast<long>(j);
+        }
+      }
+      if (best < 0) {
+        ended.push_back(k);
+        continue;
+      }
+      const float value = row[static_cast<std::size_t>(best)];
+      if (value < config_.threshold || value < track.best - config_.x_drop) continue;
+      // Resumed: the frames it slept through get loop closures along the line from its last cell to this one.
+      const std::size_t span = t - track.last_i;
+      for (std::size_t i = track.last_i + 1; i < t; ++i) {
+        const double f = static_cast<double>(i - track.last_i) / static_cast<double>(span);
+        const double jj = static_cast<double>(track.last_j) + f * (static_cast<double>(best) - track.last_j);
+        emit_closure(track, i, static_cast<std::size_t>(std::lround(jj)), value, events);
+      }
+      track.dormant = false;
+      track.last_i = t;
+      track.last_j = static_cast<std::size_t>(best);
+      emit_closure(track, t, track.last_j, value, events);
+      if (value >= track.best) {
+        track.best = value;
+        track.best_i = t;
+        track.best_j = track.last_j;
+      }
+      settle(track, t, events);
+      continue;
+    }
     const long predicted = static_cast<long>(track.last_j) + (forward ? 1 : -1);
     const long lo = std::max(0L, predicted - static_cast<long>(reach));
     const long hi = std::min(static_cast<long>(n) - 1, predicted + static_cast<long>(reach));
@@ -391,7 +426,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
     }
     const float value = best >= 0 ? row[static_cast<std::size_t>(best)] : 0.0F;
     if (best < 0 || value < config_.threshold || value < track.best - config_.x_drop) {
-      ended.push_back(k);
+      track.dormant = true;
       continue;
     }
     track.last_i = t;
@@ -409,6 +444,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
     for (std::size_t b = a + 1; b < tracks_.size(); ++b) {
       const Track &x = tracks_[a], &y = tracks_[b];
       if (x.direction != direction || y.direction != direction || x.last_i != t || y.last_i != t) continue;
+      if (x.dormant || y.dormant) continue;
       const std::size_t d = x.last_j > y.last_j ? x.last_j - y.last_j : y.last_j - x.last_j;
       if (d <= reach && std::find(ended.begin(), ended.end(), b) == ended.end()) ended.push_back(b);
     }
@@ -430,6 +466,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
     if (!peak) continue;
     for (const Track& track : tracks_) {
       if (track.direction != direction) continue;
+      if (cell(track.first_i, track.first_j) == starts[j]) peak = false;  // the path of a dormant track
       const std::size_t d = track.last_j > j ? track.last_j - j : j - track.last_j;
       if (d <= radius) peak = false;
     }

@@ -21,8 +21,11 @@
 //    +-reach columns); a track continues from row t-1 to the peak of row t within `reach` columns of its last
 //    column plus one step (forward: j + 1, reverse: j - 1). It begins when a peak reaches threshold that no
 //    track continues (revisit_begin, with the alignment's start cell: each cell carries the start of the path
-//    that attains it); it ends when no peak continues it, when its value falls x_drop below the best it has
-//    reached, or at finish(). Its end frame is the last frame at which it reached its best value.
+//    that attains it). A track whose best cell near its predicted column falls below threshold, or x_drop below
+//    the best it has reached, is dormant (no loop closures) while its path lives on in the table (some cell of
+//    the row still carries its start cell); it resumes when that path reaches threshold again (the frames it
+//    slept through get loop closures along the line between its cells) and ends when the path dies out or at
+//    finish(). Its end frame is the last frame at which it reached its best value.
 //  * every frame of a live track is a loop closure (t, j) with the track's direction and its confidence
 //    (score / cap, at most 1); when a track begins, the frames between its start and t get loop closures
 //    interpolated along the line from the start cell to (t, j).
@@ -60,14 +63,14 @@ struct OnlineMapConfig {
   // How add_descriptor compares two descriptors (cosine for descriptors.npy rows, sad for patch thumbnails).
   similarity::Distance distance = similarity::Distance::cosine;
   std::size_t contrast_window = 10;  // w [frames]; 0: S aligned as it is (no enhancement, no offset)
-  float contrast_offset = 1.0F;      // [standard deviations]
+  float contrast_offset = 0.5F;      // [standard deviations] (the offline default)
   float gap = 1.5F;
   std::optional<float> cap = 40.0F;
   float threshold = 20.0F;          // a track's peak must reach this [score units]
   std::size_t min_separation = 10;  // [frames] pairs closer in time are never scored
   bool reverse = true;
   std::size_t reach = 3;               // [frames] peaks and track continuation
-  float x_drop = 10.0F;                // a track ends this far below its best [score units]
+  float x_drop = 20.0F;                // a track sleeps this far below its best [score units]
   std::size_t min_revisit_frames = 5;  // shorter tracks are withdrawn
 };
 
@@ -139,6 +142,7 @@ class OnlineMapper {
     float best = 0;
     std::size_t best_i = 0, best_j = 0;  // the latest cell at the best value
     std::vector<std::size_t> pending;    // indices into closures_, not settled yet
+    bool dormant = false;                // below the threshold while its path lives on
   };
   std::vector<OnlineEvent> step();
   void enhance(std::span<const float> similarity_row);
