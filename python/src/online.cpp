@@ -132,7 +132,7 @@ void bind_online(py::module_& m) {
                                 "Settings of the online mapper (docs/online.md); every field a keyword argument.");
   c.def(py::init([](const std::string& distance, std::size_t contrast_window, float contrast_offset, float gap,
                     std::optional<float> cap, float threshold, std::size_t min_separation, bool reverse,
-                    std::size_t reach, float x_drop, std::size_t min_revisit_frames) {
+                    std::size_t reach, float x_drop, std::size_t min_revisit_frames, std::size_t patience) {
           OnlineMapConfig config;
           config.distance = similarity::parse_distance(distance);
           config.contrast_window = contrast_window;
@@ -145,6 +145,7 @@ void bind_online(py::module_& m) {
           config.reach = reach;
           config.x_drop = x_drop;
           config.min_revisit_frames = min_revisit_frames;
+          config.patience = patience;
           mapping::validate(config);
           return config;
         }),
@@ -153,7 +154,8 @@ void bind_online(py::module_& m) {
         py::arg("cap") = OnlineMapConfig{}.cap, py::arg("threshold") = OnlineMapConfig{}.threshold,
         py::arg("min_separation") = OnlineMapConfig{}.min_separation, py::arg("reverse") = OnlineMapConfig{}.reverse,
         py::arg("reach") = OnlineMapConfig{}.reach, py::arg("x_drop") = OnlineMapConfig{}.x_drop,
-        py::arg("min_revisit_frames") = OnlineMapConfig{}.min_revisit_frames);
+        py::arg("min_revisit_frames") = OnlineMapConfig{}.min_revisit_frames,
+        py::arg("patience") = OnlineMapConfig{}.patience);
   c.def_property_readonly("distance",
                           [](const OnlineMapConfig& x) { return std::string(similarity::distance_name(x.distance)); });
   c.def_readonly("contrast_window", &OnlineMapConfig::contrast_window);
@@ -166,6 +168,7 @@ void bind_online(py::module_& m) {
   c.def_readonly("reach", &OnlineMapConfig::reach);
   c.def_readonly("x_drop", &OnlineMapConfig::x_drop);
   c.def_readonly("min_revisit_frames", &OnlineMapConfig::min_revisit_frames);
+  c.def_readonly("patience", &OnlineMapConfig::patience);
 
   py::class_<PyOnlineMapper>(m, "OnlineMapper",
                              "Maps a sequence while its frames arrive (docs/online.md): add() takes the next frame, "

@@ -397,7 +397,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
         continue;
       }
       const float value = row[static_cast<std::size_t>(best)];
-      if (value < config_.threshold || value < track.best - config_.x_drop) continue;
+      if (value < config_.threshold || value < track.best - config_.x_drop || value <= track.sleep_value) continue;
       // Resumed: the frames it slept through get loop closures along the line from its last cell to this one.
       const std::size_t span = t - track.last_i;
       for (std::size_t i = track.last_i + 1; i < t; ++i) {
@@ -406,6 +406,8 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
         emit_closure(track, i, static_cast<std::size_t>(std::lround(jj)), value, events);
       }
       track.dormant = false;
+      track.falling = 0;
+      track.last_value = value;
       track.last_i = t;
       track.last_j = static_cast<std::size_t>(best);
       emit_closure(track, t, track.last_j, value, events);
@@ -425,10 +427,27 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
       if (best < 0 || row[static_cast<std::size_t>(j)] > row[static_cast<std::size_t>(best)]) best = j;
     }
     const float value = best >= 0 ? row[static_cast<std::size_t>(best)] : 0.0F;
-    if (best < 0 || value < config_.threshold || value < track.best - config_.x_drop) {
+    // A score falling frame after frame is a revisit that has ended (or a poor stretch): asleep until its path
+    // climbs above where it fell asleep.
+    // So is a path that no longer matches: the cell not reached by a diagonal step onto a positive score (a capped
+    // path can otherwise wander through gaps from one revisit's cells to another's).
+    bool matching = false;
+    if (best >= 0) {
+      const auto jb = static_cast<std::size_t>(best);
+      const std::vector<float>& previous = forward ? previous_forward_ : previous_reverse_;
+      const std::size_t from = forward ? jb - 1 : jb + 1;  // wraps for jb = 0 forward: out of range, no diagonal
+      const float diag = from < previous.size() ? previous[from] : 0.0F;
+      const float reached = config_.cap ? std::min(diag + scores_[jb], *config_.cap) : diag + scores_[jb];
+      matching = scores_[jb] > 0 && reached == value;
+    }
+    track.falling = best >= 0 && (value < track.last_value || !matching) ? track.falling + 1 : 0;
+    if (best < 0 || value < config_.threshold || value < track.best - config_.x_drop ||
+        (config_.patience > 0 && track.falling >= config_.patience)) {
       track.dormant = true;
+      track.sleep_value = value;
       continue;
     }
+    track.last_value = value;
     track.last_i = t;
     track.last_j = static_cast<std::size_t>(best);
     emit_closure(track, t, track.last_j, value, events);
@@ -481,6 +500,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
     track.best = v;
     track.best_i = t;
     track.best_j = j;
+    track.last_value = v;
     OnlineEvent begin;
     begin.kind = OnlineEventKind::revisit_begin;
     begin.frame = t;

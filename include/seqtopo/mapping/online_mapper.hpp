@@ -21,11 +21,13 @@
 //    +-reach columns); a track continues from row t-1 to the peak of row t within `reach` columns of its last
 //    column plus one step (forward: j + 1, reverse: j - 1). It begins when a peak reaches threshold that no
 //    track continues (revisit_begin, with the alignment's start cell: each cell carries the start of the path
-//    that attains it). A track whose best cell near its predicted column falls below threshold, or x_drop below
-//    the best it has reached, is dormant (no loop closures) while its path lives on in the table (some cell of
-//    the row still carries its start cell); it resumes when that path reaches threshold again (the frames it
-//    slept through get loop closures along the line between its cells) and ends when the path dies out or at
-//    finish(). Its end frame is the last frame at which it reached its best value.
+//    that attains it). A track whose best cell near its predicted column falls below threshold, x_drop below
+//    the best it has reached, or lower or not matching (its cell not reached by a diagonal step onto a positive
+//    score) `patience` frames in a row, is dormant (no loop closures) while its path lives
+//    on in the table (some cell of the row still carries its start cell); it resumes when that path climbs above the
+//    value it fell asleep at (and above threshold and best - x_drop; the frames it slept through get loop closures
+//    along the line between its cells) and ends when the path dies out or at finish(). Its end frame is the last frame
+//    at which it reached its best value.
 //  * every frame of a live track is a loop closure (t, j) with the track's direction and its confidence
 //    (score / cap, at most 1); when a track begins, the frames between its start and t get loop closures
 //    interpolated along the line from the start cell to (t, j).
@@ -72,6 +74,7 @@ struct OnlineMapConfig {
   std::size_t reach = 3;               // [frames] peaks and track continuation
   float x_drop = 20.0F;                // a track sleeps this far below its best [score units]
   std::size_t min_revisit_frames = 5;  // shorter tracks are withdrawn
+  std::size_t patience = 3;            // a track whose value falls this many frames in a row sleeps (0: never)
 };
 
 // Throws std::invalid_argument naming the setting.
@@ -143,6 +146,9 @@ class OnlineMapper {
     std::size_t best_i = 0, best_j = 0;  // the latest cell at the best value
     std::vector<std::size_t> pending;    // indices into closures_, not settled yet
     bool dormant = false;                // below the threshold while its path lives on
+    float last_value = 0;                // the value at the last frame it was live
+    float sleep_value = 0;               // the value it fell asleep at
+    std::size_t falling = 0;             // consecutive frames its value fell
   };
   std::vector<OnlineEvent> step();
   void enhance(std::span<const float> similarity_row);
