@@ -10,8 +10,8 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "seqtopo/image/patch_thumbnail.hpp"
 #include "seqtopo/mapping/online_mapper.hpp"
+#include "seqtopo/pipeline/online_map.hpp"
 #include "seqtopo/similarity/distance.hpp"
 
 namespace seqtopo::python {
@@ -75,10 +75,11 @@ std::vector<float> float_vector(const py::handle& values, const char* what) {
   return {array.data(), array.data() + array.size()};
 }
 
-// The mapper with the image descriptor it uses for image frames (patch thumbnails, as `seqtopo map --online`).
+// The mapper with the descriptors it uses for image frames (joint histograms and patch thumbnails, fused, as
+// `seqtopo map --online`).
 struct PyOnlineMapper {
   OnlineMapper mapper;
-  image::PatchConfig patch;
+  pipeline::OnlineImageRows image_rows;
   std::optional<bool> images;  // the kind of the first frame: images and descriptors do not mix
 
   py::list add(const py::handle& frame) {
@@ -89,7 +90,7 @@ struct PyOnlineMapper {
       throw py::value_error(image ? "add: an image after descriptors (one kind of frame per mapper)"
                                   : "add: a descriptor after images (one kind of frame per mapper)");
     }
-    std::vector<float> descriptor;
+    if (!images) images = image;
     if (image) {
       const auto pixels = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(frame);
       if (!pixels || (pixels.ndim() == 3 && pixels.shape(2) != 3)) {
@@ -99,23 +100,19 @@ struct PyOnlineMapper {
       RgbImage rgb(w, h);
       const std::uint8_t* p = pixels.data();
       for (std::size_t k = 0; k < static_cast<std::size_t>(w) * static_cast<std::size_t>(h); ++k) {
-        for (int c = 0; c < 3; ++c) rgb.pixels[3 * k + c] = pixels.ndim() == 3 ? p[3 * k + c] : p[k];
+        for (std::size_t c = 0; c < 3; ++c) rgb.pixels[3 * k + c] = pixels.ndim() == 3 ? p[3 * k + c] : p[k];
       }
-      descriptor = image::patch_thumbnail(rgb, patch);
-    } else if (array.ndim() == 1) {
-      descriptor = float_vector(frame, "descriptor");
-    } else {
+      std::vector<OnlineEvent> events;
+      {
+        const py::gil_scoped_release release;
+        events = mapper.add_similarities(image_rows.add(rgb));
+      }
+      return event_list(events);
+    }
+    if (array.ndim() != 1) {
       throw py::value_error("add: expected an image (H x W or H x W x 3 uint8) or a 1-D descriptor");
     }
-    if (!images) {
-      images = image;
-      // Images are compared as the offline patch matrix is (SAD), descriptors by cosine, unless set otherwise.
-      if (image && mapper.frames() == 0 && mapper.config().distance == similarity::Distance::cosine) {
-        OnlineMapConfig c = mapper.config();
-        c.distance = similarity::Distance::sad;
-        mapper = OnlineMapper(c);
-      }
-    }
+    const std::vector<float> descriptor = float_vector(frame, "descriptor");
     std::vector<OnlineEvent> events;
     {
       const py::gil_scoped_release release;
@@ -170,12 +167,14 @@ void bind_online(py::module_& m) {
   c.def_readonly("min_revisit_frames", &OnlineMapConfig::min_revisit_frames);
   c.def_readonly("patience", &OnlineMapConfig::patience);
 
-  py::class_<PyOnlineMapper>(m, "OnlineMapper",
-                             "Maps a sequence while its frames arrive (docs/online.md): add() takes the next frame, "
-                             "an image (H x W or H x W x 3 uint8: its patch thumbnail, SAD) or a 1-D descriptor "
-                             "(cosine), and returns the events it caused as dicts (the events.jsonl fields).")
+  py::class_<PyOnlineMapper>(
+      m, "OnlineMapper",
+      "Maps a sequence while its frames arrive (docs/online.md): add() takes the next frame, "
+      "an image (H x W or H x W x 3 uint8: joint histogram and patch thumbnail, fused as the offline "
+      "default) or a 1-D descriptor (cosine), and returns the events it caused as dicts (the events.jsonl fields).")
       .def(py::init([](std::optional<OnlineMapConfig> config) {
-             return PyOnlineMapper{OnlineMapper(config.value_or(OnlineMapConfig{})), {}, std::nullopt};
+             return PyOnlineMapper{OnlineMapper(config.value_or(OnlineMapConfig{})), pipeline::OnlineImageRows{},
+                                   std::nullopt};
            }),
            py::arg("config") = py::none())
       .def("add", &PyOnlineMapper::add, py::arg("frame"))
@@ -191,6 +190,20 @@ void bind_online(py::module_& m) {
             return event_list(events);
           },
           py::arg("row"), "The next frame as its similarity to every earlier frame (frames values).")
+      .def(
+          "add_similarities",
+          [](PyOnlineMapper& self, const py::list& rows) {
+            std::vector<std::vector<float>> values;
+            for (const auto& row : rows) values.push_back(float_vector(row, "similarity row"));
+            std::vector<OnlineEvent> events;
+            {
+              const py::gil_scoped_release release;
+              events = self.mapper.add_similarities(values);
+            }
+            return event_list(events);
+          },
+          py::arg("rows"),
+          "The next frame as several similarity rows (one per descriptor), enhanced apart and averaged.")
       .def(
           "add_scores",
           [](PyOnlineMapper& self, const py::handle& row) {

@@ -77,10 +77,7 @@ void validate(const OnlineMapConfig& c) {
   }
 }
 
-OnlineMapper::OnlineMapper(const OnlineMapConfig& config) : config_(config) {
-  validate(config_);
-  recent_.resize(config_.contrast_window + 1);
-}
+OnlineMapper::OnlineMapper(const OnlineMapConfig& config) : config_(config) { validate(config_); }
 
 void OnlineMapper::check_row(std::span<const float> row, std::size_t expected, const char* what) const {
   if (row.size() != expected) {
@@ -129,6 +126,8 @@ std::vector<OnlineEvent> OnlineMapper::add_descriptor(std::span<const float> des
 
 std::vector<OnlineEvent> OnlineMapper::add_similarity(std::span<const float> similarity_row) {
   if (dim_ != 0) throw std::invalid_argument("add_similarity after add_descriptor: one kind of input per mapper");
+  if (channels_ > 1) throw std::invalid_argument("add_similarity after add_similarities of several rows");
+  channels_ = 1;
   check_row(similarity_row, frames_, "similarity row");
   enhance(similarity_row);
   fill_rows();
@@ -144,47 +143,77 @@ std::vector<OnlineEvent> OnlineMapper::add_scores(std::span<const float> scores)
   return step();
 }
 
-void OnlineMapper::enhance(std::span<const float> row) {
+void OnlineMapper::enhance(std::span<const float> row) { enhance(std::vector<std::span<const float>>{row}); }
+
+void OnlineMapper::enhance(const std::vector<std::span<const float>>& rows) {
   const std::size_t t = frames_;
   const std::size_t sep = config_.min_separation;
   const std::size_t n = t >= sep ? t - sep + 1 : 0;
   const std::size_t w = config_.contrast_window;
-  scores_.resize(n);
+  scores_.assign(n, 0.0F);
   if (w == 0) {
-    std::copy_n(row.begin(), n, scores_.begin());
+    for (const auto& row : rows) {
+      for (std::size_t j = 0; j < n; ++j) scores_[j] += row[j] / static_cast<float>(rows.size());
+    }
     return;
   }
-  // The row's window sums from prefix sums in double (O(t) whatever the window).
-  std::vector<double>& prefix = column_sum_;  // reused buffers: prefix sums here, column sums below
-  std::vector<double>& prefix2 = column_sum2_;
-  prefix.assign(t + 1, 0.0);
-  prefix2.assign(t + 1, 0.0);
-  for (std::size_t j = 0; j < t; ++j) {
-    prefix[j + 1] = prefix[j] + row[j];
-    prefix2[j + 1] = prefix2[j] + static_cast<double>(row[j]) * row[j];
-  }
-  for (std::size_t j = 0; j < n; ++j) {
-    const std::size_t lo = j >= w ? j - w : 0;
-    const std::size_t hi = std::min(t - 1, j + w);
-    scores_[j] = similarity::contrast_score(row[j], prefix[hi + 1] - prefix[lo], prefix2[hi + 1] - prefix2[lo],
-                                            static_cast<double>(hi - lo + 1));
-  }
-  // The column's last w + 1 values S(t', j), t' = t - w .. t (rows that have column j: t' > j).
-  auto& own = recent_[t % (w + 1)];
-  own.assign(row.begin(), row.end());
-  const std::size_t oldest = t >= w ? t - w : 0;
-  for (std::size_t j = 0; j < n; ++j) {
-    double sum = 0, sum2 = 0;
-    std::size_t count = 0;
-    for (std::size_t r = std::max(oldest, j + 1); r <= t; ++r) {
-      const float v = recent_[r % (w + 1)][j];
-      sum += v;
-      sum2 += static_cast<double>(v) * v;
-      ++count;
+  if (recent_.size() != rows.size()) recent_.assign(rows.size(), std::vector<std::vector<float>>(w + 1));
+  // Each similarity is enhanced on its own and the enhanced scores averaged, as the offline fusion does
+  // (mapping::enhanced_scores), so their scales need not agree.
+  std::vector<float> enhanced(n);
+  for (std::size_t c = 0; c < rows.size(); ++c) {
+    const auto row = rows[c];
+    // The row's window sums from prefix sums in double (O(t) whatever the window).
+    std::vector<double>& prefix = column_sum_;  // reused buffers
+    std::vector<double>& prefix2 = column_sum2_;
+    prefix.assign(t + 1, 0.0);
+    prefix2.assign(t + 1, 0.0);
+    for (std::size_t j = 0; j < t; ++j) {
+      prefix[j + 1] = prefix[j] + row[j];
+      prefix2[j + 1] = prefix2[j] + static_cast<double>(row[j]) * row[j];
     }
-    const float column = similarity::contrast_score(row[j], sum, sum2, static_cast<double>(count));
-    scores_[j] = 0.5F * (scores_[j] + column) - config_.contrast_offset;
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t lo = j >= w ? j - w : 0;
+      const std::size_t hi = std::min(t - 1, j + w);
+      enhanced[j] = similarity::contrast_score(row[j], prefix[hi + 1] - prefix[lo], prefix2[hi + 1] - prefix2[lo],
+                                               static_cast<double>(hi - lo + 1));
+    }
+    // The column's last w + 1 values S(t', j), t' = t - w .. t (rows that have column j: t' > j).
+    auto& ring = recent_[c];
+    ring[t % (w + 1)].assign(row.begin(), row.end());
+    const std::size_t oldest = t >= w ? t - w : 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      double sum = 0, sum2 = 0;
+      std::size_t count = 0;
+      for (std::size_t r = std::max(oldest, j + 1); r <= t; ++r) {
+        const float v = ring[r % (w + 1)][j];
+        sum += v;
+        sum2 += static_cast<double>(v) * v;
+        ++count;
+      }
+      const float column = similarity::contrast_score(row[j], sum, sum2, static_cast<double>(count));
+      scores_[j] += 0.5F * (enhanced[j] + column);
+    }
   }
+  for (auto& v : scores_) v = (rows.size() == 1 ? v : v / static_cast<float>(rows.size())) - config_.contrast_offset;
+}
+
+std::vector<OnlineEvent> OnlineMapper::add_similarities(const std::vector<std::vector<float>>& rows) {
+  if (dim_ != 0) throw std::invalid_argument("add_similarities after add_descriptor: one kind of input per mapper");
+  if (rows.empty()) throw std::invalid_argument("add_similarities: no similarity row");
+  if (channels_ == 0) channels_ = rows.size();
+  if (rows.size() != channels_) {
+    throw std::invalid_argument("frame " + std::to_string(frames_) + " has " + std::to_string(rows.size()) +
+                                " similarity rows, the first frame had " + std::to_string(channels_));
+  }
+  std::vector<std::span<const float>> spans;
+  for (const auto& row : rows) {
+    check_row(row, frames_, "similarity row");
+    spans.emplace_back(row);
+  }
+  enhance(spans);
+  fill_rows();
+  return step();
 }
 
 void OnlineMapper::fill_rows() {

@@ -9,7 +9,10 @@
 
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/image_io.hpp"
+#include "seqtopo/image/joint_histogram.hpp"
+#include "seqtopo/image/patch_thumbnail.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/similarity/distance.hpp"
 
 namespace seqtopo::pipeline {
 namespace {
@@ -72,6 +75,18 @@ class Feeder {
 
 }  // namespace
 
+std::vector<std::vector<float>> OnlineImageRows::add(const RgbImage& image) {
+  histograms_.push_back(image::joint_histogram(image, config_.joint_histogram));
+  patches_.push_back(image::patch_thumbnail(image, config_.patch));
+  const std::size_t t = histograms_.size() - 1;
+  std::vector<std::vector<float>> rows(2, std::vector<float>(t));
+  for (std::size_t j = 0; j < t; ++j) {
+    rows[0][j] = -static_cast<float>(similarity::chi2_distance(histograms_[t], histograms_[j]));
+    rows[1][j] = -static_cast<float>(similarity::sad_distance(patches_[t], patches_[j]));
+  }
+  return rows;
+}
+
 OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCallback& on_frame) {
   OnlineMapRun run;
   const SequenceInput& input = request.input;
@@ -95,9 +110,10 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
       break;
   }
   Feeder feeder(config, run, on_frame);
+  OnlineImageRows image_rows(request.similarity);
   auto add_image = [&](std::string name, const RgbImage& image) {
-    const std::vector<float> descriptor = dense_descriptor(image, Descriptor::patch, request.similarity);
-    feeder.frame(std::move(name), [&](mapping::OnlineMapper& m) { return m.add_descriptor(descriptor); });
+    // The descriptors are the frame's own work too: they are timed with it.
+    feeder.frame(std::move(name), [&](mapping::OnlineMapper& m) { return m.add_similarities(image_rows.add(image)); });
   };
   if (from_stream) {
     if (request.paths == nullptr) throw std::invalid_argument("run_online_map: input '-' needs a stream of paths");

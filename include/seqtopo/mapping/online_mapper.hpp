@@ -119,6 +119,10 @@ class OnlineMapper {
   // The next frame as its similarity S(t, j) to every earlier frame j (t values; higher = more similar):
   // contrast-enhanced as add_descriptor does.
   std::vector<OnlineEvent> add_similarity(std::span<const float> similarity_row);
+  // The next frame as several similarities (one row of t values per descriptor, the same number every frame),
+  // each contrast-enhanced on its own and the enhanced scores averaged, as the offline default fuses its
+  // descriptors.
+  std::vector<OnlineEvent> add_similarities(const std::vector<std::vector<float>>& rows);
   // The next frame as its alignment scores s(t, j), j = 0 .. t - min_separation (max(0, t - min_separation + 1)
   // values), aligned as they are: no enhancement, no offset (the engine's own view; tests and other sensors).
   std::vector<OnlineEvent> add_scores(std::span<const float> scores);
@@ -152,6 +156,7 @@ class OnlineMapper {
   };
   std::vector<OnlineEvent> step();
   void enhance(std::span<const float> similarity_row);
+  void enhance(const std::vector<std::span<const float>>& rows);
   void check_row(std::span<const float> row, std::size_t expected, const char* what) const;
   void fill_rows();
   void update_tracks(align::Direction direction, std::vector<OnlineEvent>& events);
@@ -168,7 +173,8 @@ class OnlineMapper {
   std::vector<float> descriptors_;  // frames_ x dim_ (normalised for cosine)
   std::vector<float> similarity_;   // S of the current frame (t values)
   // The last w + 1 rows of S (ring, by frame modulo w + 1) and the per-column running sums over them.
-  std::vector<std::vector<float>> recent_;
+  std::vector<std::vector<std::vector<float>>> recent_;  // per similarity
+  std::size_t channels_ = 0;
   std::vector<double> column_sum_, column_sum2_;
   std::vector<float> scores_;  // s(t, j), j <= t - min_separation
   std::vector<float> forward_, reverse_, previous_forward_, previous_reverse_;

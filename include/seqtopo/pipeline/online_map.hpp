@@ -3,7 +3,8 @@
 // (mapping/online_mapper.hpp), with the events of every frame handed to the caller before the next frame is read
 // (docs/online.md).
 //
-// Frames: an image folder or a video (patch thumbnails, SAD, as the offline default's patch matrix), the rows of a
+// Frames: an image folder or a video (the offline default's two descriptors, joint histograms by chi2 and patch
+// thumbnails by SAD, each row contrast-enhanced on its own and fused: OnlineImageRows), the rows of a
 // descriptors.npy (cosine), image paths one per line on a stream (INPUT "-"), or the rows of a similarity.npy
 // (row t's first t values: the similarity of frame t to the earlier frames).
 #include <cstddef>
@@ -20,6 +21,20 @@
 #include "seqtopo/pipeline/sequence_similarity.hpp"
 
 namespace seqtopo::pipeline {
+
+// The similarity rows of each new image to the images before it, for OnlineMapper::add_similarities: -chi2 of the
+// joint histograms and -SAD of the patch thumbnails (S = 1 - kappa D up to kappa, which the contrast enhancement
+// removes). Keeps every image's two descriptors.
+class OnlineImageRows {
+ public:
+  explicit OnlineImageRows(const SimilarityConfig& config = {}) : config_(config) {}
+  std::vector<std::vector<float>> add(const RgbImage& image);
+
+ private:
+  SimilarityConfig config_;
+  std::vector<similarity::SparseHistogram> histograms_;
+  std::vector<std::vector<float>> patches_;
+};
 
 struct OnlineMapRequest {
   SequenceInput input;              // path "-": image paths read from `paths`
