@@ -606,6 +606,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("__version__") = SEQTOPO_VERSION;
   register_exceptions(m);
   bind_configs(m);
+  bind_online(m);
 
   m.def("align", &align_scores, py::arg("scores"), py::arg("config"), py::arg("reverse"), py::arg("threads"));
   m.def("build_map", &build_map, py::arg("similarities"), py::arg("config"));

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "command_registry.hpp"
+#include "map_online.hpp"
 #include "number_options.hpp"
 #include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
@@ -53,6 +54,7 @@ struct MapOptions {
   std::optional<double> gt_radius;
   unsigned threads = 0;
   std::string config_file;
+  bool online = false, no_offline_outputs = false;
 };
 
 using Settings = pipeline::MapSettings;
@@ -180,6 +182,12 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
 }
 
 void run(MapOptions o) {
+  if (o.online) {
+    run_map_online({o.inputs, o.out, o.input_kind, o.ground_truth, o.every, o.gap, o.threshold, o.cap,
+                    o.contrast_offset, o.no_cap, o.no_reverse, o.min_separation, o.contrast_window, o.gt_radius,
+                    !o.no_offline_outputs, o.threads});
+    return;
+  }
   Progress progress("seqtopo map");
   // Everything the user gave is checked before the long computation starts (and before any progress
   // output), so a mistake costs one line and no time.
@@ -370,6 +378,7 @@ const RegisterCommand registered{
        add_number(app, "--every-metres", o->every_metres, kPositive,
                   "keep one frame per this many metres of odometry travelled (needs odometry) [m]");
        add_sequence_options(app, o->sequence);
+       add_online_options(app, o->online, o->no_offline_outputs);
        app.add_option("--ground-truth", o->ground_truth, "N x N same-place image, or poses.csv with --gt-radius");
        add_number(app, "--gt-radius", o->gt_radius, kPositive,
                   "same place when closer than this [m] (poses.csv ground truth)");

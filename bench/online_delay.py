@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""Revisit detection delay of `seqtopo map --online` (bench/online.sh): for every true revisit (a run of frames
+that each have a ground-truth partner at least SEP frames earlier, within RADIUS metres in poses.csv), the frames
+from its first frame until the first correct loop closure of one of its frames is emitted (events.jsonl's
+`frame`). Prints the median, the 90th percentile and the maximum over the revisits, and how many were found."""
+import collections
+import json
+import sys
+
+
+def main():
+    events_path, poses_path = sys.argv[1], sys.argv[2]
+    radius, sep, min_len = float(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5]) if len(sys.argv) > 5 else 10
+    pos = []
+    with open(poses_path) as f:
+        next(f)
+        for line in f:
+            parts = line.strip().split(",")
+            pos.append((float(parts[1]), float(parts[2])))
+    cell = collections.defaultdict(list)
+    partner = []
+    for i, (x, y) in enumerate(pos):
+        cx, cy = int(x // radius), int(y // radius)
+        found = False
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for j in cell.get((cx + dx, cy + dy), ()):
+                    if i - j >= sep and (pos[j][0] - x) ** 2 + (pos[j][1] - y) ** 2 <= radius * radius:
+                        found = True
+                        break
+                if found:
+                    break
+            if found:
+                break
+        partner.append(found)
+        cell[(cx, cy)].append(i)
+    segments, start = [], None
+    for i, p in enumerate(partner + [False]):
+        if p and start is None:
+            start = i
+        elif not p and start is not None:
+            if i - start >= min_len:
+                segments.append((start, i))
+            start = None
+
+    def same(i, j):
+        return (pos[i][0] - pos[j][0]) ** 2 + (pos[i][1] - pos[j][1]) ** 2 <= radius * radius
+
+    first = {}
+    with open(events_path) as f:
+        for line in f:
+            e = json.loads(line)
+            if e["event"] != "loop_closure" or not same(e["i"], e["j"]):
+                continue
+            for k, (b, end) in enumerate(segments):
+                if b <= e["i"] < end and k not in first:
+                    first[k] = e["frame"] - b
+    delays = sorted(first.values())
+    if not delays:
+        print(f"revisits {len(segments)}, none detected")
+        return
+    median = delays[len(delays) // 2] if len(delays) % 2 else 0.5 * (delays[len(delays) // 2 - 1] + delays[len(delays) // 2])
+    p90 = delays[min(len(delays) - 1, int(0.9 * len(delays)))]
+    print(f"revisits {len(segments)}, detected {len(delays)}, delay median {median} p90 {p90} max {delays[-1]} frames")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,197 @@
+#pragma once
+// Online mapping: the frames of one sequence arrive one at a time, and after each one the loop closures,
+// revisits, junctions and place merges that the frames so far support are known (docs/online.md).
+//
+// Definition. Frame t is compared with every earlier frame j (its descriptor's distance D(t, j), cosine or
+// SAD as the offline path uses for that descriptor, S = -D: the contrast enhancement below removes kappa).
+// The score of the pair is causal contrast enhancement of S minus an offset,
+//   s(t, j) = 0.5 (z_row(t, j) + z_col(t, j)) - offset,
+// z_row the z-score of S(t, j) among S(t, j - w .. j + w) (clipped to the past, j' < t), z_col its z-score
+// among S(t - w .. t, j) (the column's last w + 1 values: the offline symmetric form 0.5 (E + E^T) with its
+// window one-sided, because the later rows are not known yet). Pairs closer than min_separation frames are
+// never scored. The forward and reverse Smith-Waterman recurrences of the offline engine
+// (align/smith_waterman.hpp, its self search with min_separation, gap and cap) then get one new row each:
+//   F(t, j) = min(cap, max(0, F(t-1, j-1) + s(t, j), F(t-1, j) - gap, F(t, j-1) - gap))
+//   R(t, j) = min(cap, max(0, R(t-1, j+1) + s(t, j), R(t-1, j) - gap, R(t, j+1) - gap))
+// for j = 0 .. t - min_separation (cells outside are 0), bit for bit the rows of the engine's first fill of
+// the same scores (so they never change when later frames arrive).
+//
+// Events, from the rows alone:
+//  * a revisit (a track) is a peak of F or R in row t that reaches `threshold` (the largest value within
+//    +-reach columns); a track continues from row t-1 to the peak of row t within `reach` columns of its last
+//    column plus one step (forward: j + 1, reverse: j - 1). It begins when a peak reaches threshold that no
+//    track continues (revisit_begin, with the alignment's start cell: each cell carries the start of the path
+//    that attains it). A track whose best cell near its predicted column falls below threshold, x_drop below
+//    the best it has reached, or lower or not matching (its cell not reached by a diagonal step onto a positive
+//    score) `patience` frames in a row, is dormant (no loop closures) while its path lives
+//    on in the table (some cell of the row still carries its start cell); it resumes when that path climbs above the
+//    value it fell asleep at (and above threshold and best - x_drop; the frames it slept through get loop closures
+//    along the line between its cells) and ends when the path dies out or at finish(). Its end frame is the last frame
+//    at which it reached its best value.
+//  * every frame of a live track is a loop closure (t, j) with the track's direction and its confidence
+//    (score / cap, at most 1); when a track begins, the frames between its start and t get loop closures
+//    interpolated along the line from the start cell to (t, j).
+//  * loop closures after a track's end frame, and every loop closure of a track shorter than
+//    min_revisit_frames, are withdrawn by a correction event: later frames overturned them.
+//  * a loop closure becomes settled (never withdrawn) once its track reaches a new best at or after its frame
+//    and is at least min_revisit_frames long; settled pairs join the places (union of frames). A place merge
+//    is a settled pair that joins two places each of at least two frames (a third traversal linking the first
+//    two).
+//  * a junction is where a revisit joins the old path in its middle (begin: forward with the old frame more
+//    than `reach` frames after the sequence's start; reverse with it more than min_separation + 2 reach frames
+//    before the new one, i.e. not a U-turn) or leaves it in its middle (end before finish(): forward when the
+//    old path continues more than `reach` frames, reverse when the old frame is more than `reach` frames from
+//    the start), once per place.
+// The loop closures still standing after finish() are the online map's loop closures (loop_closures()).
+//
+// Work per frame: O(t) for the distance row, the contrast sums, the two recurrences and the peaks (dense rows;
+// no N x N table), plus the events. Memory: the descriptors (N x dim), three rows per table and w + 1 rows of
+// S: O(N (dim + w)).
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/similarity/distance.hpp"
+
+namespace seqtopo::mapping {
+
+struct OnlineMapConfig {
+  // How add_descriptor compares two descriptors (cosine for descriptors.npy rows, sad for patch thumbnails).
+  similarity::Distance distance = similarity::Distance::cosine;
+  std::size_t contrast_window = 10;  // w [frames]; 0: S aligned as it is (no enhancement, no offset)
+  float contrast_offset = 0.5F;      // [standard deviations] (the offline default)
+  float gap = 1.5F;
+  std::optional<float> cap = 40.0F;
+  float threshold = 20.0F;          // a track's peak must reach this [score units]
+  std::size_t min_separation = 10;  // [frames] pairs closer in time are never scored
+  bool reverse = true;
+  std::size_t reach = 3;               // [frames] peaks and track continuation
+  float x_drop = 20.0F;                // a track sleeps this far below its best [score units]
+  std::size_t min_revisit_frames = 5;  // shorter tracks are withdrawn
+  std::size_t patience = 3;            // a track whose value falls this many frames in a row sleeps (0: never)
+};
+
+// Throws std::invalid_argument naming the setting.
+void validate(const OnlineMapConfig& config);
+
+enum class OnlineEventKind { loop_closure, revisit_begin, revisit_end, junction, place_merge, correction };
+std::string_view to_string(OnlineEventKind kind);
+
+struct OnlineEvent {
+  OnlineEventKind kind = OnlineEventKind::loop_closure;
+  std::size_t frame = 0;  // the frame after which the event was emitted (0-based)
+  // loop_closure: the pair (i > j). revisit_begin: the start cell. revisit_end: the end cell. junction: the new
+  // frame i and the old frame j where the paths join or leave. place_merge: i and j, the pair that merged.
+  std::size_t i = 0, j = 0;
+  align::Direction direction = align::Direction::forward;
+  float score = 0;          // the table value (loop closure, begin, end: the track's)
+  float confidence = 0;     // loop closure: min(1, score / cap) (score / threshold / 2 without a cap)
+  std::size_t revisit = 0;  // track id (0, 1, ... in order of their begin); place_merge: unused
+  // revisit_begin / revisit_end: the track's first and last frames (revisit_end: `frames` long);
+  // junction: true when joining (begin), false when leaving (end); place_merge: the two places' first frames.
+  std::size_t first = 0, last = 0, frames = 0;
+  bool joining = false;
+  // correction: the loop closures withdrawn (i, j) and why.
+  std::vector<std::pair<std::size_t, std::size_t>> withdrawn;
+  std::string reason;
+};
+
+// A loop closure still standing.
+struct OnlineLoopClosure {
+  std::size_t i = 0, j = 0;
+  align::Direction direction = align::Direction::forward;
+  float confidence = 0;
+  std::size_t revisit = 0;
+};
+
+class OnlineMapper {
+ public:
+  explicit OnlineMapper(const OnlineMapConfig& config = {});
+
+  // The next frame as its descriptor (every frame the same length, finite); returns the events it caused.
+  std::vector<OnlineEvent> add_descriptor(std::span<const float> descriptor);
+  // The next frame as its similarity S(t, j) to every earlier frame j (t values; higher = more similar):
+  // contrast-enhanced as add_descriptor does.
+  std::vector<OnlineEvent> add_similarity(std::span<const float> similarity_row);
+  // The next frame as several similarities (one row of t values per descriptor, the same number every frame),
+  // each contrast-enhanced on its own and the enhanced scores averaged, as the offline default fuses its
+  // descriptors.
+  std::vector<OnlineEvent> add_similarities(const std::vector<std::vector<float>>& rows);
+  // The next frame as its alignment scores s(t, j), j = 0 .. t - min_separation (max(0, t - min_separation + 1)
+  // values), aligned as they are: no enhancement, no offset (the engine's own view; tests and other sensors).
+  std::vector<OnlineEvent> add_scores(std::span<const float> scores);
+  // Ends every live track (no junction: the run ended, not the revisit). Further frames may still be added.
+  std::vector<OnlineEvent> finish();
+
+  std::size_t frames() const { return frames_; }
+  const OnlineMapConfig& config() const { return config_; }
+  // The loop closures standing now (emitted and not withdrawn), by increasing i then j.
+  std::vector<OnlineLoopClosure> loop_closures() const;
+  // The rows of the last frame (t - min_separation + 1 values each, empty before), for tests.
+  std::span<const float> forward_row() const { return forward_; }
+  std::span<const float> reverse_row() const { return reverse_; }
+  std::span<const float> last_scores() const { return scores_; }
+  // The place of every frame so far: the smallest frame of its set of settled pairs.
+  std::vector<std::size_t> places();
+
+ private:
+  struct Track {
+    std::size_t id = 0;
+    align::Direction direction = align::Direction::forward;
+    std::size_t first_i = 0, first_j = 0;  // start cell
+    std::size_t last_i = 0, last_j = 0;    // the cell of the latest frame
+    float best = 0;
+    std::size_t best_i = 0, best_j = 0;  // the latest cell at the best value
+    std::vector<std::size_t> pending;    // indices into closures_, not settled yet
+    bool dormant = false;                // below the threshold while its path lives on
+    float last_value = 0;                // the value at the last frame it was live
+    float sleep_value = 0;               // the value it fell asleep at
+    std::size_t falling = 0;             // consecutive frames its value fell
+  };
+  std::vector<OnlineEvent> step();
+  void enhance(std::span<const float> similarity_row);
+  void enhance(const std::vector<std::span<const float>>& rows);
+  void check_row(std::span<const float> row, std::size_t expected, const char* what) const;
+  void fill_rows();
+  void update_tracks(align::Direction direction, std::vector<OnlineEvent>& events);
+  void emit_closure(Track& track, std::size_t i, std::size_t j, float score, std::vector<OnlineEvent>& events);
+  void settle(Track& track, std::size_t up_to, std::vector<OnlineEvent>& events);
+  void end_track(Track& track, bool at_finish, std::vector<OnlineEvent>& events);
+  void add_junction(const Track& track, std::size_t i, std::size_t j, bool joining, std::vector<OnlineEvent>& events);
+  std::size_t find(std::size_t frame);
+  float confidence(float score) const;
+
+  OnlineMapConfig config_;
+  std::size_t frames_ = 0;
+  std::size_t dim_ = 0;
+  std::vector<float> descriptors_;  // frames_ x dim_ (normalised for cosine)
+  std::vector<float> similarity_;   // S of the current frame (t values)
+  // The last w + 1 rows of S (ring, by frame modulo w + 1) and the per-column running sums over them.
+  std::vector<std::vector<std::vector<float>>> recent_;  // per similarity
+  std::size_t channels_ = 0;
+  std::vector<double> column_sum_, column_sum2_;
+  std::vector<float> scores_;  // s(t, j), j <= t - min_separation
+  std::vector<float> forward_, reverse_, previous_forward_, previous_reverse_;
+  // Start cell (frame, column) of the path attaining each cell, for the same rows.
+  std::vector<std::uint64_t> forward_start_, reverse_start_, previous_forward_start_, previous_reverse_start_;
+  std::vector<Track> tracks_;  // live tracks
+  std::size_t next_track_ = 0;
+  struct Closure {
+    std::size_t i, j, revisit;
+    align::Direction direction;
+    float confidence;
+    bool withdrawn;
+  };
+  std::vector<Closure> closures_;           // standing, in emission order
+  std::vector<std::size_t> parent_, size_;  // union-find over frames (settled pairs)
+  std::vector<std::size_t> junction_places_;
+  std::map<std::uint64_t, std::size_t> ended_starts_;  // start cell of an ended track -> its last frame
+};
+
+}  // namespace seqtopo::mapping

@@ -1,0 +1,69 @@
+#pragma once
+// `seqtopo map INPUT --online`: the frames of a sequence fed one at a time, in order, to the online mapper
+// (mapping/online_mapper.hpp), with the events of every frame handed to the caller before the next frame is read
+// (docs/online.md).
+//
+// Frames: an image folder or a video (the offline default's two descriptors, joint histograms by chi2 and patch
+// thumbnails by SAD, each row contrast-enhanced on its own and fused: OnlineImageRows), the rows of a
+// descriptors.npy (cosine), image paths one per line on a stream (INPUT "-"), or the rows of a similarity.npy
+// (row t's first t values: the similarity of frame t to the earlier frames).
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "seqtopo/evaluation/loop_closure_metrics.hpp"
+#include "seqtopo/mapping/online_mapper.hpp"
+#include "seqtopo/pipeline/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
+
+namespace seqtopo::pipeline {
+
+// The similarity rows of each new image to the images before it, for OnlineMapper::add_similarities: -chi2 of the
+// joint histograms and -SAD of the patch thumbnails (S = 1 - kappa D up to kappa, which the contrast enhancement
+// removes). Keeps every image's two descriptors.
+class OnlineImageRows {
+ public:
+  explicit OnlineImageRows(const SimilarityConfig& config = {}) : config_(config) {}
+  std::vector<std::vector<float>> add(const RgbImage& image);
+
+ private:
+  SimilarityConfig config_;
+  std::vector<similarity::SparseHistogram> histograms_;
+  std::vector<std::vector<float>> patches_;
+};
+
+struct OnlineMapRequest {
+  SequenceInput input;              // path "-": image paths read from `paths`
+  std::istream* paths = nullptr;    // for "-"
+  mapping::OnlineMapConfig config;  // `distance` is set from the input (sad for images, cosine for npy rows)
+  SimilarityConfig similarity;      // the patch thumbnail's settings
+};
+
+struct OnlineMapRun {
+  InputKind kind = InputKind::automatic;
+  std::vector<std::string> frame_names;
+  std::vector<std::filesystem::path> image_files;         // images read (folder or stream), in order
+  std::vector<mapping::OnlineEvent> events;               // every event, in order, finish() included
+  std::vector<mapping::OnlineLoopClosure> loop_closures;  // standing at the end
+  std::vector<double> frame_seconds;                      // the mapper's work per frame (not the reading and decoding)
+  std::size_t frames = 0;
+};
+
+// Called after each frame with its events (possibly none), and once after the last frame with finish()'s.
+using OnlineFrameCallback = std::function<void(std::size_t frame, std::span<const mapping::OnlineEvent> events)>;
+
+// Throws InputError naming the file for bad input (unreadable image, a bag, descriptors of another length).
+OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCallback& on_frame = {});
+
+// One event as one JSON object on one line (no newline), as in events.jsonl (INTERFACE.md).
+std::string online_event_json(const mapping::OnlineEvent& event);
+// One human-readable line (no newline).
+std::string online_event_summary(const mapping::OnlineEvent& event);
+// The standing loop closures as scored pairs (score = confidence), for evaluation::evaluate_loop_closures.
+std::vector<evaluation::ScoredPair> online_scored_pairs(const std::vector<mapping::OnlineLoopClosure>& closures);
+
+}  // namespace seqtopo::pipeline

@@ -1,0 +1,194 @@
+// seqtopo map --online: frames one at a time, events.jsonl flushed after every frame, a line per event on
+// stdout, then the usual outputs of the offline map of the whole sequence beside the online files.
+#include "map_online.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "command_registry.hpp"
+#include "seqtopo/core/input_error.hpp"
+#include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/outputs/map_outputs.hpp"
+#include "seqtopo/pipeline/ground_truth.hpp"
+#include "seqtopo/pipeline/map_pipeline.hpp"
+#include "seqtopo/pipeline/online_map.hpp"
+
+namespace seqtopo::cli {
+namespace {
+namespace fs = std::filesystem;
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::min(v.size() - 1, k == 0 ? 0 : k - 1)];
+}
+
+// Image paths from stdin, linked under natural-order names so that the offline map reads the same frames.
+class LinkFolder {
+ public:
+  explicit LinkFolder(const std::vector<fs::path>& files)
+      : dir_(fs::temp_directory_path() / fmt::format("seqtopo-online-{}", ::getpid())) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    for (std::size_t k = 0; k < files.size(); ++k) {
+      fs::create_symlink(fs::absolute(files[k]), dir_ / fmt::format("{:08d}{}", k, files[k].extension().string()));
+    }
+  }
+  ~LinkFolder() {
+    std::error_code ignored;
+    fs::remove_all(dir_, ignored);
+  }
+  LinkFolder(const LinkFolder&) = delete;
+  LinkFolder& operator=(const LinkFolder&) = delete;
+  const fs::path& dir() const { return dir_; }
+
+ private:
+  fs::path dir_;
+};
+
+std::string metrics_json(const evaluation::LoopClosureMetrics& m) {
+  return fmt::format(R"({{"precision": {}, "recall": {}, "f1": {}, "auc": {}, "tp": {}, "fp": {}, "fn": {}}})",
+                     m.precision, m.recall, m.f1, m.auc, m.tp, m.fp, m.fn);
+}
+
+}  // namespace
+
+void add_online_options(CLI::App& app, bool& online, bool& no_offline_outputs) {
+  app.add_flag("--online", online,
+               "map while the frames arrive, one at a time in order (image folder, video, descriptors.npy, "
+               "similarity.npy, or image paths on stdin with INPUT -): events.jsonl flushed after every frame, a line "
+               "per event on stdout, then the offline map's outputs (docs/online.md); --min-separation and "
+               "--contrast-window count frames");
+  app.add_flag("--no-offline-outputs", no_offline_outputs,
+               "with --online: write only the online files (events.jsonl, online_loop_closures.csv, online.json), "
+               "not the offline map of the whole sequence");
+}
+
+void run_map_online(const OnlineCliOptions& o) {
+  if (o.inputs.size() != 1) {
+    throw InputError("--online", fmt::format("maps one input (a folder, video, descriptors.npy, similarity.npy or - "
+                                             "for image paths on stdin), got {}",
+                                             o.inputs.size()));
+  }
+  pipeline::OnlineMapRequest request;
+  const std::string& input = o.inputs.front();
+  const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
+  request.input = pipeline::SequenceInput(fs::path(input), kind, o.every);
+  request.paths = &std::cin;
+  auto& c = request.config;
+  if (o.gap) c.gap = *o.gap;
+  if (o.threshold) c.threshold = *o.threshold;
+  if (o.cap) c.cap = *o.cap;
+  if (o.no_cap) c.cap.reset();
+  if (o.min_separation) c.min_separation = *o.min_separation;
+  if (o.contrast_window) c.contrast_window = *o.contrast_window;
+  if (o.contrast_offset) c.contrast_offset = *o.contrast_offset;
+  c.reverse = !o.no_reverse;
+  option_value("--online", [&] {
+    mapping::validate(c);
+    return 0;
+  });
+  if (input != "-") pipeline::resolve_input_kind(request.input);  // InputError naming a missing input
+  std::vector<fs::path> inputs;
+  if (input != "-") inputs.emplace_back(input);
+  if (!o.ground_truth.empty()) inputs.emplace_back(o.ground_truth);
+  io::OutputDirectory out(o.out, {.inputs = inputs, .command = "seqtopo map --online"});
+  const fs::path live = out.staged("events.jsonl");
+  std::ofstream events(live);
+  if (!events) throw InputError(live.string(), "cannot be written");
+  std::map<std::string, std::size_t> counts;
+  bool announced = false;
+  const auto start = std::chrono::steady_clock::now();
+  const pipeline::OnlineMapRun run =
+      pipeline::run_online_map(request, [&](std::size_t frame, std::span<const mapping::OnlineEvent> frame_events) {
+        for (const auto& e : frame_events) {
+          events << pipeline::online_event_json(e) << '\n';
+          std::cout << pipeline::online_event_summary(e) << '\n';
+          ++counts[std::string(mapping::to_string(e.kind))];
+        }
+        // Every event of this frame is readable before the next frame is read.
+        events.flush();
+        std::cout.flush();
+        if (!events) throw InputError(live.string(), "write failed");
+        // Announced once the first frame is in, so that input refused at once costs one line.
+        if (frame == 0 && !announced) {
+          announced = true;
+          std::cerr << "seqtopo map: events.jsonl is written to " << live.string() << " as the frames arrive (moved to "
+                    << o.out << " at the end)\n";
+        }
+      });
+  events.close();
+  const double online_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::string closures = "i,j,direction,confidence,revisit\n";
+  for (const auto& lc : run.loop_closures) {
+    closures += fmt::format("{},{},{},{},{}\n", lc.i, lc.j, align::to_string(lc.direction), lc.confidence, lc.revisit);
+  }
+  out.write("online_loop_closures.csv", closures);
+
+  std::optional<evaluation::LoopClosureMetrics> metrics, offline_metrics;
+  if (!o.ground_truth.empty()) {
+    const auto same_place = pipeline::load_same_place(o.ground_truth, o.gt_radius, run.frames);
+    metrics = evaluation::evaluate_loop_closures(pipeline::online_scored_pairs(run.loop_closures), run.frames,
+                                                 same_place, c.min_separation);
+  }
+  // The offline map of the whole sequence: map.json, figures, report (docs/online.md).
+  std::optional<pipeline::MapRun> offline;
+  if (o.offline_outputs) {
+    std::unique_ptr<LinkFolder> links;
+    pipeline::MapRequest map_request;
+    map_request.settings.similarity.threads = o.threads;
+    map_request.settings.map.threads = std::max(1U, o.threads);
+    if (input == "-") {
+      links = std::make_unique<LinkFolder>(run.image_files);
+      map_request.input = {links->dir(), pipeline::InputKind::images};
+    } else {
+      map_request.input = request.input;
+    }
+    map_request.truth.same_place = o.ground_truth;
+    map_request.truth.radius = o.gt_radius;
+    const pipeline::MapJob job(map_request);
+    offline = job.run();
+    outputs::write_map_outputs(*offline, out);
+    outputs::write_map_report(*offline, out, {});
+    offline_metrics = offline->metrics;
+  }
+  std::string summary = fmt::format(R"({{"frames": {}, "loop_closures": {}, "seconds": {}, "frame_seconds": )",
+                                    run.frames, run.loop_closures.size(), online_seconds);
+  summary += fmt::format(R"({{"median": {}, "p99": {}, "max": {}}}, "events": {{)", quantile(run.frame_seconds, 0.5),
+                         quantile(run.frame_seconds, 0.99), quantile(run.frame_seconds, 1.0));
+  bool first = true;
+  for (const auto& [name, count] : counts) {
+    summary += fmt::format(R"({}"{}": {})", first ? "" : ", ", name, count);
+    first = false;
+  }
+  summary += "}";
+  if (metrics) summary += ", \"metrics\": " + metrics_json(*metrics);
+  if (offline_metrics) summary += ", \"offline_metrics\": " + metrics_json(*offline_metrics);
+  summary += "}\n";
+  out.write("online.json", summary);
+  out.commit();
+  std::cerr << fmt::format(
+      "seqtopo map: {} frames online, {} loop closures, per frame median {:.2f} ms, p99 {:.2f} ms\n", run.frames,
+      run.loop_closures.size(), 1e3 * quantile(run.frame_seconds, 0.5), 1e3 * quantile(run.frame_seconds, 0.99));
+  if (metrics) {
+    std::cerr << fmt::format("seqtopo map: online loop closures: precision {:.3f} recall {:.3f} F1 {:.3f}\n",
+                             metrics->precision, metrics->recall, metrics->f1);
+  }
+  if (offline_metrics) {
+    std::cerr << fmt::format("seqtopo map: offline loop closures: precision {:.3f} recall {:.3f} F1 {:.3f}\n",
+                             offline_metrics->precision, offline_metrics->recall, offline_metrics->f1);
+  }
+}
+
+}  // namespace seqtopo::cli

@@ -1,0 +1,28 @@
+#pragma once
+// `seqtopo map INPUT --online` (docs/online.md): the options it reads and the run, kept apart from
+// map_command.cpp, which only hands them over.
+#include <CLI/CLI.hpp>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace seqtopo::cli {
+
+struct OnlineCliOptions {
+  std::vector<std::string> inputs;
+  std::string out, input_kind, ground_truth;
+  std::size_t every = 1;
+  std::optional<float> gap, threshold, cap, contrast_offset;
+  bool no_cap = false, no_reverse = false;
+  std::optional<std::size_t> min_separation, contrast_window;
+  std::optional<double> gt_radius;
+  bool offline_outputs = true;
+  unsigned threads = 0;
+};
+
+// --online and --no-offline-outputs on `seqtopo map`.
+void add_online_options(CLI::App& app, bool& online, bool& no_offline_outputs);
+void run_map_online(const OnlineCliOptions& options);
+
+}  // namespace seqtopo::cli

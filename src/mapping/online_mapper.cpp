@@ -1,0 +1,603 @@
+#include "seqtopo/mapping/online_mapper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "seqtopo/similarity/contrast_enhancement.hpp"
+
+namespace seqtopo::mapping {
+namespace {
+
+constexpr std::uint64_t kNoStart = std::numeric_limits<std::uint64_t>::max();
+
+std::uint64_t cell(std::size_t i, std::size_t j) { return (static_cast<std::uint64_t>(i) << 32U) | j; }
+std::size_t cell_i(std::uint64_t c) { return static_cast<std::size_t>(c >> 32U); }
+std::size_t cell_j(std::uint64_t c) { return static_cast<std::size_t>(c & 0xFFFFFFFFU); }
+
+// Eight partial sums so that the loop vectorises without reassociation flags (fixed order: deterministic).
+float dot(const float* a, const float* b, std::size_t n) {
+  float acc[8] = {};
+  std::size_t k = 0;
+  for (; k + 8 <= n; k += 8) {
+    for (std::size_t l = 0; l < 8; ++l) acc[l] += a[k + l] * b[k + l];
+  }
+  float tail = 0;
+  for (; k < n; ++k) tail += a[k] * b[k];
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7])) + tail;
+}
+
+float sad(const float* a, const float* b, std::size_t n) {
+  float acc[8] = {};
+  std::size_t k = 0;
+  for (; k + 8 <= n; k += 8) {
+    for (std::size_t l = 0; l < 8; ++l) acc[l] += std::fabs(a[k + l] - b[k + l]);
+  }
+  float tail = 0;
+  for (; k < n; ++k) tail += std::fabs(a[k] - b[k]);
+  return (((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7])) + tail) /
+         static_cast<float>(n);
+}
+
+}  // namespace
+
+std::string_view to_string(OnlineEventKind kind) {
+  switch (kind) {
+    case OnlineEventKind::loop_closure:
+      return "loop_closure";
+    case OnlineEventKind::revisit_begin:
+      return "revisit_begin";
+    case OnlineEventKind::revisit_end:
+      return "revisit_end";
+    case OnlineEventKind::junction:
+      return "junction";
+    case OnlineEventKind::place_merge:
+      return "place_merge";
+    case OnlineEventKind::correction:
+      return "correction";
+  }
+  return "?";
+}
+
+void validate(const OnlineMapConfig& c) {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("online mapping: " + what); };
+  if (!(c.gap >= 0) || !std::isfinite(c.gap)) fail("gap must be finite and >= 0");
+  if (c.cap && !(*c.cap > 0 && std::isfinite(*c.cap))) fail("cap must be finite and > 0");
+  if (!(c.threshold > 0) || !std::isfinite(c.threshold)) fail("threshold must be finite and > 0");
+  if (c.cap && c.threshold > *c.cap) fail("threshold must not exceed the cap");
+  if (!std::isfinite(c.contrast_offset)) fail("contrast offset must be finite");
+  if (!(c.x_drop > 0) || !std::isfinite(c.x_drop)) fail("x_drop must be finite and > 0");
+  if (c.min_separation < 1) fail("min_separation must be >= 1");
+  if (c.distance != similarity::Distance::cosine && c.distance != similarity::Distance::sad &&
+      c.distance != similarity::Distance::l1) {
+    fail("distance must be cosine, sad or l1");
+  }
+}
+
+OnlineMapper::OnlineMapper(const OnlineMapConfig& config) : config_(config) { validate(config_); }
+
+void OnlineMapper::check_row(std::span<const float> row, std::size_t expected, const char* what) const {
+  if (row.size() != expected) {
+    throw std::invalid_argument(std::string(what) + " of frame " + std::to_string(frames_) + " has " +
+                                std::to_string(row.size()) + " values, expected " + std::to_string(expected));
+  }
+  for (float v : row) {
+    if (!std::isfinite(v)) {
+      throw std::invalid_argument(std::string(what) + " of frame " + std::to_string(frames_) +
+                                  " has a non-finite value");
+    }
+  }
+}
+
+std::vector<OnlineEvent> OnlineMapper::add_descriptor(std::span<const float> descriptor) {
+  if (frames_ == 0) {
+    if (descriptor.empty()) throw std::invalid_argument("descriptor of frame 0 is empty");
+    dim_ = descriptor.size();
+  }
+  check_row(descriptor, dim_, "descriptor");
+  const std::size_t t = frames_;
+  descriptors_.resize((t + 1) * dim_);
+  float* own = descriptors_.data() + t * dim_;
+  std::copy(descriptor.begin(), descriptor.end(), own);
+  if (config_.distance == similarity::Distance::cosine) {
+    // Normalised once, so each pair is one dot product (a zero vector stays zero: distance 1 to all).
+    const float norm = std::sqrt(dot(own, own, dim_));
+    if (norm > 0) {
+      for (std::size_t k = 0; k < dim_; ++k) own[k] /= norm;
+    }
+  }
+  similarity_.resize(t);
+  for (std::size_t j = 0; j < t; ++j) {
+    const float* other = descriptors_.data() + j * dim_;
+    if (config_.distance == similarity::Distance::cosine) {
+      similarity_[j] = dot(own, other, dim_) - 1.0F;  // -D with D = 1 - cos
+    } else {
+      const float d = sad(own, other, dim_);
+      similarity_[j] = config_.distance == similarity::Distance::sad ? -d : -d * static_cast<float>(dim_);
+    }
+  }
+  enhance(similarity_);
+  fill_rows();
+  return step();
+}
+
+std::vector<OnlineEvent> OnlineMapper::add_similarity(std::span<const float> similarity_row) {
+  if (dim_ != 0) throw std::invalid_argument("add_similarity after add_descriptor: one kind of input per mapper");
+  if (channels_ > 1) throw std::invalid_argument("add_similarity after add_similarities of several rows");
+  channels_ = 1;
+  check_row(similarity_row, frames_, "similarity row");
+  enhance(similarity_row);
+  fill_rows();
+  return step();
+}
+
+std::vector<OnlineEvent> OnlineMapper::add_scores(std::span<const float> scores) {
+  const std::size_t t = frames_;
+  const std::size_t n = t >= config_.min_separation ? t - config_.min_separation + 1 : 0;
+  check_row(scores, n, "score row");
+  scores_.assign(scores.begin(), scores.end());
+  fill_rows();
+  return step();
+}
+
+void OnlineMapper::enhance(std::span<const float> row) { enhance(std::vector<std::span<const float>>{row}); }
+
+void OnlineMapper::enhance(const std::vector<std::span<const float>>& rows) {
+  const std::size_t t = frames_;
+  const std::size_t sep = config_.min_separation;
+  const std::size_t n = t >= sep ? t - sep + 1 : 0;
+  const std::size_t w = config_.contrast_window;
+  scores_.assign(n, 0.0F);
+  if (w == 0) {
+    for (const auto& row : rows) {
+      for (std::size_t j = 0; j < n; ++j) scores_[j] += row[j] / static_cast<float>(rows.size());
+    }
+    return;
+  }
+  if (recent_.size() != rows.size()) recent_.assign(rows.size(), std::vector<std::vector<float>>(w + 1));
+  // Each similarity is enhanced on its own and the enhanced scores averaged, as the offline fusion does
+  // (mapping::enhanced_scores), so their scales need not agree.
+  std::vector<float> enhanced(n);
+  for (std::size_t c = 0; c < rows.size(); ++c) {
+    const auto row = rows[c];
+    // The row's window sums from prefix sums in double (O(t) whatever the window).
+    std::vector<double>& prefix = column_sum_;  // reused buffers
+    std::vector<double>& prefix2 = column_sum2_;
+    prefix.assign(t + 1, 0.0);
+    prefix2.assign(t + 1, 0.0);
+    for (std::size_t j = 0; j < t; ++j) {
+      prefix[j + 1] = prefix[j] + row[j];
+      prefix2[j + 1] = prefix2[j] + static_cast<double>(row[j]) * row[j];
+    }
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t lo = j >= w ? j - w : 0;
+      const std::size_t hi = std::min(t - 1, j + w);
+      enhanced[j] = similarity::contrast_score(row[j], prefix[hi + 1] - prefix[lo], prefix2[hi + 1] - prefix2[lo],
+                                               static_cast<double>(hi - lo + 1));
+    }
+    // The column's last w + 1 values S(t', j), t' = t - w .. t (rows that have column j: t' > j).
+    auto& ring = recent_[c];
+    ring[t % (w + 1)].assign(row.begin(), row.end());
+    const std::size_t oldest = t >= w ? t - w : 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      double sum = 0, sum2 = 0;
+      std::size_t count = 0;
+      for (std::size_t r = std::max(oldest, j + 1); r <= t; ++r) {
+        const float v = ring[r % (w + 1)][j];
+        sum += v;
+        sum2 += static_cast<double>(v) * v;
+        ++count;
+      }
+      const float column = similarity::contrast_score(row[j], sum, sum2, static_cast<double>(count));
+      scores_[j] += 0.5F * (enhanced[j] + column);
+    }
+  }
+  for (auto& v : scores_) v = (rows.size() == 1 ? v : v / static_cast<float>(rows.size())) - config_.contrast_offset;
+}
+
+std::vector<OnlineEvent> OnlineMapper::add_similarities(const std::vector<std::vector<float>>& rows) {
+  if (dim_ != 0) throw std::invalid_argument("add_similarities after add_descriptor: one kind of input per mapper");
+  if (rows.empty()) throw std::invalid_argument("add_similarities: no similarity row");
+  if (channels_ == 0) channels_ = rows.size();
+  if (rows.size() != channels_) {
+    throw std::invalid_argument("frame " + std::to_string(frames_) + " has " + std::to_string(rows.size()) +
+                                " similarity rows, the first frame had " + std::to_string(channels_));
+  }
+  std::vector<std::span<const float>> spans;
+  for (const auto& row : rows) {
+    check_row(row, frames_, "similarity row");
+    spans.emplace_back(row);
+  }
+  enhance(spans);
+  fill_rows();
+  return step();
+}
+
+void OnlineMapper::fill_rows() {
+  const std::size_t t = frames_;
+  const std::size_t n = scores_.size();
+  const float gap = config_.gap;
+  auto clamp = [&](float v) { return config_.cap ? std::min(v, *config_.cap) : v; };
+  std::swap(previous_forward_, forward_);
+  std::swap(previous_reverse_, reverse_);
+  std::swap(previous_forward_start_, forward_start_);
+  std::swap(previous_reverse_start_, reverse_start_);
+  const std::size_t m = previous_forward_.size();  // n - 1, or 0
+  forward_.assign(n, 0.0F);
+  forward_start_.assign(n, kNoStart);
+  // The engine's evaluation order and operations (smith_waterman.cpp, cell_value), so the rows agree bit for bit;
+  // the start of each cell follows the first step that attains it, in the same order.
+  for (std::size_t j = 0; j < n; ++j) {
+    const float diag = j > 0 && j - 1 < m ? previous_forward_[j - 1] : 0.0F;
+    const float up = j < m ? previous_forward_[j] : 0.0F;
+    const float left = j > 0 ? forward_[j - 1] : 0.0F;
+    const float a = diag + scores_[j];
+    float v = std::max(0.0F, a);
+    v = std::max(v, up - gap);
+    v = std::max(v, left - gap);
+    v = clamp(v);
+    forward_[j] = v;
+    if (v <= 0) continue;
+    if (clamp(a) == v) {
+      forward_start_[j] = diag > 0 ? previous_forward_start_[j - 1] : cell(t, j);
+    } else if (clamp(up - gap) == v) {
+      forward_start_[j] = previous_forward_start_[j];
+    } else {
+      forward_start_[j] = forward_start_[j - 1];
+    }
+  }
+  reverse_.assign(config_.reverse ? n : 0, 0.0F);
+  reverse_start_.assign(config_.reverse ? n : 0, kNoStart);
+  if (!config_.reverse) return;
+  const std::size_t mr = previous_reverse_.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t j = n - 1 - k;
+    const float diag = j + 1 < mr ? previous_reverse_[j + 1] : 0.0F;
+    const float up = j < mr ? previous_reverse_[j] : 0.0F;
+    const float left = j + 1 < n ? reverse_[j + 1] : 0.0F;
+    const float a = diag + scores_[j];
+    float v = std::max(0.0F, a);
+    v = std::max(v, up - gap);
+    v = std::max(v, left - gap);
+    v = clamp(v);
+    reverse_[j] = v;
+    if (v <= 0) continue;
+    if (clamp(a) == v) {
+      reverse_start_[j] = diag > 0 ? previous_reverse_start_[j + 1] : cell(t, j);
+    } else if (clamp(up - gap) == v) {
+      reverse_start_[j] = previous_reverse_start_[j];
+    } else {
+      reverse_start_[j] = reverse_start_[j + 1];
+    }
+  }
+}
+
+float OnlineMapper::confidence(float score) const {
+  const float full = config_.cap ? *config_.cap : 2 * config_.threshold;
+  return std::min(1.0F, score / full);
+}
+
+std::size_t OnlineMapper::find(std::size_t frame) {
+  std::size_t root = frame;
+  while (parent_[root] != root) root = parent_[root];
+  while (parent_[frame] != root) frame = std::exchange(parent_[frame], root);
+  return root;
+}
+
+void OnlineMapper::emit_closure(Track& track, std::size_t i, std::size_t j, float score,
+                                std::vector<OnlineEvent>& events) {
+  OnlineEvent e;
+  e.kind = OnlineEventKind::loop_closure;
+  e.frame = frames_;
+  e.i = i;
+  e.j = j;
+  e.direction = track.direction;
+  e.score = score;
+  e.confidence = confidence(score);
+  e.revisit = track.id;
+  events.push_back(e);
+  track.pending.push_back(closures_.size());
+  closures_.push_back({i, j, track.id, track.direction, e.confidence, false});
+}
+
+void OnlineMapper::settle(Track& track, std::size_t up_to, std::vector<OnlineEvent>& events) {
+  std::vector<std::size_t> keep;
+  for (std::size_t index : track.pending) {
+    const Closure& c = closures_[index];
+    if (c.i > up_to) {
+      keep.push_back(index);
+      continue;
+    }
+    const std::size_t a = find(c.i), b = find(c.j);
+    if (a == b) continue;
+    if (size_[a] >= 2 && size_[b] >= 2) {
+      OnlineEvent e;
+      e.kind = OnlineEventKind::place_merge;
+      e.frame = frames_;
+      e.i = c.i;
+      e.j = c.j;
+      e.direction = c.direction;
+      e.revisit = c.revisit;
+      e.first = std::min(a, b);
+      e.last = std::max(a, b);
+      events.push_back(e);
+    }
+    // The smaller frame is the root: a place is named by its first frame.
+    const std::size_t root = std::min(a, b), child = std::max(a, b);
+    parent_[child] = root;
+    size_[root] += size_[child];
+  }
+  track.pending = std::move(keep);
+}
+
+void OnlineMapper::add_junction(const Track& track, std::size_t i, std::size_t j, bool joining,
+                                std::vector<OnlineEvent>& events) {
+  const std::size_t place = find(j);
+  for (std::size_t known : junction_places_) {
+    if (find(known) == place || (known > j ? known - j : j - known) <= config_.reach) return;
+  }
+  junction_places_.push_back(j);
+  OnlineEvent e;
+  e.kind = OnlineEventKind::junction;
+  e.frame = frames_;
+  e.i = i;
+  e.j = j;
+  e.direction = track.direction;
+  e.revisit = track.id;
+  e.joining = joining;
+  e.score = track.best;
+  events.push_back(e);
+}
+
+void OnlineMapper::end_track(Track& track, bool at_finish, std::vector<OnlineEvent>& events) {
+  ended_starts_[cell(track.first_i, track.first_j)] = track.last_i;
+  const bool too_short = track.best_i - track.first_i + 1 < config_.min_revisit_frames;
+  const std::size_t keep_to = too_short ? track.first_i : track.best_i;
+  OnlineEvent correction;
+  correction.kind = OnlineEventKind::correction;
+  correction.frame = frames_;
+  correction.direction = track.direction;
+  correction.revisit = track.id;
+  correction.reason = too_short ? "the revisit was shorter than min_revisit_frames"
+                                : "frames after the revisit's end (the last frame at its best score)";
+  std::vector<std::size_t> settled_now;
+  for (std::size_t index : track.pending) {
+    Closure& c = closures_[index];
+    if (too_short || c.i > keep_to) {
+      c.withdrawn = true;
+      correction.withdrawn.emplace_back(c.i, c.j);
+    }
+  }
+  std::erase_if(track.pending, [&](std::size_t index) { return closures_[index].withdrawn; });
+  if (!too_short) settle(track, track.best_i, events);
+  if (!correction.withdrawn.empty()) {
+    correction.i = correction.withdrawn.front().first;
+    correction.j = correction.withdrawn.front().second;
+    events.push_back(std::move(correction));
+  }
+  if (too_short) return;
+  OnlineEvent e;
+  e.kind = OnlineEventKind::revisit_end;
+  e.frame = frames_;
+  e.i = track.best_i;
+  e.j = track.best_j;
+  e.direction = track.direction;
+  e.revisit = track.id;
+  e.score = track.best;
+  e.confidence = confidence(track.best);
+  e.first = track.first_i;
+  e.last = track.best_i;
+  e.frames = track.best_i - track.first_i + 1;
+  events.push_back(e);
+  if (at_finish) return;
+  // Leaving the old path in its middle: it continues beyond the old frame the revisit ended on.
+  const bool forward = track.direction == align::Direction::forward;
+  const bool middle = forward ? track.best_j + config_.reach < track.first_i : track.best_j > config_.reach;
+  if (middle) add_junction(track, track.best_i, track.best_j, false, events);
+}
+
+void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineEvent>& events) {
+  const bool forward = direction == align::Direction::forward;
+  const std::vector<float>& row = forward ? forward_ : reverse_;
+  const std::vector<std::uint64_t>& starts = forward ? forward_start_ : reverse_start_;
+  const std::size_t t = frames_;
+  const std::size_t n = row.size();
+  const std::size_t reach = config_.reach;
+  // Continue the live tracks: the best cell near the predicted column (first maximum). A track that falls below
+  // the threshold (or x_drop below its best) is dormant, without loop closures, while the path it followed lives
+  // on in the table (a cell still carries its start cell): a stretch of poor frames inside one revisit.
+  std::vector<std::size_t> ended;
+  for (std::size_t k = 0; k < tracks_.size(); ++k) {
+    Track& track = tracks_[k];
+    if (track.direction != direction) continue;
+    const std::uint64_t own_start = cell(track.first_i, track.first_j);
+    if (track.dormant) {
+      long best = -1;
+      for (std::size_t j = 0; j < n; ++j) {
+        if (starts[j] == own_start && (best < 0 || row[j] > row[static_cast<std::size_t>(best)])) {
+          best = static_cast<long>(j);
+        }
+      }
+      if (best < 0) {
+        ended.push_back(k);
+        continue;
+      }
+      const float value = row[static_cast<std::size_t>(best)];
+      if (value < config_.threshold || value < track.best - config_.x_drop || value <= track.sleep_value) continue;
+      // Resumed: the frames it slept through get loop closures along the line from its last cell to this one.
+      const std::size_t span = t - track.last_i;
+      for (std::size_t i = track.last_i + 1; i < t; ++i) {
+        const double f = static_cast<double>(i - track.last_i) / static_cast<double>(span);
+        const double jj = static_cast<double>(track.last_j) + f * (static_cast<double>(best) - track.last_j);
+        emit_closure(track, i, static_cast<std::size_t>(std::lround(jj)), value, events);
+      }
+      track.dormant = false;
+      track.falling = 0;
+      track.last_value = value;
+      track.last_i = t;
+      track.last_j = static_cast<std::size_t>(best);
+      emit_closure(track, t, track.last_j, value, events);
+      if (value >= track.best) {
+        track.best = value;
+        track.best_i = t;
+        track.best_j = track.last_j;
+      }
+      settle(track, t, events);
+      continue;
+    }
+    const long predicted = static_cast<long>(track.last_j) + (forward ? 1 : -1);
+    const long lo = std::max(0L, predicted - static_cast<long>(reach));
+    const long hi = std::min(static_cast<long>(n) - 1, predicted + static_cast<long>(reach));
+    long best = -1;
+    for (long j = lo; j <= hi; ++j) {
+      if (best < 0 || row[static_cast<std::size_t>(j)] > row[static_cast<std::size_t>(best)]) best = j;
+    }
+    const float value = best >= 0 ? row[static_cast<std::size_t>(best)] : 0.0F;
+    // A score falling frame after frame is a revisit that has ended (or a poor stretch): asleep until its path
+    // climbs above where it fell asleep.
+    // So is a path that no longer matches: the cell not reached by a diagonal step onto a positive score (a capped
+    // path can otherwise wander through gaps from one revisit's cells to another's).
+    bool matching = false;
+    if (best >= 0) {
+      const auto jb = static_cast<std::size_t>(best);
+      const std::vector<float>& previous = forward ? previous_forward_ : previous_reverse_;
+      const std::size_t from = forward ? jb - 1 : jb + 1;  // wraps for jb = 0 forward: out of range, no diagonal
+      const float diag = from < previous.size() ? previous[from] : 0.0F;
+      const float reached = config_.cap ? std::min(diag + scores_[jb], *config_.cap) : diag + scores_[jb];
+      matching = scores_[jb] > 0 && reached == value;
+    }
+    track.falling = best >= 0 && (value < track.last_value || !matching) ? track.falling + 1 : 0;
+    if (best < 0 || value < config_.threshold || value < track.best - config_.x_drop ||
+        (config_.patience > 0 && track.falling >= config_.patience)) {
+      track.dormant = true;
+      track.sleep_value = value;
+      continue;
+    }
+    track.last_value = value;
+    track.last_i = t;
+    track.last_j = static_cast<std::size_t>(best);
+    emit_closure(track, t, track.last_j, value, events);
+    if (value >= track.best) {
+      track.best = value;
+      track.best_i = t;
+      track.best_j = track.last_j;
+      if (t - track.first_i + 1 >= config_.min_revisit_frames) settle(track, t, events);
+    }
+  }
+  // Two tracks on the same cells are one revisit: the later one ends.
+  for (std::size_t a = 0; a < tracks_.size(); ++a) {
+    for (std::size_t b = a + 1; b < tracks_.size(); ++b) {
+      const Track &x = tracks_[a], &y = tracks_[b];
+      if (x.direction != direction || y.direction != direction || x.last_i != t || y.last_i != t) continue;
+      if (x.dormant || y.dormant) continue;
+      const std::size_t d = x.last_j > y.last_j ? x.last_j - y.last_j : y.last_j - x.last_j;
+      if (d <= reach && std::find(ended.begin(), ended.end(), b) == ended.end()) ended.push_back(b);
+    }
+  }
+  std::sort(ended.begin(), ended.end());
+  for (auto it = ended.rbegin(); it != ended.rend(); ++it) {
+    end_track(tracks_[*it], false, events);
+    tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(*it));
+  }
+  // New tracks: cells at threshold or above, maximal within min_separation columns, and that far from every live
+  // track of this direction (the diagonals beside a revisit score almost as well: they are the same revisit).
+  const std::size_t radius = config_.min_separation;
+  for (std::size_t j = 0; j < n; ++j) {
+    const float v = row[j];
+    if (v < config_.threshold || starts[j] == kNoStart) continue;
+    const std::size_t lo = j >= radius ? j - radius : 0, hi = std::min(n - 1, j + radius);
+    bool peak = true;
+    for (std::size_t c = lo; c <= hi && peak; ++c) peak = c < j ? row[c] < v : (c == j || row[c] <= v);
+    if (!peak) continue;
+    for (const Track& track : tracks_) {
+      if (track.direction != direction) continue;
+      if (cell(track.first_i, track.first_j) == starts[j]) peak = false;  // the path of a dormant track
+      const std::size_t d = track.last_j > j ? track.last_j - j : j - track.last_j;
+      if (d <= radius) peak = false;
+    }
+    if (!peak) continue;
+    Track track;
+    track.id = next_track_++;
+    track.direction = direction;
+    track.first_i = cell_i(starts[j]);
+    track.first_j = cell_j(starts[j]);
+    track.last_i = t;
+    track.last_j = j;
+    track.best = v;
+    track.best_i = t;
+    track.best_j = j;
+    track.last_value = v;
+    OnlineEvent begin;
+    begin.kind = OnlineEventKind::revisit_begin;
+    begin.frame = t;
+    begin.i = track.first_i;
+    begin.j = track.first_j;
+    begin.direction = direction;
+    begin.score = v;
+    begin.confidence = confidence(v);
+    begin.revisit = track.id;
+    begin.first = track.first_i;
+    begin.last = t;
+    begin.frames = t - track.first_i + 1;
+    events.push_back(begin);
+    // Joining the old path in its middle (forward: frames before the old one lead into it; reverse: not a U-turn).
+    const bool middle =
+        forward ? track.first_j > reach : track.first_i - track.first_j > config_.min_separation + 2 * reach;
+    if (middle) add_junction(track, track.first_i, track.first_j, true, events);
+    // The frames between the start and now, along the line from the start cell to this one; an alignment that
+    // an ended track followed already (the same start cell) is filled only after that track's last frame.
+    const std::size_t span = t - track.first_i;
+    std::size_t fill_from = track.first_i;
+    if (auto it = ended_starts_.find(cell(track.first_i, track.first_j)); it != ended_starts_.end()) {
+      fill_from = std::max(fill_from, it->second + 1);
+    }
+    for (std::size_t i = fill_from; i < t; ++i) {
+      const double f = span == 0 ? 0.0 : static_cast<double>(i - track.first_i) / static_cast<double>(span);
+      const double jj = static_cast<double>(track.first_j) + f * (static_cast<double>(j) - track.first_j);
+      emit_closure(track, i, static_cast<std::size_t>(std::lround(jj)), v, events);
+    }
+    emit_closure(track, t, j, v, events);
+    if (begin.frames >= config_.min_revisit_frames) settle(track, t, events);
+    tracks_.push_back(std::move(track));
+  }
+}
+
+std::vector<OnlineEvent> OnlineMapper::step() {
+  parent_.push_back(frames_);
+  size_.push_back(1);
+  std::vector<OnlineEvent> events;
+  update_tracks(align::Direction::forward, events);
+  if (config_.reverse) update_tracks(align::Direction::reverse, events);
+  ++frames_;
+  return events;
+}
+
+std::vector<OnlineEvent> OnlineMapper::finish() {
+  std::vector<OnlineEvent> events;
+  for (Track& track : tracks_) end_track(track, true, events);
+  tracks_.clear();
+  // Emitted after the last frame.
+  for (auto& e : events) e.frame = frames_ == 0 ? 0 : frames_ - 1;
+  return events;
+}
+
+std::vector<OnlineLoopClosure> OnlineMapper::loop_closures() const {
+  std::vector<OnlineLoopClosure> out;
+  for (const auto& c : closures_) {
+    if (!c.withdrawn) out.push_back({c.i, c.j, c.direction, c.confidence, c.revisit});
+  }
+  std::sort(out.begin(), out.end(),
+            [](const auto& a, const auto& b) { return std::pair(a.i, a.j) < std::pair(b.i, b.j); });
+  return out;
+}
+
+std::vector<std::size_t> OnlineMapper::places() {
+  std::vector<std::size_t> out(frames_);
+  for (std::size_t f = 0; f < frames_; ++f) out[f] = find(f);
+  return out;
+}
+
+}  // namespace seqtopo::mapping

@@ -1,0 +1,231 @@
+#include "seqtopo/pipeline/online_map.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <istream>
+#include <stdexcept>
+
+#include "seqtopo/core/input_error.hpp"
+#include "seqtopo/image/image_io.hpp"
+#include "seqtopo/image/joint_histogram.hpp"
+#include "seqtopo/image/patch_thumbnail.hpp"
+#include "seqtopo/io/npy.hpp"
+#include "seqtopo/similarity/distance.hpp"
+
+namespace seqtopo::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+using mapping::OnlineEvent;
+using mapping::OnlineEventKind;
+
+// A JSON number for a float: shortest text that reads back as the same float.
+std::string number(float v) { return fmt::format("{}", v); }
+
+std::string json_string(std::string_view s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+class Feeder {
+ public:
+  Feeder(const OnlineMapRequest& request, OnlineMapRun& run, const OnlineFrameCallback& on_frame)
+      : run_(run), on_frame_(on_frame), mapper_(request.config) {}
+  Feeder(mapping::OnlineMapConfig config, OnlineMapRun& run, const OnlineFrameCallback& on_frame)
+      : run_(run), on_frame_(on_frame), mapper_(config) {}
+
+  template <typename Add>
+  void frame(std::string name, Add add) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<OnlineEvent> events = add(mapper_);
+    run_.frame_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    run_.frame_names.push_back(std::move(name));
+    deliver(std::move(events));
+  }
+
+  void finish() {
+    deliver(mapper_.finish());
+    run_.frames = mapper_.frames();
+    run_.loop_closures = mapper_.loop_closures();
+  }
+
+ private:
+  void deliver(std::vector<OnlineEvent> events) {
+    if (on_frame_) on_frame_(mapper_.frames() == 0 ? 0 : mapper_.frames() - 1, events);
+    run_.events.insert(run_.events.end(), std::make_move_iterator(events.begin()),
+                       std::make_move_iterator(events.end()));
+  }
+
+  OnlineMapRun& run_;
+  const OnlineFrameCallback& on_frame_;
+  mapping::OnlineMapper mapper_;
+};
+
+}  // namespace
+
+std::vector<std::vector<float>> OnlineImageRows::add(const RgbImage& image) {
+  histograms_.push_back(image::joint_histogram(image, config_.joint_histogram));
+  patches_.push_back(image::patch_thumbnail(image, config_.patch));
+  const std::size_t t = histograms_.size() - 1;
+  std::vector<std::vector<float>> rows(2, std::vector<float>(t));
+  for (std::size_t j = 0; j < t; ++j) {
+    rows[0][j] = -static_cast<float>(similarity::chi2_distance(histograms_[t], histograms_[j]));
+    rows[1][j] = -static_cast<float>(similarity::sad_distance(patches_[t], patches_[j]));
+  }
+  return rows;
+}
+
+OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCallback& on_frame) {
+  OnlineMapRun run;
+  const SequenceInput& input = request.input;
+  const bool from_stream = input.path == "-";
+  run.kind = from_stream ? InputKind::images : resolve_input_kind(input);
+  mapping::OnlineMapConfig config = request.config;
+  const std::string subject = input.path.string();
+  switch (run.kind) {
+    case InputKind::bag:
+      throw InputError(subject,
+                       "--online reads image folders, videos, descriptors.npy, similarity.npy or image "
+                       "paths on stdin (-), not bags");
+    case InputKind::descriptors:
+      config.distance = similarity::Distance::cosine;
+      break;
+    case InputKind::images:
+    case InputKind::video:
+      config.distance = similarity::Distance::sad;
+      break;
+    default:
+      break;
+  }
+  Feeder feeder(config, run, on_frame);
+  OnlineImageRows image_rows(request.similarity);
+  auto add_image = [&](std::string name, const RgbImage& image) {
+    // The descriptors are the frame's own work too: they are timed with it.
+    feeder.frame(std::move(name), [&](mapping::OnlineMapper& m) { return m.add_similarities(image_rows.add(image)); });
+  };
+  if (from_stream) {
+    if (request.paths == nullptr) throw std::invalid_argument("run_online_map: input '-' needs a stream of paths");
+    std::string line;
+    while (std::getline(*request.paths, line)) {
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (line.empty()) continue;
+      const fs::path file(line);
+      const RgbImage image = image::load_image(file);  // InputError naming the file
+      run.image_files.push_back(file);
+      add_image(file.filename().string(), image);
+    }
+    if (run.frame_names.empty()) throw InputError("stdin", "no image path was given (one path per line)");
+  } else if (run.kind == InputKind::images) {
+    const ImageListing listing = list_input_images(input);
+    for (const auto& file : listing.files) {
+      const RgbImage image = image::load_image(file);
+      run.image_files.push_back(file);
+      add_image(image_name(input.path, file, input.recursive), image);
+    }
+  } else if (run.kind == InputKind::video) {
+    image::for_each_video_frame(input.path, input.every, [&](std::size_t index, const RgbImage& image) {
+      add_image(fmt::format("frame {}", index), image);
+    });
+  } else if (run.kind == InputKind::descriptors || run.kind == InputKind::similarity) {
+    const DenseMatrix<float> rows = io::read_npy_matrix<float>(input.path);
+    if (rows.rows == 0 || rows.cols == 0) throw InputError(subject, "holds no row");
+    const bool similarity = run.kind == InputKind::similarity;
+    if (similarity && rows.rows != rows.cols) {
+      throw InputError(subject, fmt::format("a similarity matrix must be square, got {} x {}", rows.rows, rows.cols));
+    }
+    for (std::size_t t = 0; t < rows.rows; ++t) {
+      const auto row = rows.row(t);
+      for (float v : row) {
+        if (!std::isfinite(v)) throw InputError(subject, fmt::format("row {} has a non-finite value", t));
+      }
+      feeder.frame(fmt::format("row {}", t), [&](mapping::OnlineMapper& m) {
+        return similarity ? m.add_similarity(row.first(t)) : m.add_descriptor(row);
+      });
+    }
+  } else {
+    throw InputError(subject, "unsupported input for --online");
+  }
+  feeder.finish();
+  return run;
+}
+
+std::string online_event_json(const OnlineEvent& e) {
+  std::string s = fmt::format(R"({{"frame": {}, "event": "{}")", e.frame, mapping::to_string(e.kind));
+  const auto direction = [&] { return fmt::format(R"(, "direction": "{}")", align::to_string(e.direction)); };
+  switch (e.kind) {
+    case OnlineEventKind::loop_closure:
+      s += fmt::format(R"(, "i": {}, "j": {}{}, "confidence": {}, "score": {}, "revisit": {})", e.i, e.j, direction(),
+                       number(e.confidence), number(e.score), e.revisit);
+      break;
+    case OnlineEventKind::revisit_begin:
+      s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "score": {}, "delay": {})", e.revisit, direction(), e.i,
+                       e.j, number(e.score), e.frame - e.first);
+      break;
+    case OnlineEventKind::revisit_end:
+      s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "first": {}, "last": {}, "frames": {}, "score": {})",
+                       e.revisit, direction(), e.i, e.j, e.first, e.last, e.frames, number(e.score));
+      break;
+    case OnlineEventKind::junction:
+      s += fmt::format(R"(, "i": {}, "j": {}, "joining": {}, "revisit": {}{})", e.i, e.j, e.joining, e.revisit,
+                       direction());
+      break;
+    case OnlineEventKind::place_merge:
+      s +=
+          fmt::format(R"(, "i": {}, "j": {}, "places": [{}, {}], "revisit": {})", e.i, e.j, e.first, e.last, e.revisit);
+      break;
+    case OnlineEventKind::correction: {
+      s += fmt::format(R"(, "revisit": {}{}, "reason": {}, "withdrawn": [)", e.revisit, direction(),
+                       json_string(e.reason));
+      for (std::size_t k = 0; k < e.withdrawn.size(); ++k) {
+        s += fmt::format("{}[{}, {}]", k ? ", " : "", e.withdrawn[k].first, e.withdrawn[k].second);
+      }
+      s += "]";
+      break;
+    }
+  }
+  return s + "}";
+}
+
+std::string online_event_summary(const OnlineEvent& e) {
+  const std::string_view d = align::to_string(e.direction);
+  switch (e.kind) {
+    case OnlineEventKind::loop_closure:
+      return fmt::format("frame {}: loop closure {} ~ {} ({}, confidence {:.2f})", e.frame, e.i, e.j, d, e.confidence);
+    case OnlineEventKind::revisit_begin:
+      return fmt::format("frame {}: revisit {} begins at {} ~ {} ({}, {} frames late)", e.frame, e.revisit, e.i, e.j, d,
+                         e.frame - e.first);
+    case OnlineEventKind::revisit_end:
+      return fmt::format("frame {}: revisit {} ended at {} ~ {} ({}, frames {}-{})", e.frame, e.revisit, e.i, e.j, d,
+                         e.first, e.last);
+    case OnlineEventKind::junction:
+      return fmt::format("frame {}: junction at frame {} (frame {} {} the old path)", e.frame, e.j, e.i,
+                         e.joining ? "joins" : "leaves");
+    case OnlineEventKind::place_merge:
+      return fmt::format("frame {}: places {} and {} merged ({} ~ {})", e.frame, e.first, e.last, e.i, e.j);
+    case OnlineEventKind::correction:
+      return fmt::format("frame {}: correction, {} loop closure(s) of revisit {} withdrawn: {}", e.frame,
+                         e.withdrawn.size(), e.revisit, e.reason);
+  }
+  return {};
+}
+
+std::vector<evaluation::ScoredPair> online_scored_pairs(const std::vector<mapping::OnlineLoopClosure>& closures) {
+  std::vector<evaluation::ScoredPair> out;
+  out.reserve(closures.size());
+  for (const auto& c : closures) out.push_back({c.i, c.j, c.confidence});
+  return out;
+}
+
+}  // namespace seqtopo::pipeline

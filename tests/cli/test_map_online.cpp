@@ -1,0 +1,169 @@
+// seqtopo map --online from the outside: image paths fed one at a time on stdin while events.jsonl is read
+// (every event of frame k is there before frame k + 1 is given, and none of a later frame), the same bytes as a
+// run fed all at once, and bad input refused with one line.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/cli_run.hpp"
+#include "common/temp_dir.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+using seqtopo::test_support::CommandResult;
+using seqtopo::test_support::run_cli;
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream s(text);
+  for (std::string line; std::getline(s, line);) out.push_back(line);
+  return out;
+}
+
+// 1.jpg .. 84.jpg in numeric order, as the folder listing gives them.
+std::vector<fs::path> corridor() {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor")) {
+    if (e.path().extension() == ".jpg") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end(),
+            [](const fs::path& a, const fs::path& b) { return std::stoi(a.stem()) < std::stoi(b.stem()); });
+  return files;
+}
+
+std::string path_lines(const std::vector<fs::path>& files) {
+  std::string s;
+  for (const auto& f : files) s += f.string() + "\n";
+  return s;
+}
+
+void expect_clean_error(const CommandResult& o, const std::string& subject) {
+  EXPECT_NE(o.status, 0);
+  EXPECT_NE(o.status, -1) << "must exit, not crash";
+  EXPECT_EQ(o.err.rfind("seqtopo: error: " + subject, 0), 0U) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << "one line: " << o.err;
+}
+
+TEST(MapOnline, EventsOfFrameKAreReadableBeforeFrameKPlusOneIsGiven) {
+  const seqtopo::test_support::TempDir dir;
+  const auto files = corridor();
+  ASSERT_EQ(files.size(), 84U);
+  // The reference: every path at once.
+  const auto all =
+      run_cli("map - --online --no-offline-outputs --out " + (dir.path / "all").string(), path_lines(files));
+  ASSERT_EQ(all.status, 0) << all.err;
+  const std::string reference = read_text(dir.path / "all" / "events.jsonl");
+  std::vector<std::size_t> frame_of;
+  for (const auto& line : lines_of(reference)) frame_of.push_back(nlohmann::json::parse(line)["frame"]);
+  ASSERT_TRUE(std::is_sorted(frame_of.begin(), frame_of.end())) << "events in frame order";
+  ASSERT_GT(frame_of.size(), 20U) << "the corridor's revisit gives events";
+  EXPECT_EQ(std::count(all.out.begin(), all.out.end(), '\n'), static_cast<long>(frame_of.size()))
+      << "one stdout line per event";
+
+  // The same frames one at a time through a pipe.
+  int in[2];
+  ASSERT_EQ(::pipe(in), 0);
+  const fs::path err_file = dir.path / "stderr.txt";
+  const std::string out_dir = (dir.path / "live").string();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::dup2(in[0], 0);
+    ::close(in[1]);
+    const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(err, 2);
+    ::dup2(null, 1);
+    ::execl(SEQTOPO_CLI, SEQTOPO_CLI, "map", "-", "--online", "--no-offline-outputs", "--out", out_dir.c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::close(in[0]);
+  const auto deadline = [] { return std::chrono::steady_clock::now() + std::chrono::seconds(60); };
+  // The live file's path, announced on stderr once the first frame is in.
+  const std::string first = files[0].string() + "\n";
+  ASSERT_EQ(::write(in[1], first.data(), first.size()), static_cast<ssize_t>(first.size()));
+  fs::path live;
+  for (auto until = deadline(); live.empty() && std::chrono::steady_clock::now() < until;) {
+    const std::string text = read_text(err_file);
+    const std::string key = "events.jsonl is written to ";
+    if (const auto at = text.find(key); at != std::string::npos) {
+      const auto end = text.find(" as the frames", at);
+      if (end != std::string::npos) live = text.substr(at + key.size(), end - at - key.size());
+    }
+    if (live.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_FALSE(live.empty()) << read_text(err_file);
+  const auto ref_lines = lines_of(reference);
+  for (std::size_t k = 0; k + 1 < files.size(); ++k) {
+    const std::string line = files[k].string() + "\n";
+    if (k > 0) {
+      ASSERT_EQ(::write(in[1], line.data(), line.size()), static_cast<ssize_t>(line.size()));
+    }
+    // Every event of frames <= k, and nothing else, once frame k is consumed.
+    const auto expected =
+        static_cast<std::size_t>(std::upper_bound(frame_of.begin(), frame_of.end(), k) - frame_of.begin());
+    std::string want;
+    for (std::size_t e = 0; e < expected; ++e) want += ref_lines[e] + "\n";
+    std::string got;
+    for (auto until = deadline(); std::chrono::steady_clock::now() < until;) {
+      got = read_text(live);
+      if (got.size() >= want.size()) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    ASSERT_EQ(got, want) << "after frame " << k;
+  }
+  const std::string last = files.back().string() + "\n";
+  ASSERT_EQ(::write(in[1], last.data(), last.size()), static_cast<ssize_t>(last.size()));
+  ::close(in[1]);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_text(err_file);
+  EXPECT_EQ(read_text(dir.path / "live" / "events.jsonl"), reference) << "the same bytes fed at once or one by one";
+}
+
+TEST(MapOnline, WritesTheOnlineAndTheOfflineOutputs) {
+  const seqtopo::test_support::TempDir dir;
+  const fs::path data = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  const auto o = run_cli("map " + data.string() + " --online --ground-truth " + (data / "ground_truth.bmp").string() +
+                         " --out " + (dir.path / "out").string());
+  ASSERT_EQ(o.status, 0) << o.err;
+  for (const char* name : {"events.jsonl", "online_loop_closures.csv", "online.json", "map.json", "report.html"}) {
+    EXPECT_TRUE(fs::exists(dir.path / "out" / name)) << name;
+  }
+  const auto summary = nlohmann::json::parse(read_text(dir.path / "out" / "online.json"));
+  EXPECT_GT(summary["metrics"]["f1"].get<double>(), 0.5);
+  EXPECT_TRUE(summary.contains("offline_metrics"));
+}
+
+TEST(MapOnline, BadInputGivesOneLine) {
+  const seqtopo::test_support::TempDir dir;
+  const std::string out = " --out " + (dir.path / "out").string();
+  expect_clean_error(run_cli("map a b --online" + out), "--online");
+  expect_clean_error(run_cli("map " + (dir.path / "missing").string() + " --online" + out),
+                     (dir.path / "missing").string());
+  const std::string missing_image = (dir.path / "nope.png").string();
+  expect_clean_error(run_cli("map - --online" + out, missing_image + "\n"), missing_image);
+  expect_clean_error(run_cli("map - --online" + out, "\n"), "stdin");
+  expect_clean_error(run_cli("map - --online --threshold 100" + out, "x\n"), "--online");
+  EXPECT_FALSE(fs::exists(dir.path / "out")) << "no output folder on error";
+}
+
+}  // namespace

@@ -1,0 +1,267 @@
+// The online mapper against independent references: a textbook full-table fill of the self search (and the
+// alignment engine's best score), the offline engine's alignments on planted revisits (forward, reverse, three
+// traversals), the distance functions, and its own event rules.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <set>
+#include <stdexcept>
+
+#include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/core/dense_matrix.hpp"
+#include "seqtopo/mapping/online_mapper.hpp"
+#include "seqtopo/similarity/distance.hpp"
+
+namespace seqtopo::mapping {
+namespace {
+
+using align::Direction;
+
+// Full tables of the self search in original coordinates: cells (r, c) with r - c >= sep, 0 elsewhere;
+// forward from (r-1, c-1) and (r, c-1), reverse from (r-1, c+1) and (r, c+1), as align/smith_waterman.hpp states.
+std::vector<std::vector<float>> naive_self_table(const SimilarityMatrix& s, std::size_t sep, bool reverse, float gap,
+                                                 std::optional<float> cap) {
+  const std::size_t n = s.rows;
+  std::vector<std::vector<float>> h(n, std::vector<float>(n, 0.0F));
+  auto at = [&](long r, long c) -> float {
+    if (r < 0 || c < 0 || c >= static_cast<long>(n)) return 0.0F;
+    if (r - c < static_cast<long>(sep)) return 0.0F;
+    return h[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
+  };
+  for (long r = 0; r < static_cast<long>(n); ++r) {
+    for (long k = 0; k < static_cast<long>(n); ++k) {
+      const long c = reverse ? static_cast<long>(n) - 1 - k : k;
+      if (r - c < static_cast<long>(sep)) continue;
+      const float diag = reverse ? at(r - 1, c + 1) : at(r - 1, c - 1);
+      const float side = reverse ? at(r, c + 1) : at(r, c - 1);
+      float v = std::max(0.0F, diag + s(static_cast<std::size_t>(r), static_cast<std::size_t>(c)));
+      v = std::max(v, at(r - 1, c) - gap);
+      v = std::max(v, side - gap);
+      if (cap) v = std::min(v, *cap);
+      h[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] = v;
+    }
+  }
+  return h;
+}
+
+std::vector<float> score_row(const SimilarityMatrix& s, std::size_t t, std::size_t sep) {
+  const std::size_t n = t >= sep ? t - sep + 1 : 0;
+  return {s.values.begin() + static_cast<std::ptrdiff_t>(t * s.cols),
+          s.values.begin() + static_cast<std::ptrdiff_t>(t * s.cols + n)};
+}
+
+TEST(OnlineMapper, RowsEqualTheTextbookFillAndTheEnginesBest) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0F, 0.6F);
+  for (int round = 0; round < 12; ++round) {
+    const std::size_t n = 20 + rng() % 40, sep = 1 + rng() % 6;
+    SimilarityMatrix s(n, n);
+    for (auto& v : s.values) v = u(rng);
+    OnlineMapConfig c;
+    c.min_separation = sep;
+    c.gap = 0.2F + 0.1F * static_cast<float>(rng() % 8);
+    c.cap = round % 3 == 0 ? std::optional<float>{} : std::optional<float>{1.5F + static_cast<float>(rng() % 4)};
+    c.threshold = c.cap ? std::min(*c.cap, 1.0F) : 1.0F;
+    const auto fwd = naive_self_table(s, sep, false, c.gap, c.cap);
+    const auto rev = naive_self_table(s, sep, true, c.gap, c.cap);
+    OnlineMapper m(c);
+    float online_best_fwd = 0, online_best_rev = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+      m.add_scores(score_row(s, t, sep));
+      const auto f = m.forward_row();
+      const auto r = m.reverse_row();
+      ASSERT_EQ(f.size(), t >= sep ? t - sep + 1 : 0);
+      for (std::size_t j = 0; j < f.size(); ++j) {
+        ASSERT_EQ(f[j], fwd[t][j]) << "round " << round << " forward (" << t << ", " << j << ")";
+        ASSERT_EQ(r[j], rev[t][j]) << "round " << round << " reverse (" << t << ", " << j << ")";
+        online_best_fwd = std::max(online_best_fwd, f[j]);
+        online_best_rev = std::max(online_best_rev, r[j]);
+      }
+    }
+    // The engine's first alignment of each pass scores the maximum of its first fill.
+    align::AlignConfig ac;
+    ac.gap_a = ac.gap_b = c.gap;
+    ac.cap = c.cap;
+    ac.self = true;
+    ac.min_separation = sep;
+    ac.max_alignments = 1;
+    const auto source = align::ScoreSource::dense(std::span<const float>(s.values), n, n);
+    const auto f1 = align::local_alignments(source, ac);
+    ac.direction = Direction::reverse;
+    const auto r1 = align::local_alignments(source, ac);
+    EXPECT_EQ(f1.empty() ? 0.0F : f1[0].score, online_best_fwd) << "round " << round;
+    EXPECT_EQ(r1.empty() ? 0.0F : r1[0].score, online_best_rev) << "round " << round;
+  }
+}
+
+// Three traversals: 0..69 explore; 70..109 revisit 10..49 forwards; 110..139 revisit 65..36 backwards; 140..179
+// a third pass over 10..49 that also matches the second (70..109). Revisit pairs score +1.5 (+-0.2), others -1
+// (+-0.3): deterministic noise.
+struct Planted {
+  SimilarityMatrix s;
+  std::vector<std::pair<std::size_t, std::size_t>> forward, reverse;
+};
+
+Planted planted(bool link_first_two) {
+  const std::size_t n = 180;
+  Planted p{SimilarityMatrix(n, n), {}, {}};
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> noise(-0.3F, 0.3F), small(-0.2F, 0.2F);
+  for (auto& v : p.s.values) v = -1.0F + noise(rng);
+  auto plant = [&](std::size_t i, std::size_t j, bool forward) {
+    p.s(i, j) = p.s(j, i) = 1.5F + small(rng);
+    (forward ? p.forward : p.reverse).emplace_back(i, j);
+  };
+  for (std::size_t k = 0; k < 40; ++k) {
+    if (link_first_two) plant(70 + k, 10 + k, true);
+    plant(140 + k, 10 + k, true);
+    plant(140 + k, 70 + k, true);
+  }
+  for (std::size_t k = 0; k < 30; ++k) plant(110 + k, 65 - k, false);
+  return p;
+}
+
+OnlineMapConfig planted_config() {
+  OnlineMapConfig c;
+  c.min_separation = 10;
+  c.gap = 1.5F;
+  c.cap = 20.0F;  // a cap too high lets the engine bridge one revisit to the next
+  c.threshold = 12.0F;
+  c.x_drop = 12.0F;
+  return c;
+}
+
+struct Fed {
+  std::vector<OnlineEvent> events;
+  std::vector<OnlineLoopClosure> closures;
+};
+
+Fed feed(const Planted& p, const OnlineMapConfig& c) {
+  OnlineMapper m(c);
+  Fed out;
+  for (std::size_t t = 0; t < p.s.rows; ++t) {
+    auto events = m.add_scores(score_row(p.s, t, c.min_separation));
+    for (const auto& e : events) {
+      EXPECT_EQ(e.frame, t) << "events are returned with the frame that emitted them";
+      if (e.kind == OnlineEventKind::loop_closure) {
+        EXPECT_LE(e.i, t);
+      }
+    }
+    out.events.insert(out.events.end(), events.begin(), events.end());
+  }
+  const auto last = m.finish();
+  out.events.insert(out.events.end(), last.begin(), last.end());
+  out.closures = m.loop_closures();
+  return out;
+}
+
+TEST(OnlineMapper, PlantedRevisitsGiveTheOfflineEnginesLoopClosures) {
+  const Planted p = planted(true);
+  const OnlineMapConfig c = planted_config();
+  const Fed online = feed(p, c);
+  // The offline engine on the same scores, the same settings.
+  align::AlignConfig ac;
+  ac.gap_a = ac.gap_b = c.gap;
+  ac.cap = c.cap;
+  ac.threshold = c.threshold;
+  ac.self = true;
+  ac.min_separation = c.min_separation;
+  const auto offline =
+      align::local_alignments_both(align::ScoreSource::dense(std::span<const float>(p.s.values), 180, 180), ac, 1);
+  ASSERT_GE(offline.size(), 4U);
+  std::map<std::pair<std::size_t, Direction>, std::vector<std::size_t>> online_j;  // (i, direction) -> j
+  for (const auto& lc : online.closures) online_j[{lc.i, lc.direction}].push_back(lc.j);
+  std::size_t offline_pairs = 0, matched = 0;
+  std::set<std::tuple<std::size_t, std::size_t, Direction>> offline_cells;
+  for (const auto& a : offline) {
+    for (const auto& [i, j] : a.pairs) {
+      ++offline_pairs;
+      offline_cells.insert({i, j, a.direction});
+      const auto it = online_j.find({i, a.direction});
+      if (it == online_j.end()) continue;
+      if (std::any_of(it->second.begin(), it->second.end(),
+                      [&](std::size_t oj) { return oj + 1 >= j && oj <= j + 1; })) {
+        ++matched;
+      }
+    }
+  }
+  EXPECT_GE(static_cast<double>(matched), 0.9 * static_cast<double>(offline_pairs))
+      << matched << " of " << offline_pairs << " offline pairs have an online loop closure within one frame";
+  // And no online loop closure away from the offline alignments.
+  for (const auto& lc : online.closures) {
+    bool near = false;
+    for (long d = -1; d <= 1 && !near; ++d) {
+      near = offline_cells.contains({lc.i, static_cast<std::size_t>(static_cast<long>(lc.j) + d), lc.direction});
+    }
+    EXPECT_TRUE(near) << "online loop closure " << lc.i << " ~ " << lc.j << " is on no offline alignment";
+  }
+  // The planted truth: every frame of the three revisits is closed, in its direction.
+  for (const auto& [i, j] : p.reverse) EXPECT_TRUE(online_j.contains({i, Direction::reverse})) << i;
+  std::size_t begins_forward = 0, begins_reverse = 0;
+  for (const auto& e : online.events) {
+    if (e.kind != OnlineEventKind::revisit_begin) continue;
+    (e.direction == Direction::forward ? begins_forward : begins_reverse)++;
+    EXPECT_LE(e.frame - e.first, 15U) << "a revisit is reported within 15 frames of its start";
+  }
+  EXPECT_EQ(begins_forward, 3U);  // 70.. ~ 10.., 140.. ~ 10.., 140.. ~ 70..
+  EXPECT_EQ(begins_reverse, 1U);
+}
+
+TEST(OnlineMapper, AThirdTraversalMergesTheFirstTwoAndLateClosuresAreWithdrawn) {
+  // The second traversal does not match the first directly; the third matches both.
+  const Fed linked = feed(planted(false), planted_config());
+  std::size_t merges = 0, withdrawn = 0;
+  for (const auto& e : linked.events) {
+    if (e.kind == OnlineEventKind::place_merge) ++merges;
+    if (e.kind == OnlineEventKind::correction) withdrawn += e.withdrawn.size();
+  }
+  EXPECT_GT(merges, 0U);
+  // Closures are emitted while a track decays past the revisit's end; the corrections remove them.
+  EXPECT_GT(withdrawn, 0U);
+  for (const auto& lc : linked.closures) {
+    EXPECT_TRUE((lc.i >= 110 && lc.i < 140) || (lc.i >= 140 && lc.i < 181)) << lc.i << " ~ " << lc.j;
+  }
+}
+
+TEST(OnlineMapper, DescriptorRowsAreTheDistances) {
+  std::mt19937 rng(3);
+  std::normal_distribution<float> g;
+  OnlineMapConfig c;
+  c.contrast_window = 0;  // the similarity as it is: -D
+  c.min_separation = 1;
+  for (auto metric : {similarity::Distance::cosine, similarity::Distance::sad}) {
+    c.distance = metric;
+    OnlineMapper m(c);
+    std::vector<std::vector<float>> seen;
+    for (int t = 0; t < 12; ++t) {
+      std::vector<float> d(37);
+      for (auto& v : d) v = g(rng);
+      m.add_descriptor(d);
+      seen.push_back(d);
+      const auto row = m.last_scores();
+      ASSERT_EQ(row.size(), static_cast<std::size_t>(t));
+      for (int j = 0; j < t; ++j) {
+        EXPECT_NEAR(row[static_cast<std::size_t>(j)],
+                    -similarity::distance(metric, d, seen[static_cast<std::size_t>(j)]), 1e-5);
+      }
+    }
+  }
+}
+
+TEST(OnlineMapper, RefusesBadFrames) {
+  OnlineMapper m;
+  EXPECT_THROW(m.add_scores(std::vector<float>{1.0F}), std::invalid_argument);  // frame 0 has no scores
+  m.add_descriptor(std::vector<float>{1, 2, 3});
+  EXPECT_THROW(m.add_descriptor(std::vector<float>{1, 2}), std::invalid_argument);
+  EXPECT_THROW(m.add_descriptor(std::vector<float>{1, NAN, 3}), std::invalid_argument);
+  EXPECT_THROW(m.add_similarity(std::vector<float>{0.5F}), std::invalid_argument);  // after descriptors
+  OnlineMapConfig bad;
+  bad.threshold = 50;  // above the cap
+  EXPECT_THROW(OnlineMapper{bad}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace seqtopo::mapping
