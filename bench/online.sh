@@ -43,18 +43,9 @@ run corridor "$out/corridor" "$corridor" --ground-truth "$corridor/ground_truth.
 python3 "$here/online_agreement.py" "$out/corridor"
 
 # Nordland summer then winter as one folder of 3,600 frames (as bench/scale.sh); frame k of either season at (k mod 1800, 0).
+. "$(dirname "$0")/nordland_folder.sh"
+nordland_folder "$nordland" "$out/nordland"
 frames="$out/nordland/frames"
-mkdir -p "$frames"
-k=0
-for season in summer winter; do
-  for f in $(ls "$nordland/$season" | sort); do
-    ln -sf "$(realpath "$nordland/$season/$f")" "$frames/$(printf %04d $k).png"
-    k=$((k + 1))
-  done
-done
-python3 -c "
-print('index,x,y,theta')
-for k in range(3600): print(f'{k},{k % 1800},0,0')" > "$out/nordland/poses.csv"
 run nordland "$out/nordland/map" "$frames" --ground-truth "$out/nordland/poses.csv" --gt-radius 2
 python3 "$here/online_agreement.py" "$out/nordland/map"
 python3 "$here/online_delay.py" "$out/nordland/map/events.jsonl" "$out/nordland/poses.csv" 2 10

@@ -10,18 +10,9 @@ out=${OUT:-profile-out}
 seqtopo="$build/src/seqtopo"
 command -v perf >/dev/null || { echo "bench/profile.sh: perf not found (apt-get install linux-perf)" >&2; exit 1; }
 
+. "$(dirname "$0")/nordland_folder.sh"
+nordland_folder "$nordland" "$out"
 frames="$out/frames"
-mkdir -p "$frames"
-k=0
-for season in summer winter; do
-  for f in $(ls "$nordland/$season" | sort); do
-    ln -sf "$(realpath "$nordland/$season/$f")" "$frames/$(printf %04d $k).png"
-    k=$((k + 1))
-  done
-done
-python3 -c "
-print('index,x,y,theta')
-for k in range(3600): print(f'{k},{k % 1800},0,0')" > "$out/poses.csv"
 
 rm -rf "$out/map"
 # DWARF call graphs: the build has no frame pointers.

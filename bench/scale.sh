@@ -14,17 +14,8 @@ seqtopo="$build/src/seqtopo"
 "$seqtopo" bench scale --sizes 100000 --sparse-sizes 0 --threads 2 --no-similarity-pass --out "$out/dense100k.json"
 
 # Nordland summer then winter as one folder of 3,600 frames; frame k of either season sits at (k mod 1800, 0).
+. "$(dirname "$0")/nordland_folder.sh"
+nordland_folder "$nordland" "$out/nordland"
 frames="$out/nordland/frames"
-mkdir -p "$frames"
-k=0
-for season in summer winter; do
-  for f in $(ls "$nordland/$season" | sort); do
-    ln -sf "$(realpath "$nordland/$season/$f")" "$frames/$(printf %04d $k).png"
-    k=$((k + 1))
-  done
-done
-python3 -c "
-print('index,x,y,theta')
-for k in range(3600): print(f'{k},{k % 1800},0,0')" > "$out/nordland/poses.csv"
 "$seqtopo" map "$frames" --ground-truth "$out/nordland/poses.csv" --gt-radius 2 --out "$out/nordland/map"
 "$build/bench/bench_sparse_nordland" "$nordland" "$out/nordland/map/loop_closures.csv"
