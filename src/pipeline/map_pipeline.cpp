@@ -125,6 +125,7 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 }
 
+// similarity.png of --sparse, from the candidates alone (never the N x N cells): see its caller.
 plot::MatrixOverview sparse_overview(const scale::SparseScores& scores, float offset, std::size_t max_side) {
   plot::MatrixOverview overview;
   const std::size_t n = scores.rows();
