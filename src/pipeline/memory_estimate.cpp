@@ -270,13 +270,15 @@ std::string check_map_memory(const MapRequest& request, InputKind kind, std::siz
       streamed.baseline = false;
       streamed.descriptor_bytes.resize(1);
       consider(kind == InputKind::descriptors ? "--streaming (never the N x N matrix)"
-                                              : "--streaming with one vector descriptor (--descriptor patch "
-                                                "--metric cosine; never the N x N matrix)",
+                                              : "--streaming (one vector descriptor by cosine; never the N x N "
+                                                "matrix)",
                streamed);
+      MapMemoryInput sparse = streamed;
+      sparse.sparse = true;
+      consider("--sparse (each frame's nearest neighbours only)", sparse);
     }
   }
-  std::string advice = fits.empty() ? "nothing of --threads 1, --engine fast or --streaming fits either; the sparse "
-                                      "mode aligns without any N x N table (seqtopo-mpi sparse, docs/scaling.md)"
+  std::string advice = fits.empty() ? "nothing of --threads 1, --engine fast, --streaming or --sparse fits either"
                                     : "it would fit with " + fits.front();
   for (std::size_t k = 1; k < fits.size(); ++k) advice += ", or " + fits[k];
   throw InputError(request.input.path.string(),

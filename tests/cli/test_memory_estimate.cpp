@@ -127,12 +127,15 @@ TEST_F(MemoryEstimate, ARunThatCannotFitIsRefusedWithWhatWouldFit) {
 }
 
 // 10^6 images need terabytes on every path: refused at once, pointing to the sparse mode.
+// With the engine forced (without it the run chooses --sparse, which fits): refused before any work, naming
+// what would fit.
 TEST_F(MemoryEstimate, AMillionImagesAreRefusedAtOnce) {
   seqtopo::io::write_npy(dir_.path / "million.npy", seqtopo::DenseMatrix<float>(1000000, 1, 1.0F));
-  const auto r = run_cli("map " + (dir_.path / "million.npy").string() + " --out " + (dir_.path / "out").string());
+  const auto r =
+      run_cli("map " + (dir_.path / "million.npy").string() + " --engine exact --out " + (dir_.path / "out").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("the map of 1000000 images needs about"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("sparse mode"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("it would fit with --sparse"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir_.path / "out"));
 }
