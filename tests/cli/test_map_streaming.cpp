@@ -215,25 +215,21 @@ TEST_F(MapStreaming, ImageFolderStreamsTheNearestVectorDescriptor) {
     EXPECT_EQ(read_file(fs::path(path("chosen")) / file), read_file(fs::path(path("given")) / file)) << file;
 }
 
-// No engine given: exact while the run fits a quarter of the memory budget, streamed when only that fits
-// (SEQTOPO_MEMORY_LIMIT simulates a small machine), one line saying which; an engine given is used as is.
+// No engine given and a small machine (SEQTOPO_MEMORY_LIMIT): the run streams, the same map as --streaming, and
+// says why in one line; an engine given is used as is. (Budgets around each engine's peak: test_engine_choice.cpp.)
+// 6,000 frames, so that the tables, not the process itself (larger under the sanitizers), decide at 1 GB.
 TEST_F(MapStreaming, EngineChosenByTheMemoryTheRunNeeds) {
-  write_walk(3000, 8);
+  write_walk(6000, 8);
   const std::string walk = path("walk.npy");
-  const auto plain = run_cli("map " + walk + " --out " + path("plain"));
-  ASSERT_EQ(plain.status, 0) << plain.err;
-  EXPECT_NE(plain.err.find("engine exact: "), std::string::npos) << plain.err;
-  ASSERT_EQ(setenv("SEQTOPO_MEMORY_LIMIT", "400M", 1), 0);
+  ASSERT_EQ(setenv("SEQTOPO_MEMORY_LIMIT", "1G", 1), 0);
   const auto small = run_cli("map " + walk + " --out " + path("small"));
   unsetenv("SEQTOPO_MEMORY_LIMIT");
   ASSERT_EQ(small.status, 0) << small.err;
   EXPECT_NE(small.err.find("engine streaming: "), std::string::npos) << small.err;
   const auto forced = run_cli("map " + walk + " --streaming --out " + path("forced"));
   ASSERT_EQ(forced.status, 0) << forced.err;
+  EXPECT_EQ(forced.err.find("engine "), std::string::npos) << forced.err;
   EXPECT_EQ(read_file(fs::path(path("small")) / "map.json"), read_file(fs::path(path("forced")) / "map.json"));
-  const auto given = run_cli("map " + walk + " --engine fast --out " + path("given"));
-  ASSERT_EQ(given.status, 0) << given.err;
-  EXPECT_EQ(given.err.find("engine "), std::string::npos) << given.err;
 }
 
 // --sparse aligns only the candidates (each frame's nearest neighbours) and -1 elsewhere: with enough neighbours
