@@ -90,10 +90,10 @@ class Progress(unittest.TestCase):
             self.assertRegex(screen, r"\x1b\[2Kseqtopo map: \[%d/6\] %s done in [\d.]+ s\r?\n" % (k, re.escape(name)))
 
     def test_a_pipe_sees_plain_lines_and_no_long_silence(self):
-        # Long enough that one stage (the files and figures of 7,000 images) runs past the 2 s of a periodic line.
+        # Long enough that one stage (the streamed alignment of 7,000 images) runs past the 2 s of a periodic line.
         write_loop(self.dir, frames=7000)
-        status, lines = run_on_pipe(["map", "walk.npy", "--ground-truth", "poses.csv", "--gt-radius", "2",
-                                     "--out", "out", "--threads", "2"], self.dir)
+        status, lines = run_on_pipe(["map", "walk.npy", "--streaming", "--ground-truth", "poses.csv", "--gt-radius",
+                                     "2", "--out", "out", "--threads", "2"], self.dir)
         text = "\n".join(l for _, l in lines)
         self.assertEqual(status, 0, text[-3000:])
         self.assertNotIn("\r", text)
