@@ -225,29 +225,38 @@ void OnlineMapper::fill_rows() {
   std::swap(previous_reverse_, reverse_);
   std::swap(previous_forward_start_, forward_start_);
   std::swap(previous_reverse_start_, reverse_start_);
-  const std::size_t m = previous_forward_.size();  // n - 1, or 0
-  forward_.assign(n, 0.0F);
-  forward_start_.assign(n, kNoStart);
-  // The engine's evaluation order and operations (smith_waterman.cpp, cell_value), so the rows agree bit for bit;
-  // the start of each cell follows the first step that attains it, in the same order.
-  for (std::size_t j = 0; j < n; ++j) {
-    const float diag = j > 0 && j - 1 < m ? previous_forward_[j - 1] : 0.0F;
-    const float up = j < m ? previous_forward_[j] : 0.0F;
-    const float left = j > 0 ? forward_[j - 1] : 0.0F;
+  // One cell: the engine's evaluation order and operations (smith_waterman.cpp, cell_value), so the rows agree
+  // bit for bit; the start of the cell follows the first step that attains it, in the same order. `diag` is the
+  // previous row's diagonal predecessor and `left` this row's filled neighbour (j - 1 forward, j + 1 reverse),
+  // each absent (npos) outside the row.
+  constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  const auto fill_cell = [&](std::vector<float>& row, std::vector<std::uint64_t>& start,
+                             const std::vector<float>& previous, const std::vector<std::uint64_t>& previous_start,
+                             std::size_t j, std::size_t diag_at, std::size_t left_at) {
+    const float diag = diag_at != npos ? previous[diag_at] : 0.0F;
+    const float up = j < previous.size() ? previous[j] : 0.0F;
+    const float left = left_at != npos ? row[left_at] : 0.0F;
     const float a = diag + scores_[j];
     float v = std::max(0.0F, a);
     v = std::max(v, up - gap);
     v = std::max(v, left - gap);
     v = clamp(v);
-    forward_[j] = v;
-    if (v <= 0) continue;
+    row[j] = v;
+    if (v <= 0) return;
     if (clamp(a) == v) {
-      forward_start_[j] = diag > 0 ? previous_forward_start_[j - 1] : cell(t, j);
+      start[j] = diag > 0 ? previous_start[diag_at] : cell(t, j);
     } else if (clamp(up - gap) == v) {
-      forward_start_[j] = previous_forward_start_[j];
+      start[j] = previous_start[j];
     } else {
-      forward_start_[j] = forward_start_[j - 1];
+      start[j] = start[left_at];
     }
+  };
+  const std::size_t m = previous_forward_.size();  // n - 1, or 0
+  forward_.assign(n, 0.0F);
+  forward_start_.assign(n, kNoStart);
+  for (std::size_t j = 0; j < n; ++j) {
+    fill_cell(forward_, forward_start_, previous_forward_, previous_forward_start_, j,
+              j > 0 && j - 1 < m ? j - 1 : npos, j > 0 ? j - 1 : npos);
   }
   reverse_.assign(config_.reverse ? n : 0, 0.0F);
   reverse_start_.assign(config_.reverse ? n : 0, kNoStart);
@@ -255,23 +264,8 @@ void OnlineMapper::fill_rows() {
   const std::size_t mr = previous_reverse_.size();
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t j = n - 1 - k;
-    const float diag = j + 1 < mr ? previous_reverse_[j + 1] : 0.0F;
-    const float up = j < mr ? previous_reverse_[j] : 0.0F;
-    const float left = j + 1 < n ? reverse_[j + 1] : 0.0F;
-    const float a = diag + scores_[j];
-    float v = std::max(0.0F, a);
-    v = std::max(v, up - gap);
-    v = std::max(v, left - gap);
-    v = clamp(v);
-    reverse_[j] = v;
-    if (v <= 0) continue;
-    if (clamp(a) == v) {
-      reverse_start_[j] = diag > 0 ? previous_reverse_start_[j + 1] : cell(t, j);
-    } else if (clamp(up - gap) == v) {
-      reverse_start_[j] = previous_reverse_start_[j];
-    } else {
-      reverse_start_[j] = reverse_start_[j + 1];
-    }
+    fill_cell(reverse_, reverse_start_, previous_reverse_, previous_reverse_start_, j, j + 1 < mr ? j + 1 : npos,
+              j + 1 < n ? j + 1 : npos);
   }
 }
 
