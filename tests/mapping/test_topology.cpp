@@ -44,7 +44,8 @@ void expect_figure_eight(const TopologicalMap& map) {
   EXPECT_EQ(map.edges.size(), 40U);
 }
 
-TEST(Topology, FigureEightFromHandBuiltAlignment) {
+// The figure-eight's revisit as the engine would report it: images 30..40 revisit 10..20.
+align::LocalAlignment revisit_alignment() {
   align::LocalAlignment a;
   a.score = 10;
   a.pairs = revisit_pairs();
@@ -52,7 +53,11 @@ TEST(Topology, FigureEightFromHandBuiltAlignment) {
   a.a_end = 40;
   a.b_begin = 10;
   a.b_end = 20;
-  const std::vector<align::LocalAlignment> alignments{a};
+  return a;
+}
+
+TEST(Topology, FigureEightFromHandBuiltAlignment) {
+  const std::vector<align::LocalAlignment> alignments{revisit_alignment()};
   const auto pruning = prune_per_column(alignments);
   const auto labels = label_places(kImages, revisit_pairs());
   expect_figure_eight(build_topology(labels, alignments, pruning));
@@ -60,14 +65,7 @@ TEST(Topology, FigureEightFromHandBuiltAlignment) {
 
 // The evidence of the figure-eight's two junctions, counted by hand: where each pass came from and went to.
 TEST(Topology, JunctionEvidenceOfTheFigureEight) {
-  align::LocalAlignment a;
-  a.score = 10;
-  a.pairs = revisit_pairs();
-  a.a_begin = 30;
-  a.a_end = 40;
-  a.b_begin = 10;
-  a.b_end = 20;
-  const std::vector<align::LocalAlignment> alignments{a};
+  const std::vector<align::LocalAlignment> alignments{revisit_alignment()};
   auto pruning = prune_per_column(alignments);
   for (auto& p : pruning.pairs) p.confidence = p.i == 30 ? 0.9 : 0.5;
   const auto labels = label_places(kImages, revisit_pairs());
