@@ -31,6 +31,10 @@ py::dict event_dict(const OnlineEvent& e) {
   d["j"] = e.j;
   d["revisit"] = e.revisit;
   if (e.kind != OnlineEventKind::place_merge) d["direction"] = std::string(align::to_string(e.direction));
+  if (e.kind == OnlineEventKind::loop_closure || e.kind == OnlineEventKind::revisit_begin ||
+      e.kind == OnlineEventKind::revisit_end) {
+    d["e_value"] = e.e_value ? py::cast(*e.e_value) : py::none();
+  }
   switch (e.kind) {
     case OnlineEventKind::loop_closure:
       d["confidence"] = e.confidence;
@@ -128,15 +132,18 @@ void bind_online(py::module_& m) {
   py::class_<OnlineMapConfig> c(m, "OnlineMapConfig",
                                 "Settings of the online mapper (docs/online.md); every field a keyword argument.");
   c.def(py::init([](const std::string& distance, std::size_t contrast_window, float contrast_offset, float gap,
-                    std::optional<float> cap, float threshold, std::size_t min_separation, bool reverse,
-                    std::size_t reach, float x_drop, std::size_t min_revisit_frames, std::size_t patience) {
+                    std::optional<float> cap, std::optional<double> max_e_value, float threshold,
+                    std::size_t min_separation, bool reverse, std::size_t reach, float x_drop,
+                    std::size_t min_revisit_frames, std::size_t patience, std::size_t island_sample) {
           OnlineMapConfig config;
           config.distance = similarity::parse_distance(distance);
           config.contrast_window = contrast_window;
           config.contrast_offset = contrast_offset;
           config.gap = gap;
           config.cap = cap;
+          config.max_e_value = max_e_value;
           config.threshold = threshold;
+          config.island_sample = island_sample;
           config.min_separation = min_separation;
           config.reverse = reverse;
           config.reach = reach;
@@ -148,18 +155,21 @@ void bind_online(py::module_& m) {
         }),
         py::kw_only(), py::arg("distance") = "cosine", py::arg("contrast_window") = OnlineMapConfig{}.contrast_window,
         py::arg("contrast_offset") = OnlineMapConfig{}.contrast_offset, py::arg("gap") = OnlineMapConfig{}.gap,
-        py::arg("cap") = OnlineMapConfig{}.cap, py::arg("threshold") = OnlineMapConfig{}.threshold,
+        py::arg("cap") = OnlineMapConfig{}.cap, py::arg("max_e_value") = OnlineMapConfig{}.max_e_value,
+        py::arg("threshold") = OnlineMapConfig{}.threshold,
         py::arg("min_separation") = OnlineMapConfig{}.min_separation, py::arg("reverse") = OnlineMapConfig{}.reverse,
         py::arg("reach") = OnlineMapConfig{}.reach, py::arg("x_drop") = OnlineMapConfig{}.x_drop,
         py::arg("min_revisit_frames") = OnlineMapConfig{}.min_revisit_frames,
-        py::arg("patience") = OnlineMapConfig{}.patience);
+        py::arg("patience") = OnlineMapConfig{}.patience, py::arg("island_sample") = OnlineMapConfig{}.island_sample);
   c.def_property_readonly("distance",
                           [](const OnlineMapConfig& x) { return std::string(similarity::distance_name(x.distance)); });
   c.def_readonly("contrast_window", &OnlineMapConfig::contrast_window);
   c.def_readonly("contrast_offset", &OnlineMapConfig::contrast_offset);
   c.def_readonly("gap", &OnlineMapConfig::gap);
   c.def_readonly("cap", &OnlineMapConfig::cap);
+  c.def_readonly("max_e_value", &OnlineMapConfig::max_e_value);
   c.def_readonly("threshold", &OnlineMapConfig::threshold);
+  c.def_readonly("island_sample", &OnlineMapConfig::island_sample);
   c.def_readonly("min_separation", &OnlineMapConfig::min_separation);
   c.def_readonly("reverse", &OnlineMapConfig::reverse);
   c.def_readonly("reach", &OnlineMapConfig::reach);
@@ -235,6 +245,27 @@ void bind_online(py::module_& m) {
                              [](const PyOnlineMapper& self) {
                                const auto r = self.mapper.reverse_row();
                                return py::array_t<float>(static_cast<py::ssize_t>(r.size()), r.data());
+                             })
+      .def_property_readonly(
+          "threshold", [](const PyOnlineMapper& self) { return self.mapper.threshold(); },
+          "The score a revisit needed at the last frame (from max_e_value and the island statistics).")
+      .def_property_readonly(
+          "statistics",
+          [](const PyOnlineMapper& self) -> py::object {
+            const auto& st = self.mapper.statistics();
+            if (!st.valid()) return py::none();
+            py::dict d;
+            d["lambda"] = st.lambda;
+            d["k"] = st.k;
+            d["area"] = st.area;
+            d["fitted"] = st.fitted;
+            return d;
+          },
+          "The island statistics of the last frame (lambda, k, area, fitted), None before a fit.")
+      .def_property_readonly("island_scores",
+                             [](const PyOnlineMapper& self) {
+                               const auto v = self.mapper.island_scores();
+                               return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
                              })
       .def_property_readonly("last_scores", [](const PyOnlineMapper& self) {
         const auto r = self.mapper.last_scores();

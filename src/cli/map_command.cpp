@@ -185,7 +185,7 @@ void run(MapOptions o) {
   if (o.online) {
     run_map_online({o.inputs, o.out, o.input_kind, o.ground_truth, o.every, o.gap, o.threshold, o.cap,
                     o.contrast_offset, o.no_cap, o.no_reverse, o.min_separation, o.contrast_window, o.gt_radius,
-                    !o.no_offline_outputs, o.threads});
+                    !o.no_offline_outputs, o.threads, o.e_value, o.no_e_value});
     return;
   }
   Progress progress("seqtopo map");

@@ -88,6 +88,8 @@ void run_map_online(const OnlineCliOptions& o) {
   auto& c = request.config;
   if (o.gap) c.gap = *o.gap;
   if (o.threshold) c.threshold = *o.threshold;
+  if (o.e_value) c.max_e_value = *o.e_value;
+  if (o.no_e_value) c.max_e_value.reset();
   if (o.cap) c.cap = *o.cap;
   if (o.no_cap) c.cap.reset();
   if (o.min_separation) c.min_separation = *o.min_separation;
@@ -173,6 +175,14 @@ void run_map_online(const OnlineCliOptions& o) {
     first = false;
   }
   summary += "}";
+  const auto& st = run.statistics;
+  summary +=
+      fmt::format(R"(, "significance": {{"max_e_value": {}, "threshold": {})",
+                  request.config.max_e_value ? fmt::format("{}", *request.config.max_e_value) : "null", run.threshold);
+  if (st.valid()) {
+    summary += fmt::format(R"(, "lambda": {}, "k": {}, "area": {}, "fitted": {})", st.lambda, st.k, st.area, st.fitted);
+  }
+  summary += "}";
   if (metrics) summary += ", \"metrics\": " + metrics_json(*metrics);
   if (offline_metrics) summary += ", \"offline_metrics\": " + metrics_json(*offline_metrics);
   summary += "}\n";
@@ -181,6 +191,12 @@ void run_map_online(const OnlineCliOptions& o) {
   std::cerr << fmt::format(
       "seqtopo map: {} frames online, {} loop closures, per frame median {:.2f} ms, p99 {:.2f} ms\n", run.frames,
       run.loop_closures.size(), 1e3 * quantile(run.frame_seconds, 0.5), 1e3 * quantile(run.frame_seconds, 0.99));
+  if (st.valid()) {
+    std::cerr << fmt::format(
+        "seqtopo map: online significance: lambda {:.3g}, K {:.3g} (from {} chance islands); at the last frame E <= "
+        "{:g} needed a score of {:.3g}\n",
+        st.lambda, st.k, st.fitted, *request.config.max_e_value, run.threshold);
+  }
   if (metrics) {
     std::cerr << fmt::format("seqtopo map: online loop closures: precision {:.3f} recall {:.3f} F1 {:.3f}\n",
                              metrics->precision, metrics->recall, metrics->f1);

@@ -19,6 +19,8 @@ struct OnlineCliOptions {
   std::optional<double> gt_radius;
   bool offline_outputs = true;
   unsigned threads = 0;
+  std::optional<double> e_value;  // --e-value E
+  bool no_e_value = false;        // --e-value none
 };
 
 // --online and --no-offline-outputs on `seqtopo map`.

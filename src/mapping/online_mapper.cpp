@@ -13,6 +13,12 @@ namespace seqtopo::mapping {
 namespace {
 
 constexpr std::uint64_t kNoStart = std::numeric_limits<std::uint64_t>::max();
+// The fit takes the best 1/64 of the islands died so far (at most island_sample of them, at least 48, the
+// offline fit's own minimum of 30 above its first ranks with room): the islands of a few cells are many and
+// fall faster than the tail, and a fit that includes them makes the E-values of the best islands too small
+// (tests: with the best quarter, the islands at E <= 0.5 of noise runs average 1.05; with 1/64, 0.68).
+constexpr std::size_t kMinIslandTail = 48;
+constexpr std::size_t kTailFraction = 64;
 
 std::uint64_t cell(std::size_t i, std::size_t j) { return (static_cast<std::uint64_t>(i) << 32U) | j; }
 std::size_t cell_i(std::uint64_t c) { return static_cast<std::size_t>(c >> 32U); }
@@ -69,6 +75,8 @@ void validate(const OnlineMapConfig& c) {
   if (!(c.threshold > 0) || !std::isfinite(c.threshold)) fail("threshold must be finite and > 0");
   if (c.cap && c.threshold > *c.cap) fail("threshold must not exceed the cap");
   if (!std::isfinite(c.contrast_offset)) fail("contrast offset must be finite");
+  if (c.max_e_value && !(*c.max_e_value > 0 && std::isfinite(*c.max_e_value))) fail("E-value must be finite and > 0");
+  if (c.island_sample < 64) fail("island_sample must be >= 64");
   if (!(c.x_drop > 0) || !std::isfinite(c.x_drop)) fail("x_drop must be finite and > 0");
   if (c.min_separation < 1) fail("min_separation must be >= 1");
   if (c.distance != similarity::Distance::cosine && c.distance != similarity::Distance::sad &&
@@ -77,7 +85,9 @@ void validate(const OnlineMapConfig& c) {
   }
 }
 
-OnlineMapper::OnlineMapper(const OnlineMapConfig& config) : config_(config) { validate(config_); }
+OnlineMapper::OnlineMapper(const OnlineMapConfig& config) : config_(config), threshold_(config.threshold) {
+  validate(config_);
+}
 
 void OnlineMapper::check_row(std::span<const float> row, std::size_t expected, const char* what) const {
   if (row.size() != expected) {
@@ -270,7 +280,7 @@ void OnlineMapper::fill_rows() {
 }
 
 float OnlineMapper::confidence(float score) const {
-  const float full = config_.cap ? *config_.cap : 2 * config_.threshold;
+  const float full = config_.cap ? *config_.cap : 2 * threshold_;
   return std::min(1.0F, score / full);
 }
 
@@ -291,9 +301,11 @@ void OnlineMapper::emit_closure(Track& track, std::size_t i, std::size_t j, floa
   e.direction = track.direction;
   e.score = score;
   e.confidence = confidence(score);
+  e.e_value = e_value(score);
   e.revisit = track.id;
   events.push_back(e);
   track.pending.push_back(closures_.size());
+  closure_columns_[i].emplace_back(j, track.direction);
   closures_.push_back({i, j, track.id, track.direction, e.confidence, false});
 }
 
@@ -382,6 +394,7 @@ void OnlineMapper::end_track(Track& track, bool at_finish, std::vector<OnlineEve
   e.revisit = track.id;
   e.score = track.best;
   e.confidence = confidence(track.best);
+  e.e_value = e_value(track.best);
   e.first = track.first_i;
   e.last = track.best_i;
   e.frames = track.best_i - track.first_i + 1;
@@ -420,7 +433,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
         continue;
       }
       const float value = row[static_cast<std::size_t>(best)];
-      if (value < config_.threshold || value < track.best - config_.x_drop || value <= track.sleep_value) continue;
+      if (value < threshold_ || value < track.best - config_.x_drop || value <= track.sleep_value) continue;
       // Resumed: the frames it slept through get loop closures along the line from its last cell to this one.
       const std::size_t span = t - track.last_i;
       for (std::size_t i = track.last_i + 1; i < t; ++i) {
@@ -464,7 +477,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
       matching = scores_[jb] > 0 && reached == value;
     }
     track.falling = best >= 0 && (value < track.last_value || !matching) ? track.falling + 1 : 0;
-    if (best < 0 || value < config_.threshold || value < track.best - config_.x_drop ||
+    if (best < 0 || value < threshold_ || value < track.best - config_.x_drop ||
         (config_.patience > 0 && track.falling >= config_.patience)) {
       track.dormant = true;
       track.sleep_value = value;
@@ -501,7 +514,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
   const std::size_t radius = config_.min_separation;
   for (std::size_t j = 0; j < n; ++j) {
     const float v = row[j];
-    if (v < config_.threshold || starts[j] == kNoStart) continue;
+    if (v < threshold_ || starts[j] == kNoStart) continue;
     const std::size_t lo = j >= radius ? j - radius : 0, hi = std::min(n - 1, j + radius);
     bool peak = true;
     for (std::size_t c = lo; c <= hi && peak; ++c) peak = c < j ? row[c] < v : (c == j || row[c] <= v);
@@ -532,6 +545,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
     begin.direction = direction;
     begin.score = v;
     begin.confidence = confidence(v);
+    begin.e_value = e_value(v);
     begin.revisit = track.id;
     begin.first = track.first_i;
     begin.last = t;
@@ -559,12 +573,97 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
   }
 }
 
+std::vector<double> OnlineMapper::island_scores() const {
+  std::vector<double> out = island_heap_;
+  std::sort(out.begin(), out.end(), std::greater<>());
+  return out;
+}
+
+bool OnlineMapper::beside_a_revisit(const Island& island, align::Direction direction) const {
+  const auto it = closure_columns_.find(island.i);
+  if (it == closure_columns_.end()) return false;
+  for (const auto& [j, d] : it->second) {
+    if (d == direction && (j > island.j ? j - island.j : island.j - j) <= config_.min_separation) return true;
+  }
+  return false;
+}
+
+void OnlineMapper::update_islands(align::Direction direction, std::unordered_map<std::uint64_t, Island>& live) {
+  const bool forward = direction == align::Direction::forward;
+  const std::vector<float>& row = forward ? forward_ : reverse_;
+  const std::vector<std::uint64_t>& starts = forward ? forward_start_ : reverse_start_;
+  next_islands_.clear();
+  for (std::size_t j = 0; j < row.size(); ++j) {
+    if (row[j] <= 0) continue;
+    auto [it, inserted] = next_islands_.try_emplace(starts[j], Island{row[j], frames_, j});
+    if (!inserted && row[j] > it->second.best) it->second = {row[j], frames_, j};
+  }
+  // An island no cell of this row carries has died: its score is final (cells only descend from the row before
+  // and from their own row).
+  const std::size_t keep = config_.island_sample;
+  for (const auto& [start, island] : live) {
+    if (auto it = next_islands_.find(start); it != next_islands_.end()) {
+      if (island.best >= it->second.best) it->second = island;
+      continue;
+    }
+    if (beside_a_revisit(island, direction)) continue;
+    ++islands_died_;
+    const double score = island.best;
+    if (island_heap_.size() < keep) {
+      island_heap_.push_back(score);
+      std::push_heap(island_heap_.begin(), island_heap_.end(), std::greater<>());
+    } else if (score > island_heap_.front()) {
+      std::pop_heap(island_heap_.begin(), island_heap_.end(), std::greater<>());
+      island_heap_.back() = score;
+      std::push_heap(island_heap_.begin(), island_heap_.end(), std::greater<>());
+    } else {
+      continue;
+    }
+    sample_changed_ = true;
+  }
+  std::swap(live, next_islands_);
+}
+
+void OnlineMapper::update_threshold() {
+  const std::size_t tail = std::min(island_heap_.size(), islands_died_ / kTailFraction);
+  if (!config_.max_e_value || tail < kMinIslandTail) {
+    threshold_ = config_.threshold;
+    return;
+  }
+  const double area =
+      significance::search_area(frames_ + 1, frames_ + 1, true, config_.min_separation, config_.reverse);
+  if (sample_changed_ || !statistics_.valid()) {
+    std::vector<double> scores = island_scores();
+    scores.resize(tail);
+    statistics_ = significance::fit_declumped_scores(scores, area);
+    sample_changed_ = false;
+  }
+  statistics_.area = area;
+  if (!statistics_.valid()) {
+    threshold_ = config_.threshold;
+    return;
+  }
+  const double at = statistics_.score_at(*config_.max_e_value);
+  const float cap = config_.cap ? *config_.cap : std::numeric_limits<float>::max();
+  threshold_ = static_cast<float>(std::clamp(at, 1e-3, static_cast<double>(cap)));
+}
+
+std::optional<double> OnlineMapper::e_value(float score) const {
+  if (!config_.max_e_value || !statistics_.valid()) return std::nullopt;
+  return statistics_.e_value(score);
+}
+
 std::vector<OnlineEvent> OnlineMapper::step() {
   parent_.push_back(frames_);
   size_.push_back(1);
   std::vector<OnlineEvent> events;
   update_tracks(align::Direction::forward, events);
   if (config_.reverse) update_tracks(align::Direction::reverse, events);
+  // The islands that died in this row, after its loop closures (so that a revisit's shadows stay out of the
+  // sample), and the threshold of the next frame.
+  update_islands(align::Direction::forward, forward_islands_);
+  if (config_.reverse) update_islands(align::Direction::reverse, reverse_islands_);
+  update_threshold();
   ++frames_;
   return events;
 }

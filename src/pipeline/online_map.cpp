@@ -59,6 +59,8 @@ class Feeder {
     deliver(mapper_.finish());
     run_.frames = mapper_.frames();
     run_.loop_closures = mapper_.loop_closures();
+    run_.threshold = mapper_.threshold();
+    run_.statistics = mapper_.statistics();
   }
 
  private:
@@ -164,18 +166,22 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
 std::string online_event_json(const OnlineEvent& e) {
   std::string s = fmt::format(R"({{"frame": {}, "event": "{}")", e.frame, mapping::to_string(e.kind));
   const auto direction = [&] { return fmt::format(R"(, "direction": "{}")", align::to_string(e.direction)); };
+  // The E-value of the score in the frames so far; null before the statistics could be fitted.
+  const auto e_value = [&] {
+    return fmt::format(R"(, "e_value": {})", e.e_value ? fmt::format("{:.3g}", *e.e_value) : "null");
+  };
   switch (e.kind) {
     case OnlineEventKind::loop_closure:
-      s += fmt::format(R"(, "i": {}, "j": {}{}, "confidence": {}, "score": {}, "revisit": {})", e.i, e.j, direction(),
-                       number(e.confidence), number(e.score), e.revisit);
+      s += fmt::format(R"(, "i": {}, "j": {}{}, "confidence": {}, "score": {}{}, "revisit": {})", e.i, e.j, direction(),
+                       number(e.confidence), number(e.score), e_value(), e.revisit);
       break;
     case OnlineEventKind::revisit_begin:
-      s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "score": {}, "delay": {})", e.revisit, direction(), e.i,
-                       e.j, number(e.score), e.frame - e.first);
+      s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "score": {}{}, "delay": {})", e.revisit, direction(),
+                       e.i, e.j, number(e.score), e_value(), e.frame - e.first);
       break;
     case OnlineEventKind::revisit_end:
-      s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "first": {}, "last": {}, "frames": {}, "score": {})",
-                       e.revisit, direction(), e.i, e.j, e.first, e.last, e.frames, number(e.score));
+      s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "first": {}, "last": {}, "frames": {}, "score": {}{})",
+                       e.revisit, direction(), e.i, e.j, e.first, e.last, e.frames, number(e.score), e_value());
       break;
     case OnlineEventKind::junction:
       s += fmt::format(R"(, "i": {}, "j": {}, "joining": {}, "revisit": {}{})", e.i, e.j, e.joining, e.revisit,

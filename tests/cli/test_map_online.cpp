@@ -151,12 +151,27 @@ TEST(MapOnline, WritesTheOnlineAndTheOfflineOutputs) {
   const auto summary = nlohmann::json::parse(read_text(dir.path / "out" / "online.json"));
   EXPECT_GT(summary["metrics"]["f1"].get<double>(), 0.5);
   EXPECT_TRUE(summary.contains("offline_metrics"));
+  // 84 frames leave too few chance islands for a fit: the fallback threshold, and no E-values yet.
+  EXPECT_EQ(summary["significance"]["max_e_value"].get<double>(), 0.01);
+  EXPECT_EQ(summary["significance"]["threshold"].get<double>(), 20.0);
+  EXPECT_FALSE(summary["significance"].contains("lambda"));
+  std::ifstream events(dir.path / "out" / "events.jsonl");
+  std::string line;
+  std::size_t closures = 0;
+  while (std::getline(events, line)) {
+    const auto e = nlohmann::json::parse(line);
+    if (e["event"] != "loop_closure") continue;
+    ++closures;
+    EXPECT_TRUE(e.contains("e_value") && e["e_value"].is_null()) << line;
+  }
+  EXPECT_GT(closures, 0U);
 }
 
 TEST(MapOnline, BadInputGivesOneLine) {
   const seqtopo::test_support::TempDir dir;
   const std::string out = " --out " + (dir.path / "out").string();
   expect_clean_error(run_cli("map a b --online" + out), "--online");
+  expect_clean_error(run_cli("map a --online --e-value 0" + out), "--e-value");
   expect_clean_error(run_cli("map " + (dir.path / "missing").string() + " --online" + out),
                      (dir.path / "missing").string());
   const std::string missing_image = (dir.path / "nope.png").string();

@@ -13,6 +13,7 @@
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/mapping/online_mapper.hpp"
+#include "seqtopo/significance/score_statistics.hpp"
 #include "seqtopo/similarity/distance.hpp"
 
 namespace seqtopo::mapping {
@@ -65,6 +66,7 @@ TEST(OnlineMapper, RowsEqualTheTextbookFillAndTheEnginesBest) {
     c.gap = 0.2F + 0.1F * static_cast<float>(rng() % 8);
     c.cap = round % 3 == 0 ? std::optional<float>{} : std::optional<float>{1.5F + static_cast<float>(rng() % 4)};
     c.threshold = c.cap ? std::min(*c.cap, 1.0F) : 1.0F;
+    c.max_e_value.reset();
     const auto fwd = naive_self_table(s, sep, false, c.gap, c.cap);
     const auto rev = naive_self_table(s, sep, true, c.gap, c.cap);
     OnlineMapper m(c);
@@ -128,8 +130,9 @@ OnlineMapConfig planted_config() {
   OnlineMapConfig c;
   c.min_separation = 10;
   c.gap = 1.5F;
-  c.cap = 20.0F;  // a cap too high lets the engine bridge one revisit to the next
-  c.threshold = 12.0F;
+  c.cap = 20.0F;        // a cap too high lets the engine bridge one revisit to the next
+  c.threshold = 12.0F;  // fixed, as the engine's (no statistics)
+  c.max_e_value.reset();
   c.x_drop = 12.0F;
   return c;
 }
@@ -226,6 +229,161 @@ TEST(OnlineMapper, AThirdTraversalMergesTheFirstTwoAndLateClosuresAreWithdrawn) 
   }
 }
 
+// Islands of the textbook full table: every positive cell's start cell (the first of the diagonal, vertical and
+// side steps that attains it, as the engine's path rule), the best value of each start's cells; those with a
+// cell in the last row have not died yet. Both tables of the self search.
+// Islands whose best cell lies within `sep` columns of one of `closures` (frame, column, direction) in its
+// frame, emitted by the frame at which the island died (the first row without it), are left out (a revisit's
+// shadows).
+std::vector<double> naive_dead_islands(const SimilarityMatrix& s, std::size_t sep, float gap, std::optional<float> cap,
+                                       const std::vector<OnlineEvent>& closures = {}) {
+  const std::size_t n = s.rows;
+  std::vector<double> out;
+  for (const bool reverse : {false, true}) {
+    std::vector<std::vector<float>> h(n, std::vector<float>(n, 0.0F));
+    std::vector<std::vector<std::pair<long, long>>> start(n, std::vector<std::pair<long, long>>(n, {-1, -1}));
+    auto inside = [&](long r, long c) {
+      return r >= 0 && c >= 0 && c < static_cast<long>(n) && r - c >= static_cast<long>(sep);
+    };
+    auto at = [&](long r, long c) { return inside(r, c) ? h[r][c] : 0.0F; };
+    auto clamp = [&](float v) { return cap ? std::min(v, *cap) : v; };
+    struct Island {
+      float best = 0;
+      long last = -1, best_r = -1, best_c = -1;
+    };
+    std::map<std::pair<long, long>, Island> islands;  // start -> its best value, its cell, its last row
+    for (long r = 0; r < static_cast<long>(n); ++r) {
+      for (long k = 0; k < static_cast<long>(n); ++k) {
+        const long c = reverse ? static_cast<long>(n) - 1 - k : k;
+        if (!inside(r, c)) continue;
+        const long dc = reverse ? c + 1 : c - 1;
+        const float diag = at(r - 1, dc), up = at(r - 1, c), side = at(r, dc);
+        const float a = diag + s(static_cast<std::size_t>(r), static_cast<std::size_t>(c));
+        const float v = clamp(std::max({0.0F, a, up - gap, side - gap}));
+        h[r][c] = v;
+        if (v <= 0) continue;
+        if (clamp(a) == v) {
+          start[r][c] = diag > 0 ? start[r - 1][dc] : std::pair{r, c};
+        } else if (clamp(up - gap) == v) {
+          start[r][c] = start[r - 1][c];
+        } else {
+          start[r][c] = start[r][dc];
+        }
+        auto& island = islands[start[r][c]];
+        if (v > island.best) island = {v, r, r, c};
+        island.last = r;
+      }
+    }
+    for (const auto& [where, island] : islands) {
+      if (island.last == static_cast<long>(n) - 1) continue;
+      const bool shadow = std::any_of(closures.begin(), closures.end(), [&](const OnlineEvent& e) {
+        return (e.direction == Direction::reverse) == reverse && static_cast<long>(e.frame) <= island.last + 1 &&
+               static_cast<long>(e.i) == island.best_r &&
+               std::abs(static_cast<long>(e.j) - island.best_c) <= static_cast<long>(sep);
+      });
+      if (!shadow) out.push_back(island.best);
+    }
+  }
+  std::sort(out.begin(), out.end(), std::greater<>());
+  return out;
+}
+
+SimilarityMatrix noise_scores(std::size_t n, std::uint32_t seed, float offset) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> z(0.0F, 1.0F);
+  SimilarityMatrix s(n, n);
+  for (auto& v : s.values) v = z(rng) - offset;
+  return s;
+}
+
+TEST(OnlineMapper, IslandsAreTheTextbookTablesIslands) {
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const std::size_t n = 40 + 7 * seed, sep = 1 + seed % 4;
+    const SimilarityMatrix s = noise_scores(n, seed, 0.6F);
+    OnlineMapConfig c;
+    c.min_separation = sep;
+    c.cap = seed % 2 ? std::optional<float>{3.0F} : std::nullopt;
+    c.island_sample = 100000;  // keep every island
+    c.threshold = 2.0F;        // until the fit: revisits, whose shadows stay out of the sample
+    OnlineMapper m(c);
+    std::vector<OnlineEvent> closures;
+    for (std::size_t t = 0; t < n; ++t) {
+      for (const auto& e : m.add_scores(score_row(s, t, sep))) {
+        if (e.kind == OnlineEventKind::loop_closure) closures.push_back(e);
+      }
+    }
+    const std::vector<double> expected = naive_dead_islands(s, sep, c.gap, c.cap, closures);
+    ASSERT_GT(expected.size(), 50U);
+    EXPECT_EQ(m.island_scores(), expected) << "seed " << seed << ", " << closures.size() << " loop closures";
+  }
+}
+
+TEST(OnlineMapper, ItsEValuesCountItsOwnChanceIslands) {
+  // The meaning of the E-value (logarithmic-phase noise, mean score -0.8): in each of many runs of noise,
+  // fitted on the run itself, the islands whose E-value is at most x number x on average.
+  constexpr std::size_t n = 300, sep = 5;
+  constexpr int runs = 40;
+  OnlineMapConfig c;
+  c.min_separation = sep;
+  c.gap = 1.0F;
+  c.cap.reset();
+  const std::vector<double> xs = {0.5, 2.0, 8.0};
+  std::vector<double> counts(xs.size(), 0.0);
+  for (int r = 0; r < runs; ++r) {
+    OnlineMapper m(c);
+    const SimilarityMatrix s = noise_scores(n, 1000 + static_cast<std::uint32_t>(r), 0.8F);
+    for (std::size_t t = 0; t < n; ++t) m.add_scores(score_row(s, t, sep));
+    const auto& st = m.statistics();
+    ASSERT_TRUE(st.valid());
+    ASSERT_EQ(st.area, significance::search_area(n, n, true, sep, true));
+    // The threshold of the last frame is the score of the E-value asked for.
+    ASSERT_FLOAT_EQ(m.threshold(), static_cast<float>(st.score_at(*c.max_e_value)));
+    const std::vector<double> islands = m.island_scores();
+    for (std::size_t k = 0; k < xs.size(); ++k) {
+      const double score = st.score_at(xs[k]);
+      counts[k] +=
+          static_cast<double>(std::count_if(islands.begin(), islands.end(), [&](double v) { return v >= score; }));
+    }
+  }
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    const double mean = counts[k] / runs;
+    // Poisson sampling error of the mean over the runs (3 sigma), and 30 % for the model.
+    EXPECT_NEAR(mean, xs[k], 0.3 * xs[k] + 3 * std::sqrt(xs[k] / runs)) << "E = " << xs[k];
+  }
+}
+
+TEST(OnlineMapper, NoiseGivesNoRevisitAtTheDefaultEValue) {
+  // Chance revisits over a run of N frames from frame t0 average about 2 E ln(N / t0): 0.1 per run here.
+  int revisits = 0;
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    const SimilarityMatrix s = noise_scores(400, seed, 0.7F);
+    OnlineMapConfig c;
+    OnlineMapper m(c);
+    for (std::size_t t = 0; t < s.rows; ++t) {
+      for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+        if (e.kind == OnlineEventKind::revisit_begin) ++revisits;
+      }
+    }
+    EXPECT_LT(m.threshold(), c.threshold) << "the statistics lower the fallback threshold of 20 on noise";
+  }
+  EXPECT_LE(revisits, 4);
+  // With the fixed fallback threshold instead, the same runs at a threshold as low as the fit's report many.
+  int fixed = 0;
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    const SimilarityMatrix s = noise_scores(400, seed, 0.7F);
+    OnlineMapConfig c;
+    c.max_e_value.reset();
+    c.threshold = 3.0F;
+    OnlineMapper m(c);
+    for (std::size_t t = 0; t < s.rows; ++t) {
+      for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+        if (e.kind == OnlineEventKind::revisit_begin) ++fixed;
+      }
+    }
+  }
+  EXPECT_GT(fixed, 20);
+}
+
 TEST(OnlineMapper, DescriptorRowsAreTheDistances) {
   std::mt19937 rng(3);
   std::normal_distribution<float> g;
@@ -261,6 +419,14 @@ TEST(OnlineMapper, RefusesBadFrames) {
   OnlineMapConfig bad;
   bad.threshold = 50;  // above the cap
   EXPECT_THROW(OnlineMapper{bad}, std::invalid_argument);
+  for (const double e : {0.0, -1.0, static_cast<double>(NAN)}) {
+    OnlineMapConfig no_e;
+    no_e.max_e_value = e;
+    EXPECT_THROW(OnlineMapper{no_e}, std::invalid_argument) << e;
+  }
+  OnlineMapConfig tiny;
+  tiny.island_sample = 10;
+  EXPECT_THROW(OnlineMapper{tiny}, std::invalid_argument);
 }
 
 }  // namespace

@@ -16,8 +16,24 @@
 // for j = 0 .. t - min_separation (cells outside are 0), bit for bit the rows of the engine's first fill of
 // the same scores (so they never change when later frames arrive).
 //
+// Significance (the island method of Olsen, Bundschuh & Hwa 1999; Altschul et al. 2001): the cells of a
+// table that share one start cell form an island, and an island's score is its largest value. In the
+// logarithmic phase the number of chance islands scoring at least s in `area` cells is about
+// K * area * exp(-lambda s), the model the offline map fits to its declumped alignments
+// (significance/score_statistics.hpp). Every island of F and R that has died (no cell of the newest row carries
+// its start) joins the sample (the best `island_sample` kept), unless its best cell lies within min_separation
+// columns of a loop closure of its direction in that frame: the diagonals beside a revisit score almost as well
+// and are part of it (the offline fit leaves such shadows out too). After each frame lambda and K are fitted to the
+// best 1/64 of the islands died so far (at most island_sample, at least 48: the tail of their distribution),
+// with the area searched so far (the pairs i - j >= min_separation of frames 0 .. t, twice with the reverse
+// pass), by the offline fit, which sets the few real revisits at the top aside. The threshold of the frame is
+// then the score whose E-value is max_e_value (at most the cap): the expected number of chance revisits at
+// least that good in the frames so far. It grows like 2 ln(t) / lambda, and the expected number of chance
+// revisits reported over a whole run, frames t0 .. N, is about 2 max_e_value ln(N / t0). Until the sample is
+// large enough for a fit (and with max_e_value unset) the threshold is `threshold`.
+//
 // Events, from the rows alone:
-//  * a revisit (a track) is a peak of F or R in row t that reaches `threshold` (the largest value within
+//  * a revisit (a track) is a peak of F or R in row t that reaches the threshold (the largest value within
 //    +-reach columns); a track continues from row t-1 to the peak of row t within `reach` columns of its last
 //    column plus one step (forward: j + 1, reverse: j - 1). It begins when a peak reaches threshold that no
 //    track continues (revisit_begin, with the alignment's start cell: each cell carries the start of the path
@@ -53,10 +69,12 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/significance/score_statistics.hpp"
 #include "seqtopo/similarity/distance.hpp"
 
 namespace seqtopo::mapping {
@@ -68,7 +86,10 @@ struct OnlineMapConfig {
   float contrast_offset = 0.5F;      // [standard deviations] (the offline default)
   float gap = 1.5F;
   std::optional<float> cap = 40.0F;
-  float threshold = 20.0F;          // a track's peak must reach this [score units]
+  // A track's peak must reach the score of this E-value (unset: `threshold` always).
+  std::optional<double> max_e_value = 0.01;
+  float threshold = 20.0F;          // [score units] without max_e_value, or before the statistics can be fitted
+  std::size_t island_sample = 512;  // the best chance islands kept for the fit
   std::size_t min_separation = 10;  // [frames] pairs closer in time are never scored
   bool reverse = true;
   std::size_t reach = 3;               // [frames] peaks and track continuation
@@ -90,8 +111,10 @@ struct OnlineEvent {
   // frame i and the old frame j where the paths join or leave. place_merge: i and j, the pair that merged.
   std::size_t i = 0, j = 0;
   align::Direction direction = align::Direction::forward;
-  float score = 0;          // the table value (loop closure, begin, end: the track's)
-  float confidence = 0;     // loop closure: min(1, score / cap) (score / threshold / 2 without a cap)
+  float score = 0;       // the table value (loop closure, begin, end: the track's)
+  float confidence = 0;  // loop closure: min(1, score / cap) (score / threshold / 2 without a cap)
+  // loop closure, revisit begin and end: the E-value of `score` in the frames so far (unset before a fit).
+  std::optional<double> e_value;
   std::size_t revisit = 0;  // track id (0, 1, ... in order of their begin); place_merge: unused
   // revisit_begin / revisit_end: the track's first and last frames (revisit_end: `frames` long);
   // junction: true when joining (begin), false when leaving (end); place_merge: the two places' first frames.
@@ -137,6 +160,12 @@ class OnlineMapper {
   std::span<const float> forward_row() const { return forward_; }
   std::span<const float> reverse_row() const { return reverse_; }
   std::span<const float> last_scores() const { return scores_; }
+  // The threshold of the next frame (fitted after the last one), and the statistics it came from (invalid before
+  // a fit).
+  float threshold() const { return threshold_; }
+  const significance::ScoreStatistics& statistics() const { return statistics_; }
+  // The scores of the islands that have died so far (the best island_sample of them), best first.
+  std::vector<double> island_scores() const;
   // The place of every frame so far: the smallest frame of its set of settled pairs.
   std::vector<std::size_t> places();
 
@@ -166,6 +195,14 @@ class OnlineMapper {
   void add_junction(const Track& track, std::size_t i, std::size_t j, bool joining, std::vector<OnlineEvent>& events);
   std::size_t find(std::size_t frame);
   float confidence(float score) const;
+  std::optional<double> e_value(float score) const;
+  struct Island {
+    float best = 0;
+    std::size_t i = 0, j = 0;  // the cell of its best value (the first reached)
+  };
+  void update_islands(align::Direction direction, std::unordered_map<std::uint64_t, Island>& live);
+  bool beside_a_revisit(const Island& island, align::Direction direction) const;
+  void update_threshold();
 
   OnlineMapConfig config_;
   std::size_t frames_ = 0;
@@ -192,6 +229,17 @@ class OnlineMapper {
   std::vector<std::size_t> parent_, size_;  // union-find over frames (settled pairs)
   std::vector<std::size_t> junction_places_;
   std::map<std::uint64_t, std::size_t> ended_starts_;  // start cell of an ended track -> its last frame
+  // Islands: the best value so far of each start cell in the newest row, per table; the sample of dead islands'
+  // scores (a min-heap of at most island_sample values) and the fit.
+  std::unordered_map<std::uint64_t, Island> forward_islands_, reverse_islands_, next_islands_;
+  // The columns of the loop closures emitted at each frame (withdrawn ones too), with their direction: islands
+  // beside them are the revisit's shadows, not chance.
+  std::unordered_map<std::size_t, std::vector<std::pair<std::size_t, align::Direction>>> closure_columns_;
+  std::vector<double> island_heap_;
+  std::size_t islands_died_ = 0;
+  bool sample_changed_ = false;
+  significance::ScoreStatistics statistics_;
+  float threshold_ = 0;
 };
 
 }  // namespace seqtopo::mapping

@@ -51,6 +51,10 @@ struct OnlineMapRun {
   std::vector<mapping::OnlineLoopClosure> loop_closures;  // standing at the end
   std::vector<double> frame_seconds;                      // the mapper's work per frame (not the reading and decoding)
   std::size_t frames = 0;
+  // The significance after the last frame: the threshold a revisit needed and the island statistics it came
+  // from (invalid when none could be fitted, or with max_e_value unset).
+  float threshold = 0;
+  significance::ScoreStatistics statistics;
 };
 
 // Called after each frame with its events (possibly none), and once after the last frame with finish()'s.
