@@ -660,9 +660,11 @@ std::vector<OnlineEvent> OnlineMapper::step() {
   update_tracks(align::Direction::forward, events);
   if (config_.reverse) update_tracks(align::Direction::reverse, events);
   // The islands that died in this row, after its loop closures (so that a revisit's shadows stay out of the
-  // sample), and the threshold of the next frame.
-  update_islands(align::Direction::forward, forward_islands_);
-  if (config_.reverse) update_islands(align::Direction::reverse, reverse_islands_);
+  // sample), and the threshold of the next frame; without an E-value neither is used.
+  if (config_.max_e_value) {
+    update_islands(align::Direction::forward, forward_islands_);
+    if (config_.reverse) update_islands(align::Direction::reverse, reverse_islands_);
+  }
   update_threshold();
   ++frames_;
   return events;

@@ -164,7 +164,8 @@ class OnlineMapper {
   // a fit).
   float threshold() const { return threshold_; }
   const significance::ScoreStatistics& statistics() const { return statistics_; }
-  // The scores of the islands that have died so far (the best island_sample of them), best first.
+  // The scores of the islands that have died so far (the best island_sample of them), best first; empty
+  // without max_e_value.
   std::vector<double> island_scores() const;
   // The place of every frame so far: the smallest frame of its set of settled pairs.
   std::vector<std::size_t> places();
