@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,12 @@ py::list event_list(const std::vector<OnlineEvent>& events) {
   py::list out;
   for (const auto& e : events) out.append(event_dict(e));
   return out;
+}
+
+// A NumPy copy of the mapper's values.
+template <typename T>
+py::array_t<T> copy_array(std::span<const T> values) {
+  return py::array_t<T>(static_cast<py::ssize_t>(values.size()), values.data());
 }
 
 std::vector<float> float_vector(const py::handle& values, const char* what) {
@@ -237,18 +244,12 @@ void bind_online(py::module_& m) {
           },
           "The loop closures standing now: (i, j, direction, confidence, revisit), by i then j.")
       .def_property_readonly("forward_row",
-                             [](const PyOnlineMapper& self) {
-                               const auto r = self.mapper.forward_row();
-                               return py::array_t<float>(static_cast<py::ssize_t>(r.size()), r.data());
-                             })
+                             [](const PyOnlineMapper& self) { return copy_array(self.mapper.forward_row()); })
       .def_property_readonly("reverse_row",
-                             [](const PyOnlineMapper& self) {
-                               const auto r = self.mapper.reverse_row();
-                               return py::array_t<float>(static_cast<py::ssize_t>(r.size()), r.data());
-                             })
+                             [](const PyOnlineMapper& self) { return copy_array(self.mapper.reverse_row()); })
       .def_property_readonly(
           "threshold", [](const PyOnlineMapper& self) { return self.mapper.threshold(); },
-          "The score a revisit needed at the last frame (from max_e_value and the island statistics).")
+          "The score a revisit needs at the next frame (from max_e_value and the island statistics after the last).")
       .def_property_readonly(
           "statistics",
           [](const PyOnlineMapper& self) -> py::object {
@@ -263,14 +264,9 @@ void bind_online(py::module_& m) {
           },
           "The island statistics of the last frame (lambda, k, area, fitted), None before a fit.")
       .def_property_readonly("island_scores",
-                             [](const PyOnlineMapper& self) {
-                               const auto v = self.mapper.island_scores();
-                               return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
-                             })
-      .def_property_readonly("last_scores", [](const PyOnlineMapper& self) {
-        const auto r = self.mapper.last_scores();
-        return py::array_t<float>(static_cast<py::ssize_t>(r.size()), r.data());
-      });
+                             [](const PyOnlineMapper& self) { return copy_array<double>(self.mapper.island_scores()); })
+      .def_property_readonly("last_scores",
+                             [](const PyOnlineMapper& self) { return copy_array(self.mapper.last_scores()); });
 }
 
 }  // namespace seqtopo::python
