@@ -35,7 +35,7 @@ for seed in $seeds; do
     "$seqtopo" map "$sim/panoramas" --out "$map" --odometry "$sim/odometry.csv" \
       --ground-truth "$sim/ground_truth.png" --gt-places "$sim/places.csv" --gt-poses "$sim/poses.csv" $map_args
     python3 -c 'import sys,time; print(f"{float(sys.argv[2]) - float(sys.argv[1]):.1f}")' "$start" "$(date +%s.%N)" \
-      > "$map/seconds.txt"
+      > "$out/seed$seed/$s/map_seconds.txt"
   done
 done
 
@@ -63,7 +63,7 @@ for seed in seeds:
         m = load(os.path.join(base_dir, "map", "metrics.json"))
         lc, topo, met, base = m.get("loop_closure", {}), m.get("topology", {}), m.get("metric", {}), m.get("baseline", {})
         vetoed = len(load(os.path.join(base_dir, "map", "alignments.json")).get("rejected_by_odometry", []))
-        spath = os.path.join(base_dir, "map", "seconds.txt")
+        spath = os.path.join(base_dir, "map_seconds.txt")
         secs = open(spath).read().strip() if os.path.exists(spath) else "-"
         jt, jf, jm = (topo.get(k) for k in ("junctions_true", "junctions_found", "junctions_matched"))
         spurious = None if jf is None or jm is None else max(0, jf - jm)

@@ -115,19 +115,23 @@ void bind_map(py::module_& m) {
       m, "TopologyConfig",
       "Topology (C++ seqtopo::mapping::TopologyConfig). u_turn_separation [frames]: a reverse\n"
       "alignment meeting itself closer than this is a U-turn, not a junction. reduce_transitive: leave out an\n"
-      "edge p - q traversed less often than both edges of a route p - x - q (set by MapConfig.clean_graph).");
+      "edge p - q traversed less often than both edges of a route p - x - q (set by MapConfig.clean_graph).\n"
+      "junction_region [edges]: branching places this close to one another are one junction (0: each is its\n"
+      "own; MapConfig.clean_graph sets the shortest revisit, 3 places).");
   topology
-      .def(py::init([](std::size_t u_turn_separation, bool reduce_transitive) {
+      .def(py::init([](std::size_t u_turn_separation, bool reduce_transitive, std::size_t junction_region) {
              TopologyConfig c;
              c.u_turn_separation = u_turn_separation;
              c.reduce_transitive = reduce_transitive;
+             c.junction_region = junction_region;
              return c;
            }),
            py::kw_only(), py::arg("u_turn_separation") = dt.u_turn_separation,
-           py::arg("reduce_transitive") = dt.reduce_transitive)
+           py::arg("reduce_transitive") = dt.reduce_transitive, py::arg("junction_region") = dt.junction_region)
       .def_readwrite("u_turn_separation", &TopologyConfig::u_turn_separation)
-      .def_readwrite("reduce_transitive", &TopologyConfig::reduce_transitive);
-  add_repr(topology, "TopologyConfig", {"u_turn_separation", "reduce_transitive"});
+      .def_readwrite("reduce_transitive", &TopologyConfig::reduce_transitive)
+      .def_readwrite("junction_region", &TopologyConfig::junction_region);
+  add_repr(topology, "TopologyConfig", {"u_turn_separation", "reduce_transitive", "junction_region"});
 
   const MapConfig d{};
   auto labelling_name = [](MapConfig::Labelling l) {

@@ -9,6 +9,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "command_registry.hpp"
 #include "map_online.hpp"
@@ -103,16 +105,24 @@ Settings resolve_settings(const MapOptions& o) {
     if (*o.odometry_gate == "none") {
       s.map.odometry_gate.reset();
     } else {
-      const auto comma = o.odometry_gate->find(',');
-      if (comma == std::string::npos) {
+      // BASE,DRIFT[,WINDOW]
+      std::vector<std::string> fields;
+      for (std::size_t from = 0;;) {
+        const auto comma = o.odometry_gate->find(',', from);
+        fields.push_back(o.odometry_gate->substr(from, comma - from));
+        if (comma == std::string::npos) break;
+        from = comma + 1;
+      }
+      if (fields.size() < 2 || fields.size() > 3) {
         throw InputError("--odometry-gate",
-                         "expected BASE,DRIFT (metres, metres per metre travelled, both >= 0) or "
+                         "expected BASE,DRIFT[,WINDOW] (metres, metres per metre travelled, metres; all >= 0) or "
                          "none, got '" +
                              *o.odometry_gate + "'");
       }
       mapping::OdometryGate gate;
-      gate.base = parse_number<double>("--odometry-gate", o.odometry_gate->substr(0, comma), kNonNegative);
-      gate.drift = parse_number<double>("--odometry-gate", o.odometry_gate->substr(comma + 1), kNonNegative);
+      gate.base = parse_number<double>("--odometry-gate", fields[0], kNonNegative);
+      gate.drift = parse_number<double>("--odometry-gate", fields[1], kNonNegative);
+      if (fields.size() == 3) gate.trim_window = parse_number<double>("--odometry-gate", fields[2], kNonNegative);
       s.map.odometry_gate = gate;
     }
   }
@@ -327,8 +337,11 @@ const RegisterCommand registered{
        app.add_option(
            "--odometry-gate", o->odometry_gate,
            fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
-                       "(metres travelled between them) apart, as BASE,DRIFT, or none (default {},{})",
-                       mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift));
+                       "(metres travelled between them) apart, and trim an alignment's ends where the shapes of its "
+                       "two traversals over WINDOW metres part by more than BASE (WINDOW 0: no trimming), as "
+                       "BASE,DRIFT[,WINDOW], or none (default {},{},{})",
+                       mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift,
+                       mapping::OdometryGate{}.trim_window));
        add_number_or(app, "--e-value", o->e_value, "none", o->no_e_value, kPositive,
                      fmt::format("a revisit's E-value (alignments this good expected by chance in this sequence) is "
                                  "at most this, or none for the fixed --threshold (default {}, paper preset none)",

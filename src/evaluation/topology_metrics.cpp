@@ -5,6 +5,7 @@
 #include <numeric>
 #include <set>
 #include <stdexcept>
+#include <utility>
 
 namespace seqtopo::evaluation {
 namespace {
@@ -33,9 +34,16 @@ double adjusted_rand_index(const std::vector<int>& a, const std::vector<int>& b)
 }
 
 std::vector<int> coarsen_along_true_places(const std::vector<int>& map_labels, const std::vector<int>& true_places,
-                                           const Tolerated& tolerated) {
+                                           const Tolerated& tolerated, std::size_t pass_frames) {
   if (map_labels.size() != true_places.size()) throw std::invalid_argument("partitions of different sizes");
   const std::size_t n = map_labels.size();
+  // boundaries[k]: changes of true place among images 0..k.
+  std::vector<std::size_t> boundaries(n, 0);
+  for (std::size_t k = 1; k < n; ++k) boundaries[k] = boundaries[k - 1] + (true_places[k] != true_places[k - 1]);
+  const auto neighbours_in_one_pass = [&](std::size_t i, std::size_t j) {
+    if (i > j) std::swap(i, j);
+    return j - i < pass_frames && boundaries[j] - boundaries[i] == 1;
+  };
   std::vector<std::size_t> parent(n);
   std::iota(parent.begin(), parent.end(), std::size_t{0});
   auto find = [&](std::size_t x) {
@@ -60,9 +68,11 @@ std::vector<int> coarsen_along_true_places(const std::vector<int>& map_labels, c
     // Two true places in one map place: joined unless every pair of their images is tolerated.
     for (auto a = by_place.begin(); a != by_place.end(); ++a) {
       for (auto b = std::next(a); b != by_place.end(); ++b) {
-        bool all_tolerated = static_cast<bool>(tolerated);
+        bool all_tolerated = true;
         for (std::size_t i : a->second) {
-          for (std::size_t j : b->second) all_tolerated = all_tolerated && tolerated(i, j);
+          for (std::size_t j : b->second) {
+            all_tolerated = all_tolerated && (neighbours_in_one_pass(i, j) || (tolerated && tolerated(i, j)));
+          }
         }
         if (!all_tolerated) unite(a->second.front(), b->second.front());
       }
@@ -86,7 +96,7 @@ TopologyMetrics evaluate_topology(const std::vector<int>& map_labels, const std:
   }
   const std::size_t n = map_labels.size();
   TopologyMetrics m;
-  const std::vector<int> coarse = coarsen_along_true_places(map_labels, true_places, tolerated);
+  const std::vector<int> coarse = coarsen_along_true_places(map_labels, true_places, tolerated, min_separation);
   m.adjusted_rand_index = adjusted_rand_index(coarse, true_places);
   m.adjusted_rand_index_frames = adjusted_rand_index(map_labels, true_places);
   for (std::size_t i = 0; i < n; ++i) {

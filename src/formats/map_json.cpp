@@ -71,6 +71,7 @@ std::string map_json(const mapping::MapResult& result, std::span<const MapSessio
     if (j.by_degree) reasons.push_back("degree");
     if (j.by_alignment) reasons.push_back("alignment_boundary");
     evidence.push_back({{"place", j.place},
+                        {"region", j.region},
                         {"branches", j.branches},
                         {"images", j.images},
                         {"alignments", j.alignments},

@@ -108,6 +108,26 @@ ConsistentLabelling label_consistently(std::size_t images, const std::vector<ali
       }
     }
   }
+  // Images skipped inside an accepted stretch of an alignment join the place of the image before them. An image
+  // of the later pass (i) that does is a loop closure with the partner of the pair before it: a slower pass
+  // holds that place for a few frames (align/pair_posterior.hpp, row_posteriors, puts it there too).
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> skipped(alignments.size());
+  if (config.fill_gaps) {
+    for (std::size_t k : order) {
+      const auto& a = alignments[k];
+      for (std::size_t p = 1; p < a.pairs.size(); ++p) {
+        if (!accepted[k][p] || !accepted[k][p - 1]) continue;
+        for (std::size_t i = a.pairs[p - 1].first + 1; i < a.pairs[p].first; ++i) {
+          if (places.merge(i, i - 1, config.min_separation, config.max_visit_span)) {
+            skipped[k].emplace_back(i, a.pairs[p - 1].second);
+          }
+        }
+        const std::size_t j0 = std::min(a.pairs[p - 1].second, a.pairs[p].second);
+        const std::size_t j1 = std::max(a.pairs[p - 1].second, a.pairs[p].second);
+        for (std::size_t j = j0 + 1; j < j1; ++j) places.merge(j, j - 1, config.min_separation, config.max_visit_span);
+      }
+    }
+  }
   auto& result = out.accepted;
   result.kept.assign(alignments.size(), false);
   result.retained_count.assign(alignments.size(), 0);
@@ -116,23 +136,12 @@ ConsistentLabelling label_consistently(std::size_t images, const std::vector<ali
     for (std::size_t p = 0; p < a.pairs.size(); ++p) result.retained_count[k] += accepted[k][p] ? 1 : 0;
     result.kept[k] = result.retained_count[k] > 0 && static_cast<double>(result.retained_count[k]) >=
                                                          min_kept_fraction * static_cast<double>(a.pairs.size());
+    auto gap = skipped[k].begin();  // in increasing i, like the pairs
     for (std::size_t p = 0; p < a.pairs.size(); ++p) {
-      if (accepted[k][p]) result.pairs.push_back({a.pairs[p].first, a.pairs[p].second, k, a.score});
-    }
-  }
-  if (config.fill_gaps) {
-    // Images skipped inside an accepted stretch of an alignment join the place of the image before them.
-    for (std::size_t k : order) {
-      const auto& a = alignments[k];
-      for (std::size_t p = 1; p < a.pairs.size(); ++p) {
-        if (!accepted[k][p] || !accepted[k][p - 1]) continue;
-        for (std::size_t i = a.pairs[p - 1].first + 1; i < a.pairs[p].first; ++i) {
-          places.merge(i, i - 1, config.min_separation, config.max_visit_span);
-        }
-        const std::size_t j0 = std::min(a.pairs[p - 1].second, a.pairs[p].second);
-        const std::size_t j1 = std::max(a.pairs[p - 1].second, a.pairs[p].second);
-        for (std::size_t j = j0 + 1; j < j1; ++j) places.merge(j, j - 1, config.min_separation, config.max_visit_span);
+      for (; gap != skipped[k].end() && gap->first < a.pairs[p].first; ++gap) {
+        result.pairs.push_back({gap->first, gap->second, k, a.score});
       }
+      if (accepted[k][p]) result.pairs.push_back({a.pairs[p].first, a.pairs[p].second, k, a.score});
     }
   }
   std::vector<PlaceLabel> root_label(images, -1);

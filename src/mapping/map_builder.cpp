@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -245,12 +246,24 @@ void add_confidences(const align::ScoreSource& scores, const align::AlignConfig&
   for (std::size_t k = 0; k < result.alignments.size(); ++k) {
     if (needed[k]) result.posteriors[k] = align::pair_posteriors(result.alignments[k], scores, pc);
   }
+  // A skipped image listed with the pairs (consistent_labels.hpp, Gaps): where the chains put its row.
+  std::map<std::size_t, std::vector<align::RowPosterior>> rows;
+  const auto row_posterior = [&](const RetainedPair& p) {
+    auto it = rows.find(p.alignment);
+    if (it == rows.end())
+      it = rows.emplace(p.alignment, align::row_posteriors(result.alignments[p.alignment], scores, pc)).first;
+    const auto row = std::lower_bound(it->second.begin(), it->second.end(), p.i,
+                                      [](const align::RowPosterior& r, std::size_t i) { return r.row < i; });
+    const bool near =
+        row != it->second.end() && row->row == p.i && std::max(row->col, p.j) - std::min(row->col, p.j) <= pc.tolerance;
+    return near ? row->posterior : 0.0;
+  };
   for (auto& p : result.pruning.pairs) {
     const auto& pairs = result.alignments[p.alignment].pairs;
     const auto at = std::lower_bound(pairs.begin(), pairs.end(), std::pair{p.i, std::size_t{0}});
-    const double posterior = at != pairs.end() && at->first == p.i
+    const double posterior = at != pairs.end() && at->first == p.i && at->second == p.j
                                  ? result.posteriors[p.alignment][static_cast<std::size_t>(at - pairs.begin())]
-                                 : 0.0;
+                                 : row_posterior(p);
     const double e = p.alignment < result.e_values.size() ? result.e_values[p.alignment] : std::nan("");
     p.confidence = (std::isfinite(e) ? std::exp(-e) : 1.0) * posterior;
   }
@@ -411,6 +424,16 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       }
     }
     select_alignments(result, kept);
+    std::size_t trimmed = 0;
+    for (auto& a : result.alignments) {
+      const std::size_t before = a.pairs.size();
+      a = trim_to_odometry(a, odometry, *c.odometry_gate);
+      trimmed += before - a.pairs.size();
+    }
+    if (trimmed > 0) {
+      d.notes.push_back(
+          fmt::format("odometry: {} aligned pairs past the places where two paths part trimmed off", trimmed));
+    }
   }
   result.seconds_align = seconds_since(start);
 
@@ -441,6 +464,10 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     cleanup.session_starts = c.topology.session_starts;
     labels = clean_graph(labels, result.alignments, result.pruning, cleanup).labels;
     topology.reduce_transitive = true;
+    // Branch points closer than the shortest revisit cannot be told apart by an alignment between them.
+    if (topology.junction_region == 0) {
+      topology.junction_region = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(c.min_revisit_places)));
+    }
   }
   result.map = build_topology(labels, result.alignments, result.pruning, topology);
   result.seconds_prune_label = seconds_since(start);

@@ -1,37 +1,143 @@
 #include "seqtopo/mapping/odometry_gate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace seqtopo::mapping {
+namespace {
 
-std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
-                                           std::span<const Pose2> odometry, const OdometryGate& gate) {
+void check_gate(const OdometryGate& gate) {
   const auto bad = [](double v) { return std::isnan(v) || v < 0; };
-  if (bad(gate.base) || bad(gate.drift) || bad(gate.min_consistent) || gate.min_consistent > 1) {
-    throw std::invalid_argument("odometry gate: base and drift must be >= 0, min_consistent in [0, 1]");
+  if (bad(gate.base) || bad(gate.drift) || bad(gate.min_consistent) || gate.min_consistent > 1 ||
+      bad(gate.trim_window)) {
+    throw std::invalid_argument("odometry gate: base, drift and trim_window must be >= 0, min_consistent in [0, 1]");
   }
-  // travelled[k]: path length of the odometry from image 0 to image k.
+}
+
+void check_pairs(const align::LocalAlignment& alignment, std::size_t poses) {
+  for (const auto& [i, j] : alignment.pairs) {
+    if (i >= poses || j >= poses) {
+      throw std::invalid_argument("alignment pair (" + std::to_string(i) + ", " + std::to_string(j) +
+                                  ") is past the odometry's " + std::to_string(poses) + " poses");
+    }
+  }
+}
+
+// travelled[k]: path length of the odometry from image 0 to image k.
+std::vector<double> travelled_distance(std::span<const Pose2> odometry) {
   std::vector<double> travelled(odometry.size(), 0.0);
   for (std::size_t k = 1; k < odometry.size(); ++k) {
     travelled[k] = travelled[k - 1] + std::hypot(odometry[k].x - odometry[k - 1].x, odometry[k].y - odometry[k - 1].y);
   }
+  return travelled;
+}
+
+// The rigid motion (rotation c, s; translation tx, ty) that best superposes the j-side of pairs [lo, hi] on
+// their i-side, in least squares (2-D Procrustes).
+struct Rigid {
+  double c = 1, s = 0, tx = 0, ty = 0;
+  bool defined = false;  // false: the j-side points coincide, no rotation is determined
+  double residual(const Pose2& a, const Pose2& b) const {
+    return std::hypot(a.x - (c * b.x - s * b.y + tx), a.y - (s * b.x + c * b.y + ty));
+  }
+};
+
+Rigid superpose(const align::LocalAlignment& alignment, std::span<const Pose2> odometry, std::size_t lo,
+                std::size_t hi) {
+  double ax = 0, ay = 0, bx = 0, by = 0;
+  const auto count = static_cast<double>(hi - lo + 1);
+  for (std::size_t k = lo; k <= hi; ++k) {
+    const auto& [i, j] = alignment.pairs[k];
+    ax += odometry[i].x, ay += odometry[i].y, bx += odometry[j].x, by += odometry[j].y;
+  }
+  ax /= count, ay /= count, bx /= count, by /= count;
+  double dot = 0, cross = 0, spread = 0;
+  for (std::size_t k = lo; k <= hi; ++k) {
+    const auto& [i, j] = alignment.pairs[k];
+    const double px = odometry[j].x - bx, py = odometry[j].y - by;
+    const double qx = odometry[i].x - ax, qy = odometry[i].y - ay;
+    dot += px * qx + py * qy;
+    cross += px * qy - py * qx;
+    spread += px * px + py * py;
+  }
+  Rigid r;
+  // Below a centimetre of spread the direction of the j-side is noise.
+  r.defined = spread > 1e-4 * count && std::hypot(dot, cross) > 0;
+  if (r.defined) {
+    const double norm = std::hypot(dot, cross);
+    r.c = dot / norm, r.s = cross / norm;
+  }
+  r.tx = ax - (r.c * bx - r.s * by);
+  r.ty = ay - (r.s * bx + r.c * by);
+  return r;
+}
+
+}  // namespace
+
+std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
+                                           std::span<const Pose2> odometry, const OdometryGate& gate) {
+  check_gate(gate);
+  const std::vector<double> travelled = travelled_distance(odometry);
   std::vector<bool> out;
   out.reserve(alignments.size());
   for (const auto& alignment : alignments) {
+    check_pairs(alignment, odometry.size());
     std::size_t consistent = 0;
     for (const auto& [i, j] : alignment.pairs) {
-      if (i >= odometry.size() || j >= odometry.size()) {
-        throw std::invalid_argument("alignment pair (" + std::to_string(i) + ", " + std::to_string(j) +
-                                    ") is past the odometry's " + std::to_string(odometry.size()) + " poses");
-      }
       const double apart = std::hypot(odometry[i].x - odometry[j].x, odometry[i].y - odometry[j].y);
       consistent += apart <= gate.base + gate.drift * std::abs(travelled[i] - travelled[j]);
     }
     out.push_back(!alignment.pairs.empty() &&
                   static_cast<double>(consistent) >= gate.min_consistent * static_cast<double>(alignment.pairs.size()));
   }
+  return out;
+}
+
+align::LocalAlignment trim_to_odometry(const align::LocalAlignment& alignment, std::span<const Pose2> odometry,
+                                       const OdometryGate& gate) {
+  check_gate(gate);
+  check_pairs(alignment, odometry.size());
+  const auto& pairs = alignment.pairs;
+  if (pairs.size() < 3 || gate.trim_window == 0) return alignment;
+  const std::vector<double> travelled = travelled_distance(odometry);
+  const auto at = [&](std::size_t k) { return travelled[pairs[k].first]; };  // increasing in k (i increases)
+  // The middle: the pairs within half a window of travel of the middle pair.
+  const std::size_t mid = pairs.size() / 2;
+  std::size_t lo = mid, hi = mid;
+  while (lo > 0 && at(mid) - at(lo - 1) <= gate.trim_window / 2) --lo;
+  while (hi + 1 < pairs.size() && at(hi + 1) - at(mid) <= gate.trim_window / 2) ++hi;
+  const Rigid middle = superpose(alignment, odometry, lo, hi);
+  if (!middle.defined) return alignment;
+  for (std::size_t k = lo; k <= hi; ++k) {
+    if (middle.residual(odometry[pairs[k].first], odometry[pairs[k].second]) > gate.base) return alignment;
+  }
+  // Outwards, each new pair against the last trim_window metres accepted on its side.
+  while (hi + 1 < pairs.size()) {
+    std::size_t from = hi;
+    while (from > lo && at(hi + 1) - at(from - 1) <= gate.trim_window) --from;
+    const Rigid fit = superpose(alignment, odometry, from, hi);
+    if (fit.defined && fit.residual(odometry[pairs[hi + 1].first], odometry[pairs[hi + 1].second]) > gate.base) break;
+    ++hi;
+  }
+  while (lo > 0) {
+    std::size_t to = lo;
+    while (to < hi && at(to + 1) - at(lo - 1) <= gate.trim_window) ++to;
+    const Rigid fit = superpose(alignment, odometry, lo, to);
+    if (fit.defined && fit.residual(odometry[pairs[lo - 1].first], odometry[pairs[lo - 1].second]) > gate.base) break;
+    --lo;
+  }
+  if (lo == 0 && hi + 1 == pairs.size()) return alignment;
+  align::LocalAlignment out = alignment;
+  out.pairs.assign(pairs.begin() + static_cast<std::ptrdiff_t>(lo),
+                   pairs.begin() + static_cast<std::ptrdiff_t>(hi) + 1);
+  out.a_begin = out.pairs.front().first;
+  out.a_end = out.pairs.back().first + 1;
+  const auto [jmin, jmax] = std::minmax_element(out.pairs.begin(), out.pairs.end(),
+                                                [](const auto& x, const auto& y) { return x.second < y.second; });
+  out.b_begin = jmin->second;
+  out.b_end = jmax->second + 1;
   return out;
 }
 

@@ -1,12 +1,70 @@
 #include "seqtopo/mapping/topological_map.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <set>
 #include <stdexcept>
 
 namespace seqtopo::mapping {
 namespace {
+
+// Junction places closer than `distance` edges to one another, grouped by single linkage: one junction each.
+// Returns per group {the representative (its graph centre among the group, the smallest label of equals)},
+// {the group, sorted}, ordered by representative.
+std::vector<std::pair<PlaceLabel, std::vector<PlaceLabel>>> junction_regions(
+    const std::vector<std::set<PlaceLabel>>& adjacency, const std::set<PlaceLabel>& junctions, std::size_t distance) {
+  // Distances from each junction to the junctions within `distance` edges (breadth first, bounded).
+  std::map<PlaceLabel, std::map<PlaceLabel, std::size_t>> near;
+  for (PlaceLabel j : junctions) {
+    std::map<PlaceLabel, std::size_t> seen{{j, 0}};
+    std::vector<PlaceLabel> frontier{j};
+    for (std::size_t d = 1; d <= distance && !frontier.empty(); ++d) {
+      std::vector<PlaceLabel> next;
+      for (PlaceLabel p : frontier) {
+        for (PlaceLabel q : adjacency[static_cast<std::size_t>(p)]) {
+          if (seen.emplace(q, d).second) next.push_back(q);
+        }
+      }
+      frontier = std::move(next);
+    }
+    for (const auto& [p, d] : seen) {
+      if (junctions.count(p)) near[j][p] = d;
+    }
+  }
+  std::map<PlaceLabel, PlaceLabel> group;  // junction -> smallest junction of its group
+  const auto root = [&](PlaceLabel x) {
+    while (group.at(x) != x) x = group.at(x);
+    return x;
+  };
+  for (PlaceLabel j : junctions) group[j] = j;
+  for (const auto& [j, others] : near) {
+    for (const auto& [p, d] : others) {
+      const PlaceLabel a = root(j), b = root(p);
+      if (a != b) group[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  std::map<PlaceLabel, std::vector<PlaceLabel>> members;
+  for (PlaceLabel j : junctions) members[root(j)].push_back(j);
+  std::vector<std::pair<PlaceLabel, std::vector<PlaceLabel>>> out;
+  for (auto& [r, places] : members) {
+    // The centre: the smallest largest distance to the other members (members beyond `distance` of it, in a
+    // chain, count as farther than any member within it).
+    PlaceLabel centre = places.front();
+    std::size_t best = SIZE_MAX;
+    for (PlaceLabel c : places) {
+      std::size_t eccentricity = 0;
+      for (PlaceLabel p : places) {
+        const auto it = near[c].find(p);
+        eccentricity = std::max(eccentricity, it == near[c].end() ? distance + 1 : it->second);
+      }
+      if (eccentricity < best) best = eccentricity, centre = c;
+    }
+    out.emplace_back(centre, std::move(places));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
 
 using Adjacency = std::vector<std::set<PlaceLabel>>;
 
@@ -154,9 +212,11 @@ TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
       junctions.insert(labels[last.i]);
     }
   }
-  map.junctions.assign(junctions.begin(), junctions.end());
-
   std::set<PlaceLabel> stops = junctions;
+  for (const auto& region : junction_regions(adjacency, junctions, config.junction_region)) {
+    map.junctions.push_back(region.first);
+    map.junction_regions.push_back(region.second);
+  }
   for (PlaceLabel p = 0; p < count; ++p) {
     if (adjacency[p].size() != 2) stops.insert(p);
   }
@@ -176,22 +236,31 @@ void describe_junctions(TopologicalMap& map, const std::vector<align::LocalAlign
   map.junction_evidence.assign(map.junctions.size(), {});
   for (std::size_t k = 0; k < map.junctions.size(); ++k) {
     map.junction_evidence[k].place = map.junctions[k];
-    index[map.junctions[k]] = k;
+    map.junction_evidence[k].region =
+        k < map.junction_regions.size() ? map.junction_regions[k] : std::vector<PlaceLabel>{map.junctions[k]};
+    for (PlaceLabel p : map.junction_evidence[k].region) index[p] = k;
   }
+  // Every place of a junction's region counts as the junction; its branches lead out of the region.
   std::vector<std::set<PlaceLabel>> branches(map.junctions.size());
   for (auto [p, q] : map.edges) {
-    if (index.count(p)) branches[index[p]].insert(q);
-    if (index.count(q)) branches[index[q]].insert(p);
+    const auto ip = index.find(p), iq = index.find(q);
+    if (ip != index.end() && (iq == index.end() || iq->second != ip->second)) branches[ip->second].insert(q);
+    if (iq != index.end() && (ip == index.end() || ip->second != iq->second)) branches[iq->second].insert(p);
   }
-  // Passes: maximal runs of consecutive images of one session in one place.
+  // Passes: maximal runs of consecutive images of one session in one junction's region.
+  const auto junction_of = [&](std::size_t image) {
+    const auto it = index.find(labels[image]);
+    return it == index.end() ? SIZE_MAX : it->second;
+  };
   for (std::size_t b = 0; b < labels.size();) {
+    const std::size_t k = junction_of(b);
     std::size_t e = b + 1;
-    while (e < labels.size() && labels[e] == labels[b] && !starts.count(e)) ++e;
-    if (auto it = index.find(labels[b]); it != index.end()) {
+    while (e < labels.size() && k != SIZE_MAX && junction_of(e) == k && !starts.count(e)) ++e;
+    if (k != SIZE_MAX) {
       JunctionPass pass{b, e - 1, -1, -1, session_of(b)};
       if (b > 0 && !starts.count(b)) pass.from = labels[b - 1];
       if (e < labels.size() && !starts.count(e)) pass.to = labels[e];
-      map.junction_evidence[it->second].passes.push_back(pass);
+      map.junction_evidence[k].passes.push_back(pass);
     }
     b = e;
   }

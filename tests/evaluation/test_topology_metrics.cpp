@@ -1,6 +1,7 @@
 // Topology scores against hand counts and a brute-force Rand index.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "seqtopo/evaluation/topology_metrics.hpp"
@@ -94,6 +95,24 @@ TEST(TopologyMetrics, CoarsensTheMapAlongRunsOfOneTruePlace) {
   // A tolerance that does not cover the pair changes nothing.
   const auto far = [](std::size_t, std::size_t) { return false; };
   EXPECT_EQ(evaluate_topology(wrong, {}, truth, {}, 4, 2, far).false_merges, 3U);
+}
+
+TEST(TopologyMetrics, OnePassAcrossAPlaceBoundaryIsNoWrongMerge) {
+  const std::vector<int> truth{10, 10, 10, 11, 11, 11, 12, 10, 10, 10, 11, 11, 11};
+  // The second traversal holds its place for two images, 9 and 10, on either side of the 10 | 11 boundary;
+  // the first traversal's image 2 is matched there, and the loop-closure ground truth calls 2 and 10 near.
+  const std::vector<int> slow{0, 1, 2, 3, 4, 5, 6, 1, 7, 2, 2, 4, 8};
+  const auto near = [](std::size_t i, std::size_t j) { return std::min(i, j) == 2 && std::max(i, j) == 10; };
+  const auto m = evaluate_topology(slow, {}, truth, {}, 4, 2, near);
+  EXPECT_EQ(m.false_merges, 0U);
+  EXPECT_DOUBLE_EQ(m.adjusted_rand_index, 1.0);
+  // Counted without the pass tolerance, images 9 and 10 join places 10 and 11.
+  EXPECT_EQ(coarsen_along_true_places(slow, truth, near)[0], coarsen_along_true_places(slow, truth, near)[3]);
+  EXPECT_NE(coarsen_along_true_places(slow, truth, near, 4)[0], coarsen_along_true_places(slow, truth, near, 4)[3]);
+  // Two images of one pass across two boundaries (images 5 and 7: places 11, 12, 10) are a wrong merge.
+  std::vector<int> across = slow;
+  across[7] = 5;
+  EXPECT_GT(evaluate_topology(across, {}, truth, {}, 4, 2, near).false_merges, 0U);
 }
 
 }  // namespace

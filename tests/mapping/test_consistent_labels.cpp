@@ -105,12 +105,22 @@ TEST(ConsistentLabels, AHalfSpeedPassFillsItsGapsWithoutBubbles) {
     EXPECT_EQ(r.labels[40 + 2 * k], r.labels[k]) << k;
     EXPECT_EQ(r.labels[41 + 2 * k], r.labels[k]) << "the frame skipped by the gap joins the place before it";
   }
+  // Each skipped frame is also a loop closure with the partner of the pair before it, in order of i.
+  ASSERT_EQ(r.accepted.pairs.size(), 39U);
+  for (std::size_t k = 0; k < 39; ++k) {
+    EXPECT_EQ(r.accepted.pairs[k].i, 40 + k);
+    EXPECT_EQ(r.accepted.pairs[k].j, k / 2);
+    EXPECT_EQ(r.accepted.pairs[k].alignment, 0U);
+  }
+  EXPECT_EQ(r.accepted.retained_count[0], 20U);  // the alignment's own pairs
   const auto no_fill =
       label_consistently(80, {a}, {10.0}, {.min_separation = 10, .max_visit_span = 2, .fill_gaps = false});
   EXPECT_NE(no_fill.labels[41], no_fill.labels[0]);
+  EXPECT_EQ(no_fill.accepted.pairs.size(), 20U);
   // With a span of one frame the slower pass may not hold a place for two frames.
   const auto strict = label(80, {a}, 10, 0);
   EXPECT_NE(strict.labels[41], strict.labels[0]);
+  EXPECT_EQ(strict.accepted.pairs.size(), 20U);  // a frame refused by its place is no loop closure
 }
 
 TEST(ConsistentLabels, AShadowBesideARevisitAddsNothing) {

@@ -3,6 +3,7 @@
 // streamed scores reach it).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <stdexcept>
 
@@ -83,6 +84,33 @@ TEST(MapFromScores, EqualsBuildMapOnTheSameScores) {
     }
   }
   EXPECT_TRUE(any_rejected);
+}
+
+TEST(MapFromScores, EveryFrameOfAHalfSpeedPassIsALoopClosure) {
+  // Frames 300..379 drive 100..139 again at half speed: frame 300 + 2k and 301 + 2k both see frame 100 + k.
+  // The scores are log-odds as they stand: a chance step costs 1 on average.
+  const std::size_t n = 420;
+  std::mt19937 rng(3);
+  std::normal_distribution<float> noise(-1.0F, 1.0F);
+  SimilarityMatrix s(n, n, 0.0F);
+  for (auto& v : s.values) v = noise(rng);
+  for (std::size_t i = 300; i < 380; ++i) s(i, 100 + (i - 300) / 2) += 4.0F;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < i; ++j) s(j, i) = s(i, j);
+  }
+  const MapResult r = build_map_from_scores(align::ScoreSource::dense(s.values, n, n), MapConfig{});
+  std::vector<double> confidence(n, -1);
+  for (const auto& p : r.pruning.pairs) {
+    if (p.j + 2 >= 100 + (p.i - 300) / 2 && p.j <= 102 + (p.i - 300) / 2) {
+      confidence[p.i] = std::max(confidence[p.i], p.confidence);
+    }
+  }
+  std::size_t found = 0;
+  for (std::size_t i = 302; i < 378; ++i) {
+    found += confidence[i] > 0.05 ? 1 : 0;
+  }
+  // Gaps skip every other frame of the slow pass; those frames are loop closures of their own too.
+  EXPECT_GE(found, 72U);
 }
 
 TEST(MapFromScores, RefusesBadSizes) {

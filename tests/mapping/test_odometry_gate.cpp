@@ -62,12 +62,76 @@ TEST(OdometryGate, CountsConsistentPairsAgainstTheFraction) {
   EXPECT_FALSE(consistent_with_odometry({pairs_of(mixed)}, odometry, {.min_consistent = 0.6})[0]);
 }
 
+// Two traversals of one 20 m stretch (x = 0..20 at 0.5 m an image), each arriving from and leaving towards
+// another side: the first from the north and on to the north, the second from the south and on to the south.
+// The second traversal's odometry is in a frame of its own (turned by 30 degrees and moved), as after a
+// kidnapping. `lateral(x)`: the second traversal's sideways offset along the stretch. Images 0..70 are the
+// first traversal, 71..141 the second; image 71 + k is at the k-th position.
+std::vector<Pose2> two_traversals_parting(double (*lateral)(double)) {
+  std::vector<Pose2> poses;
+  const auto position = [](int k, int side, double offset) {
+    if (k < 10) return Pose2{0, side * (5.0 - 0.5 * k) + offset, 0};
+    if (k <= 50) return Pose2{0.5 * (k - 10), offset, 0};
+    return Pose2{20, side * 0.5 * (k - 50) + offset, 0};
+  };
+  for (int k = 0; k <= 70; ++k) poses.push_back(position(k, 1, 0));
+  const double c = std::cos(0.5236), s = std::sin(0.5236);
+  for (int k = 0; k <= 70; ++k) {
+    const Pose2 p = position(k, -1, 0);
+    const double y = p.y + lateral(p.x);
+    poses.push_back({c * p.x - s * y + 100, s * p.x + c * y + 50, 0});
+  }
+  return poses;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> diagonal(std::size_t from, std::size_t to) {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t k = from; k <= to; ++k) pairs.emplace_back(71 + k, k);
+  return pairs;
+}
+
+TEST(OdometryGate, TrimsTheEndsWherePathsPart) {
+  const auto poses = two_traversals_parting([](double) { return 0.0; });
+  OdometryGate gate;
+  gate.base = 2.5;
+  // Where the arms part the two images are 2 (10 - k) m apart before the stretch (k < 10) and 2 (k - 50)
+  // m after it: within 2.5 m for k = 8..52.
+  const auto trimmed = trim_to_odometry(pairs_of(diagonal(0, 70)), poses, gate);
+  EXPECT_EQ(trimmed.pairs, diagonal(8, 52));
+  EXPECT_EQ(trimmed.a_begin, 71U + 8);
+  EXPECT_EQ(trimmed.a_end, 71U + 53);
+  EXPECT_EQ(trimmed.b_begin, 8U);
+  EXPECT_EQ(trimmed.b_end, 53U);
+  // Within the stretch nothing is trimmed; without a window nothing at all.
+  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(12, 48)), poses, gate).pairs, diagonal(12, 48));
+  gate.trim_window = 0;
+  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(0, 70)), poses, gate).pairs, diagonal(0, 70));
+}
+
+TEST(OdometryGate, KeepsParallelZigZagAndReversePasses) {
+  const OdometryGate gate;  // base 2 m
+  // A parallel lane 1.5 m to the side, and a pass zig-zagging 0.6 m about the path: the shapes agree.
+  const auto lane = two_traversals_parting([](double) { return 1.5; });
+  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(10, 50)), lane, gate).pairs, diagonal(10, 50));
+  const auto zigzag = two_traversals_parting([](double x) { return 0.6 * std::sin(2 * 3.14159265 * x / 3); });
+  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(10, 50)), zigzag, gate).pairs, diagonal(10, 50));
+  // The same stretch driven back: the second traversal's k-th image pairs with the first's (60 - k).
+  std::vector<std::pair<std::size_t, std::size_t>> reverse;
+  for (std::size_t k = 10; k <= 50; ++k) reverse.emplace_back(71 + k, 60 - k);
+  EXPECT_EQ(trim_to_odometry(pairs_of(reverse), lane, gate).pairs, reverse);
+  // A robot that did not move: nothing to compare, nothing trimmed.
+  const std::vector<Pose2> still(142, Pose2{1, 2, 0});
+  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(0, 70)), still, gate).pairs, diagonal(0, 70));
+}
+
 TEST(OdometryGate, RejectsBadInput) {
   const auto odometry = out_and_back();
   EXPECT_THROW(consistent_with_odometry({pairs_of({{90, 1}})}, odometry), std::invalid_argument);
   EXPECT_THROW(consistent_with_odometry({}, odometry, {.base = -1}), std::invalid_argument);
   EXPECT_THROW(consistent_with_odometry({}, odometry, {.min_consistent = 1.5}), std::invalid_argument);
   EXPECT_FALSE(consistent_with_odometry({pairs_of({})}, odometry)[0]);
+  EXPECT_THROW(trim_to_odometry(pairs_of({{90, 1}, {91, 2}, {92, 3}}), odometry), std::invalid_argument);
+  EXPECT_THROW(trim_to_odometry(pairs_of({}), odometry, {.trim_window = -1}), std::invalid_argument);
 }
 
 TEST(OdometryGate, BuildMapDropsContradictedAlignmentsBeforePruning) {

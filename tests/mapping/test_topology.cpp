@@ -174,5 +174,55 @@ TEST(Topology, RejectsNonSquareSimilarity) {
   EXPECT_THROW(build_map(SimilarityMatrix()), std::invalid_argument);
 }
 
+// One traversal through places 0..19; others (sessions of their own) arrive from places of their own and join
+// it at places 8, 9 and 10 (a knot of branching places, one junction on the ground) and at place 15.
+struct Knot {
+  std::vector<PlaceLabel> labels;
+  std::vector<std::size_t> session_starts;
+};
+Knot knot() {
+  Knot k;
+  const auto drive = [&](int from, int to) {
+    for (int p = from; from <= to ? p <= to : p >= to; p += from <= to ? 1 : -1) k.labels.push_back(p);
+  };
+  const auto session = [&] { k.session_starts.push_back(k.labels.size()); };
+  drive(0, 19);
+  session(), drive(20, 24), drive(8, 5);    // joins at 8 towards the start
+  session(), drive(30, 34), drive(10, 12);  // joins at 10 towards the end
+  session(), drive(40, 44), drive(9, 9);    // ends at 9: place 9 gets a third neighbour
+  session(), drive(50, 54), drive(15, 13);  // joins at 15
+  return k;
+}
+
+TEST(Topology, BranchingPlacesCloseTogetherAreOneJunction) {
+  const auto [labels, starts] = knot();
+  TopologyConfig config;
+  config.session_starts = starts;
+  const auto apart = build_topology(labels, {}, {}, config);
+  EXPECT_EQ(apart.junctions, (std::vector<PlaceLabel>{8, 9, 10, 15}));
+  config.junction_region = 3;
+  const auto knot = build_topology(labels, {}, {}, config);
+  // 8, 9 and 10 are one junction at its centre 9; 15 is 5 edges away and stays one of its own.
+  EXPECT_EQ(knot.junctions, (std::vector<PlaceLabel>{9, 15}));
+  ASSERT_EQ(knot.junction_evidence.size(), 2U);
+  const auto& j = knot.junction_evidence[0];
+  EXPECT_EQ(j.place, 9);
+  EXPECT_EQ(j.region, (std::vector<PlaceLabel>{8, 9, 10}));
+  EXPECT_EQ(j.branches, (std::vector<PlaceLabel>{7, 11, 24, 34, 44}));  // out of the knot
+  EXPECT_TRUE(j.by_degree);
+  // The first traversal crosses the knot once (images 8..10), the others enter it once each.
+  ASSERT_EQ(j.passes.size(), 4U);
+  EXPECT_EQ(j.passes[0].first_image, 8U);
+  EXPECT_EQ(j.passes[0].last_image, 10U);
+  EXPECT_EQ(j.passes[0].from, 7);
+  EXPECT_EQ(j.passes[0].to, 11);
+  EXPECT_EQ(knot.junction_evidence[1].region, (std::vector<PlaceLabel>{15}));
+  // Single linkage: within 1 edge, 8 - 9 - 10 still chain into one junction; a region of 0 keeps them apart.
+  config.junction_region = 1;
+  EXPECT_EQ(build_topology(labels, {}, {}, config).junctions, (std::vector<PlaceLabel>{9, 15}));
+  // The segments do not depend on how junctions are grouped.
+  EXPECT_EQ(knot.segments.size(), apart.segments.size());
+}
+
 }  // namespace
 }  // namespace seqtopo::mapping

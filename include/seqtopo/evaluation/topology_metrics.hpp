@@ -9,7 +9,10 @@
 // and nothing else then equals the truth; a wrong merge joins two true places; a missed one leaves a
 // place split by traversal. A merge of two images of neighbouring true places that are still the same
 // place by the loop-closure ground truth (`tolerated`, e.g. within its radius) is neither: an alignment
-// off by one image at a place boundary must not chain the places of a whole corridor together.
+// off by one image at a place boundary must not chain the places of a whole corridor together. Nor is a
+// map place that holds two images of one pass on either side of one true-place boundary (fewer than
+// pass_frames apart, min_separation in evaluate_topology): a slow or zig-zagging pass holds a place for a
+// few frames, and where a true place ends inside that visit is the truth's granularity, not a wrong merge.
 //  * adjusted_rand_index: agreement of the coarsened map partition with the true places (1 = identical,
 //    ~0 = chance); adjusted_rand_index_frames: the same without coarsening (the raw per-image labels);
 //  * false_merges: image pairs (i, j), i - j >= min_separation, that the coarsened map puts in one place
@@ -36,7 +39,7 @@ double adjusted_rand_index(const std::vector<int>& a, const std::vector<int>& b)
 // renumbered 0, 1, ... in order of first image.
 using Tolerated = std::function<bool(std::size_t, std::size_t)>;
 std::vector<int> coarsen_along_true_places(const std::vector<int>& map_labels, const std::vector<int>& true_places,
-                                           const Tolerated& tolerated = {});
+                                           const Tolerated& tolerated = {}, std::size_t pass_frames = 0);
 
 TopologyMetrics evaluate_topology(const std::vector<int>& map_labels, const std::vector<int>& map_junctions,
                                   const std::vector<int>& true_places, const std::vector<int>& true_junctions,

@@ -23,7 +23,8 @@
 //
 // Gaps: an image inside an accepted alignment's range that got no pair of its own (skipped by a gap, a slow
 // pass holding a place) joins the place of the image before it when that keeps the place consistent, so a
-// revisit at another speed leaves no bubble of unmerged images.
+// revisit at another speed leaves no bubble of unmerged images. Such an image of the later pass is a loop
+// closure with the partner of the pair before it, and is listed with the accepted pairs.
 #include <cstddef>
 #include <vector>
 
@@ -42,7 +43,8 @@ struct ConsistentLabellingConfig {
 struct ConsistentLabelling {
   std::vector<PlaceLabel> labels;  // per image, numbered in order of first appearance
   // The accepted pairs as a pruning result: `kept` when at least min_kept_fraction of an alignment's pairs were
-  // accepted, `retained_count` its accepted pairs, `pairs` every accepted pair (i > j), by alignment then i.
+  // accepted, `retained_count` its accepted pairs, `pairs` every accepted pair (i > j), by alignment then i,
+  // with the skipped images of the later pass that joined a place (see Gaps; not in retained_count).
   PruningResult accepted;
   std::size_t refused = 0;    // proposals refused as inconsistent
   std::size_t redundant = 0;  // proposals whose pass had already matched the other image's place (shadows)

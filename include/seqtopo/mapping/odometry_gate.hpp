@@ -8,6 +8,16 @@
 // An aligned pair (i, j) is consistent when
 //     |p_i - p_j| <= base + drift * (distance travelled between j and i)   (odometry positions p)
 // and an alignment is kept when at least `min_consistent` of its pairs are.
+//
+// Where two paths share a stretch and then part at a junction, the images just past the junction still
+// look alike from both arms (they see the junction), so a local alignment runs on a few metres past it and
+// merges places of different arms. Odometry's shape over a few metres is nearly exact, so the kept
+// alignments are trimmed: the two traversals of an alignment's middle are superposed by a rigid motion
+// (2-D Procrustes: rotation and translation, so a parallel lane or a reverse pass fits as well), and the
+// alignment is extended outwards pair by pair while each new pair still lies within `base` metres of that
+// superposition, refitted on the last `trim_window` metres of accepted pairs (odometry drifts over long
+// distances, not short ones). A lateral offset between the traversals costs nothing; two paths that bend
+// apart do.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -21,11 +31,20 @@ struct OdometryGate {
   double base = 2.0;            // [m] allowed distance between the two images at zero travel
   double drift = 0.1;           // [m per m travelled] growth of the allowance
   double min_consistent = 0.5;  // fraction of an alignment's pairs that must be consistent
+  double trim_window = 10.0;    // [m] travel over which the two traversals' shapes are compared (0: no trimming)
 };
 
 // One flag per alignment: true = consistent with the odometry. Throws std::invalid_argument when a pair
 // indexes past the odometry or a setting is negative / NaN (min_consistent must be in [0, 1]).
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
                                            std::span<const Pose2> odometry, const OdometryGate& gate = {});
+
+// The pairs of `alignment` that stay within gate.base of the rigid superposition of its two traversals (see
+// above): a contiguous run of its pairs around the middle; a_begin..b_end span them again. Unchanged when
+// the middle's traversals cannot be superposed within gate.base (the gate judges those), when the robot did
+// not move over the middle (nothing to compare), or when gate.trim_window is 0. Throws like
+// consistent_with_odometry().
+align::LocalAlignment trim_to_odometry(const align::LocalAlignment& alignment, std::span<const Pose2> odometry,
+                                       const OdometryGate& gate = {});
 
 }  // namespace seqtopo::mapping

@@ -13,6 +13,12 @@
 //
 // With reduce_transitive, the edges are those left by graph_cleanup.hpp's rule 4, and the degree test counts
 // them.
+//
+// Junction regions: where three paths meet, the alignments that join and leave there end a place or two
+// apart, so one junction on the ground shows as a knot of branching places (a tangle, in the language of
+// assembly graphs). Places that pass either test and lie within junction_region edges of one another (single
+// linkage) are one junction, reported at the knot's centre (the member with the smallest largest distance to
+// the others; the smallest label of equals); `junction_regions` lists the places each junction stands for.
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -35,14 +41,14 @@ struct PathSegment {
 // What makes a place a junction, for a person to check: every pass of the robot through it (where it came from
 // and went to), the alignments that begin or end there, the sessions involved, and a confidence.
 struct JunctionPass {
-  std::size_t first_image = 0, last_image = 0;  // the pass's images in the place, [first, last]
+  std::size_t first_image = 0, last_image = 0;  // the pass's images in the junction's places, [first, last]
   PlaceLabel from = -1, to = -1;                // the places before and after it; -1 at a session's start or end
   std::size_t session = 0;
 };
 
 struct JunctionEvidence {
   PlaceLabel place = 0;
-  std::vector<PlaceLabel> branches;  // the neighbouring places, sorted
+  std::vector<PlaceLabel> branches;  // the neighbouring places (out of its region), sorted
   std::vector<JunctionPass> passes;  // in time order
   // Images where two traversals join or leave each other here: the first or last retained pair of an alignment
   // (both images), and the first image of a pass that arrives from, or the last of one that leaves to, a place no
@@ -52,18 +58,20 @@ struct JunctionEvidence {
   std::vector<std::size_t> sessions;    // the sessions of the passes, sorted, unique
   bool by_degree = false;               // three or more neighbouring places
   bool by_alignment = false;            // an alignment's traversals arrive from or leave to different places here
+  std::vector<PlaceLabel> region;       // the branching places this junction stands for (itself included), sorted
   // The largest confidence of the retained pairs that merged the place (the probability that the place is a
   // revisit at all, without which it would be no junction); 0 when no retained pair has an image here.
   double confidence = 0;
 };
 
 struct TopologicalMap {
-  std::vector<PlaceLabel> labels;                        // one per image
-  std::vector<Place> places;                             // indexed by label
-  std::vector<std::pair<PlaceLabel, PlaceLabel>> edges;  // (p, q) with p < q, sorted, unique
-  std::vector<PlaceLabel> junctions;                     // sorted
-  std::vector<PathSegment> segments;                     // sorted by first place
-  std::vector<JunctionEvidence> junction_evidence;       // one per junction, in the order of `junctions`
+  std::vector<PlaceLabel> labels;                         // one per image
+  std::vector<Place> places;                              // indexed by label
+  std::vector<std::pair<PlaceLabel, PlaceLabel>> edges;   // (p, q) with p < q, sorted, unique
+  std::vector<PlaceLabel> junctions;                      // sorted
+  std::vector<std::vector<PlaceLabel>> junction_regions;  // per junction: the places it stands for, sorted
+  std::vector<PathSegment> segments;                      // sorted by first place
+  std::vector<JunctionEvidence> junction_evidence;        // one per junction, in the order of `junctions`
 };
 
 struct TopologyConfig {
@@ -75,6 +83,8 @@ struct TopologyConfig {
   // Transitive reduction (graph_cleanup.hpp, rule 4): an edge p - q traversed less often than both edges of a
   // route p - x - q is left out (a pass that went past x between two images).
   bool reduce_transitive = false;
+  // [edges] branching places this close to one another are one junction (0: each is its own)
+  std::size_t junction_region = 0;
 };
 
 TopologicalMap build_topology(const std::vector<PlaceLabel>& labels,
