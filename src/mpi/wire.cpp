@@ -62,9 +62,10 @@ std::vector<std::uint64_t> encode_components(std::span<const scale::SparseCompon
     w.insert(w.end(), {c->direction == align::Direction::forward ? 0U : 1U, c->order, c->row_begin, c->row_end,
                        c->pass_col_begin, c->pass_col_end, c->kind == scale::SparseBoxKind::inside_band ? 0U : 1U,
                        c->box_row_begin, c->box_row_end, c->box_col_begin, c->box_col_end,
-                       std::bit_cast<std::uint32_t>(c->best), c->cell_begin.size(), c->cells.size()});
-    w.insert(w.end(), c->cell_begin.begin(), c->cell_begin.end());
-    w.insert(w.end(), c->cells.begin(), c->cells.end());
+                       std::bit_cast<std::uint32_t>(c->best), c->run_begin.size(), c->runs.size()});
+    w.insert(w.end(), c->run_begin.begin(), c->run_begin.end());
+    // a run in one word: its first column above its length
+    for (const scale::SparseRun& r : c->runs) w.push_back(std::uint64_t{r.pass_col} << 32 | r.length);
   }
   return w;
 }
@@ -85,10 +86,13 @@ std::vector<scale::SparseComponent> decode_components(std::span<const std::uint6
     c.box_col_begin = in.size();
     c.box_col_end = in.size();
     c.best = std::bit_cast<float>(static_cast<std::uint32_t>(in.next()));
-    c.cell_begin.resize(in.size());
-    c.cells.resize(in.size());
-    for (auto& b : c.cell_begin) b = in.size();
-    for (auto& t : c.cells) t = static_cast<std::uint32_t>(in.next());
+    c.run_begin.resize(in.size());
+    c.runs.resize(in.size());
+    for (auto& b : c.run_begin) b = in.size();
+    for (auto& r : c.runs) {
+      const std::uint64_t word = in.next();
+      r = {static_cast<std::uint32_t>(word >> 32), static_cast<std::uint32_t>(word)};
+    }
   }
   if (!in.done()) throw std::logic_error("seqtopo-mpi: trailing words in a components message");
   return out;

@@ -21,7 +21,8 @@ struct ScoresWire {
 ScoresWire encode_scores(const scale::SparseScores& scores);
 scale::SparseScores decode_scores(const ScoresWire& wire);
 
-// Components: every field as one 64-bit word (best as its float bits), then the cells.
+// Components: every field as one 64-bit word (best as its float bits), then the row offsets of the runs and the
+// runs (first column in the high 32 bits, length in the low).
 std::vector<std::uint64_t> encode_components(std::span<const scale::SparseComponent* const> components);
 std::vector<scale::SparseComponent> decode_components(std::span<const std::uint64_t> words);
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <fstream>
 #include <limits>
 #include <thread>
@@ -64,6 +65,44 @@ std::size_t traceback_window(std::size_t n) {
   return mul(mul(rows, cols), 5);
 }
 
+// The significance fit on a streamed source (mapping/map_builder.cpp fit_alignments()): the whole matrix up to 2 x
+// kFitBlock frames, else kFitBlocks diagonal blocks of kFitBlock frames, each read into memory and aligned by the fast
+// engine; the tile cache keeps the tiles read (a block off the tile grid straddles one more tile each way).
+constexpr std::size_t kFitBlock = 2000, kFitBlocks = 4;
+
+std::size_t fit_cache_tiles(std::size_t n, std::size_t capacity) {
+  const bool whole = n <= 2 * kFitBlock;
+  const std::size_t side = whole ? (n + kStreamTile - 1) / kStreamTile : kFitBlock / kStreamTile + 1;
+  return std::min(capacity, mul(whole ? 1 : kFitBlocks, mul(side, side)));
+}
+
+// mapping::estimate_frames_per_place from the streamed cosine: the scores at lags 0 .. min(200, N / 3) of every
+// frame as doubles, each lag's vector grown by doubling (pipeline/map_pipeline.cpp, mapping/place_scale.cpp).
+constexpr std::size_t kPlaceMaxLag = 200;
+std::size_t place_scale_bytes(std::size_t n) {
+  const std::size_t lags = std::min(kPlaceMaxLag, n / 3);
+  return lags < 4 ? 0 : mul(mul(lags + 1, std::bit_ceil(n)), sizeof(double));
+}
+
+// What the sparse engine stores (scale/sparse_alignment.hpp, sparse_components.hpp) [bytes]: per candidate cell its
+// column and score in the candidates and in their copy minus the offset, the entry the copy is built from, and at
+// most one component label (parent and slot); per row of a kept component its row offset and one run, and the run
+// with its row while the component is open.
+constexpr std::size_t kSparseCandidateBytes = 8, kSparseEntryBytes = 12, kSparseLabelBytes = 8, kSparseRowBytes = 32;
+
+std::size_t sparse_engine_bytes(std::size_t images, std::size_t neighbours) {
+  // Each frame's neighbours in both triangles: the candidate cells.
+  const std::size_t candidates = mul(mul(images, neighbours), 2);
+  // The candidates (column and score) and their copy minus the offset the engine aligns, built from entries.
+  const std::size_t scores = mul(candidates, 2 * kSparseCandidateBytes + kSparseEntryBytes);
+  // The two passes at once, each over one triangle: at most a component label (parent and slot) per candidate.
+  const std::size_t labels = mul(candidates, kSparseLabelBytes);
+  // The components kept, about one run a row of an aligned component (its row offset and the run, and the run while
+  // the component is open); a route driven twice aligns about N rows a pass.
+  const std::size_t runs = mul(mul(images, 2), kSparseRowBytes);
+  return sum({scores, labels, runs});
+}
+
 // map.json and alignments.json are built as JSON documents, one after the other: about 256 bytes an aligned pair
 // (formats/map_json.cpp). Before the run the pairs are not known: a route driven twice aligns about N.
 constexpr std::size_t kJsonBytesPerPair = 256;
@@ -115,17 +154,29 @@ MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
     const std::size_t block = std::max<std::size_t>(1, (n + kPictureSide - 1) / kPictureSide);
     const std::size_t side = (n + block - 1) / block;
     const std::size_t overview = mul(mul(side, side), 4);
-    // The sparse mode aligns its candidates instead of every pair: 2 N k cells (both triangles), stored as
-    // column and score (8 bytes) in the candidates and again minus the offset, built from 12-byte entries; the
-    // FAISS index (a copy of the descriptors) and its search results; the fill's positive cells (12 bytes each,
-    // a few per candidate) and the overview's block counts.
-    const std::size_t pairs = mul(mul(n, in.neighbours), 2);
-    const std::size_t sparse = sum({mul(pairs, 8 + 8 + 12), descriptors, mul(mul(n, in.neighbours), 12),
-                                    mul(pairs, 4 * 12), mul(kPictureSide * kPictureSide, 8)});
-    const std::size_t aligned = in.sparse ? sum({descriptors, cache, tile_work, sparse})
+    // The sparse mode aligns its candidates instead of every pair (sparse_engine_bytes), beside the streamed
+    // similarity's descriptors and their transpose, the FAISS index (another copy) and its search results (12 bytes
+    // a neighbour) and the overview's block counts. The streamed scores are read by the significance fit only: the
+    // tile cache holds the fit's tiles, not its capacity, and the fit's block and its fast engine come and go before
+    // the sparse engine runs.
+    MapMemoryInput fit_block = in;
+    fit_block.images = n <= 2 * kFitBlock ? n : kFitBlock;
+    fit_block.fast_engine = true;
+    const std::size_t fit = sum(
+        {mul(mul(fit_block.images, fit_block.images), 4), engine_bytes(fit_block), traceback_window(fit_block.images)});
+    const std::size_t fit_cache =
+        mul(fit_cache_tiles(n, std::max<std::size_t>(4, mul(3, tiles_per_band))), kStreamTile * kStreamTile * 4);
+    const std::size_t sparse =
+        sum({mul(descriptors, 2), fit_cache, mul(mul(n, in.neighbours), 12),
+             std::max(fit, sparse_engine_bytes(n, in.neighbours)), mul(kPictureSide * kPictureSide, 8)});
+    const std::size_t aligned = in.sparse ? sum({descriptors, tile_work, sparse})
                                           : sum({descriptors, cache, tile_work, engine_bytes(in), traceback_window(n)});
-    stage("descriptors", std::max(in.input_read_bytes,
-                                  add(descriptors, in.descriptor_bytes.empty() ? 0 : in.descriptor_bytes.front())));
+    // the descriptors read, then normalised by the streamed similarity (the descriptors and their transpose), which
+    // the frames per place are estimated from unless given
+    const std::size_t described = add(descriptors, in.descriptor_bytes.empty() ? 0 : in.descriptor_bytes.front());
+    stage("descriptors",
+          std::max(in.input_read_bytes,
+                   in.place_from_similarity ? sum({described, descriptors, place_scale_bytes(n)}) : described));
     stage("alignment (streamed)", aligned);
     // what the alignment's threads freed mostly stays with the process (their heaps): counted on
     stage("similarity overview", add(aligned, overview));
@@ -180,6 +231,7 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   in.streaming = request.streaming;
   in.sparse = request.streaming && request.sparse;
   in.neighbours = request.sparse_neighbours;
+  in.place_from_similarity = s.map.place_units && !s.map.frames_per_place && request.odometry.empty();
   in.base_bytes = resident_bytes();
   const std::filesystem::path& truth = request.truth.same_place;
   in.baseline = !truth.empty() && !request.streaming;

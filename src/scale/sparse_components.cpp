@@ -19,10 +19,13 @@ using align::LocalAlignment;
 bool SparseComponent::contains(std::size_t row, std::size_t pass_col) const {
   if (row < row_begin || row >= row_end) return false;
   const std::size_t r = row - row_begin;
-  const auto first = cells.begin() + static_cast<std::ptrdiff_t>(cell_begin[r]);
-  const auto last = cells.begin() + static_cast<std::ptrdiff_t>(cell_begin[r + 1]);
-  return std::binary_search(first, last, pass_col,
-                            [](auto a, auto b) { return static_cast<std::size_t>(a) < static_cast<std::size_t>(b); });
+  const auto first = runs.begin() + static_cast<std::ptrdiff_t>(run_begin[r]);
+  const auto last = runs.begin() + static_cast<std::ptrdiff_t>(run_begin[r + 1]);
+  auto it =
+      std::upper_bound(first, last, pass_col, [](std::size_t v, const SparseRun& run) { return v < run.pass_col; });
+  if (it == first) return false;
+  --it;
+  return pass_col < std::size_t{it->pass_col} + it->length;
 }
 
 namespace {
@@ -30,9 +33,11 @@ namespace {
 struct Cell {
   std::uint32_t col;  // pass column (0-based)
   float h;
-  std::uint32_t id;
+  std::uint32_t label;  // a label of its component (UnionFind)
 };
 
+// Component labels: one per cell without a positive predecessor (the first cell of a component), joined
+// as the recurrence connects them; a set's root is its smallest label, the one of its first cell.
 class UnionFind {
  public:
   std::uint32_t add() {
@@ -46,12 +51,12 @@ class UnionFind {
     }
     return x;
   }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  // Joins the roots a != b under the smaller; returns (root, absorbed).
+  std::pair<std::uint32_t, std::uint32_t> join(std::uint32_t a, std::uint32_t b) {
+    const std::uint32_t root = std::min(a, b), absorbed = std::max(a, b);
+    parent_[absorbed] = root;
+    return {root, absorbed};
   }
-  std::size_t size() const { return parent_.size(); }
 
  private:
   std::vector<std::uint32_t> parent_;
@@ -63,137 +68,197 @@ const Cell* find_cell(const std::vector<Cell>& row, std::size_t col) {
 }
 
 // The engine's first fill restricted to the cells where H can be positive, with the components of
-// the recurrence (a cell joins the components of its positive predecessors).
+// the recurrence (a cell joins the components of its positive predecessors). Holds two rows of cells
+// and the working state of the components that still have a cell in the last row: a component without
+// one can never grow again (a positive cell's positive predecessors are in its row or the row above),
+// so it is closed there, kept if it reaches the threshold and forgotten otherwise.
 class SparseFill {
  public:
   SparseFill(const SparseScores& scores, const AlignConfig& config)
-      : s_(scores), config_(config), m_(scores.rows()), n_(scores.cols()) {}
+      : s_(scores),
+        config_(config),
+        m_(scores.rows()),
+        n_(scores.cols()),
+        floor_(std::max(config.threshold, std::numeric_limits<float>::min())) {}
 
-  void run() {
-    rows_.assign(m_, {});
+  // The components whose best cell reaches the threshold, in the row-major order of their first cells.
+  std::vector<SparseComponent> run(SparseAlignStats& stats) {
+    std::vector<Cell> prev, cur;
     std::vector<std::pair<std::uint32_t, float>> cand;
-    std::vector<std::uint32_t> seeds;
+    std::vector<std::uint32_t> seeds, live, still_live;
     const float bg = s_.background();
     for (std::size_t i = 0; i < m_; ++i) {
+      std::swap(prev, cur);
+      cur.clear();
       const auto [lo, hi] = region(i);
-      if (lo > hi) continue;
-      pass_candidates(i, cand);
-      seeds.clear();
-      if (i > 0) {
-        for (const Cell& c : rows_[i - 1]) {
+      if (lo <= hi) {
+        pass_candidates(i, cand);
+        seeds.clear();
+        for (const Cell& c : prev) {
           seeds.push_back(c.col);
           if (c.col + 1U < n_) seeds.push_back(c.col + 1U);
         }
-      }
-      for (const auto& [t, v] : cand) {
-        if (v > 0) seeds.push_back(t);
-      }
-      std::sort(seeds.begin(), seeds.end());
-      seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
-      std::vector<Cell>& cur = rows_[i];
-      const std::vector<Cell>* prev = i > 0 ? &rows_[i - 1] : nullptr;
-      std::size_t next = 0;
-      constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
-      std::size_t left_next = none;
-      while (next < seeds.size() || left_next != none) {
-        std::size_t t;
-        if (left_next != none && (next >= seeds.size() || left_next <= seeds[next])) {
-          t = left_next;
-          if (next < seeds.size() && seeds[next] == t) ++next;
-        } else {
-          t = seeds[next++];
+        for (const auto& [t, v] : cand) {
+          if (v > 0) seeds.push_back(t);
         }
-        left_next = none;
-        if (t < lo || t > hi) continue;
-        const auto cit =
-            std::lower_bound(cand.begin(), cand.end(), t, [](const auto& c, std::size_t v) { return c.first < v; });
-        const float s = cit != cand.end() && cit->first == t ? cit->second : bg;
-        const Cell* diag = prev != nullptr && t > 0 ? find_cell(*prev, t - 1) : nullptr;
-        const Cell* up = prev != nullptr ? find_cell(*prev, t) : nullptr;
-        const Cell* left = !cur.empty() && t > 0 && cur.back().col == t - 1 ? &cur.back() : nullptr;
-        // The engine's cell_value, with inactive neighbours at 0.
-        float v = 0.0F;
-        v = std::max(v, (diag != nullptr ? diag->h : 0.0F) + s);
-        v = std::max(v, (up != nullptr ? up->h : 0.0F) - config_.gap_a);
-        v = std::max(v, (left != nullptr ? left->h : 0.0F) - config_.gap_b);
-        if (config_.cap) v = std::min(v, *config_.cap);
-        if (!(v > 0)) continue;
-        const std::uint32_t id = uf_.add();
-        if (diag != nullptr) uf_.unite(id, diag->id);
-        if (up != nullptr) uf_.unite(id, up->id);
-        if (left != nullptr) uf_.unite(id, left->id);
-        cur.push_back({static_cast<std::uint32_t>(t), v, id});
-        ++active_;
-        if (t < hi) left_next = t + 1;
-      }
-    }
-  }
-
-  // The components whose best cell reaches the threshold, in the row-major order of their first cells.
-  std::vector<SparseComponent> components(SparseAlignStats& stats) {
-    stats.active_cells += active_;
-    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    struct Box {
-      std::size_t i0 = std::numeric_limits<std::size_t>::max(), i1 = 0;  // pass rows, inclusive
-      std::size_t t0 = std::numeric_limits<std::size_t>::max(), t1 = 0;  // pass columns, inclusive
-      float best = 0;
-    };
-    // Bounding box and best value of every component; boxes are numbered by first cell.
-    std::vector<std::uint32_t> box_of(uf_.size(), none);
-    std::vector<Box> boxes;
-    for (std::size_t i = 0; i < m_; ++i) {
-      for (const Cell& c : rows_[i]) {
-        const std::uint32_t root = uf_.find(c.id);
-        if (box_of[root] == none) {
-          box_of[root] = static_cast<std::uint32_t>(boxes.size());
-          boxes.emplace_back();
+        std::sort(seeds.begin(), seeds.end());
+        seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+        std::size_t next = 0;
+        constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+        std::size_t left_next = none;
+        while (next < seeds.size() || left_next != none) {
+          std::size_t t;
+          if (left_next != none && (next >= seeds.size() || left_next <= seeds[next])) {
+            t = left_next;
+            if (next < seeds.size() && seeds[next] == t) ++next;
+          } else {
+            t = seeds[next++];
+          }
+          left_next = none;
+          if (t < lo || t > hi) continue;
+          const auto cit =
+              std::lower_bound(cand.begin(), cand.end(), t, [](const auto& c, std::size_t v) { return c.first < v; });
+          const float s = cit != cand.end() && cit->first == t ? cit->second : bg;
+          const Cell* diag = t > 0 ? find_cell(prev, t - 1) : nullptr;
+          const Cell* up = find_cell(prev, t);
+          const Cell* left = !cur.empty() && t > 0 && cur.back().col == t - 1 ? &cur.back() : nullptr;
+          // The engine's cell_value, with inactive neighbours at 0.
+          float v = 0.0F;
+          v = std::max(v, (diag != nullptr ? diag->h : 0.0F) + s);
+          v = std::max(v, (up != nullptr ? up->h : 0.0F) - config_.gap_a);
+          v = std::max(v, (left != nullptr ? left->h : 0.0F) - config_.gap_b);
+          if (config_.cap) v = std::min(v, *config_.cap);
+          if (!(v > 0)) continue;
+          std::uint32_t label = std::numeric_limits<std::uint32_t>::max();
+          for (const Cell* p : {diag, up, left}) {
+            if (p != nullptr)
+              label = label == std::numeric_limits<std::uint32_t>::max() ? find(p->label) : unite(label, p->label);
+          }
+          if (label == std::numeric_limits<std::uint32_t>::max()) label = open(i);
+          cur.push_back({static_cast<std::uint32_t>(t), v, label});
+          ++stats.active_cells;
+          if (t < hi) left_next = t + 1;
         }
-        Box& b = boxes[box_of[root]];
-        b.i0 = std::min(b.i0, i);
-        b.i1 = std::max(b.i1, i);
-        b.t0 = std::min<std::size_t>(b.t0, c.col);
-        b.t1 = std::max<std::size_t>(b.t1, c.col);
-        b.best = std::max(b.best, c.h);
       }
+      // The row's runs of consecutive cells, each all of one component (a cell joins its left neighbour).
+      still_live.clear();
+      for (std::size_t a = 0; a < cur.size();) {
+        std::size_t b = a + 1;
+        float best = cur[a].h;
+        while (b < cur.size() && cur[b].col == cur[b - 1].col + 1U) best = std::max(best, cur[b++].h);
+        Open& o = open_[slot_[uf_.find(cur[a].label)]];
+        o.runs.push_back({i, {cur[a].col, static_cast<std::uint32_t>(b - a)}});
+        o.col_lo = std::min(o.col_lo, cur[a].col);
+        o.col_hi = std::max(o.col_hi, cur[b - 1].col);
+        o.best = std::max(o.best, best);
+        o.last_row = i;
+        if (o.listed != i) {
+          o.listed = i;
+          still_live.push_back(uf_.find(cur[a].label));
+        }
+        a = b;
+      }
+      for (const std::uint32_t root : live) {
+        if (uf_.find(root) == root && open_[slot_[root]].last_row < i) close(root, stats);
+      }
+      std::swap(live, still_live);
     }
-    stats.components += boxes.size();
-    const float floor = std::max(config_.threshold, std::numeric_limits<float>::min());
-    std::vector<std::uint32_t> out_of(boxes.size(), none);
+    for (const std::uint32_t root : live) close(root, stats);
+    std::sort(closed_.begin(), closed_.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     std::vector<SparseComponent> out;
-    for (std::size_t b = 0; b < boxes.size(); ++b) {
-      if (boxes[b].best < floor) continue;
-      out_of[b] = static_cast<std::uint32_t>(out.size());
-      out.push_back(component(boxes[b].i0, boxes[b].i1, boxes[b].t0, boxes[b].t1, boxes[b].best, out.size()));
-      const SparseComponent& c = out.back();
+    out.reserve(closed_.size());
+    for (auto& [label, c] : closed_) {
+      c.order = out.size();
       ++stats.aligned_components;
       stats.box_cells += c.box_cells();
       stats.largest_box_cells = std::max(stats.largest_box_cells, c.box_cells());
-    }
-    // The cells, visited row by row and by increasing column within a row.
-    for (std::size_t i = 0; i < m_; ++i) {
-      for (const Cell& c : rows_[i]) {
-        const std::uint32_t k = out_of[box_of[uf_.find(c.id)]];
-        if (k == none) continue;
-        SparseComponent& comp = out[k];
-        const std::size_t r = i - comp.row_begin;
-        while (comp.cell_begin.size() < r + 1) comp.cell_begin.push_back(comp.cells.size());
-        comp.cells.push_back(c.col);
-      }
-    }
-    for (SparseComponent& comp : out) {
-      while (comp.cell_begin.size() < comp.row_end - comp.row_begin + 1) comp.cell_begin.push_back(comp.cells.size());
+      out.push_back(std::move(c));
     }
     return out;
   }
 
  private:
+  struct RowRun {
+    std::size_t row;
+    SparseRun run;
+  };
+  // A component still growing, in the slot of its root label.
+  struct Open {
+    std::size_t first_row = 0, last_row = 0;                       // last_row: the latest row with one of its cells
+    std::size_t listed = std::numeric_limits<std::size_t>::max();  // the row whose live list holds it
+    std::uint32_t col_lo = std::numeric_limits<std::uint32_t>::max(), col_hi = 0;  // pass columns, inclusive
+    float best = 0;
+    std::vector<RowRun> runs;  // by row, except after a union (put in order when closed)
+  };
+
+  std::uint32_t find(std::uint32_t label) { return uf_.find(label); }
+
+  // A new component whose first cell is in row i.
+  std::uint32_t open(std::size_t i) {
+    const std::uint32_t label = uf_.add();
+    std::uint32_t slot;
+    if (free_.empty()) {
+      slot = static_cast<std::uint32_t>(open_.size());
+      open_.emplace_back();
+    } else {
+      slot = free_.back();
+      free_.pop_back();
+    }
+    slot_.push_back(slot);
+    open_[slot].first_row = i;
+    open_[slot].last_row = i;
+    return label;
+  }
+
+  void release(std::uint32_t slot) {
+    open_[slot] = Open{};
+    free_.push_back(slot);
+  }
+
+  // The union of the component of `root` (a root) and the one of `label`; returns the new root.
+  std::uint32_t unite(std::uint32_t root, std::uint32_t label) {
+    const std::uint32_t other = uf_.find(label);
+    if (other == root) return root;
+    const auto [kept, absorbed] = uf_.join(root, other);
+    Open& k = open_[slot_[kept]];
+    Open& a = open_[slot_[absorbed]];
+    if (k.runs.size() < a.runs.size()) std::swap(k.runs, a.runs);
+    k.runs.insert(k.runs.end(), a.runs.begin(), a.runs.end());
+    k.first_row = std::min(k.first_row, a.first_row);
+    k.last_row = std::max(k.last_row, a.last_row);
+    k.col_lo = std::min(k.col_lo, a.col_lo);
+    k.col_hi = std::max(k.col_hi, a.col_hi);
+    k.best = std::max(k.best, a.best);
+    release(slot_[absorbed]);
+    return kept;
+  }
+
+  // The component of `root` has no cell in the current row: kept if it reaches the threshold.
+  void close(std::uint32_t root, SparseAlignStats& stats) {
+    ++stats.components;
+    Open& o = open_[slot_[root]];
+    if (o.best >= floor_) {
+      std::sort(o.runs.begin(), o.runs.end(), [](const RowRun& x, const RowRun& y) {
+        return x.row != y.row ? x.row < y.row : x.run.pass_col < y.run.pass_col;
+      });
+      SparseComponent c = component(o.first_row, o.last_row, o.col_lo, o.col_hi, o.best);
+      c.run_begin.reserve(c.row_end - c.row_begin + 1);
+      c.runs.reserve(o.runs.size());
+      for (const RowRun& r : o.runs) {
+        while (c.run_begin.size() < r.row - c.row_begin + 1) c.run_begin.push_back(c.runs.size());
+        c.runs.push_back(r.run);
+      }
+      while (c.run_begin.size() < c.row_end - c.row_begin + 1) c.run_begin.push_back(c.runs.size());
+      closed_.emplace_back(root, std::move(c));
+    }
+    release(slot_[root]);
+  }
+
   std::size_t original_col(std::size_t t) const { return config_.direction == Direction::forward ? t : n_ - 1 - t; }
 
-  SparseComponent component(std::size_t i0, std::size_t i1, std::size_t t0, std::size_t t1, float best,
-                            std::size_t order) const {
+  SparseComponent component(std::size_t i0, std::size_t i1, std::size_t t0, std::size_t t1, float best) const {
     SparseComponent c;
     c.direction = config_.direction;
-    c.order = order;
     c.row_begin = i0;
     c.row_end = i1 + 1;
     c.pass_col_begin = t0;
@@ -247,9 +312,12 @@ class SparseFill {
   const SparseScores& s_;
   const AlignConfig& config_;
   std::size_t m_, n_;
-  std::vector<std::vector<Cell>> rows_;
+  float floor_;
   UnionFind uf_;
-  std::size_t active_ = 0;
+  std::vector<std::uint32_t> slot_;  // label -> slot in open_ (meaningful for open roots)
+  std::vector<Open> open_;
+  std::vector<std::uint32_t> free_;
+  std::vector<std::pair<std::uint32_t, SparseComponent>> closed_;  // (root label, component) kept
 };
 
 AlignConfig component_config(const AlignConfig& config, const SparseComponent& c) {
@@ -325,8 +393,7 @@ std::vector<SparseComponent> sparse_components(const SparseScores& scores, const
   std::vector<SparseComponent> out;
   if (scores.rows() > 0 && scores.cols() > 0 && config.max_alignments > 0) {
     SparseFill fill(scores, config);
-    fill.run();
-    out = fill.components(local);
+    out = fill.run(local);
   }
   if (stats != nullptr) *stats = local;
   return out;

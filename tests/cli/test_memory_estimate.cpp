@@ -96,6 +96,12 @@ TEST_F(MemoryEstimate, WithinOneAndAHalfOfTheMeasuredPeak) {
   expect_within("map " + w + " --threads 1", "N=3000, exact, 1 thread");
   expect_within("map " + w + " --threads 2 --engine fast", "N=3000, fast engine");
   expect_within("map " + walk(5000) + " --threads 2 --streaming", "N=5000, --streaming");
+  // --sparse on the synthetic route of `seqtopo bench scale`, whose revisits are short (a revisit as long as the
+  // route is aligned in a box of its length squared, which the estimate cannot know)
+  const fs::path route = dir_.path / "route";
+  const auto written = run_cli("bench scale --sizes 20000 --sparse-sizes 0 --write-route " + route.string());
+  ASSERT_EQ(written.status, 0) << written.err;
+  expect_within("map " + (route / "descriptors.npy").string() + " --threads 2 --sparse", "N=20000 route, --sparse");
   // the bundled corridor: images, two fused descriptors, ground truth and the SeqSLAM baseline
   expect_within("map --threads 2", "corridor images (84)");
 }

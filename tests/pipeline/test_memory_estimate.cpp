@@ -2,12 +2,16 @@
 // tests/cli/test_memory_estimate.cpp).
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
 
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/pipeline/memory_estimate.hpp"
+#include "seqtopo/scale/sparse_alignment.hpp"
+#include "seqtopo/scale/sparse_components.hpp"
 
 namespace seqtopo::pipeline {
 namespace {
@@ -89,6 +93,62 @@ TEST(EstimateMapMemory, GroundTruthAndTheBaseline) {
   in.truth_bytes = n * n;
   const auto with = stage(estimate_map_memory(in), "accuracy");
   EXPECT_EQ(with, without + f + 2 * n * n);
+}
+
+MapMemoryInput sparse(std::size_t n, std::size_t neighbours) {
+  MapMemoryInput in;
+  in.images = n;
+  in.threads = 2;
+  in.streaming = true;
+  in.fast_engine = true;
+  in.sparse = true;
+  in.neighbours = neighbours;
+  in.dimension = 64;
+  return in;
+}
+
+// The sparse mode's alignment stage grows with what the code stores per frame and neighbour, and per frame; neither
+// the fill's positive cells (a few per candidate before it kept two rows) nor the tile cache's capacity (the sparse
+// engine reads the candidates, only the significance fit reads streamed tiles) grow it.
+TEST(EstimateMapMemory, SparseGrowsWithWhatTheSparseEngineStores) {
+  // A frame's neighbour is a candidate cell in both triangles, each its column and score in the candidates and in
+  // their copy minus the offset (SparseScores), the SparseEntry the copy is built from, and at most one component
+  // label (union-find parent and slot); and FAISS's search result (distance and 64-bit label).
+  const std::size_t per_candidate =
+      2 * (sizeof(std::uint32_t) + sizeof(float)) + sizeof(scale::SparseEntry) + 2 * sizeof(std::uint32_t);
+  const std::size_t per_neighbour = 2 * per_candidate + sizeof(float) + sizeof(std::int64_t);
+  // A frame: the streamed similarity's descriptors and their transpose, FAISS's copy; in each of the two passes about
+  // one row of a kept component: its row offset and run, and the run with its row while the component is open.
+  const std::size_t dim = 64;
+  const std::size_t per_frame = 3 * dim * sizeof(float) + 2 * (sizeof(std::size_t) + sizeof(scale::SparseRun) +
+                                                               sizeof(std::size_t) + sizeof(scale::SparseRun));
+  const auto aligned = [](std::size_t n, std::size_t k) {
+    return stage(estimate_map_memory(sparse(n, k)), "alignment (streamed)");
+  };
+  for (const std::size_t n : {100000, 1000000}) {
+    for (const std::size_t k : {5, 10, 20}) {
+      EXPECT_EQ(aligned(n, 2 * k) - aligned(n, k), k * n * per_neighbour) << n << " frames, k = " << k;
+      EXPECT_EQ(aligned(2 * n, k) - aligned(n, k), n * (k * per_neighbour + per_frame)) << n << " frames, k = " << k;
+    }
+  }
+  // far below the streamed fast engine's, which holds the tile cache and the engine's passes
+  MapMemoryInput streamed = sparse(1000000, 10);
+  streamed.sparse = false;
+  EXPECT_LT(aligned(1000000, 10) * 4, stage(estimate_map_memory(streamed), "alignment (streamed)"));
+}
+
+// Estimated from the streamed cosine, the frames per place hold min(200, N / 3) + 1 lags of every frame as doubles
+// (each lag's vector grown by doubling), beside the descriptors read and the streamed copy and transpose of them.
+TEST(EstimateMapMemory, PlaceScaleFromTheStreamedCosine) {
+  for (const std::size_t n : {1000, 100000, 1000000}) {
+    MapMemoryInput in = sparse(n, 10);
+    const std::size_t d = n * 64 * sizeof(float);
+    in.descriptor_bytes = {d};
+    EXPECT_EQ(stage(estimate_map_memory(in), "descriptors"), 2 * d);
+    in.place_from_similarity = true;
+    const std::size_t lags = std::min<std::size_t>(200, n / 3) + 1;
+    EXPECT_EQ(stage(estimate_map_memory(in), "descriptors"), 3 * d + lags * std::bit_ceil(n) * sizeof(double)) << n;
+  }
 }
 
 // After the run: the outputs of its real number of aligned pairs are checked against what is left, before any is

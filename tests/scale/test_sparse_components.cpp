@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <set>
@@ -65,24 +66,131 @@ void expect_consistent(const SparseScores& scores, const align::AlignConfig& con
   for (const SparseComponent& c : components) {
     const bool fwd = c.direction == align::Direction::forward;
     EXPECT_EQ(c.order, expected_order[fwd ? 0 : 1]++);
-    ASSERT_EQ(c.cell_begin.size(), c.row_end - c.row_begin + 1);
-    EXPECT_EQ(c.cell_begin.back(), c.cells.size());
+    ASSERT_EQ(c.run_begin.size(), c.row_end - c.row_begin + 1);
+    EXPECT_EQ(c.run_begin.front(), 0U);
+    EXPECT_EQ(c.run_begin.back(), c.runs.size());
     EXPECT_GE(c.best, std::max(config.threshold, 1e-30F));
     for (std::size_t i = c.row_begin; i < c.row_end; ++i) {
-      for (std::size_t k = c.cell_begin[i - c.row_begin]; k < c.cell_begin[i - c.row_begin + 1]; ++k) {
-        const std::size_t t = c.cells[k];
-        EXPECT_TRUE(t >= c.pass_col_begin && t < c.pass_col_end);
-        EXPECT_TRUE(c.contains(i, t));
-        const std::size_t j = fwd ? t : scores.cols() - 1 - t;
-        EXPECT_TRUE(i >= c.box_row_begin && i < c.box_row_end && j >= c.box_col_begin && j < c.box_col_end);
+      const std::size_t first = c.run_begin[i - c.row_begin], last = c.run_begin[i - c.row_begin + 1];
+      if (i == c.row_begin || i + 1 == c.row_end) {
+        EXPECT_LT(first, last) << "the box's first and last rows have cells";
+      }
+      for (std::size_t k = first; k < last; ++k) {
+        const SparseRun run = c.runs[k];
+        ASSERT_GT(run.length, 0U);
+        if (k > first) {
+          EXPECT_GT(run.pass_col, c.runs[k - 1].pass_col + c.runs[k - 1].length) << "runs never touch";
+        }
+        EXPECT_FALSE(run.pass_col > 0 && c.contains(i, run.pass_col - 1));
+        EXPECT_FALSE(c.contains(i, std::size_t{run.pass_col} + run.length));
+        for (std::size_t t = run.pass_col; t < std::size_t{run.pass_col} + run.length; ++t) {
+          EXPECT_TRUE(t >= c.pass_col_begin && t < c.pass_col_end);
+          EXPECT_TRUE(c.contains(i, t));
+          const std::size_t j = fwd ? t : scores.cols() - 1 - t;
+          EXPECT_TRUE(i >= c.box_row_begin && i < c.box_row_end && j >= c.box_col_begin && j < c.box_col_end);
+        }
       }
     }
+    EXPECT_FALSE(c.contains(c.row_begin - 1, c.pass_col_begin));
+    EXPECT_FALSE(c.contains(c.row_end, c.pass_col_begin));
     if (c.kind == SparseBoxKind::diagonal_square) {
       EXPECT_TRUE(config.self);
       EXPECT_EQ(c.box_row_begin, c.box_col_begin);
       EXPECT_EQ(c.box_row_end, c.box_col_end);
     }
   }
+}
+
+// The first fill on every cell of the pass (the engine's recurrence, H = 0 outside the self band), its
+// positive cells split into the components of the recurrence, those reaching the threshold kept, in the
+// row-major order of their first cells: what sparse_components must return, as sets of cells.
+std::vector<std::vector<std::pair<std::size_t, std::size_t>>> reference_components(const SparseScores& s,
+                                                                                   const align::AlignConfig& config) {
+  const std::size_t m = s.rows(), n = s.cols();
+  const bool fwd = config.direction == align::Direction::forward;
+  std::vector<float> h((m + 1) * (n + 1), 0.0F);
+  auto at = [&](std::size_t i, std::size_t t) -> float& { return h[(i + 1) * (n + 1) + t + 1]; };  // -1 allowed
+  std::vector<std::size_t> parent(m * n);
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::size_t i = 0; i < m; ++i) {
+    for (std::size_t t = 0; t < n; ++t) {
+      const std::size_t j = fwd ? t : n - 1 - t;
+      if (config.self && !(i >= j && i - j >= config.min_separation)) continue;
+      float v = 0.0F;
+      v = std::max(v, at(i - 1, t - 1) + s.at(i, j));
+      v = std::max(v, at(i - 1, t) - config.gap_a);
+      v = std::max(v, at(i, t - 1) - config.gap_b);
+      if (config.cap) v = std::min(v, *config.cap);
+      at(i, t) = v;
+      if (!(v > 0)) continue;
+      const std::pair<std::size_t, std::size_t> preds[] = {{i - 1, t - 1}, {i - 1, t}, {i, t - 1}};
+      for (const auto& [pi, pt] : preds) {
+        if (pi < m && pt < n && at(pi, pt) > 0) {
+          const std::size_t a = find(i * n + t), b = find(pi * n + pt);
+          parent[std::max(a, b)] = std::min(a, b);
+        }
+      }
+    }
+  }
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> out;
+  std::vector<std::size_t> index_of(m * n, parent.size());
+  std::vector<float> best;
+  for (std::size_t i = 0; i < m; ++i) {
+    for (std::size_t t = 0; t < n; ++t) {
+      if (!(at(i, t) > 0)) continue;
+      const std::size_t root = find(i * n + t);
+      if (index_of[root] == parent.size()) {
+        index_of[root] = out.size();
+        out.emplace_back();
+        best.push_back(0.0F);
+      }
+      out[index_of[root]].emplace_back(i, t);
+      best[index_of[root]] = std::max(best[index_of[root]], at(i, t));
+    }
+  }
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> kept;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    if (best[k] >= std::max(config.threshold, std::numeric_limits<float>::min())) kept.push_back(std::move(out[k]));
+  }
+  return kept;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> cells_of(const SparseComponent& c) {
+  std::vector<std::pair<std::size_t, std::size_t>> cells;
+  for (std::size_t i = c.row_begin; i < c.row_end; ++i) {
+    for (std::size_t k = c.run_begin[i - c.row_begin]; k < c.run_begin[i - c.row_begin + 1]; ++k) {
+      for (std::uint32_t d = 0; d < c.runs[k].length; ++d) cells.emplace_back(i, c.runs[k].pass_col + d);
+    }
+  }
+  return cells;
+}
+
+TEST(SparseComponents, AreThoseOfTheFullFirstFill) {
+  std::mt19937 rng(20260518);
+  std::size_t components = 0, multi_run_rows = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    Problem p = random_problem(rng, trial % 2 == 0);
+    for (const auto dir : {align::Direction::forward, align::Direction::reverse}) {
+      auto cfg = p.config;
+      cfg.direction = dir;
+      const auto got = sparse_components(p.scores, cfg);
+      const auto want = reference_components(p.scores, cfg);
+      ASSERT_EQ(got.size(), want.size()) << "trial " << trial;
+      for (std::size_t k = 0; k < got.size(); ++k) {
+        ASSERT_EQ(cells_of(got[k]), want[k]) << "trial " << trial << ", component " << k;
+        for (std::size_t r = 0; r + 1 < got[k].run_begin.size(); ++r) {
+          multi_run_rows += got[k].run_begin[r + 1] - got[k].run_begin[r] > 1 ? 1 : 0;
+        }
+      }
+      components += got.size();
+    }
+  }
+  EXPECT_GT(components, 500U);
+  EXPECT_GT(multi_run_rows, 0U);  // rows where a component has cells apart
 }
 
 TEST(SparseComponents, AnyOrderAndAnyRanksEqualOneProcessOnRandomCases) {

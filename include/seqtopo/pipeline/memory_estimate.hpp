@@ -18,7 +18,10 @@
 //                real count checked again after it: check_outputs_memory)
 // An N x N ground-truth image (N^2 bytes) is held from the accuracy stage on. --streaming holds the normalised
 // descriptors, the tile cache (3 bands of 256 x 256 floats) and the fast engine's passes instead; --sparse its
-// candidates, their FAISS index and the sparse engine's cells instead of the fast engine's passes.
+// candidates, their FAISS index and the sparse engine's storage (its candidates, component labels and the kept
+// components' runs) instead of the fast engine's passes, and of the tile cache only the tiles the significance fit
+// reads. Estimated from the streamed cosine, the frames per place hold the scores at 201 lags of every frame (8 bytes
+// each): at 10^6 frames, --sparse's largest stage.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -45,7 +48,10 @@ struct MapMemoryInput {
   bool streaming = false;
   bool sparse = false;  // with streaming: --sparse, `neighbours` candidates per frame
   std::size_t neighbours = 10;
-  std::size_t dimension = 0;   // --streaming: floats per descriptor
+  std::size_t dimension = 0;  // --streaming: floats per descriptor
+  // --streaming: the frames per place are estimated from the streamed cosine (place units, no scale given, no
+  // odometry)
+  bool place_from_similarity = false;
   std::size_t base_bytes = 0;  // the process before the run: code, libraries, what it read so far
 };
 

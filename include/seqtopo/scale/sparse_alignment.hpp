@@ -21,10 +21,13 @@
 // The pass as separate steps (components, one box each, the merge) for spreading the work elsewhere:
 // sparse_components.hpp.
 //
-// Memory: the candidates, the positive cells of the fill (12 bytes each) and the largest component box
-// (5 bytes per cell). A component that touches the self band's edge is aligned in a square box on the
-// diagonal (the engine's band needs the diagonal), so a long revisit hugging the band edge costs its
-// length squared.
+// Memory: the candidates; the fill's last two rows of positive cells (12 bytes each), 8 bytes per
+// component label (one per cell without a positive predecessor, at most one per positive candidate), the
+// working state of the components that still have a cell in the current row, and each component kept
+// (reaching the threshold) as runs of consecutive cells: 8 bytes per row and 8 per run; then the largest
+// component box (5 bytes per cell). A component that touches the self band's edge is aligned in a square
+// box on the diagonal (the engine's band needs the diagonal), so a long revisit hugging the band edge
+// costs its length squared.
 #include <cstddef>
 #include <cstdint>
 #include <span>

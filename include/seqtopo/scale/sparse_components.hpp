@@ -31,6 +31,12 @@ enum class SparseBoxKind {
   diagonal_square,
 };
 
+// Consecutive pass columns [pass_col, pass_col + length) of one row of a component.
+struct SparseRun {
+  std::uint32_t pass_col = 0, length = 0;
+  friend bool operator==(const SparseRun&, const SparseRun&) = default;
+};
+
 // One connected component of the positive cells of a pass's first fill, whose best cell reaches the
 // threshold. Pass coordinates: row i, and pass column t = j forward, t = cols - 1 - j reverse.
 struct SparseComponent {
@@ -44,11 +50,12 @@ struct SparseComponent {
   // The box the exact engine aligns, original coordinates, half-open.
   std::size_t box_row_begin = 0, box_row_end = 0, box_col_begin = 0, box_col_end = 0;
   float best = 0;  // the component's largest H in the first fill
-  // The cells, row by row: row row_begin + r holds pass columns cells[cell_begin[r] .. cell_begin[r + 1])
-  // in increasing order (cell_begin has row_end - row_begin + 1 entries). Alignments that start on
-  // another component's cell inside the box belong to that component and are dropped.
-  std::vector<std::size_t> cell_begin;
-  std::vector<std::uint32_t> cells;
+  // The cells, row by row, as the maximal runs of consecutive pass columns: row row_begin + r holds
+  // runs[run_begin[r] .. run_begin[r + 1]), by increasing column, never touching (run_begin has
+  // row_end - row_begin + 1 entries). Alignments that start on another component's cell inside the box
+  // belong to that component and are dropped.
+  std::vector<std::size_t> run_begin;
+  std::vector<SparseRun> runs;
 
   std::size_t box_cells() const { return (box_row_end - box_row_begin) * (box_col_end - box_col_begin); }
   bool contains(std::size_t row, std::size_t pass_col) const;
