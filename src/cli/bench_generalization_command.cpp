@@ -29,6 +29,7 @@ struct Options {
   std::size_t planted_size = 2000;
   bool json = false;
   unsigned threads = 0;
+  std::string only;  // run only the cases whose name contains this
 };
 
 struct Case {
@@ -144,6 +145,7 @@ void run(const Options& o) {
   const unsigned threads = resolve_threads(o.threads);
   std::vector<Outcome> outcomes;
   for (const auto& c : cases(o)) {
+    if (c.name.find(o.only) == std::string::npos) continue;
     outcomes.push_back(run_case(c, threads));
     const auto& r = outcomes.back();
     std::cerr << fmt::format(
@@ -209,6 +211,7 @@ const RegisterBenchCommand registered{
        app.add_option("--null-sizes", o->null_sizes, "frames of the pure-noise cases")->delimiter(',');
        add_number(app, "--planted-size", o->planted_size, NumberLimits{.min = 200}, "frames of the planted cases");
        app.add_flag("--json", o->json, "print one JSON array of the cases instead of the table");
+       app.add_option("--cases", o->only, "run only the cases whose name contains this (e.g. 'planted reverse L=50')");
        add_number(app, "--threads", o->threads, kThreads, "worker threads (0 = all cores)");
        app.callback([o] { run(*o); });
      }}};
