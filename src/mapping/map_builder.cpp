@@ -15,6 +15,7 @@
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/mapping/graph_cleanup.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
+#include "seqtopo/significance/alignment_ends.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::mapping {
@@ -79,6 +80,7 @@ struct FitRun {
   std::vector<double> path_scores;
   std::size_t fitted = 0;    // alignments the fit could use (not shadows)
   double chance_length = 0;  // [places]
+  double cell_mean = 0;      // of the cells the run read, off the self band
 };
 
 // The statistics' run: the best `fit_alignments` declumped alignments of `scores` (any score > 0), with the
@@ -90,7 +92,7 @@ constexpr std::size_t kFitBlock = 2000, kFitBlocks = 4;
 
 // The statistics' run's alignments, best first, in the full sequence's indices; `area` the cells searched.
 std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scores, align::AlignConfig engine,
-                                                  const MapConfig& c, double& area) {
+                                                  const MapConfig& c, double& area, double& cell_mean) {
   const std::size_t n = scores.rows();
   const bool whole = n <= 2 * kFitBlock;
   // A sequence this short is fitted whole, from a copy in memory when the source is not (a streamed source
@@ -100,9 +102,14 @@ std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scor
   if (!whole) engine.max_alignments = (engine.max_alignments + blocks - 1) / blocks;
   std::vector<align::LocalAlignment> all;
   std::vector<align::Score> block(size * size);
+  double sum = 0;  // of the cells off the self band, for their mean
+  std::size_t cells = 0;
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t start = blocks == 1 ? 0 : (n - size) * b / (blocks - 1);
     for (std::size_t i = 0; i < size; ++i) scores.read_row(start + i, start, start + size, block.data() + i * size);
+    for (std::size_t i = c.min_separation; i < size; ++i) {
+      for (std::size_t j = 0; j + c.min_separation <= i; ++j) sum += block[i * size + j], ++cells;
+    }
     auto found =
         run_engine(align::ScoreSource::dense(block, size, size), engine, MapConfig::Engine::fast, c.reverse, c.threads);
     for (auto& a : found) {
@@ -115,6 +122,7 @@ std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scor
     }
   }
   std::stable_sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.score > y.score; });
+  cell_mean = cells > 0 ? sum / static_cast<double>(cells) : 0.0;
   return all;
 }
 
@@ -126,7 +134,7 @@ FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, doub
   engine.max_alignments = alignments;
   FitRun run;
   double area = 0;
-  run.alignments = fit_alignments(scores, engine, c, area);
+  run.alignments = fit_alignments(scores, engine, c, area, run.cell_mean);
   std::vector<double> best_first;
   std::vector<std::size_t> fitted;  // indices of the alignments in best_first
   for (std::size_t k = 0; k < run.alignments.size(); ++k) {
@@ -359,6 +367,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     }
     d.statistics = fit.statistics;
     d.chance_length = fit.chance_length;
+    d.chance_mean = fit.cell_mean;
     if (fit.statistics.valid()) {
       // On a grid of 1/64 score units, which both engines represent exactly (the fast engine's scale is a power
       // of two of at least 64 for caps up to 512), so they agree on what is significant.
@@ -405,6 +414,20 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     result.alignments.push_back(std::move(a));
     result.path_scores.push_back(path);
     result.e_values.push_back(e);
+  }
+  if (c.trim_chance_ends && d.statistics.valid()) {
+    // A tail a chance extension reaches with probability 5 % or more.
+    const double max_tail_gain = std::log(20.0) / d.statistics.lambda;
+    std::size_t trimmed = 0;
+    for (auto& a : result.alignments) {
+      const std::size_t before = a.pairs.size();
+      a = significance::trim_chance_ends(a, scores, c.gap, c.gap, d.chance_mean, max_tail_gain);
+      trimmed += before - a.pairs.size();
+    }
+    if (trimmed > 0) {
+      d.notes.push_back(
+          fmt::format("{} aligned pairs at alignments' ends more likely chance than revisit trimmed off", trimmed));
+    }
   }
   // Most significant first: capped scores tie at the cap, their paths' scores do not. Pruning and labels
   // then prefer the strongest of overlapping alignments (parallel shadows of one revisit, crossing chances).

@@ -84,6 +84,9 @@ struct MapConfig {
   std::size_t fit_alignments = 300;
   // Half-width of the band the pairs' posteriors sum over [frames]; at least one place.
   std::size_t confidence_band = 8;
+  // With the significance statistics: alignments' ends cut back where their pairs are more likely chance than
+  // revisit (significance/alignment_ends.hpp).
+  bool trim_chance_ends = true;
 };
 
 // What a map run decided from the sequence itself (the settings in frames, the statistics), for the report.
@@ -97,6 +100,7 @@ struct MapDecisions {
   std::optional<float> cap;                  // the cap aligned with
   float score_threshold = 0;                 // the capped score a revisit needs
   significance::ScoreStatistics statistics;  // invalid without significance or when the fit failed
+  double chance_mean = 0;                    // mean score of the cells the fit read, off the self band
   double chance_length = 0;                  // median length of the fitted chance alignments [places]
   std::vector<std::string> notes;            // what was adapted and why, one line each
 };
