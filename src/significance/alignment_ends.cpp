@@ -56,16 +56,7 @@ align::LocalAlignment trim_chance_ends(const align::LocalAlignment& alignment, c
     if (head < max_tail_gain) lo = start;
   }
   if (lo > hi || (lo == 0 && hi == n - 1)) return alignment;
-  align::LocalAlignment out = alignment;
-  out.pairs.assign(pairs.begin() + static_cast<std::ptrdiff_t>(lo),
-                   pairs.begin() + static_cast<std::ptrdiff_t>(hi) + 1);
-  out.a_begin = out.pairs.front().first;
-  out.a_end = out.pairs.back().first + 1;
-  const auto [jmin, jmax] = std::minmax_element(out.pairs.begin(), out.pairs.end(),
-                                                [](const auto& x, const auto& y) { return x.second < y.second; });
-  out.b_begin = jmin->second;
-  out.b_end = jmax->second + 1;
-  return out;
+  return align::pairs_between(alignment, lo, hi);
 }
 
 }  // namespace seqtopo::significance

@@ -47,4 +47,8 @@ struct LocalAlignment {
   friend bool operator==(const LocalAlignment&, const LocalAlignment&) = default;
 };
 
+// The alignment cut to its pairs [first, last] (indices into `pairs`, first <= last < pairs.size()), the ranges
+// spanning them again; score and direction as they were (trimming a revisit's ends keeps its evidence).
+LocalAlignment pairs_between(const LocalAlignment& alignment, std::size_t first, std::size_t last);
+
 }  // namespace seqtopo::align
