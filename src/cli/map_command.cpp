@@ -338,7 +338,8 @@ const RegisterCommand registered{
            "--odometry-gate", o->odometry_gate,
            fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
                        "(metres travelled between them) apart, and trim an alignment's ends where the shapes of its "
-                       "two traversals over WINDOW metres part by more than BASE (WINDOW 0: no trimming), as "
+                       "two traversals over WINDOW metres part by more than 3 times their scatter in its middle "
+                       "(1 m to BASE; WINDOW 0: no trimming), as "
                        "BASE,DRIFT[,WINDOW], or none (default {},{},{})",
                        mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift,
                        mapping::OdometryGate{}.trim_window));

@@ -11,8 +11,9 @@ namespace {
 void check_gate(const OdometryGate& gate) {
   const auto bad = [](double v) { return std::isnan(v) || v < 0; };
   if (bad(gate.base) || bad(gate.drift) || bad(gate.min_consistent) || gate.min_consistent > 1 ||
-      bad(gate.trim_window)) {
-    throw std::invalid_argument("odometry gate: base, drift and trim_window must be >= 0, min_consistent in [0, 1]");
+      bad(gate.trim_window) || bad(gate.trim_floor)) {
+    throw std::invalid_argument(
+        "odometry gate: base, drift, trim_window and trim_floor must be >= 0, min_consistent in [0, 1]");
   }
 }
 
@@ -110,22 +111,29 @@ align::LocalAlignment trim_to_odometry(const align::LocalAlignment& alignment, s
   while (hi + 1 < pairs.size() && at(hi + 1) - at(mid) <= gate.trim_window / 2) ++hi;
   const Rigid middle = superpose(alignment, odometry, lo, hi);
   if (!middle.defined) return alignment;
+  double squares = 0;
   for (std::size_t k = lo; k <= hi; ++k) {
-    if (middle.residual(odometry[pairs[k].first], odometry[pairs[k].second]) > gate.base) return alignment;
+    const double r = middle.residual(odometry[pairs[k].first], odometry[pairs[k].second]);
+    if (r > gate.base) return alignment;
+    squares += r * r;
   }
+  // How far the two traversals' shapes may part: three times their scatter about the superposition in the
+  // middle (a zig-zagging pass, noisy odometry), within [trim_floor, base].
+  const double rms = std::sqrt(squares / static_cast<double>(hi - lo + 1));
+  const double tolerance = std::clamp(3 * rms, std::min(gate.trim_floor, gate.base), gate.base);
   // Outwards, each new pair against the last trim_window metres accepted on its side.
   while (hi + 1 < pairs.size()) {
     std::size_t from = hi;
     while (from > lo && at(hi + 1) - at(from - 1) <= gate.trim_window) --from;
     const Rigid fit = superpose(alignment, odometry, from, hi);
-    if (fit.defined && fit.residual(odometry[pairs[hi + 1].first], odometry[pairs[hi + 1].second]) > gate.base) break;
+    if (fit.defined && fit.residual(odometry[pairs[hi + 1].first], odometry[pairs[hi + 1].second]) > tolerance) break;
     ++hi;
   }
   while (lo > 0) {
     std::size_t to = lo;
     while (to < hi && at(to + 1) - at(lo - 1) <= gate.trim_window) ++to;
     const Rigid fit = superpose(alignment, odometry, lo, to);
-    if (fit.defined && fit.residual(odometry[pairs[lo - 1].first], odometry[pairs[lo - 1].second]) > gate.base) break;
+    if (fit.defined && fit.residual(odometry[pairs[lo - 1].first], odometry[pairs[lo - 1].second]) > tolerance) break;
     --lo;
   }
   if (lo == 0 && hi + 1 == pairs.size()) return alignment;

@@ -94,6 +94,7 @@ TEST(OdometryGate, TrimsTheEndsWherePathsPart) {
   const auto poses = two_traversals_parting([](double) { return 0.0; });
   OdometryGate gate;
   gate.base = 2.5;
+  gate.trim_floor = 2.5;  // the tolerance: the middle's scatter is 0 here
   // Where the arms part the two images are 2 (10 - k) m apart before the stretch (k < 10) and 2 (k - 50)
   // m after it: within 2.5 m for k = 8..52.
   const auto trimmed = trim_to_odometry(pairs_of(diagonal(0, 70)), poses, gate);
@@ -106,6 +107,26 @@ TEST(OdometryGate, TrimsTheEndsWherePathsPart) {
   EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(12, 48)), poses, gate).pairs, diagonal(12, 48));
   gate.trim_window = 0;
   EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(0, 70)), poses, gate).pairs, diagonal(0, 70));
+}
+
+TEST(OdometryGate, TheToleranceFollowsTheMiddlesScatter) {
+  // Noise-free shapes are trimmed at the floor: the arms are within 1 m for k = 10 (0 m)... only 9..51 can
+  // stay (1 m apart at the boundary, so the test asks for the safe side: at least 10..50, at most 8..52).
+  OdometryGate gate;
+  gate.base = 3;
+  gate.trim_floor = 1.2;
+  const auto exact =
+      trim_to_odometry(pairs_of(diagonal(0, 70)), two_traversals_parting([](double) { return 0.0; }), gate);
+  EXPECT_EQ(exact.pairs, diagonal(9, 51));
+  // A pass zig-zagging 1 m about the path scatters about 0.7 m in the middle: the tolerance grows to about
+  // 2 m, so the same parting keeps more pairs, and still drops the arms' far ends.
+  const auto zigzag = two_traversals_parting([](double x) { return std::sin(2 * 3.14159265 * x / 3); });
+  const auto wide = trim_to_odometry(pairs_of(diagonal(0, 70)), zigzag, gate);
+  EXPECT_GT(wide.pairs.size(), exact.pairs.size());
+  EXPECT_LT(wide.pairs.size(), diagonal(0, 70).size() - 20);
+  // Never beyond base.
+  gate.base = 1.2;
+  EXPECT_LE(trim_to_odometry(pairs_of(diagonal(0, 70)), zigzag, gate).pairs.size(), wide.pairs.size());
 }
 
 TEST(OdometryGate, KeepsParallelZigZagAndReversePasses) {

@@ -14,10 +14,11 @@
 // merges places of different arms. Odometry's shape over a few metres is nearly exact, so the kept
 // alignments are trimmed: the two traversals of an alignment's middle are superposed by a rigid motion
 // (2-D Procrustes: rotation and translation, so a parallel lane or a reverse pass fits as well), and the
-// alignment is extended outwards pair by pair while each new pair still lies within `base` metres of that
+// alignment is extended outwards pair by pair while each new pair still lies within a tolerance of that
 // superposition, refitted on the last `trim_window` metres of accepted pairs (odometry drifts over long
-// distances, not short ones). A lateral offset between the traversals costs nothing; two paths that bend
-// apart do.
+// distances, not short ones). The tolerance is three times the middle's own scatter about its superposition
+// (a zig-zagging pass or noisy odometry scatters more), within [trim_floor, base]. A lateral offset between
+// the traversals costs nothing; two paths that bend apart do.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -32,6 +33,7 @@ struct OdometryGate {
   double drift = 0.1;           // [m per m travelled] growth of the allowance
   double min_consistent = 0.5;  // fraction of an alignment's pairs that must be consistent
   double trim_window = 10.0;    // [m] travel over which the two traversals' shapes are compared (0: no trimming)
+  double trim_floor = 1.0;      // [m] the least tolerance of the trimming (at most base)
 };
 
 // One flag per alignment: true = consistent with the odometry. Throws std::invalid_argument when a pair
@@ -39,7 +41,7 @@ struct OdometryGate {
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
                                            std::span<const Pose2> odometry, const OdometryGate& gate = {});
 
-// The pairs of `alignment` that stay within gate.base of the rigid superposition of its two traversals (see
+// The pairs of `alignment` that stay within the tolerance of the rigid superposition of its two traversals (see
 // above): a contiguous run of its pairs around the middle; a_begin..b_end span them again. Unchanged when
 // the middle's traversals cannot be superposed within gate.base (the gate judges those), when the robot did
 // not move over the middle (nothing to compare), or when gate.trim_window is 0. Throws like
