@@ -221,6 +221,12 @@ PlaceScale frames_per_place(const std::vector<SimilarityMatrix>& similarities) {
 namespace {
 
 // Keeps alignments `which` (in that order) with their path scores and E-values.
+std::size_t pair_count(const std::vector<align::LocalAlignment>& alignments) {
+  std::size_t n = 0;
+  for (const auto& a : alignments) n += a.pairs.size();
+  return n;
+}
+
 void select_alignments(MapResult& result, const std::vector<std::size_t>& which) {
   std::vector<align::LocalAlignment> alignments;
   std::vector<double> path_scores, e_values;
@@ -418,12 +424,11 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   if (c.trim_chance_ends && d.statistics.valid()) {
     // A tail a chance extension reaches with probability 5 % or more.
     const double max_tail_gain = std::log(20.0) / d.statistics.lambda;
-    std::size_t trimmed = 0;
+    const std::size_t before = pair_count(result.alignments);
     for (auto& a : result.alignments) {
-      const std::size_t before = a.pairs.size();
       a = significance::trim_chance_ends(a, scores, c.gap, c.gap, d.chance_mean, max_tail_gain);
-      trimmed += before - a.pairs.size();
     }
+    const std::size_t trimmed = before - pair_count(result.alignments);
     if (trimmed > 0) {
       d.notes.push_back(
           fmt::format("{} aligned pairs at alignments' ends more likely chance than revisit trimmed off", trimmed));
@@ -447,12 +452,9 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       }
     }
     select_alignments(result, kept);
-    std::size_t trimmed = 0;
-    for (auto& a : result.alignments) {
-      const std::size_t before = a.pairs.size();
-      a = trim_to_odometry(a, odometry, *c.odometry_gate);
-      trimmed += before - a.pairs.size();
-    }
+    const std::size_t before = pair_count(result.alignments);
+    result.alignments = trim_to_odometry(result.alignments, odometry, *c.odometry_gate);
+    const std::size_t trimmed = before - pair_count(result.alignments);
     if (trimmed > 0) {
       d.notes.push_back(
           fmt::format("odometry: {} aligned pairs past the places where two paths part trimmed off", trimmed));

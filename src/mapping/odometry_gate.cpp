@@ -75,34 +75,10 @@ Rigid superpose(const align::LocalAlignment& alignment, std::span<const Pose2> o
   return r;
 }
 
-}  // namespace
-
-std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
-                                           std::span<const Pose2> odometry, const OdometryGate& gate) {
-  check_gate(gate);
-  const std::vector<double> travelled = travelled_distance(odometry);
-  std::vector<bool> out;
-  out.reserve(alignments.size());
-  for (const auto& alignment : alignments) {
-    check_pairs(alignment, odometry.size());
-    std::size_t consistent = 0;
-    for (const auto& [i, j] : alignment.pairs) {
-      const double apart = std::hypot(odometry[i].x - odometry[j].x, odometry[i].y - odometry[j].y);
-      consistent += apart <= gate.base + gate.drift * std::abs(travelled[i] - travelled[j]);
-    }
-    out.push_back(!alignment.pairs.empty() &&
-                  static_cast<double>(consistent) >= gate.min_consistent * static_cast<double>(alignment.pairs.size()));
-  }
-  return out;
-}
-
-align::LocalAlignment trim_to_odometry(const align::LocalAlignment& alignment, std::span<const Pose2> odometry,
-                                       const OdometryGate& gate) {
-  check_gate(gate);
-  check_pairs(alignment, odometry.size());
+align::LocalAlignment trim_one(const align::LocalAlignment& alignment, std::span<const Pose2> odometry,
+                               const std::vector<double>& travelled, const OdometryGate& gate) {
   const auto& pairs = alignment.pairs;
   if (pairs.size() < 3 || gate.trim_window == 0) return alignment;
-  const std::vector<double> travelled = travelled_distance(odometry);
   const auto at = [&](std::size_t k) { return travelled[pairs[k].first]; };  // increasing in k (i increases)
   // The middle: the pairs within half a window of travel of the middle pair.
   const std::size_t mid = pairs.size() / 2;
@@ -138,6 +114,40 @@ align::LocalAlignment trim_to_odometry(const align::LocalAlignment& alignment, s
   }
   if (lo == 0 && hi + 1 == pairs.size()) return alignment;
   return align::pairs_between(alignment, lo, hi);
+}
+
+}  // namespace
+
+std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
+                                           std::span<const Pose2> odometry, const OdometryGate& gate) {
+  check_gate(gate);
+  const std::vector<double> travelled = travelled_distance(odometry);
+  std::vector<bool> out;
+  out.reserve(alignments.size());
+  for (const auto& alignment : alignments) {
+    check_pairs(alignment, odometry.size());
+    std::size_t consistent = 0;
+    for (const auto& [i, j] : alignment.pairs) {
+      const double apart = std::hypot(odometry[i].x - odometry[j].x, odometry[i].y - odometry[j].y);
+      consistent += apart <= gate.base + gate.drift * std::abs(travelled[i] - travelled[j]);
+    }
+    out.push_back(!alignment.pairs.empty() &&
+                  static_cast<double>(consistent) >= gate.min_consistent * static_cast<double>(alignment.pairs.size()));
+  }
+  return out;
+}
+
+std::vector<align::LocalAlignment> trim_to_odometry(const std::vector<align::LocalAlignment>& alignments,
+                                                    std::span<const Pose2> odometry, const OdometryGate& gate) {
+  check_gate(gate);
+  const std::vector<double> travelled = travelled_distance(odometry);
+  std::vector<align::LocalAlignment> out;
+  out.reserve(alignments.size());
+  for (const auto& alignment : alignments) {
+    check_pairs(alignment, odometry.size());
+    out.push_back(trim_one(alignment, odometry, travelled, gate));
+  }
+  return out;
 }
 
 }  // namespace seqtopo::mapping

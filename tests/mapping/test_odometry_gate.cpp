@@ -97,16 +97,16 @@ TEST(OdometryGate, TrimsTheEndsWherePathsPart) {
   gate.trim_floor = 2.5;  // the tolerance: the middle's scatter is 0 here
   // Where the arms part the two images are 2 (10 - k) m apart before the stretch (k < 10) and 2 (k - 50)
   // m after it: within 2.5 m for k = 8..52.
-  const auto trimmed = trim_to_odometry(pairs_of(diagonal(0, 70)), poses, gate);
+  const auto trimmed = trim_to_odometry({pairs_of(diagonal(0, 70))}, poses, gate).front();
   EXPECT_EQ(trimmed.pairs, diagonal(8, 52));
   EXPECT_EQ(trimmed.a_begin, 71U + 8);
   EXPECT_EQ(trimmed.a_end, 71U + 53);
   EXPECT_EQ(trimmed.b_begin, 8U);
   EXPECT_EQ(trimmed.b_end, 53U);
   // Within the stretch nothing is trimmed; without a window nothing at all.
-  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(12, 48)), poses, gate).pairs, diagonal(12, 48));
+  EXPECT_EQ(trim_to_odometry({pairs_of(diagonal(12, 48))}, poses, gate).front().pairs, diagonal(12, 48));
   gate.trim_window = 0;
-  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(0, 70)), poses, gate).pairs, diagonal(0, 70));
+  EXPECT_EQ(trim_to_odometry({pairs_of(diagonal(0, 70))}, poses, gate).front().pairs, diagonal(0, 70));
 }
 
 TEST(OdometryGate, TheToleranceFollowsTheMiddlesScatter) {
@@ -116,33 +116,33 @@ TEST(OdometryGate, TheToleranceFollowsTheMiddlesScatter) {
   gate.base = 3;
   gate.trim_floor = 1.2;
   const auto exact =
-      trim_to_odometry(pairs_of(diagonal(0, 70)), two_traversals_parting([](double) { return 0.0; }), gate);
+      trim_to_odometry({pairs_of(diagonal(0, 70))}, two_traversals_parting([](double) { return 0.0; }), gate).front();
   EXPECT_EQ(exact.pairs, diagonal(9, 51));
   // A pass zig-zagging 1 m about the path scatters about 0.7 m in the middle: the tolerance grows to about
   // 2 m, so the same parting keeps more pairs, and still drops the arms' far ends.
   const auto zigzag = two_traversals_parting([](double x) { return std::sin(2 * 3.14159265 * x / 3); });
-  const auto wide = trim_to_odometry(pairs_of(diagonal(0, 70)), zigzag, gate);
+  const auto wide = trim_to_odometry({pairs_of(diagonal(0, 70))}, zigzag, gate).front();
   EXPECT_GT(wide.pairs.size(), exact.pairs.size());
   EXPECT_LT(wide.pairs.size(), diagonal(0, 70).size() - 20);
   // Never beyond base.
   gate.base = 1.2;
-  EXPECT_LE(trim_to_odometry(pairs_of(diagonal(0, 70)), zigzag, gate).pairs.size(), wide.pairs.size());
+  EXPECT_LE(trim_to_odometry({pairs_of(diagonal(0, 70))}, zigzag, gate).front().pairs.size(), wide.pairs.size());
 }
 
 TEST(OdometryGate, KeepsParallelZigZagAndReversePasses) {
   const OdometryGate gate;  // base 2 m
   // A parallel lane 1.5 m to the side, and a pass zig-zagging 0.6 m about the path: the shapes agree.
   const auto lane = two_traversals_parting([](double) { return 1.5; });
-  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(10, 50)), lane, gate).pairs, diagonal(10, 50));
+  EXPECT_EQ(trim_to_odometry({pairs_of(diagonal(10, 50))}, lane, gate).front().pairs, diagonal(10, 50));
   const auto zigzag = two_traversals_parting([](double x) { return 0.6 * std::sin(2 * 3.14159265 * x / 3); });
-  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(10, 50)), zigzag, gate).pairs, diagonal(10, 50));
+  EXPECT_EQ(trim_to_odometry({pairs_of(diagonal(10, 50))}, zigzag, gate).front().pairs, diagonal(10, 50));
   // The same stretch driven back: the second traversal's k-th image pairs with the first's (60 - k).
   std::vector<std::pair<std::size_t, std::size_t>> reverse;
   for (std::size_t k = 10; k <= 50; ++k) reverse.emplace_back(71 + k, 60 - k);
-  EXPECT_EQ(trim_to_odometry(pairs_of(reverse), lane, gate).pairs, reverse);
+  EXPECT_EQ(trim_to_odometry({pairs_of(reverse)}, lane, gate).front().pairs, reverse);
   // A robot that did not move: nothing to compare, nothing trimmed.
   const std::vector<Pose2> still(142, Pose2{1, 2, 0});
-  EXPECT_EQ(trim_to_odometry(pairs_of(diagonal(0, 70)), still, gate).pairs, diagonal(0, 70));
+  EXPECT_EQ(trim_to_odometry({pairs_of(diagonal(0, 70))}, still, gate).front().pairs, diagonal(0, 70));
 }
 
 TEST(OdometryGate, RejectsBadInput) {
@@ -151,8 +151,8 @@ TEST(OdometryGate, RejectsBadInput) {
   EXPECT_THROW(consistent_with_odometry({}, odometry, {.base = -1}), std::invalid_argument);
   EXPECT_THROW(consistent_with_odometry({}, odometry, {.min_consistent = 1.5}), std::invalid_argument);
   EXPECT_FALSE(consistent_with_odometry({pairs_of({})}, odometry)[0]);
-  EXPECT_THROW(trim_to_odometry(pairs_of({{90, 1}, {91, 2}, {92, 3}}), odometry), std::invalid_argument);
-  EXPECT_THROW(trim_to_odometry(pairs_of({}), odometry, {.trim_window = -1}), std::invalid_argument);
+  EXPECT_THROW(trim_to_odometry({pairs_of({{90, 1}, {91, 2}, {92, 3}})}, odometry), std::invalid_argument);
+  EXPECT_THROW(trim_to_odometry({pairs_of({})}, odometry, {.trim_window = -1}), std::invalid_argument);
 }
 
 TEST(OdometryGate, BuildMapDropsContradictedAlignmentsBeforePruning) {

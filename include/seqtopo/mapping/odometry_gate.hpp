@@ -41,12 +41,12 @@ struct OdometryGate {
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
                                            std::span<const Pose2> odometry, const OdometryGate& gate = {});
 
-// The pairs of `alignment` that stay within the tolerance of the rigid superposition of its two traversals (see
-// above): a contiguous run of its pairs around the middle; a_begin..b_end span them again. Unchanged when
-// the middle's traversals cannot be superposed within gate.base (the gate judges those), when the robot did
-// not move over the middle (nothing to compare), or when gate.trim_window is 0. Throws like
-// consistent_with_odometry().
-align::LocalAlignment trim_to_odometry(const align::LocalAlignment& alignment, std::span<const Pose2> odometry,
-                                       const OdometryGate& gate = {});
+// Each alignment cut to the pairs that stay within the tolerance of the rigid superposition of its two
+// traversals (see above): a contiguous run of its pairs around the middle; a_begin..b_end span them again. An
+// alignment stays as it is when the middle's traversals cannot be superposed within gate.base (the gate judges
+// those), when the robot did not move over the middle (nothing to compare), or when gate.trim_window is 0.
+// Throws like consistent_with_odometry().
+std::vector<align::LocalAlignment> trim_to_odometry(const std::vector<align::LocalAlignment>& alignments,
+                                                    std::span<const Pose2> odometry, const OdometryGate& gate = {});
 
 }  // namespace seqtopo::mapping
