@@ -90,8 +90,9 @@ class Progress(unittest.TestCase):
             self.assertRegex(screen, r"\x1b\[2Kseqtopo map: \[%d/6\] %s done in [\d.]+ s\r?\n" % (k, re.escape(name)))
 
     def test_a_pipe_sees_plain_lines_and_no_long_silence(self):
-        # Long enough that one stage (the streamed alignment of 7,000 images) runs past the 2 s of a periodic line.
-        write_loop(self.dir, frames=7000)
+        # Long enough that one stage (the streamed alignment of 10,000 images) runs past the 2 s of a periodic line
+        # even on an idle machine (7,000 took 1.7 s).
+        write_loop(self.dir, frames=10000)
         status, lines = run_on_pipe(["map", "walk.npy", "--streaming", "--ground-truth", "poses.csv", "--gt-radius",
                                      "2", "--out", "out", "--threads", "2"], self.dir)
         text = "\n".join(l for _, l in lines)
