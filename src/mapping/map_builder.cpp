@@ -220,13 +220,14 @@ PlaceScale frames_per_place(const std::vector<SimilarityMatrix>& similarities) {
 
 namespace {
 
-// Keeps alignments `which` (in that order) with their path scores and E-values.
+// The aligned pairs of all `alignments`.
 std::size_t pair_count(const std::vector<align::LocalAlignment>& alignments) {
   std::size_t n = 0;
   for (const auto& a : alignments) n += a.pairs.size();
   return n;
 }
 
+// Keeps alignments `which` (in that order) with their path scores and E-values.
 void select_alignments(MapResult& result, const std::vector<std::size_t>& which) {
   std::vector<align::LocalAlignment> alignments;
   std::vector<double> path_scores, e_values;
