@@ -12,6 +12,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "seqtopo/pipeline/memory_estimate.hpp"
+
 namespace seqtopo::cli {
 namespace {
 
@@ -127,7 +129,13 @@ double Progress::end() {
   if (!running_) return 0;
   running_ = false;
   const double seconds = std::chrono::duration<double>(Clock::now() - stage_start_).count();
-  if (style_ != ProgressStyle::none) print_locked(fmt::format("{} done in {:.2f} s", stage_label_locked(), seconds));
+  if (style_ != ProgressStyle::none) {
+    // The process's peak so far: the stage whose line first shows the run's peak is the one that reached it.
+    const std::size_t peak = pipeline::peak_resident_bytes();
+    print_locked(peak == 0 ? fmt::format("{} done in {:.2f} s", stage_label_locked(), seconds)
+                           : fmt::format("{} done in {:.2f} s (peak memory {:.0f} MB)", stage_label_locked(), seconds,
+                                         static_cast<double>(peak) / 1e6));
+  }
   return seconds;
 }
 

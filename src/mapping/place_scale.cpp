@@ -16,10 +16,13 @@ PlaceScale estimate_frames_per_place(const align::ScoreSource& s, std::size_t ma
   if (n == 0 || s.cols() != n) throw std::invalid_argument("frames per place: the similarity must be square");
   const std::size_t lags = std::min(max_lag, n / 3);
   if (lags < 4) return {};
-  // by_lag[k]: S(i, i + k) for every i; read a row segment at a time.
-  std::vector<std::vector<double>> by_lag(lags + 1);
+  // by_lag[k]: S(i, i + k) for every sampled i, as read (float); read a row segment at a time.
+  const std::size_t stride = (n + kPlaceScaleFrames - 1) / kPlaceScaleFrames;
+  const std::size_t sampled = (n + stride - 1) / stride;
+  std::vector<std::vector<align::Score>> by_lag(lags + 1);
+  for (auto& v : by_lag) v.reserve(sampled);
   std::vector<align::Score> row(lags + 1);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n; i += stride) {
     const std::size_t end = std::min(n, i + lags + 1);
     s.read_row(i, i, end, row.data());
     for (std::size_t k = 0; k < end - i; ++k) by_lag[k].push_back(row[k]);

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
 #include <fstream>
 #include <limits>
 #include <thread>
@@ -12,6 +11,7 @@
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/image/joint_histogram.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/similarity/memory.hpp"
 #include "seqtopo/similarity/sparse_histogram.hpp"
 
@@ -77,11 +77,12 @@ std::size_t fit_cache_tiles(std::size_t n, std::size_t capacity) {
 }
 
 // mapping::estimate_frames_per_place from the streamed cosine: the scores at lags 0 .. min(200, N / 3) of every
-// frame as doubles, each lag's vector grown by doubling (pipeline/map_pipeline.cpp, mapping/place_scale.cpp).
+// frame, or of evenly spaced frames above mapping::kPlaceScaleFrames, as floats (pipeline/map_pipeline.cpp,
+// mapping/place_scale.cpp).
 constexpr std::size_t kPlaceMaxLag = 200;
 std::size_t place_scale_bytes(std::size_t n) {
   const std::size_t lags = std::min(kPlaceMaxLag, n / 3);
-  return lags < 4 ? 0 : mul(mul(lags + 1, std::bit_ceil(n)), sizeof(double));
+  return lags < 4 ? 0 : mul(mul(lags + 1, std::min(n, mapping::kPlaceScaleFrames)), sizeof(float));
 }
 
 // What the sparse engine stores (scale/sparse_alignment.hpp, sparse_components.hpp) [bytes]: per candidate cell its

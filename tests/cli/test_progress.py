@@ -87,7 +87,7 @@ class Progress(unittest.TestCase):
         # Every stage ends with its time on a line of its own, the bar cleared before it.
         for k, name in enumerate(["similarity", "alignments, pruning, labels, topology", "accuracy",
                                   "SeqSLAM-style baseline", "files and figures", "report"], start=1):
-            self.assertRegex(screen, r"\x1b\[2Kseqtopo map: \[%d/6\] %s done in [\d.]+ s\r?\n" % (k, re.escape(name)))
+            self.assertRegex(screen, r"\x1b\[2Kseqtopo map: \[%d/6\] %s done in [\d.]+ s \(peak memory \d+ MB\)\r?\n" % (k, re.escape(name)))
 
     def test_a_pipe_sees_plain_lines_and_no_long_silence(self):
         # Long enough that one stage (the streamed alignment of 10,000 images) runs past the 2 s of a periodic line
@@ -103,7 +103,7 @@ class Progress(unittest.TestCase):
         # Consistent numbering: every stage k of n starts and ends, k = 1..n in order, n the same throughout.
         begun, ended = [], []
         for _, line in lines:
-            done = re.match(r"seqtopo map: \[(\d+)/(\d+)\] .* done in ([\d.]+) s$", line)
+            done = re.match(r"seqtopo map: \[(\d+)/(\d+)\] .* done in ([\d.]+) s \(peak memory \d+ MB\)$", line)
             start = re.match(r"seqtopo map: \[(\d+)/(\d+)\] [^:]*$", line)
             if done:
                 ended.append((int(done.group(1)), int(done.group(2)), float(done.group(3))))

@@ -58,6 +58,33 @@ TEST(Calibration, ThePlaceScaleOfAnAr1TextureIsItsHalfLifeAndFollowsTheFrameRate
   }
 }
 
+// Above kPlaceScaleFrames the medians are taken over evenly spaced frames: the estimate of a long AR(1) texture
+// agrees with the one over its first kPlaceScaleFrames frames (every frame) and with its half-life.
+TEST(Calibration, ThePlaceScaleOfALongSequenceComesFromEvenlySpacedFrames) {
+  const double length = 6.0;
+  const std::size_t n = 5 * mapping::kPlaceScaleFrames / 2, dim = 16;
+  const auto sequence = simulator::make_descriptor_sequence(
+      {.frames = n, .dim = dim, .texture = simulator::Texture::ar1, .correlation_length = length, .seed = 4});
+  const auto& d = sequence.descriptors;
+  const auto cosine = [&d, dim](std::size_t i, std::size_t j) {
+    double dot = 0, ii = 0, jj = 0;
+    for (std::size_t k = 0; k < dim; ++k) {
+      const double a = d(i, k), b = d(j, k);
+      dot += a * b;
+      ii += a * a;
+      jj += b * b;
+    }
+    return static_cast<align::Score>(dot / std::sqrt(ii * jj));
+  };
+  const auto sampled = mapping::estimate_frames_per_place(align::ScoreSource::function(n, n, cosine));
+  const std::size_t head = mapping::kPlaceScaleFrames;
+  const auto every = mapping::estimate_frames_per_place(align::ScoreSource::function(head, head, cosine));
+  ASSERT_TRUE(sampled.found);
+  ASSERT_TRUE(every.found);
+  EXPECT_NEAR(sampled.frames_per_place, every.frames_per_place, 0.05 * every.frames_per_place);
+  EXPECT_NEAR(sampled.frames_per_place, length * std::log(2.0), 0.2 * length * std::log(2.0));
+}
+
 TEST(Calibration, ADriftingSequenceHasNoPlaceScale) {
   const auto s = cosine_similarity({.frames = 800, .dim = 128, .texture = simulator::Texture::walk, .seed = 2});
   EXPECT_FALSE(mapping::estimate_frames_per_place(align::ScoreSource::dense(s.values, s.rows, s.cols)).found);

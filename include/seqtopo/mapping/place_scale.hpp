@@ -12,6 +12,9 @@
 // drift apart at every scale - gives 1 with `found` false; so does an estimate above N / 50 (a sequence of
 // fewer than 50 places is taken to drift), which is clamped there.
 //
+// Above kPlaceScaleFrames frames the medians are over every s-th frame, s = ceil(N / kPlaceScaleFrames): the
+// estimate holds (lags + 1) x min(N, kPlaceScaleFrames) scores, not (lags + 1) x N (800 MB at 10^6 frames).
+//
 // Worked example: AR(1) descriptors x_{i+1} = rho x_i + sqrt(1 - rho^2) e_i with rho = exp(-1 / L) have
 // cosine similarity close to exp(-k / L) at lag k: the estimate is L ln 2.
 #include <cstddef>
@@ -32,6 +35,8 @@ struct PlaceScale {
 inline constexpr const char* kNoPlaceScaleNote =
     "no place scale: the similarity keeps falling with the lag (a drifting sequence) or the sequence is short; "
     "windows and separations count frames";
+
+inline constexpr std::size_t kPlaceScaleFrames = 100000;
 
 // `similarity` is a square self-similarity (higher = more similar; any scale). Throws std::invalid_argument on
 // a non-square or empty source.
