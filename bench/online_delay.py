@@ -2,7 +2,10 @@
 """Revisit detection delay of `seqtopo map --online` (bench/online.sh): for every true revisit (a run of frames
 that each have a ground-truth partner at least SEP frames earlier, within RADIUS metres in poses.csv), the frames
 from its first frame until the first correct loop closure of one of its frames is emitted (events.jsonl's
-`frame`). Prints the median, the 90th percentile and the maximum over the revisits, and how many were found."""
+`frame`). Prints the median, the 90th percentile and the maximum over the revisits, and how many were found;
+then the same for the earliest report, a correct loop closure or a correct revisit candidate (`revisit_candidate`,
+its cell the same place), and how many candidates were confirmed, withdrawn, and correct (their cell the same
+place)."""
 import collections
 import json
 import sys
@@ -46,22 +49,39 @@ def main():
     def same(i, j):
         return (pos[i][0] - pos[j][0]) ** 2 + (pos[i][1] - pos[j][1]) ** 2 <= radius * radius
 
-    first = {}
+    first, earliest = {}, {}
+    candidates, confirmed, withdrawn, correct = 0, 0, 0, 0
     with open(events_path) as f:
         for line in f:
             e = json.loads(line)
-            if e["event"] != "loop_closure" or not same(e["i"], e["j"]):
+            kind = e["event"]
+            if kind == "revisit_candidate":
+                candidates += 1
+                correct += same(e["i"], e["j"])
+            elif kind == "revisit_begin" and "candidate" in e:
+                confirmed += 1
+            elif kind == "correction" and "candidate" in e:
+                withdrawn += 1
+            if kind not in ("loop_closure", "revisit_candidate") or not same(e["i"], e["j"]):
                 continue
             for k, (b, end) in enumerate(segments):
-                if b <= e["i"] < end and k not in first:
-                    first[k] = e["frame"] - b
-    delays = sorted(first.values())
-    if not delays:
-        print(f"revisits {len(segments)}, none detected")
-        return
-    median = delays[len(delays) // 2] if len(delays) % 2 else 0.5 * (delays[len(delays) // 2 - 1] + delays[len(delays) // 2])
-    p90 = delays[min(len(delays) - 1, int(0.9 * len(delays)))]
-    print(f"revisits {len(segments)}, detected {len(delays)}, delay median {median} p90 {p90} max {delays[-1]} frames")
+                if b <= e["i"] < end:
+                    earliest.setdefault(k, e["frame"] - b)
+                    if kind == "loop_closure":
+                        first.setdefault(k, e["frame"] - b)
+
+    def summary(found):
+        delays = sorted(found.values())
+        if not delays:
+            return f"revisits {len(segments)}, none detected"
+        n = len(delays)
+        median = delays[n // 2] if n % 2 else 0.5 * (delays[n // 2 - 1] + delays[n // 2])
+        p90 = delays[min(n - 1, int(0.9 * n))]
+        return f"revisits {len(segments)}, detected {n}, delay median {median} p90 {p90} max {delays[-1]} frames"
+
+    print("loop closures: " + summary(first))
+    print("first report (loop closure or candidate): " + summary(earliest))
+    print(f"candidates {candidates}: confirmed {confirmed}, withdrawn {withdrawn}, their cell the same place {correct}")
 
 
 if __name__ == "__main__":

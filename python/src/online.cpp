@@ -32,8 +32,9 @@ py::dict event_dict(const OnlineEvent& e) {
   d["j"] = e.j;
   d["revisit"] = e.revisit;
   if (e.kind != OnlineEventKind::place_merge) d["direction"] = std::string(align::to_string(e.direction));
+  if (e.candidate) d["candidate"] = *e.candidate;
   if (e.kind == OnlineEventKind::loop_closure || e.kind == OnlineEventKind::revisit_begin ||
-      e.kind == OnlineEventKind::revisit_end) {
+      e.kind == OnlineEventKind::revisit_end || e.kind == OnlineEventKind::revisit_candidate) {
     d["e_value"] = e.e_value ? py::cast(*e.e_value) : py::none();
   }
   switch (e.kind) {
@@ -42,6 +43,11 @@ py::dict event_dict(const OnlineEvent& e) {
       d["score"] = e.score;
       break;
     case OnlineEventKind::revisit_begin:
+      d["score"] = e.score;
+      d["delay"] = e.frame - e.first;
+      break;
+    case OnlineEventKind::revisit_candidate:
+      d["start"] = py::make_tuple(e.first, e.last);
       d["score"] = e.score;
       d["delay"] = e.frame - e.first;
       break;
@@ -138,36 +144,39 @@ struct PyOnlineMapper {
 void bind_online(py::module_& m) {
   py::class_<OnlineMapConfig> c(m, "OnlineMapConfig",
                                 "Settings of the online mapper (docs/online.md); every field a keyword argument.");
-  c.def(py::init([](const std::string& distance, std::size_t contrast_window, float contrast_offset, float gap,
-                    std::optional<float> cap, std::optional<double> max_e_value, float threshold,
-                    std::size_t min_separation, bool reverse, std::size_t reach, float x_drop,
-                    std::size_t min_revisit_frames, std::size_t patience, std::size_t island_sample) {
-          OnlineMapConfig config;
-          config.distance = similarity::parse_distance(distance);
-          config.contrast_window = contrast_window;
-          config.contrast_offset = contrast_offset;
-          config.gap = gap;
-          config.cap = cap;
-          config.max_e_value = max_e_value;
-          config.threshold = threshold;
-          config.island_sample = island_sample;
-          config.min_separation = min_separation;
-          config.reverse = reverse;
-          config.reach = reach;
-          config.x_drop = x_drop;
-          config.min_revisit_frames = min_revisit_frames;
-          config.patience = patience;
-          mapping::validate(config);
-          return config;
-        }),
-        py::kw_only(), py::arg("distance") = "cosine", py::arg("contrast_window") = OnlineMapConfig{}.contrast_window,
-        py::arg("contrast_offset") = OnlineMapConfig{}.contrast_offset, py::arg("gap") = OnlineMapConfig{}.gap,
-        py::arg("cap") = OnlineMapConfig{}.cap, py::arg("max_e_value") = OnlineMapConfig{}.max_e_value,
-        py::arg("threshold") = OnlineMapConfig{}.threshold,
-        py::arg("min_separation") = OnlineMapConfig{}.min_separation, py::arg("reverse") = OnlineMapConfig{}.reverse,
-        py::arg("reach") = OnlineMapConfig{}.reach, py::arg("x_drop") = OnlineMapConfig{}.x_drop,
-        py::arg("min_revisit_frames") = OnlineMapConfig{}.min_revisit_frames,
-        py::arg("patience") = OnlineMapConfig{}.patience, py::arg("island_sample") = OnlineMapConfig{}.island_sample);
+  c.def(
+      py::init([](const std::string& distance, std::size_t contrast_window, float contrast_offset, float gap,
+                  std::optional<float> cap, std::optional<double> max_e_value, std::optional<double> candidate_e_value,
+                  float threshold, std::size_t min_separation, bool reverse, std::size_t reach, float x_drop,
+                  std::size_t min_revisit_frames, std::size_t patience, std::size_t island_sample) {
+        OnlineMapConfig config;
+        config.distance = similarity::parse_distance(distance);
+        config.contrast_window = contrast_window;
+        config.contrast_offset = contrast_offset;
+        config.gap = gap;
+        config.cap = cap;
+        config.max_e_value = max_e_value;
+        config.candidate_e_value = candidate_e_value;
+        config.threshold = threshold;
+        config.island_sample = island_sample;
+        config.min_separation = min_separation;
+        config.reverse = reverse;
+        config.reach = reach;
+        config.x_drop = x_drop;
+        config.min_revisit_frames = min_revisit_frames;
+        config.patience = patience;
+        mapping::validate(config);
+        return config;
+      }),
+      py::kw_only(), py::arg("distance") = "cosine", py::arg("contrast_window") = OnlineMapConfig{}.contrast_window,
+      py::arg("contrast_offset") = OnlineMapConfig{}.contrast_offset, py::arg("gap") = OnlineMapConfig{}.gap,
+      py::arg("cap") = OnlineMapConfig{}.cap, py::arg("max_e_value") = OnlineMapConfig{}.max_e_value,
+      py::arg("candidate_e_value") = OnlineMapConfig{}.candidate_e_value,
+      py::arg("threshold") = OnlineMapConfig{}.threshold, py::arg("min_separation") = OnlineMapConfig{}.min_separation,
+      py::arg("reverse") = OnlineMapConfig{}.reverse, py::arg("reach") = OnlineMapConfig{}.reach,
+      py::arg("x_drop") = OnlineMapConfig{}.x_drop,
+      py::arg("min_revisit_frames") = OnlineMapConfig{}.min_revisit_frames,
+      py::arg("patience") = OnlineMapConfig{}.patience, py::arg("island_sample") = OnlineMapConfig{}.island_sample);
   c.def_property_readonly("distance",
                           [](const OnlineMapConfig& x) { return std::string(similarity::distance_name(x.distance)); });
   c.def_readonly("contrast_window", &OnlineMapConfig::contrast_window);
@@ -175,6 +184,7 @@ void bind_online(py::module_& m) {
   c.def_readonly("gap", &OnlineMapConfig::gap);
   c.def_readonly("cap", &OnlineMapConfig::cap);
   c.def_readonly("max_e_value", &OnlineMapConfig::max_e_value);
+  c.def_readonly("candidate_e_value", &OnlineMapConfig::candidate_e_value);
   c.def_readonly("threshold", &OnlineMapConfig::threshold);
   c.def_readonly("island_sample", &OnlineMapConfig::island_sample);
   c.def_readonly("min_separation", &OnlineMapConfig::min_separation);

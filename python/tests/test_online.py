@@ -44,7 +44,18 @@ def test_finds_the_forward_and_the_reverse_revisit():
 
 
 def test_the_same_events_as_the_command_line(cli, tmp_path):
-    d = route_descriptors()
+    assert_same_events(cli, tmp_path, route_descriptors())
+
+
+def test_the_same_candidates_as_the_command_line(cli, tmp_path):
+    # Noise long enough for the statistics to be fitted: revisit candidates, withdrawn (docs/online.md).
+    events = assert_same_events(cli, tmp_path, np.random.default_rng(4).standard_normal((600, 16)).astype(np.float32))
+    candidates = [e for e in events if e["event"] == "revisit_candidate"]
+    assert candidates, "no candidate on 600 noise frames"
+    assert all(len(e["start"]) == 2 and e["e_value"] <= 1.0 for e in candidates)
+
+
+def assert_same_events(cli, tmp_path, d):
     np.save(tmp_path / "descriptors.npy", d)
     run_cli(cli, "map", tmp_path / "descriptors.npy", "--online", "--no-offline-outputs", "--threshold", "12",
             "--out", tmp_path / "out")
@@ -53,15 +64,17 @@ def test_the_same_events_as_the_command_line(cli, tmp_path):
     assert len(lines) == len(events)
     for line, event in zip(lines, events):
         for key, value in line.items():
-            if key == "places":
+            if key in ("places", "start"):
                 value = tuple(value)
             if key == "withdrawn":
                 value = [tuple(p) for p in value]
             got = event[key]
             if isinstance(value, float):
-                assert got == pytest.approx(value, rel=1e-6), (key, line, event)
+                # events.jsonl writes E-values to 3 significant digits
+                assert got == pytest.approx(value, rel=1e-6 if key != "e_value" else 5e-3), (key, line, event)
             else:
                 assert got == value, (key, line, event)
+    return events
 
 
 def test_images_and_refusals():
@@ -79,3 +92,6 @@ def test_images_and_refusals():
         descriptors.add(np.array([1, np.nan, 1, 1], np.float32))
     with pytest.raises(ValueError, match="threshold"):
         seqtopo.OnlineMapConfig(threshold=100.0)
+    with pytest.raises(ValueError, match="candidates' E-value"):
+        seqtopo.OnlineMapConfig(candidate_e_value=0.001)  # below the E-value of a revisit (0.01)
+    assert seqtopo.OnlineMapConfig(candidate_e_value=None).candidate_e_value is None

@@ -56,7 +56,8 @@ struct MapOptions {
   std::optional<double> gt_radius;
   unsigned threads = 0;
   std::string config_file;
-  bool online = false, no_offline_outputs = false;
+  bool online = false, no_offline_outputs = false, no_candidates = false;
+  std::optional<double> candidate_e_value;
 };
 
 using Settings = pipeline::MapSettings;
@@ -193,9 +194,11 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
 
 void run(MapOptions o) {
   if (o.online) {
-    run_map_online({o.inputs, o.out, o.input_kind, o.ground_truth, o.every, o.gap, o.threshold, o.cap,
-                    o.contrast_offset, o.no_cap, o.no_reverse, o.min_separation, o.contrast_window, o.gt_radius,
-                    !o.no_offline_outputs, o.threads, o.e_value, o.no_e_value});
+    run_map_online({o.inputs,          o.out,        o.input_kind,          o.ground_truth,
+                    o.every,           o.gap,        o.threshold,           o.cap,
+                    o.contrast_offset, o.no_cap,     o.no_reverse,          o.min_separation,
+                    o.contrast_window, o.gt_radius,  !o.no_offline_outputs, o.threads,
+                    o.e_value,         o.no_e_value, o.candidate_e_value,   o.no_candidates});
     return;
   }
   Progress progress("seqtopo map");
@@ -392,7 +395,7 @@ const RegisterCommand registered{
        add_number(app, "--every-metres", o->every_metres, kPositive,
                   "keep one frame per this many metres of odometry travelled (needs odometry) [m]");
        add_sequence_options(app, o->sequence);
-       add_online_options(app, o->online, o->no_offline_outputs);
+       add_online_options(app, o->online, o->no_offline_outputs, o->candidate_e_value, o->no_candidates);
        app.add_option("--ground-truth", o->ground_truth, "N x N same-place image, or poses.csv with --gt-radius");
        add_number(app, "--gt-radius", o->gt_radius, kPositive,
                   "same place when closer than this [m] (poses.csv ground truth)");

@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "command_registry.hpp"
+#include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
@@ -63,7 +64,8 @@ std::string metrics_json(const evaluation::LoopClosureMetrics& m) {
 
 }  // namespace
 
-void add_online_options(CLI::App& app, bool& online, bool& no_offline_outputs) {
+void add_online_options(CLI::App& app, bool& online, bool& no_offline_outputs, std::optional<double>& candidate_e_value,
+                        bool& no_candidates) {
   app.add_flag("--online", online,
                "map while the frames arrive, one at a time in order (image folder, video, descriptors.npy, "
                "similarity.npy, or image paths on stdin with INPUT -): events.jsonl flushed after every frame, a line "
@@ -72,6 +74,10 @@ void add_online_options(CLI::App& app, bool& online, bool& no_offline_outputs) {
   app.add_flag("--no-offline-outputs", no_offline_outputs,
                "with --online: write only the online files (events.jsonl, online_loop_closures.csv, online.json), "
                "not the offline map of the whole sequence");
+  add_number_or(app, "--candidate-e-value", candidate_e_value, "none", no_candidates, kPositive,
+                fmt::format("with --online: report a revisit candidate, before it is confirmed, once its score "
+                            "reaches this E-value (above --e-value), or none (default {}; unused with --e-value none)",
+                            *mapping::OnlineMapConfig{}.candidate_e_value));
 }
 
 void run_map_online(const OnlineCliOptions& o) {
@@ -90,6 +96,8 @@ void run_map_online(const OnlineCliOptions& o) {
   if (o.threshold) c.threshold = *o.threshold;
   if (o.e_value) c.max_e_value = *o.e_value;
   if (o.no_e_value) c.max_e_value.reset();
+  if (o.candidate_e_value) c.candidate_e_value = *o.candidate_e_value;
+  if (o.no_candidates) c.candidate_e_value.reset();
   if (o.cap) c.cap = *o.cap;
   if (o.no_cap) c.cap.reset();
   if (o.min_separation) c.min_separation = *o.min_separation;

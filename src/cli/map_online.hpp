@@ -19,12 +19,15 @@ struct OnlineCliOptions {
   std::optional<double> gt_radius;
   bool offline_outputs = true;
   unsigned threads = 0;
-  std::optional<double> e_value;  // --e-value E
-  bool no_e_value = false;        // --e-value none
+  std::optional<double> e_value;            // --e-value E
+  bool no_e_value = false;                  // --e-value none
+  std::optional<double> candidate_e_value;  // --candidate-e-value E
+  bool no_candidates = false;               // --candidate-e-value none
 };
 
-// --online and --no-offline-outputs on `seqtopo map`.
-void add_online_options(CLI::App& app, bool& online, bool& no_offline_outputs);
+// --online, --no-offline-outputs and --candidate-e-value on `seqtopo map`.
+void add_online_options(CLI::App& app, bool& online, bool& no_offline_outputs, std::optional<double>& candidate_e_value,
+                        bool& no_candidates);
 void run_map_online(const OnlineCliOptions& options);
 
 }  // namespace seqtopo::cli

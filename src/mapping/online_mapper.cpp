@@ -48,6 +48,16 @@ float sad(const float* a, const float* b, std::size_t n) {
          static_cast<float>(n);
 }
 
+// Row[j] is the row's largest value within `radius` columns (the first of equal ones).
+bool row_peak(const std::vector<float>& row, std::size_t j, std::size_t radius) {
+  const float v = row[j];
+  const std::size_t lo = j >= radius ? j - radius : 0, hi = std::min(row.size() - 1, j + radius);
+  for (std::size_t c = lo; c <= hi; ++c) {
+    if (c < j ? row[c] >= v : (c != j && row[c] > v)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string_view to_string(OnlineEventKind kind) {
@@ -64,6 +74,8 @@ std::string_view to_string(OnlineEventKind kind) {
       return "place_merge";
     case OnlineEventKind::correction:
       return "correction";
+    case OnlineEventKind::revisit_candidate:
+      return "revisit_candidate";
   }
   return "?";
 }
@@ -76,6 +88,10 @@ void validate(const OnlineMapConfig& c) {
   if (c.cap && c.threshold > *c.cap) fail("threshold must not exceed the cap");
   if (!std::isfinite(c.contrast_offset)) fail("contrast offset must be finite");
   if (c.max_e_value && !(*c.max_e_value > 0 && std::isfinite(*c.max_e_value))) fail("E-value must be finite and > 0");
+  if (c.candidate_e_value &&
+      !(std::isfinite(*c.candidate_e_value) && *c.candidate_e_value > (c.max_e_value ? *c.max_e_value : 0.0))) {
+    fail("the candidates' E-value must be finite and above the E-value");
+  }
   if (c.island_sample < 64) fail("island_sample must be >= 64");
   if (!(c.x_drop > 0) || !std::isfinite(c.x_drop)) fail("x_drop must be finite and > 0");
   if (c.min_separation < 1) fail("min_separation must be >= 1");
@@ -515,9 +531,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
   for (std::size_t j = 0; j < n; ++j) {
     const float v = row[j];
     if (v < threshold_ || starts[j] == kNoStart) continue;
-    const std::size_t lo = j >= radius ? j - radius : 0, hi = std::min(n - 1, j + radius);
-    bool peak = true;
-    for (std::size_t c = lo; c <= hi && peak; ++c) peak = c < j ? row[c] < v : (c == j || row[c] <= v);
+    bool peak = row_peak(row, j, radius);
     if (!peak) continue;
     for (const Track& track : tracks_) {
       if (track.direction != direction) continue;
@@ -550,6 +564,10 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
     begin.first = track.first_i;
     begin.last = t;
     begin.frames = t - track.first_i + 1;
+    if (auto it = near_candidate(starts[j], direction); it != candidates_.end()) {
+      begin.candidate = it->second;  // confirmed
+      candidates_.erase(it);
+    }
     events.push_back(begin);
     // Joining the old path in its middle (forward: frames before the old one lead into it; reverse: not a U-turn).
     const bool middle =
@@ -570,6 +588,89 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
     emit_closure(track, t, j, v, events);
     if (begin.frames >= config_.min_revisit_frames) settle(track, t, events);
     tracks_.push_back(std::move(track));
+  }
+}
+
+bool OnlineMapper::near_cells(std::uint64_t a, std::uint64_t b) const {
+  const auto apart = [](std::size_t x, std::size_t y) { return x > y ? x - y : y - x; };
+  return apart(cell_i(a), cell_i(b)) <= config_.min_separation && apart(cell_j(a), cell_j(b)) <= config_.min_separation;
+}
+
+OnlineMapper::Candidates::iterator OnlineMapper::near_candidate(std::uint64_t start, align::Direction direction) {
+  for (auto it = candidates_.begin(); it != candidates_.end(); ++it) {
+    if (it->first.second == direction && near_cells(it->first.first, start)) return it;
+  }
+  return candidates_.end();
+}
+
+void OnlineMapper::find_candidates(align::Direction direction, std::vector<OnlineEvent>& events) {
+  if (!config_.candidate_e_value || !statistics_.valid()) return;
+  const double at = statistics_.score_at(*config_.candidate_e_value);
+  const bool forward = direction == align::Direction::forward;
+  const std::vector<float>& row = forward ? forward_ : reverse_;
+  const std::vector<std::uint64_t>& starts = forward ? forward_start_ : reverse_start_;
+  const std::size_t radius = config_.min_separation;
+  for (std::size_t j = 0; j < row.size(); ++j) {
+    const float v = row[j];
+    if (v < at || v >= threshold_ || starts[j] == kNoStart || !row_peak(row, j, radius)) continue;
+    if (near_candidate(starts[j], direction) != candidates_.end() || ended_starts_.contains(starts[j])) continue;
+    const bool near_a_track = std::any_of(tracks_.begin(), tracks_.end(), [&](const Track& track) {
+      const std::size_t d = track.last_j > j ? track.last_j - j : j - track.last_j;
+      return track.direction == direction && (cell(track.first_i, track.first_j) == starts[j] || d <= radius);
+    });
+    if (near_a_track) continue;
+    const std::size_t id = next_candidate_++;
+    candidates_.emplace(std::pair(starts[j], direction), id);
+    OnlineEvent e;
+    e.kind = OnlineEventKind::revisit_candidate;
+    e.frame = frames_;
+    e.i = frames_;
+    e.j = j;
+    e.first = cell_i(starts[j]);
+    e.last = cell_j(starts[j]);
+    e.direction = direction;
+    e.score = v;
+    e.confidence = confidence(v);
+    e.e_value = e_value(v);
+    e.candidate = id;
+    events.push_back(e);
+  }
+}
+
+void OnlineMapper::drop_candidates(align::Direction direction, const std::unordered_map<std::uint64_t, Island>* live,
+                                   std::vector<OnlineEvent>& events) {
+  const bool at_finish = live == nullptr;
+  for (auto it = candidates_.begin(); it != candidates_.end();) {
+    if (it->first.second != direction || (live && live->contains(it->first.first))) {
+      ++it;
+      continue;
+    }
+    // A path re-rooted through a gap carries a start cell next to the old one: the candidate follows it (the
+    // nearby start whose island scores best, the smallest start cell of equal ones).
+    if (live) {
+      std::optional<std::pair<float, std::uint64_t>> heir;
+      for (const auto& [start, island] : *live) {
+        if (!near_cells(start, it->first.first) || candidates_.contains({start, direction})) continue;
+        const std::pair<float, std::uint64_t> key{island.best, ~start};
+        if (!heir || key > *heir) heir = key;
+      }
+      if (heir) {
+        const std::size_t id = it->second;
+        it = candidates_.erase(it);
+        candidates_.emplace(std::pair(~heir->second, direction), id);
+        continue;  // a key before or after `it`: visited again at most once, alive then
+      }
+    }
+    OnlineEvent e;
+    e.kind = OnlineEventKind::correction;
+    e.frame = frames_;
+    e.direction = direction;
+    e.candidate = it->second;
+    e.reason = at_finish
+                   ? "the run ended before revisit candidate " + std::to_string(it->second) + " reached the threshold"
+                   : "revisit candidate " + std::to_string(it->second) + " did not reach the threshold";
+    events.push_back(std::move(e));
+    it = candidates_.erase(it);
   }
 }
 
@@ -659,11 +760,19 @@ std::vector<OnlineEvent> OnlineMapper::step() {
   std::vector<OnlineEvent> events;
   update_tracks(align::Direction::forward, events);
   if (config_.reverse) update_tracks(align::Direction::reverse, events);
+  // Candidates at this frame's statistics, as its tracks.
+  find_candidates(align::Direction::forward, events);
+  if (config_.reverse) find_candidates(align::Direction::reverse, events);
   // The islands that died in this row, after its loop closures (so that a revisit's shadows stay out of the
-  // sample), and the threshold of the next frame; without an E-value neither is used.
+  // sample), and the threshold of the next frame; without an E-value neither is used. A candidate whose path
+  // died with them is withdrawn.
   if (config_.max_e_value) {
     update_islands(align::Direction::forward, forward_islands_);
-    if (config_.reverse) update_islands(align::Direction::reverse, reverse_islands_);
+    drop_candidates(align::Direction::forward, &forward_islands_, events);
+    if (config_.reverse) {
+      update_islands(align::Direction::reverse, reverse_islands_);
+      drop_candidates(align::Direction::reverse, &reverse_islands_, events);
+    }
   }
   update_threshold();
   ++frames_;
@@ -674,6 +783,8 @@ std::vector<OnlineEvent> OnlineMapper::finish() {
   std::vector<OnlineEvent> events;
   for (Track& track : tracks_) end_track(track, true, events);
   tracks_.clear();
+  drop_candidates(align::Direction::forward, nullptr, events);
+  drop_candidates(align::Direction::reverse, nullptr, events);
   // Emitted after the last frame.
   for (auto& e : events) e.frame = frames_ == 0 ? 0 : frames_ - 1;
   return events;

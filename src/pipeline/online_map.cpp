@@ -178,6 +178,12 @@ std::string online_event_json(const OnlineEvent& e) {
     case OnlineEventKind::revisit_begin:
       s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "score": {}{}, "delay": {})", e.revisit, direction(),
                        e.i, e.j, number(e.score), e_value(), e.frame - e.first);
+      if (e.candidate) s += fmt::format(R"(, "candidate": {})", *e.candidate);
+      break;
+    case OnlineEventKind::revisit_candidate:
+      s += fmt::format(R"(, "candidate": {}{}, "i": {}, "j": {}, "start": [{}, {}], "score": {}{}, "delay": {})",
+                       *e.candidate, direction(), e.i, e.j, e.first, e.last, number(e.score), e_value(),
+                       e.frame - e.first);
       break;
     case OnlineEventKind::revisit_end:
       s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "first": {}, "last": {}, "frames": {}, "score": {}{})",
@@ -192,8 +198,10 @@ std::string online_event_json(const OnlineEvent& e) {
           fmt::format(R"(, "i": {}, "j": {}, "places": [{}, {}], "revisit": {})", e.i, e.j, e.first, e.last, e.revisit);
       break;
     case OnlineEventKind::correction: {
-      s += fmt::format(R"(, "revisit": {}{}, "reason": {}, "withdrawn": [)", e.revisit, direction(),
-                       json_string(e.reason));
+      s += e.candidate ? fmt::format(R"(, "candidate": {}{}, "reason": {}, "withdrawn": [)", *e.candidate, direction(),
+                                     json_string(e.reason))
+                       : fmt::format(R"(, "revisit": {}{}, "reason": {}, "withdrawn": [)", e.revisit, direction(),
+                                     json_string(e.reason));
       for (std::size_t k = 0; k < e.withdrawn.size(); ++k) {
         s += fmt::format("{}[{}, {}]", k ? ", " : "", e.withdrawn[k].first, e.withdrawn[k].second);
       }
@@ -210,8 +218,13 @@ std::string online_event_summary(const OnlineEvent& e) {
     case OnlineEventKind::loop_closure:
       return fmt::format("frame {}: loop closure {} ~ {} ({}, confidence {:.2f})", e.frame, e.i, e.j, d, e.confidence);
     case OnlineEventKind::revisit_begin:
-      return fmt::format("frame {}: revisit {} begins at {} ~ {} ({}, {} frames late)", e.frame, e.revisit, e.i, e.j, d,
-                         e.frame - e.first);
+      return fmt::format("frame {}: revisit {} begins at {} ~ {} ({}, {} frames late{})", e.frame, e.revisit, e.i, e.j,
+                         d, e.frame - e.first,
+                         e.candidate ? fmt::format(", candidate {} confirmed", *e.candidate) : std::string());
+    case OnlineEventKind::revisit_candidate:
+      return fmt::format("frame {}: revisit candidate {} at {} ~ {} ({}, E-value {}, from {} ~ {})", e.frame,
+                         *e.candidate, e.i, e.j, d, e.e_value ? fmt::format("{:.3g}", *e.e_value) : "?", e.first,
+                         e.last);
     case OnlineEventKind::revisit_end:
       return fmt::format("frame {}: revisit {} ended at {} ~ {} ({}, frames {}-{})", e.frame, e.revisit, e.i, e.j, d,
                          e.first, e.last);
@@ -221,6 +234,7 @@ std::string online_event_summary(const OnlineEvent& e) {
     case OnlineEventKind::place_merge:
       return fmt::format("frame {}: places {} and {} merged ({} ~ {})", e.frame, e.first, e.last, e.i, e.j);
     case OnlineEventKind::correction:
+      if (e.candidate) return fmt::format("frame {}: correction, {}", e.frame, e.reason);
       return fmt::format("frame {}: correction, {} loop closure(s) of revisit {} withdrawn: {}", e.frame,
                          e.withdrawn.size(), e.revisit, e.reason);
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -382,6 +383,60 @@ TEST(OnlineMapper, NoiseGivesNoRevisitAtTheDefaultEValue) {
     }
   }
   EXPECT_GT(fixed, 20);
+}
+
+// Candidates at E-value x: chance ones are about as many as revisits at that E-value would be (2 x ln(N / t0) a
+// run), each is confirmed or withdrawn by the end, and a true revisit's candidate comes before its revisit_begin,
+// which names it.
+TEST(OnlineMapper, CandidatesComeBeforeTheRevisitsTheyConfirmAndAreResolved) {
+  std::size_t candidates = 0, resolved = 0;
+  const int runs = 20;
+  for (std::uint32_t seed = 1; seed <= static_cast<std::uint32_t>(runs); ++seed) {
+    const SimilarityMatrix s = noise_scores(400, seed, 0.7F);
+    OnlineMapConfig c;
+    OnlineMapper m(c);
+    std::vector<OnlineEvent> events;
+    for (std::size_t t = 0; t < s.rows; ++t) {
+      const auto e = m.add_scores(score_row(s, t, c.min_separation));
+      events.insert(events.end(), e.begin(), e.end());
+    }
+    const auto last = m.finish();
+    events.insert(events.end(), last.begin(), last.end());
+    for (const auto& e : events) {
+      if (e.kind == OnlineEventKind::revisit_candidate) {
+        ++candidates;
+        EXPECT_GE(e.score, 0.0F);
+        ASSERT_TRUE(e.e_value.has_value());
+        EXPECT_LE(*e.e_value, *c.candidate_e_value * 1.0001);
+        EXPECT_GT(*e.e_value, *c.max_e_value);
+      }
+      if (e.candidate && e.kind != OnlineEventKind::revisit_candidate) ++resolved;
+    }
+  }
+  EXPECT_EQ(resolved, candidates) << "every candidate is confirmed or withdrawn by the end";
+  const double mean = static_cast<double>(candidates) / runs;
+  // About 2 ln(400 / t0) with the fit from t0 of about 50 frames: 4 (3.7 measured).
+  EXPECT_GT(mean, 0.5) << "hardly a candidate at E-value 1 on noise: the level is far too strict";
+  EXPECT_LT(mean, 10.0) << "chance candidates far above their E-value";
+
+  // A revisit planted in noise: frames 450..529 see 100..179 again (scores +1.5 higher).
+  SimilarityMatrix s = noise_scores(600, 3, 0.7F);
+  for (std::size_t k = 0; k < 80; ++k) s(450 + k, 100 + k) = s(100 + k, 450 + k) = s(450 + k, 100 + k) + 1.5F;
+  OnlineMapConfig c;
+  OnlineMapper m(c);
+  std::optional<OnlineEvent> candidate, begin;
+  for (std::size_t t = 0; t < s.rows; ++t) {
+    for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+      const bool on_it = e.i >= 450 && e.i - e.j >= 348 && e.i - e.j <= 352;
+      if (e.kind == OnlineEventKind::revisit_candidate && on_it && !candidate) candidate = e;
+      if (e.kind == OnlineEventKind::revisit_begin && e.i - e.j >= 340 && e.i - e.j <= 360 && !begin) begin = e;
+    }
+  }
+  ASSERT_TRUE(candidate.has_value()) << "no candidate on the planted revisit";
+  ASSERT_TRUE(begin.has_value()) << "the planted revisit was not found";
+  EXPECT_LT(candidate->frame, begin->frame);
+  ASSERT_TRUE(begin->candidate.has_value());
+  EXPECT_EQ(*begin->candidate, *candidate->candidate);
 }
 
 TEST(OnlineMapper, DescriptorRowsAreTheDistances) {

@@ -58,6 +58,18 @@
 //    before the new one, i.e. not a U-turn) or leaves it in its middle (end before finish(): forward when the
 //    old path continues more than `reach` frames, reverse when the old frame is more than `reach` frames from
 //    the start), once per place.
+//  * a revisit candidate is reported before the evidence confirms it: a peak of the row (the largest value within
+//    min_separation columns, not within min_separation columns of a live track) whose score reaches the
+//    score of candidate_e_value but not yet the threshold, on a path (start cell) that is not a track's
+//    (revisit_candidate, once per path, with its cell, its start cell and E-value). It has no loop closures. A
+//    path is known by its start cell; start cells within min_separation frames and columns of each other are one
+//    path (a path re-rooted through a gap), and a candidate whose start no cell carries any longer follows the
+//    best such neighbour. When a track begins on the same path, its revisit_begin names the candidate
+//    (confirmed); when the path dies out first (or the run ends), a correction with the candidate's id and no loop
+//    closure withdraws it. A candidate is thus the
+//    earliest report of a revisit at a looser E-value, which the user thresholds: of candidates at E-value x,
+//    about x chance ones in the frames so far are expected (as for revisits at max_e_value). Only once the
+//    statistics are fitted (an E-value needs them).
 // The loop closures still standing after finish() are the online map's loop closures (loop_closures()).
 //
 // Work per frame: O(t) for the distance row, the contrast sums, the two recurrences and the peaks (dense rows;
@@ -88,6 +100,9 @@ struct OnlineMapConfig {
   std::optional<float> cap = 40.0F;
   // A track's peak must reach the score of this E-value (unset: `threshold` always).
   std::optional<double> max_e_value = 0.01;
+  // A revisit candidate's score must reach the score of this E-value (unset: no candidates); above max_e_value,
+  // and unused without it.
+  std::optional<double> candidate_e_value = 1.0;
   float threshold = 20.0F;          // [score units] without max_e_value, or before the statistics can be fitted
   std::size_t island_sample = 512;  // the best chance islands kept for the fit
   std::size_t min_separation = 10;  // [frames] pairs closer in time are never scored
@@ -101,14 +116,23 @@ struct OnlineMapConfig {
 // Throws std::invalid_argument naming the setting.
 void validate(const OnlineMapConfig& config);
 
-enum class OnlineEventKind { loop_closure, revisit_begin, revisit_end, junction, place_merge, correction };
+enum class OnlineEventKind {
+  loop_closure,
+  revisit_begin,
+  revisit_end,
+  junction,
+  place_merge,
+  correction,
+  revisit_candidate
+};
 std::string_view to_string(OnlineEventKind kind);
 
 struct OnlineEvent {
   OnlineEventKind kind = OnlineEventKind::loop_closure;
   std::size_t frame = 0;  // the frame after which the event was emitted (0-based)
-  // loop_closure: the pair (i > j). revisit_begin: the start cell. revisit_end: the end cell. junction: the new
-  // frame i and the old frame j where the paths join or leave. place_merge: i and j, the pair that merged.
+  // loop_closure: the pair (i > j); revisit_candidate: the cell (frame, old frame) that reached the candidates'
+  // score, its path's start cell in first and last. revisit_begin: the start cell. revisit_end: the end cell. junction:
+  // the new frame i and the old frame j where the paths join or leave. place_merge: i and j, the pair that merged.
   std::size_t i = 0, j = 0;
   align::Direction direction = align::Direction::forward;
   float score = 0;       // the table value (loop closure, begin, end: the track's)
@@ -123,6 +147,9 @@ struct OnlineEvent {
   // correction: the loop closures withdrawn (i, j) and why.
   std::vector<std::pair<std::size_t, std::size_t>> withdrawn;
   std::string reason;
+  // revisit_candidate: its id (0, 1, ... in order); revisit_begin: the candidate it confirms; correction: the
+  // candidate withdrawn (no loop closure withdrawn then).
+  std::optional<std::size_t> candidate;
 };
 
 // A loop closure still standing.
@@ -149,7 +176,8 @@ class OnlineMapper {
   // The next frame as its alignment scores s(t, j), j = 0 .. t - min_separation (max(0, t - min_separation + 1)
   // values), aligned as they are: no enhancement, no offset (the engine's own view; tests and other sensors).
   std::vector<OnlineEvent> add_scores(std::span<const float> scores);
-  // Ends every live track (no junction: the run ended, not the revisit). Further frames may still be added.
+  // Ends every live track (no junction: the run ended, not the revisit) and withdraws the open candidates. Further
+  // frames may still be added.
   std::vector<OnlineEvent> finish();
 
   std::size_t frames() const { return frames_; }
@@ -204,6 +232,11 @@ class OnlineMapper {
   void update_islands(align::Direction direction, std::unordered_map<std::uint64_t, Island>& live);
   bool beside_a_revisit(const Island& island, align::Direction direction) const;
   void update_threshold();
+  void find_candidates(align::Direction direction, std::vector<OnlineEvent>& events);
+  // Withdraws the candidates of `direction` whose path no cell of the newest row carries (`live`: the row's islands);
+  // every one with nullptr (the run ended).
+  void drop_candidates(align::Direction direction, const std::unordered_map<std::uint64_t, Island>* live,
+                       std::vector<OnlineEvent>& events);
 
   OnlineMapConfig config_;
   std::size_t frames_ = 0;
@@ -241,6 +274,14 @@ class OnlineMapper {
   bool sample_changed_ = false;
   significance::ScoreStatistics statistics_;
   float threshold_ = 0;
+  // Revisit candidates not yet confirmed or withdrawn: their ids by their path's start cell and direction.
+  using Candidates = std::map<std::pair<std::uint64_t, align::Direction>, std::size_t>;
+  Candidates candidates_;
+  // Start cells within min_separation frames and columns of each other: one path, re-rooted through a gap.
+  bool near_cells(std::uint64_t a, std::uint64_t b) const;
+  // The open candidate of `direction` whose start cell is near `start` (the first), or end().
+  Candidates::iterator near_candidate(std::uint64_t start, align::Direction direction);
+  std::size_t next_candidate_ = 0;
 };
 
 }  // namespace seqtopo::mapping
