@@ -49,7 +49,7 @@ struct MapOptions {
   std::optional<std::size_t> min_separation, contrast_window;
   std::optional<float> contrast_offset;
   bool no_reverse = false;
-  std::optional<bool> graph_cleanup;
+  std::optional<bool> graph_cleanup, odometry_evidence;
   bool streaming = false, sparse = false;
   std::optional<std::size_t> neighbours;
   std::string ground_truth, gt_places, gt_poses;
@@ -132,6 +132,7 @@ Settings resolve_settings(const MapOptions& o) {
   if (o.contrast_offset) s.map.contrast_offset = *o.contrast_offset;
   s.map.reverse = !o.no_reverse;
   if (o.graph_cleanup) s.map.clean_graph = *o.graph_cleanup;
+  if (o.odometry_evidence) s.map.odometry_evidence = *o.odometry_evidence;
   s.map.threads = resolve_threads(o.threads);
   return s;
 }
@@ -377,6 +378,10 @@ const RegisterCommand registered{
                   fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
                               mapping::MapConfig{}.contrast_offset));
        app.add_flag("--no-reverse", o->no_reverse, "do not look for paths revisited in the opposite direction");
+       app.add_option("--odometry-evidence", o->odometry_evidence,
+                      "count an alignment's agreement with the odometry as evidence: its E-value times the share of "
+                      "chance alignments that agree (INTERFACE.md); true by default")
+           ->type_name("true|false");
        app.add_option("--graph-cleanup", o->graph_cleanup,
                       "clean the place graph before reading the topology: overhangs, tips, bubbles, redundant edges "
                       "(mapping/graph_cleanup.hpp); true by default, false with --preset paper")

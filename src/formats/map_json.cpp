@@ -41,6 +41,7 @@ nlohmann::json significance_json(const mapping::MapResult& result) {
     j["search_area"] = d.statistics.area;
     j["fitted_alignments"] = d.statistics.fitted;
     j["chance_alignment_places"] = d.chance_length;
+    j["odometry_chance_agreement"] = d.odometry_chance_agreement;
   }
   return j;
 }

@@ -159,6 +159,19 @@ FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, doub
   return run;
 }
 
+// MapConfig::odometry_evidence: the share of the statistics' run's chance alignments (E > 1) that the odometry
+// gate passes, (passed + 1) / (tested + 2); 1 with fewer than 20 of them.
+double chance_agreement(const FitRun& fit, std::span<const Pose2> odometry, const OdometryGate& gate) {
+  std::vector<align::LocalAlignment> chance;
+  for (std::size_t k = 0; k < fit.alignments.size(); ++k) {
+    if (fit.statistics.e_value(fit.path_scores[k]) > 1.0) chance.push_back(fit.alignments[k]);
+  }
+  if (chance.size() < 20) return 1.0;
+  const std::vector<bool> agree = consistent_with_odometry(chance, odometry, gate);
+  const auto passed = static_cast<double>(std::count(agree.begin(), agree.end(), true));
+  return (passed + 1.0) / (static_cast<double>(chance.size()) + 2.0);
+}
+
 }  // namespace
 
 SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similarities, std::size_t contrast_window) {
@@ -376,16 +389,19 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     d.chance_length = fit.chance_length;
     d.chance_mean = fit.cell_mean;
     if (fit.statistics.valid()) {
+      if (!odometry.empty() && c.odometry_gate && c.odometry_evidence) {
+        d.odometry_chance_agreement = chance_agreement(fit, odometry, *c.odometry_gate);
+      }
       // On a grid of 1/64 score units, which both engines represent exactly (the fast engine's scale is a power
       // of two of at least 64 for caps up to 512), so they agree on what is significant.
-      const double needed = fit.statistics.score_at(*c.max_e_value);
       const auto grid = [](double v) { return static_cast<float>(std::ceil(std::max(v, 1.0 / 64) * 64.0) / 64.0); };
-      engine.threshold = grid(needed);
-      if (c.cap_from_statistics) engine.cap = grid(c.cap_factor * engine.threshold);
+      engine.threshold = grid(fit.statistics.score_at(*c.max_e_value / d.odometry_chance_agreement));
+      // The cap from the score's own significance: the odometry does not change how far chance extends a path.
+      if (c.cap_from_statistics) engine.cap = grid(c.cap_factor * grid(fit.statistics.score_at(*c.max_e_value)));
       // What the filter removed: chance alignments of the statistics' run above the raw threshold.
       for (std::size_t k = 0; k < fit.alignments.size(); ++k) {
         const double e = fit.statistics.e_value(fit.path_scores[k]);
-        if (e > *c.max_e_value && fit.alignments[k].score >= c.threshold) {
+        if (e * d.odometry_chance_agreement > *c.max_e_value && fit.alignments[k].score >= c.threshold) {
           result.insignificant.push_back(fit.alignments[k]);
           result.insignificant_e_values.push_back(e);
         }
@@ -453,6 +469,22 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       }
     }
     select_alignments(result, kept);
+    // Every alignment left agrees with the odometry: that is evidence too (MapConfig::odometry_evidence), weighed
+    // by how well it agrees. Those the evidence does not carry below max_e_value are not significant.
+    if (d.odometry_chance_agreement < 1) {
+      const std::vector<double> r = odometry_agreement(result.alignments, odometry, *c.odometry_gate);
+      std::vector<std::size_t> significant;
+      for (std::size_t k = 0; k < r.size(); ++k) {
+        result.e_values[k] *= std::min(1.0, d.odometry_chance_agreement / std::exp(-0.5 * r[k] * r[k]));
+        if (result.e_values[k] <= *c.max_e_value) {
+          significant.push_back(k);
+        } else {
+          result.insignificant.push_back(result.alignments[k]);
+          result.insignificant_e_values.push_back(result.e_values[k]);
+        }
+      }
+      select_alignments(result, significant);
+    }
     const std::size_t before = pair_count(result.alignments);
     result.alignments = trim_to_odometry(result.alignments, odometry, *c.odometry_gate);
     const std::size_t trimmed = before - pair_count(result.alignments);

@@ -137,6 +137,32 @@ std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignme
   return out;
 }
 
+std::vector<double> odometry_agreement(const std::vector<align::LocalAlignment>& alignments,
+                                       std::span<const Pose2> odometry, const OdometryGate& gate) {
+  check_gate(gate);
+  const std::vector<double> travelled = travelled_distance(odometry);
+  std::vector<double> out;
+  out.reserve(alignments.size());
+  for (const auto& alignment : alignments) {
+    check_pairs(alignment, odometry.size());
+    std::vector<double> ratios;
+    ratios.reserve(alignment.pairs.size());
+    for (const auto& [i, j] : alignment.pairs) {
+      const double apart = std::hypot(odometry[i].x - odometry[j].x, odometry[i].y - odometry[j].y);
+      const double allowed = gate.base + gate.drift * std::abs(travelled[i] - travelled[j]);
+      ratios.push_back(allowed > 0 ? apart / allowed : (apart > 0 ? HUGE_VAL : 0.0));
+    }
+    if (ratios.empty()) {
+      out.push_back(HUGE_VAL);
+      continue;
+    }
+    const auto mid = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2);
+    std::nth_element(ratios.begin(), mid, ratios.end());
+    out.push_back(*mid);
+  }
+  return out;
+}
+
 std::vector<align::LocalAlignment> trim_to_odometry(const std::vector<align::LocalAlignment>& alignments,
                                                     std::span<const Pose2> odometry, const OdometryGate& gate) {
   check_gate(gate);

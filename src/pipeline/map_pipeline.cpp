@@ -49,9 +49,14 @@ void report_map(MapRun& run, const MapObserver& observer) {
   if (d.statistics.valid()) {
     say(observer,
         fmt::format("      significance: lambda {:.3g}, K {:.3g} (from {} chance alignments); E <= {} needs a "
-                    "score of {:.2f}, cap {:.2f}, contrast offset {:.2f}; {} removed",
+                    "score of {:.2f}{}, cap {:.2f}, contrast offset {:.2f}; {} removed",
                     d.statistics.lambda, d.statistics.k, d.statistics.fitted, run.map_config.max_e_value.value_or(0),
-                    d.score_threshold, d.cap.value_or(0), d.contrast_offset, run.result.insignificant.size()));
+                    d.score_threshold,
+                    d.odometry_chance_agreement < 1
+                        ? fmt::format(" where the odometry agrees (as {:.3g} of chance alignments do)",
+                                      d.odometry_chance_agreement)
+                        : std::string(),
+                    d.cap.value_or(0), d.contrast_offset, run.result.insignificant.size()));
   }
   say(observer, fmt::format("      {} alignments ({} contradicted by odometry), {} kept, {} places, {} junctions",
                             run.result.alignments.size() + run.result.rejected.size(), run.result.rejected.size(),

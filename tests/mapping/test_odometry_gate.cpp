@@ -1,7 +1,9 @@
 // The odometry gate: alignments that odometry contradicts are dropped, revisits are kept.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 #include "seqtopo/mapping/map_builder.hpp"
@@ -179,6 +181,83 @@ TEST(OdometryGate, BuildMapDropsContradictedAlignmentsBeforePruning) {
   config.odometry_gate.reset();
   EXPECT_TRUE(build_map(s, config, odometry).rejected.empty());
   EXPECT_THROW(build_map(s, config, std::span(odometry).first(10)), std::invalid_argument);
+}
+
+TEST(OdometryGate, AgreementIsTheMedianOfThePairsDistanceOverTheAllowance) {
+  const auto odometry = out_and_back();
+  std::vector<std::pair<std::size_t, std::size_t>> revisit, shifted;
+  for (std::size_t d = 5; d < 30; ++d) revisit.emplace_back(40 + d, 40 - d);
+  for (std::size_t i = 20; i < 40; ++i) shifted.emplace_back(i, i - 20);
+  // Brute force, from the header's rule: the median of distance / (base + drift x travelled).
+  const auto brute = [&](const std::vector<std::pair<std::size_t, std::size_t>>& pairs) {
+    std::vector<double> r;
+    for (auto [i, j] : pairs) {
+      double travelled = 0;
+      for (std::size_t k = std::min(i, j) + 1; k <= std::max(i, j); ++k) {
+        travelled += std::hypot(odometry[k].x - odometry[k - 1].x, odometry[k].y - odometry[k - 1].y);
+      }
+      r.push_back(std::hypot(odometry[i].x - odometry[j].x, odometry[i].y - odometry[j].y) / (2.0 + 0.1 * travelled));
+    }
+    std::sort(r.begin(), r.end());
+    return r[r.size() / 2];
+  };
+  const auto agreement = odometry_agreement({pairs_of(revisit), pairs_of(shifted), pairs_of({})}, odometry);
+  ASSERT_EQ(agreement.size(), 3U);
+  EXPECT_NEAR(agreement[0], brute(revisit), 1e-12);
+  EXPECT_NEAR(agreement[1], brute(shifted), 1e-12);
+  EXPECT_LT(agreement[0], 0.5);  // the sideways drift only
+  EXPECT_GT(agreement[1], 1.0);  // 10 m off after 10 m: outside the gate
+  EXPECT_TRUE(std::isinf(agreement[2]));
+}
+
+// A reverse revisit planted in noise, walked out and back with odometry: agreement with the odometry lowers its
+// E-value by q / exp(-r^2 / 2) (MapConfig::odometry_evidence), so there is a strength at which only the evidence
+// makes it significant, and none at which the evidence takes significance away.
+TEST(OdometryGate, AgreementIsEvidenceForAWeakRevisit) {
+  const std::size_t n = 400, half = n / 2;
+  std::vector<Pose2> odometry;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double along = 0.5 * static_cast<double>(k < half ? k : n - 1 - k);
+    odometry.push_back({along, 0.01 * static_cast<double>(k), k < half ? 0.0 : 3.14159});
+  }
+  bool only_with_evidence = false;
+  for (float strength : {0.78F, 0.79F, 0.8F, 0.81F, 0.82F, 0.83F, 0.84F, 0.86F}) {
+    std::mt19937 rng(11);
+    std::normal_distribution<float> z(0.0F, 1.0F);
+    SimilarityMatrix s(n, n);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j <= i; ++j) s(i, j) = s(j, i) = i == j ? 3.0F : z(rng);
+    }
+    for (std::size_t d = 40; d < 100; ++d) {
+      s(half + d, half - 1 - d) = s(half - 1 - d, half + d) = s(half + d, half - 1 - d) + strength;
+    }
+    const auto on_revisit = [&](const MapResult& r) {
+      for (std::size_t k = 0; k < r.alignments.size(); ++k) {
+        const auto& a = r.alignments[k];
+        if (a.direction == align::Direction::reverse && a.a_begin >= half + 30 && a.a_end <= half + 110) return k;
+      }
+      return r.alignments.size();
+    };
+    MapConfig config;
+    const MapResult with = build_map(s, config, odometry);
+    config.odometry_evidence = false;
+    const MapResult without = build_map(s, config, odometry);
+    const double q = with.decisions.odometry_chance_agreement;
+    ASSERT_GT(q, 0.0) << strength;
+    ASSERT_LT(q, 1.0) << strength;
+    EXPECT_EQ(without.decisions.odometry_chance_agreement, 1.0);
+    const std::size_t a = on_revisit(with), b = on_revisit(without);
+    const bool found_with = a < with.alignments.size(), found_without = b < without.alignments.size();
+    EXPECT_TRUE(found_with || !found_without) << "the evidence took a revisit away at strength " << strength;
+    if (found_with && found_without && with.alignments[a].pairs == without.alignments[b].pairs) {
+      const double r = odometry_agreement({with.alignments[a]}, odometry).front();
+      EXPECT_NEAR(with.e_values[a], without.e_values[b] * std::min(1.0, q / std::exp(-0.5 * r * r)),
+                  1e-9 * without.e_values[b])
+          << strength;
+    }
+    only_with_evidence = only_with_evidence || (found_with && !found_without);
+  }
+  EXPECT_TRUE(only_with_evidence) << "no strength at which only the odometry's evidence makes the revisit";
 }
 
 }  // namespace

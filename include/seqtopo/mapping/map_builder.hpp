@@ -68,6 +68,16 @@ struct MapConfig {
   // Applied when odometry is given to build_map: alignments it contradicts are dropped before pruning.
   // Chosen on the simulated worlds (bench/worlds.sh); the real sequences in the README have no odometry.
   std::optional<OdometryGate> odometry_gate = OdometryGate{};
+  // With the gate and the significance statistics: agreement with the odometry is evidence of its own. A chance
+  // alignment agrees with probability q, estimated on the statistics' run (its chance alignments, E > 1, that
+  // pass the gate: (passed + 1) / (tested + 2), from at least 20). Scores and agreement being independent under
+  // chance, an alignment that agrees has E-value E x q / L, L = exp(-r^2 / 2) the relative likelihood of its
+  // agreement r (odometry_agreement: 0 perfect, 1 at the gate's edge) for a true revisit whose odometry error is
+  // Gaussian with the gate's allowance as its deviation; at most E. So the engine looks down to the score of
+  // max_e_value / q, and each alignment the gate keeps reports that E-value and stays only when it is at most
+  // max_e_value. An alignment at the edge of the allowance gains least: look-alike places a few metres apart
+  // (parallel corridors) agree with an odometry that has drifted that far.
+  bool odometry_evidence = true;
   // consistent: one labelling from all alignments (consistent_labels.hpp), each place holding at most
   // max_visit_span [places] of one pass; pruned_transitive: the paper's per-column pruning (pruning.hpp) and
   // transitive labels (place_labels.hpp).
@@ -102,7 +112,9 @@ struct MapDecisions {
   significance::ScoreStatistics statistics;  // invalid without significance or when the fit failed
   double chance_mean = 0;                    // mean score of the cells the fit read, off the self band
   double chance_length = 0;                  // median length of the fitted chance alignments [places]
-  std::vector<std::string> notes;            // what was adapted and why, one line each
+  // odometry_evidence: the probability q that a chance alignment agrees with the odometry (1: not used).
+  double odometry_chance_agreement = 1;
+  std::vector<std::string> notes;  // what was adapted and why, one line each
 };
 
 struct MapResult {
@@ -136,7 +148,8 @@ struct MapResult {
 //     checks the phase: while chance alignments grow with the sequence the offset is raised; the cap and the
 //     score a revisit needs follow from the fit (MapDecisions);
 //  4. forward and reverse self alignments with the cap (the configured engine), every alignment's E-value
-//     from its uncapped path score, revisits shorter than min_revisit_places dropped; the odometry gate;
+//     from its uncapped path score (times the odometry's chance agreement for those that agree, with
+//     odometry_evidence), revisits shorter than min_revisit_places dropped; the odometry gate;
 //  5. consistent labels (or per-column pruning and transitive labels), the graph clean-up, topology.
 // Throws std::invalid_argument for a non-square or empty matrix, or odometry of another length.
 // `odometry` (one pose per image, or empty) feeds config.odometry_gate.

@@ -41,6 +41,13 @@ struct OdometryGate {
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
                                            std::span<const Pose2> odometry, const OdometryGate& gate = {});
 
+// Per alignment, how well it agrees: the median over its pairs of their odometry distance over the gate's
+// allowance (base + drift x travelled between them); 0 is perfect, the gate passes about those at or below 1
+// (exactly so with min_consistent 0.5), an alignment without pairs is infinite. Throws like
+// consistent_with_odometry().
+std::vector<double> odometry_agreement(const std::vector<align::LocalAlignment>& alignments,
+                                       std::span<const Pose2> odometry, const OdometryGate& gate = {});
+
 // Each alignment cut to the pairs that stay within the tolerance of the rigid superposition of its two
 // traversals (see above): a contiguous run of its pairs around the middle; a_begin..b_end span them again. An
 // alignment stays as it is when the middle's traversals cannot be superposed within gate.base (the gate judges
