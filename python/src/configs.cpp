@@ -156,58 +156,61 @@ void bind_map(py::module_& m) {
       "(PruningConfig), topology (TopologyConfig), threads (forward and\n"
       "reverse passes in parallel when > 1; the result does not depend on it), alignment_set\n"
       "('non-intersecting' or 'locally-optimal', docs/alignment_sets.md), trim_chance_ends (alignments' ends\n"
-      "cut back where their pairs are more likely chance than revisit, significance/alignment_ends.hpp).");
-  c.def(
-       py::init([labelling_value](
-                    std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap,
-                    bool cap_from_statistics, float cap_factor, std::optional<double> max_e_value, float threshold,
-                    double min_revisit_places, bool adapt_offset, std::size_t min_separation, bool place_units,
-                    std::optional<double> frames_per_place, bool reverse, const std::string& labelling,
-                    double max_visit_span, bool clean_graph, PruningConfig pruning, TopologyConfig topology,
-                    unsigned threads, float contrast_offset_step, float max_contrast_offset, std::size_t fit_alignments,
-                    std::size_t confidence_band, const std::string& alignment_set, bool trim_chance_ends) {
-         MapConfig config;
-         config.contrast_window = contrast_window;
-         config.contrast_offset = contrast_offset;
-         config.gap = gap;
-         config.cap = cap;
-         config.cap_from_statistics = cap_from_statistics;
-         config.cap_factor = cap_factor;
-         config.max_e_value = max_e_value;
-         config.threshold = threshold;
-         config.min_revisit_places = min_revisit_places;
-         config.adapt_offset = adapt_offset;
-         config.min_separation = min_separation;
-         config.place_units = place_units;
-         config.frames_per_place = frames_per_place;
-         config.reverse = reverse;
-         config.labelling = labelling_value(labelling);
-         config.max_visit_span = max_visit_span;
-         config.clean_graph = clean_graph;
-         config.pruning = pruning;
-         config.topology = topology;
-         config.threads = threads;
-         config.contrast_offset_step = contrast_offset_step;
-         config.max_contrast_offset = max_contrast_offset;
-         config.fit_alignments = fit_alignments;
-         config.confidence_band = confidence_band;
-         config.alignment_set = align::parse_alignment_set(alignment_set);
-         config.trim_chance_ends = trim_chance_ends;
-         return config;
-       }),
-       py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
-       py::arg("gap") = d.gap, py::arg("cap") = d.cap, py::arg("cap_from_statistics") = d.cap_from_statistics,
-       py::arg("cap_factor") = d.cap_factor, py::arg("max_e_value") = d.max_e_value, py::arg("threshold") = d.threshold,
-       py::arg("min_revisit_places") = d.min_revisit_places, py::arg("adapt_offset") = d.adapt_offset,
-       py::arg("min_separation") = d.min_separation, py::arg("place_units") = d.place_units,
-       py::arg("frames_per_place") = d.frames_per_place, py::arg("reverse") = d.reverse,
-       py::arg("labelling") = labelling_name(d.labelling), py::arg("max_visit_span") = d.max_visit_span,
-       py::arg("clean_graph") = d.clean_graph, py::arg("pruning") = d.pruning, py::arg("topology") = d.topology,
-       py::arg("threads") = d.threads, py::arg("contrast_offset_step") = d.contrast_offset_step,
-       py::arg("max_contrast_offset") = d.max_contrast_offset, py::arg("fit_alignments") = d.fit_alignments,
-       py::arg("confidence_band") = d.confidence_band,
-       py::arg("alignment_set") = std::string(align::to_string(d.alignment_set)),
-       py::arg("trim_chance_ends") = d.trim_chance_ends)
+      "cut back where their pairs are more likely chance than revisit, significance/alignment_ends.hpp),\n"
+      "odometry_evidence (with odometry: an alignment's agreement with it lowers its E-value, map_builder.hpp).");
+  c.def(py::init([labelling_value](std::size_t contrast_window, float contrast_offset, float gap,
+                                   std::optional<float> cap, bool cap_from_statistics, float cap_factor,
+                                   std::optional<double> max_e_value, float threshold, double min_revisit_places,
+                                   bool adapt_offset, std::size_t min_separation, bool place_units,
+                                   std::optional<double> frames_per_place, bool reverse, const std::string& labelling,
+                                   double max_visit_span, bool clean_graph, PruningConfig pruning,
+                                   TopologyConfig topology, unsigned threads, float contrast_offset_step,
+                                   float max_contrast_offset, std::size_t fit_alignments, std::size_t confidence_band,
+                                   const std::string& alignment_set, bool trim_chance_ends, bool odometry_evidence) {
+          MapConfig config;
+          config.contrast_window = contrast_window;
+          config.contrast_offset = contrast_offset;
+          config.gap = gap;
+          config.cap = cap;
+          config.cap_from_statistics = cap_from_statistics;
+          config.cap_factor = cap_factor;
+          config.max_e_value = max_e_value;
+          config.threshold = threshold;
+          config.min_revisit_places = min_revisit_places;
+          config.adapt_offset = adapt_offset;
+          config.min_separation = min_separation;
+          config.place_units = place_units;
+          config.frames_per_place = frames_per_place;
+          config.reverse = reverse;
+          config.labelling = labelling_value(labelling);
+          config.max_visit_span = max_visit_span;
+          config.clean_graph = clean_graph;
+          config.pruning = pruning;
+          config.topology = topology;
+          config.threads = threads;
+          config.contrast_offset_step = contrast_offset_step;
+          config.max_contrast_offset = max_contrast_offset;
+          config.fit_alignments = fit_alignments;
+          config.confidence_band = confidence_band;
+          config.alignment_set = align::parse_alignment_set(alignment_set);
+          config.trim_chance_ends = trim_chance_ends;
+          config.odometry_evidence = odometry_evidence;
+          return config;
+        }),
+        py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
+        py::arg("gap") = d.gap, py::arg("cap") = d.cap, py::arg("cap_from_statistics") = d.cap_from_statistics,
+        py::arg("cap_factor") = d.cap_factor, py::arg("max_e_value") = d.max_e_value,
+        py::arg("threshold") = d.threshold, py::arg("min_revisit_places") = d.min_revisit_places,
+        py::arg("adapt_offset") = d.adapt_offset, py::arg("min_separation") = d.min_separation,
+        py::arg("place_units") = d.place_units, py::arg("frames_per_place") = d.frames_per_place,
+        py::arg("reverse") = d.reverse, py::arg("labelling") = labelling_name(d.labelling),
+        py::arg("max_visit_span") = d.max_visit_span, py::arg("clean_graph") = d.clean_graph,
+        py::arg("pruning") = d.pruning, py::arg("topology") = d.topology, py::arg("threads") = d.threads,
+        py::arg("contrast_offset_step") = d.contrast_offset_step,
+        py::arg("max_contrast_offset") = d.max_contrast_offset, py::arg("fit_alignments") = d.fit_alignments,
+        py::arg("confidence_band") = d.confidence_band,
+        py::arg("alignment_set") = std::string(align::to_string(d.alignment_set)),
+        py::arg("trim_chance_ends") = d.trim_chance_ends, py::arg("odometry_evidence") = d.odometry_evidence)
       .def_readwrite("contrast_window", &MapConfig::contrast_window)
       .def_readwrite("contrast_offset", &MapConfig::contrast_offset)
       .def_readwrite("gap", &MapConfig::gap)
@@ -235,6 +238,7 @@ void bind_map(py::module_& m) {
       .def_readwrite("fit_alignments", &MapConfig::fit_alignments)
       .def_readwrite("confidence_band", &MapConfig::confidence_band)
       .def_readwrite("trim_chance_ends", &MapConfig::trim_chance_ends)
+      .def_readwrite("odometry_evidence", &MapConfig::odometry_evidence)
       .def_property(
           "alignment_set", [](const MapConfig& x) { return std::string(align::to_string(x.alignment_set)); },
           [](MapConfig& x, const std::string& name) { x.alignment_set = align::parse_alignment_set(name); });
