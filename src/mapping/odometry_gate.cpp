@@ -118,6 +118,13 @@ align::LocalAlignment trim_one(const align::LocalAlignment& alignment, std::span
 
 }  // namespace
 
+// A pair's distance in the odometry and the gate's allowance for it (base + drift x travelled between them).
+std::pair<double, double> apart_and_allowed(std::span<const Pose2> odometry, const std::vector<double>& travelled,
+                                            const OdometryGate& gate, std::size_t i, std::size_t j) {
+  return {std::hypot(odometry[i].x - odometry[j].x, odometry[i].y - odometry[j].y),
+          gate.base + gate.drift * std::abs(travelled[i] - travelled[j])};
+}
+
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
                                            std::span<const Pose2> odometry, const OdometryGate& gate) {
   check_gate(gate);
@@ -128,8 +135,8 @@ std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignme
     check_pairs(alignment, odometry.size());
     std::size_t consistent = 0;
     for (const auto& [i, j] : alignment.pairs) {
-      const double apart = std::hypot(odometry[i].x - odometry[j].x, odometry[i].y - odometry[j].y);
-      consistent += apart <= gate.base + gate.drift * std::abs(travelled[i] - travelled[j]);
+      const auto [apart, allowed] = apart_and_allowed(odometry, travelled, gate, i, j);
+      consistent += apart <= allowed;
     }
     out.push_back(!alignment.pairs.empty() &&
                   static_cast<double>(consistent) >= gate.min_consistent * static_cast<double>(alignment.pairs.size()));
@@ -148,8 +155,7 @@ std::vector<double> odometry_agreement(const std::vector<align::LocalAlignment>&
     std::vector<double> ratios;
     ratios.reserve(alignment.pairs.size());
     for (const auto& [i, j] : alignment.pairs) {
-      const double apart = std::hypot(odometry[i].x - odometry[j].x, odometry[i].y - odometry[j].y);
-      const double allowed = gate.base + gate.drift * std::abs(travelled[i] - travelled[j]);
+      const auto [apart, allowed] = apart_and_allowed(odometry, travelled, gate, i, j);
       ratios.push_back(allowed > 0 ? apart / allowed : (apart > 0 ? HUGE_VAL : 0.0));
     }
     if (ratios.empty()) {

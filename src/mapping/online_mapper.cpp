@@ -531,15 +531,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
   for (std::size_t j = 0; j < n; ++j) {
     const float v = row[j];
     if (v < threshold_ || starts[j] == kNoStart) continue;
-    bool peak = row_peak(row, j, radius);
-    if (!peak) continue;
-    for (const Track& track : tracks_) {
-      if (track.direction != direction) continue;
-      if (cell(track.first_i, track.first_j) == starts[j]) peak = false;  // the path of a dormant track
-      const std::size_t d = track.last_j > j ? track.last_j - j : j - track.last_j;
-      if (d <= radius) peak = false;
-    }
-    if (!peak) continue;
+    if (!row_peak(row, j, radius) || near_a_track(direction, starts[j], j)) continue;
     Track track;
     track.id = next_track_++;
     track.direction = direction;
@@ -591,6 +583,14 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
   }
 }
 
+bool OnlineMapper::near_a_track(align::Direction direction, std::uint64_t start, std::size_t j) const {
+  return std::any_of(tracks_.begin(), tracks_.end(), [&](const Track& track) {
+    const std::size_t d = track.last_j > j ? track.last_j - j : j - track.last_j;
+    // the path of a (dormant) track, or a column beside one
+    return track.direction == direction && (cell(track.first_i, track.first_j) == start || d <= config_.min_separation);
+  });
+}
+
 bool OnlineMapper::near_cells(std::uint64_t a, std::uint64_t b) const {
   const auto apart = [](std::size_t x, std::size_t y) { return x > y ? x - y : y - x; };
   return apart(cell_i(a), cell_i(b)) <= config_.min_separation && apart(cell_j(a), cell_j(b)) <= config_.min_separation;
@@ -614,11 +614,7 @@ void OnlineMapper::find_candidates(align::Direction direction, std::vector<Onlin
     const float v = row[j];
     if (v < at || v >= threshold_ || starts[j] == kNoStart || !row_peak(row, j, radius)) continue;
     if (near_candidate(starts[j], direction) != candidates_.end() || ended_starts_.contains(starts[j])) continue;
-    const bool near_a_track = std::any_of(tracks_.begin(), tracks_.end(), [&](const Track& track) {
-      const std::size_t d = track.last_j > j ? track.last_j - j : j - track.last_j;
-      return track.direction == direction && (cell(track.first_i, track.first_j) == starts[j] || d <= radius);
-    });
-    if (near_a_track) continue;
+    if (near_a_track(direction, starts[j], j)) continue;
     const std::size_t id = next_candidate_++;
     candidates_.emplace(std::pair(starts[j], direction), id);
     OnlineEvent e;

@@ -277,6 +277,8 @@ class OnlineMapper {
   // Revisit candidates not yet confirmed or withdrawn: their ids by their path's start cell and direction.
   using Candidates = std::map<std::pair<std::uint64_t, align::Direction>, std::size_t>;
   Candidates candidates_;
+  // A live track of `direction` follows the path of `start`, or its column is within min_separation of j.
+  bool near_a_track(align::Direction direction, std::uint64_t start, std::size_t j) const;
   // Start cells within min_separation frames and columns of each other: one path, re-rooted through a gap.
   bool near_cells(std::uint64_t a, std::uint64_t b) const;
   // The open candidate of `direction` whose start cell is near `start` (the first), or end().
