@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   const std::optional<double> radius = gt.size() > 4 && gt.substr(gt.size() - 4) == ".csv"
                                            ? std::optional<double>(std::stod(argv[next++]))
                                            : std::nullopt;
-  const evaluation::SamePlace same_place = pipeline::load_same_place(gt, radius, n);
+  const evaluation::SamePlace same_place = pipeline::load_same_place(gt, radius, n).same_place;
   const auto multipliers = argc > next ? parse_list(argv[next]) : std::vector<double>{1.0};
   const auto gaps = std::getenv("GAPS") ? parse_list(std::getenv("GAPS")) : std::vector<double>{0.3, 1, 2};
   const auto caps = std::getenv("CAPS") ? parse_list(std::getenv("CAPS")) : std::vector<double>{2, 4, 8, 0};

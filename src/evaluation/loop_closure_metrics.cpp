@@ -1,6 +1,8 @@
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -44,16 +46,9 @@ std::vector<ScoredPair> best_pair_per_image(const std::vector<ScoredPair>& pairs
   return out;
 }
 
-LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, std::size_t images,
-                                          const SamePlace& same_place, std::size_t min_separation) {
-  for (const auto& p : pairs) {
-    if (p.i >= images || p.j >= images) {
-      throw std::invalid_argument("pair (" + std::to_string(p.i) + ", " + std::to_string(p.j) + ") outside " +
-                                  std::to_string(images) + " images");
-    }
-  }
+std::vector<bool> images_with_earlier_partner(std::size_t images, const SamePlace& same_place,
+                                              std::size_t min_separation) {
   std::vector<bool> has_partner(images, false);
-  LoopClosureMetrics m;
   for (std::size_t i = 0; i < images; ++i) {
     for (std::size_t j = 0; j + min_separation <= i; ++j) {
       if (same_place(i, j)) {
@@ -61,8 +56,68 @@ LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, 
         break;
       }
     }
-    m.images_with_partner += has_partner[i] ? 1 : 0;
   }
+  return has_partner;
+}
+
+std::vector<bool> images_with_earlier_partner(std::span<const Pose2> positions, double radius,
+                                              std::size_t min_separation) {
+  if (!(radius > 0)) throw std::invalid_argument("same-place radius must be > 0");
+  // Cells a little wider than the radius (so that rounding cannot move a partner two cells away): a partner within
+  // the radius is in the image's cell or one of its eight neighbours.
+  const double width = radius * (1 + 1e-6);
+  const auto cell_of = [width](const Pose2& p) {
+    return std::pair{static_cast<std::int64_t>(std::floor(p.x / width)),
+                     static_cast<std::int64_t>(std::floor(p.y / width))};
+  };
+  std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::size_t>> cells;  // images by increasing index
+  for (std::size_t i = 0; i < positions.size(); ++i) cells[cell_of(positions[i])].push_back(i);
+  const double r2 = radius * radius;
+  std::vector<bool> has_partner(positions.size(), false);
+  for (std::size_t i = min_separation; i < positions.size(); ++i) {
+    const auto [cx, cy] = cell_of(positions[i]);
+    for (std::int64_t dx = -1; dx <= 1 && !has_partner[i]; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1 && !has_partner[i]; ++dy) {
+        const auto it = cells.find({cx + dx, cy + dy});
+        if (it == cells.end()) continue;
+        for (const std::size_t j : it->second) {
+          if (j + min_separation > i) break;
+          const double ex = positions[i].x - positions[j].x, ey = positions[i].y - positions[j].y;
+          if (ex * ex + ey * ey <= r2) {
+            has_partner[i] = true;
+            break;
+          }
+        }
+      }
+    }
+  }
+  return has_partner;
+}
+
+std::vector<bool> images_with_earlier_partner(std::size_t images, const SamePlace& same_place,
+                                              const EarlierPartners& finder, std::size_t min_separation) {
+  if (!finder) return images_with_earlier_partner(images, same_place, min_separation);
+  auto has_partner = finder(min_separation);
+  if (has_partner.size() != images) throw std::invalid_argument("earlier partners: one per image expected");
+  return has_partner;
+}
+
+LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, std::size_t images,
+                                          const SamePlace& same_place, std::size_t min_separation) {
+  return evaluate_loop_closures(pairs, images_with_earlier_partner(images, same_place, min_separation), same_place);
+}
+
+LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, const std::vector<bool>& has_partner,
+                                          const SamePlace& same_place) {
+  const std::size_t images = has_partner.size();
+  for (const auto& p : pairs) {
+    if (p.i >= images || p.j >= images) {
+      throw std::invalid_argument("pair (" + std::to_string(p.i) + ", " + std::to_string(p.j) + ") outside " +
+                                  std::to_string(images) + " images");
+    }
+  }
+  LoopClosureMetrics m;
+  for (std::size_t i = 0; i < images; ++i) m.images_with_partner += has_partner[i] ? 1 : 0;
 
   auto detections = best_pair_per_image(pairs);
   std::vector<bool> correct(detections.size());

@@ -27,7 +27,14 @@ nlohmann::json metrics_json(const evaluation::LoopClosureMetrics& m) {
           {"recall", m.recall}, {"f1", m.f1}, {"auc", m.auc}, {"recall_at_100_precision", m.recall_at_100_precision}};
 }
 
-std::string topology_dot(const mapping::TopologicalMap& map) {
+// The Graphviz text of the map's drawing and the number of nodes it draws.
+struct TopologyDrawing {
+  std::string dot;
+  std::size_t nodes = 0;
+};
+
+TopologyDrawing topology_dot(const mapping::TopologicalMap& map) {
+  std::size_t nodes = 0;
   std::ostringstream dot;
   dot << "graph topology {\n  graph [overlap=false, splines=false];\n  node [shape=circle, width=0.25, fixedsize=true, "
          "fontsize=8, style=filled, fillcolor=\"#dddddd\"];\n";
@@ -45,6 +52,7 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
     return "";
   };
   auto node = [&](const mapping::Place& place) {
+    ++nodes;
     dot << "  p" << place.id << " [label=\"" << place.id << "\", tooltip=\"images";
     for (std::size_t k = 0; k < place.images.size() && k < 12; ++k) dot << ' ' << place.images[k];
     dot << "\"";
@@ -75,6 +83,7 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
       for (std::size_t r = 0; r < runs; ++r) {
         const std::size_t begin = 1 + r * inner / runs, end = 1 + (r + 1) * inner / runs;
         const std::string run = fmt::format("s{}r{}", k, r);
+        ++nodes;
         dot << "  " << run << " [label=\"" << end - begin << "\", shape=box, width=0.3, height=0.2, fontsize=7, "
             << "fillcolor=\"#9ecae1\", tooltip=\"places " << s.places[begin] << " to " << s.places[end - 1] << "\"];\n";
         dot << "  " << previous << " -- " << run << ";\n";
@@ -84,7 +93,21 @@ std::string topology_dot(const mapping::TopologicalMap& map) {
     }
   }
   dot << "}\n";
-  return dot.str();
+  return {dot.str(), nodes};
+}
+
+// Above this many drawn nodes no Graphviz layout finishes in minutes (the 10^6-frame route draws some 10^5),
+// so the picture is a note instead; topology.dot still holds the drawing for a user's own tools.
+constexpr std::size_t kMaxLaidOutNodes = 10'000;
+
+std::string unlaid_topology_svg(const mapping::TopologicalMap& map, std::size_t nodes) {
+  return fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"80\">\n"
+      "  <text x=\"10\" y=\"30\" font-family=\"sans-serif\" font-size=\"14\">{} places, {} segments, {} junctions: "
+      "the drawing has {} nodes, more than {} can be laid out.</text>\n"
+      "  <text x=\"10\" y=\"55\" font-family=\"sans-serif\" font-size=\"14\">topology.dot holds it; map.json "
+      "every place.</text>\n</svg>\n",
+      map.places.size(), map.segments.size(), map.junctions.size(), nodes, kMaxLaidOutNodes);
 }
 
 // Runs Graphviz on a staged .dot file to make the .svg beside it. Edges are straight: neato's spline
@@ -193,8 +216,13 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
     out.write_pieces("scores.npy", {io::npy_header(result.scores), io::npy_body(result.scores)});
   }
 
-  out.write("topology.dot", topology_dot(map));
-  render_svg(out.staged("topology.dot"), out.staged("topology.svg"));
+  const TopologyDrawing topology = topology_dot(map);
+  out.write("topology.dot", topology.dot);
+  if (topology.nodes <= kMaxLaidOutNodes) {
+    render_svg(out.staged("topology.dot"), out.staged("topology.svg"));
+  } else {
+    out.write("topology.svg", unlaid_topology_svg(map, topology.nodes));
+  }
 
   const MapFigures f = figures.get();
   out.write("similarity.png", f.similarity);

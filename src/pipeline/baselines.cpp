@@ -31,7 +31,7 @@ std::pair<float, double> best_f1_threshold(const std::vector<evaluation::PrPoint
 }
 
 std::optional<LoopClosureBaseline> seqslam_loop_closure_baseline(
-    const std::vector<std::pair<std::string, const SimilarityMatrix*>>& sources, std::size_t images,
+    const std::vector<std::pair<std::string, const SimilarityMatrix*>>& sources, const std::vector<bool>& has_partner,
     const evaluation::SamePlace& same_place, std::size_t min_separation, unsigned threads) {
   baseline::SeqSlamConfig seqslam;
   seqslam.self = true;
@@ -40,11 +40,11 @@ std::optional<LoopClosureBaseline> seqslam_loop_closure_baseline(
   std::optional<LoopClosureBaseline> best;
   for (const auto& [name, matrix] : sources) {
     auto pairs = seqslam_loop_closures(*matrix, seqslam);
-    auto metrics = evaluation::evaluate_loop_closures(pairs, images, same_place, min_separation);
+    auto metrics = evaluation::evaluate_loop_closures(pairs, has_partner, same_place);
     if (best && metrics.auc <= best->metrics.auc) continue;
     const float threshold = best_f1_threshold(metrics.curve).first;
     std::erase_if(pairs, [&](const evaluation::ScoredPair& p) { return p.score < threshold; });
-    const auto at_threshold = evaluation::evaluate_loop_closures(pairs, images, same_place, min_separation);
+    const auto at_threshold = evaluation::evaluate_loop_closures(pairs, has_partner, same_place);
     metrics.tp = at_threshold.tp;
     metrics.fp = at_threshold.fp;
     metrics.fn = at_threshold.fn;

@@ -16,24 +16,28 @@ namespace seqtopo::pipeline {
 
 namespace fs = std::filesystem;
 
-evaluation::SamePlace load_same_place(const fs::path& file, std::optional<double> radius, std::size_t images) {
+SamePlaceTruth load_same_place(const fs::path& file, std::optional<double> radius, std::size_t images) {
   if (file.extension() == ".csv") {
     if (!radius || !(*radius > 0)) throw InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
-    const auto poses = formats::read_poses_csv(file);
-    if (poses.size() != images) {
-      throw InputError(file.string(), fmt::format("has {} poses, the sequence has {} images", poses.size(), images));
+    auto shared = std::make_shared<const std::vector<Pose2>>(formats::read_poses_csv(file));
+    if (shared->size() != images) {
+      throw InputError(file.string(), fmt::format("has {} poses, the sequence has {} images", shared->size(), images));
     }
-    const double r2 = *radius * *radius;
-    return [poses, r2](std::size_t i, std::size_t j) {
-      const double dx = poses[i].x - poses[j].x, dy = poses[i].y - poses[j].y;
-      return dx * dx + dy * dy <= r2;
-    };
+    const double r = *radius, r2 = r * r;
+    return {[shared, r2](std::size_t i, std::size_t j) {
+              const auto& p = *shared;
+              const double dx = p[i].x - p[j].x, dy = p[i].y - p[j].y;
+              return dx * dx + dy * dy <= r2;
+            },
+            [shared, r](std::size_t min_separation) {
+              return evaluation::images_with_earlier_partner(*shared, r, min_separation);
+            }};
   }
   auto m = std::make_shared<DenseMatrix<std::uint8_t>>(image::read_grey_matrix_image(file));
   if (m->rows != images || m->cols != images) {
     throw InputError(file.string(), fmt::format("is {} x {}, the sequence has {} images", m->rows, m->cols, images));
   }
-  return [m](std::size_t i, std::size_t j) { return (*m)(i, j) != 0 || (*m)(j, i) != 0; };
+  return {[m](std::size_t i, std::size_t j) { return (*m)(i, j) != 0 || (*m)(j, i) != 0; }, {}};
 }
 
 TruePlaces load_true_places(const fs::path& places_csv, std::size_t images) {

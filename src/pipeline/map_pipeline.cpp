@@ -281,7 +281,10 @@ void trajectory_and_accuracy(const MapSettings& settings, const std::function<Ma
   if (!load_truth) return;
   clock.begin(" against the ground truth");
   const MapTruth truth = load_truth();
+  const std::size_t min_separation = run.result.decisions.min_separation;
+  std::vector<bool> has_partner;  // the recall denominator, shared by seqtopo's metrics and the baseline's
   if (truth.same_place) {
+    has_partner = evaluation::images_with_earlier_partner(n, truth.same_place, truth.earlier_partners, min_separation);
     std::vector<evaluation::ScoredPair> pairs;
     std::vector<double> confidence;
     std::vector<bool> correct;
@@ -291,7 +294,7 @@ void trajectory_and_accuracy(const MapSettings& settings, const std::function<Ma
       correct.push_back(truth.same_place(p.i, p.j));
     }
     run.calibration = evaluation::calibration(confidence, correct);
-    run.metrics = evaluation::evaluate_loop_closures(pairs, n, truth.same_place, run.result.decisions.min_separation);
+    run.metrics = evaluation::evaluate_loop_closures(pairs, has_partner, truth.same_place);
   }
   if (!truth.places.empty()) {
     if (truth.places.size() != n) throw std::invalid_argument("true places: one per image expected");
@@ -320,7 +323,7 @@ void trajectory_and_accuracy(const MapSettings& settings, const std::function<Ma
         sources.emplace_back("seqtopo's fused scores", &run.result.scores);
       }
       clock.begin(fmt::format(" on {} matri{}", sources.size(), sources.size() == 1 ? "x" : "ces"));
-      if (auto b = seqslam_loop_closure_baseline(sources, n, truth.same_place, run.result.decisions.min_separation,
+      if (auto b = seqslam_loop_closure_baseline(sources, has_partner, truth.same_place, min_separation,
                                                  settings.similarity.threads)) {
         run.baseline_metrics = std::move(b->metrics);
         run.baseline_name = std::move(b->method);
@@ -464,7 +467,11 @@ MapRun MapJob::run(const MapObserver& observer) const {
   if (any_truth) {
     load_truth = [&files, n, poses] {
       MapTruth truth;
-      if (!files.same_place.empty()) truth.same_place = load_same_place(files.same_place, files.radius, n);
+      if (!files.same_place.empty()) {
+        auto same_place = load_same_place(files.same_place, files.radius, n);
+        truth.same_place = std::move(same_place.same_place);
+        truth.earlier_partners = std::move(same_place.earlier_partners);
+      }
       if (!files.places.empty()) {
         auto places = load_true_places(files.places, n);
         truth.places = std::move(places.places);

@@ -41,6 +41,40 @@ TEST(LoopClosureMetrics, MinSeparationHidesNearbyPartners) {
   EXPECT_THROW(evaluate_loop_closures({{10, 0, 1}}, 10, near, 2), std::invalid_argument);
 }
 
+TEST(LoopClosureMetrics, EarlierPartnersFromPositionsAgreeWithEveryPairTested) {
+  // Routes that revisit, stand still and pass near cell borders (positions on a grid of the radius itself).
+  std::mt19937 rng(7);
+  for (int round = 0; round < 100; ++round) {
+    const std::size_t n = 1 + rng() % 300;
+    const double radius = 0.5 + (rng() % 8) * 0.25;
+    std::vector<Pose2> poses(n);
+    for (std::size_t i = 1; i < n; ++i) {
+      const int kind = static_cast<int>(rng() % 10);
+      if (kind == 0) {
+        poses[i] = poses[rng() % i];  // back at an earlier pose
+      } else if (kind == 1) {
+        poses[i] = {radius * static_cast<double>(rng() % 9), -radius * static_cast<double>(rng() % 9), 0};
+      } else {
+        poses[i] = {poses[i - 1].x + (static_cast<double>(rng() % 2001) - 1000) / 1000 * radius,
+                    poses[i - 1].y + (static_cast<double>(rng() % 2001) - 1000) / 1000 * radius, 0};
+      }
+    }
+    const double r2 = radius * radius;
+    const SamePlace within = [&](std::size_t i, std::size_t j) {
+      const double dx = poses[i].x - poses[j].x, dy = poses[i].y - poses[j].y;
+      return dx * dx + dy * dy <= r2;
+    };
+    const std::size_t sep = rng() % 12;
+    const auto expected = images_with_earlier_partner(n, within, sep);
+    EXPECT_EQ(images_with_earlier_partner(poses, radius, sep), expected) << "round " << round;
+    const EarlierPartners finder = [&](std::size_t s) { return images_with_earlier_partner(poses, radius, s); };
+    EXPECT_EQ(images_with_earlier_partner(n, within, finder, sep), expected);
+  }
+  EXPECT_THROW(images_with_earlier_partner(std::vector<Pose2>(3), 0.0, 1), std::invalid_argument);
+  const EarlierPartners too_short = [](std::size_t) { return std::vector<bool>(2); };
+  EXPECT_THROW(images_with_earlier_partner(3, revisit, too_short, 1), std::invalid_argument);
+}
+
 TEST(LoopClosureMetrics, AgreesWithBruteForceRecount) {
   std::mt19937 rng(99);
   for (int round = 0; round < 200; ++round) {

@@ -10,7 +10,10 @@
 // recall_at_100_precision is the highest recall at a threshold with no false positive (0 if none).
 #include <cstddef>
 #include <functional>
+#include <span>
 #include <vector>
+
+#include "seqtopo/core/pose2.hpp"
 
 namespace seqtopo::evaluation {
 
@@ -48,7 +51,22 @@ using SamePlace = std::function<bool(std::size_t, std::size_t)>;
 // The best-scoring pair (i, j < i) of every image i, by increasing i. Ties: the larger j.
 std::vector<ScoredPair> best_pair_per_image(const std::vector<ScoredPair>& pairs);
 
+// The recall denominator: whether each image has a ground-truth partner at least min_separation frames earlier.
+// From the relation alone this tests every pair, O(N^2); from the true positions and the radius of the relation it
+// looks only in the grid cells (radius wide) around each image, near O(N) along a route: the two agree exactly.
+std::vector<bool> images_with_earlier_partner(std::size_t images, const SamePlace& same_place,
+                                              std::size_t min_separation);
+std::vector<bool> images_with_earlier_partner(std::span<const Pose2> positions, double radius,
+                                              std::size_t min_separation);
+// The finder a ground truth may offer for the same; the overload below uses it when given, else the relation.
+using EarlierPartners = std::function<std::vector<bool>(std::size_t min_separation)>;
+std::vector<bool> images_with_earlier_partner(std::size_t images, const SamePlace& same_place,
+                                              const EarlierPartners& finder, std::size_t min_separation);
+
 LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, std::size_t images,
                                           const SamePlace& same_place, std::size_t min_separation);
+// The same with the recall denominator found beforehand (one entry per image).
+LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs,
+                                          const std::vector<bool>& has_earlier_partner, const SamePlace& same_place);
 
 }  // namespace seqtopo::evaluation

@@ -31,9 +31,10 @@ struct LoopClosureBaseline {
 
 // The most generous reading of a single-threshold sequence matcher: the SeqSLAM-style matcher (self mode,
 // sequence 10, velocities 0.8-1.25) on every named matrix, the one with the best AUC reported at its
-// best-F1 threshold. nullopt when no matrix is given.
+// best-F1 threshold, against the same recall denominator (evaluation::images_with_earlier_partner). nullopt when
+// no matrix is given.
 std::optional<LoopClosureBaseline> seqslam_loop_closure_baseline(
-    const std::vector<std::pair<std::string, const SimilarityMatrix*>>& sources, std::size_t images,
+    const std::vector<std::pair<std::string, const SimilarityMatrix*>>& sources, const std::vector<bool>& has_partner,
     const evaluation::SamePlace& same_place, std::size_t min_separation, unsigned threads);
 
 // ---- localization (`seqtopo localize`) ------------------------------------------------------------

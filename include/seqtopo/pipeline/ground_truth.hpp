@@ -13,9 +13,14 @@
 namespace seqtopo::pipeline {
 
 // Same place: an N x N image (non-zero at (i, j) or (j, i)), or poses.csv (index,x,y[,theta]) and a radius
-// [m]: within `radius` of each other. A poses.csv without a radius is refused (subject --gt-radius).
-evaluation::SamePlace load_same_place(const std::filesystem::path& file, std::optional<double> radius,
-                                      std::size_t images);
+// [m]: within `radius` of each other. A poses.csv without a radius is refused (subject --gt-radius). From poses
+// the images with an earlier partner are also found from the positions (evaluation::EarlierPartners); an image's
+// relation is tested pair by pair.
+struct SamePlaceTruth {
+  evaluation::SamePlace same_place;
+  evaluation::EarlierPartners earlier_partners;  // empty for an image
+};
+SamePlaceTruth load_same_place(const std::filesystem::path& file, std::optional<double> radius, std::size_t images);
 
 // The true place of every image (places.csv, index,place) and the true junction places (junctions.csv in the
 // same folder, when there is one).

@@ -41,10 +41,11 @@ namespace seqtopo::pipeline {
 
 // The ground truth a map is scored against, in memory; every part is optional.
 struct MapTruth {
-  evaluation::SamePlace same_place;  // loop closures
-  std::vector<int> places;           // true place of every image (topology)
-  std::vector<int> junctions;        // true junction places
-  std::vector<Pose2> poses;          // true poses (trajectory error, with odometry)
+  evaluation::SamePlace same_place;              // loop closures
+  evaluation::EarlierPartners earlier_partners;  // optional: the recall denominator without testing every pair
+  std::vector<int> places;                       // true place of every image (topology)
+  std::vector<int> junctions;                    // true junction places
+  std::vector<Pose2> poses;                      // true poses (trajectory error, with odometry)
 };
 
 // The same, as the files users give (ground_truth.hpp reads them).
