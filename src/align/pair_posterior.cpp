@@ -109,7 +109,25 @@ BandTables band_tables(const LocalAlignment& a, const ScoreSource& scores, const
     const std::size_t j = to_j(u);
     return !c.self || (i > j && i - j >= std::max<std::size_t>(c.min_separation, 1));
   };
-  const auto weight = [&](std::size_t i, std::ptrdiff_t u) { return c.lambda * scores.at(i, to_j(u)); };
+  // The band's scores, read once row by row (a row segment: a streamed similarity computes cached tiles, where
+  // cell by cell it would sum each cell's contrast windows anew, twice, for the forward and backward passes).
+  std::vector<Score> band_scores(rows * f.width());
+  std::vector<Score> segment;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const std::ptrdiff_t u0 = std::max<std::ptrdiff_t>(f.low(r), 0);
+    const std::ptrdiff_t u1 = std::min<std::ptrdiff_t>(f.low(r) + static_cast<std::ptrdiff_t>(f.width()),
+                                                       static_cast<std::ptrdiff_t>(n_cols));
+    if (u1 <= u0) continue;
+    const std::size_t j0 = std::min(to_j(u0), to_j(u1 - 1)), j1 = std::max(to_j(u0), to_j(u1 - 1)) + 1;
+    segment.resize(j1 - j0);
+    scores.read_row(first + r, j0, j1, segment.data());
+    for (std::ptrdiff_t u = u0; u < u1; ++u)
+      band_scores[r * f.width() + static_cast<std::size_t>(u - f.low(r))] = segment[to_j(u) - j0];
+  }
+  const auto weight = [&](std::size_t i, std::ptrdiff_t u) {
+    const std::size_t r = i - first;
+    return c.lambda * band_scores[r * f.width() + static_cast<std::size_t>(u - f.low(r))];
+  };
 
   // Forward: the weight of every chain ending in each state of the cell.
   double total = 0;  // log of the empty chain's weight, 1

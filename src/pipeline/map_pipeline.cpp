@@ -180,7 +180,9 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   const auto make_streamed = [&](std::size_t window) {
     try {
       streamed.emplace(described.descriptors.values, n, dim,
-                       scale::StreamingConfig{.contrast_window = window, .contrast_offset = 0.0F});
+                       scale::StreamingConfig{.contrast_window = window,
+                                              .contrast_offset = 0.0F,
+                                              .cache_tiles = streamed_cache_tiles(n, request.sparse)});
     } catch (const std::invalid_argument& e) {
       throw InputError(inputs.front().path.string(), e.what());  // e.g. an all-zero descriptor has no direction
     }

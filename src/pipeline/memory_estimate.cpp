@@ -76,6 +76,14 @@ std::size_t fit_cache_tiles(std::size_t n, std::size_t capacity) {
   return std::min(capacity, mul(whole ? 1 : kFitBlocks, mul(side, side)));
 }
 
+// The bands of the confidences' posteriors (align/pair_posterior.hpp) move along a diagonal, a few tiles at a time.
+constexpr std::size_t kBandTiles = 64;
+
+// scale::StreamingSimilarity's own capacity: three bands of tiles.
+std::size_t default_cache_tiles(std::size_t n) {
+  return std::max<std::size_t>(4, mul(3, (n + kStreamTile - 1) / kStreamTile));
+}
+
 // mapping::estimate_frames_per_place from the streamed cosine: the scores at lags 0 .. min(200, N / 3) of every
 // frame, or of evenly spaced frames above mapping::kPlaceScaleFrames, as floats (pipeline/map_pipeline.cpp,
 // mapping/place_scale.cpp).
@@ -134,6 +142,11 @@ std::size_t outputs_extra_bytes(std::size_t images, std::size_t pairs, bool stre
   return std::max({add(mul(mul(images, images), 4), 128), picture_bytes(images), json});
 }
 
+std::size_t streamed_cache_tiles(std::size_t images, bool sparse) {
+  if (!sparse) return 0;
+  return std::min(default_cache_tiles(images), add(fit_cache_tiles(images, default_cache_tiles(images)), kBandTiles));
+}
+
 MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
   MapMemoryEstimate e;
   const std::size_t n = in.images;
@@ -145,8 +158,7 @@ MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
 
   if (in.streaming) {
     const std::size_t descriptors = mul(mul(n, in.dimension), 4);
-    const std::size_t tiles_per_band = (n + kStreamTile - 1) / kStreamTile;
-    const std::size_t cache = mul(std::max<std::size_t>(4, mul(3, tiles_per_band)), kStreamTile * kStreamTile * 4);
+    const std::size_t cache = mul(default_cache_tiles(n), kStreamTile * kStreamTile * 4);
     // a thread's tile: the raw tile widened by the window, the tile and its window sums
     const std::size_t wide = kStreamTile + 2 * in.contrast_window;
     const std::size_t tile_work =
@@ -157,16 +169,15 @@ MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
     const std::size_t overview = mul(mul(side, side), 4);
     // The sparse mode aligns its candidates instead of every pair (sparse_engine_bytes), beside the streamed
     // similarity's descriptors and their transpose, the FAISS index (another copy) and its search results (12 bytes
-    // a neighbour) and the overview's block counts. The streamed scores are read by the significance fit only: the
-    // tile cache holds the fit's tiles, not its capacity, and the fit's block and its fast engine come and go before
-    // the sparse engine runs.
+    // a neighbour) and the overview's block counts. The streamed scores are read by the significance fit and the
+    // confidences only, through a cache held to their tiles (streamed_cache_tiles); the fit's block and its fast
+    // engine come and go before the sparse engine runs.
     MapMemoryInput fit_block = in;
     fit_block.images = n <= 2 * kFitBlock ? n : kFitBlock;
     fit_block.fast_engine = true;
     const std::size_t fit = sum(
         {mul(mul(fit_block.images, fit_block.images), 4), engine_bytes(fit_block), traceback_window(fit_block.images)});
-    const std::size_t fit_cache =
-        mul(fit_cache_tiles(n, std::max<std::size_t>(4, mul(3, tiles_per_band))), kStreamTile * kStreamTile * 4);
+    const std::size_t fit_cache = mul(streamed_cache_tiles(n, true), kStreamTile * kStreamTile * 4);
     const std::size_t sparse =
         sum({mul(descriptors, 2), fit_cache, mul(mul(n, in.neighbours), 12),
              std::max(fit, sparse_engine_bytes(n, in.neighbours)), mul(kPictureSide * kPictureSide, 8)});

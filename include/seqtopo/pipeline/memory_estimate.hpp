@@ -69,6 +69,11 @@ struct MapMemoryEstimate {
 // Pure: sizes in, bytes per stage out.
 MapMemoryEstimate estimate_map_memory(const MapMemoryInput& input);
 
+// The streamed similarity's tile cache [tiles] (scale::StreamingConfig::cache_tiles; 0: its own default, three
+// bands of tiles, which the dense streamed engine reads). The sparse mode reads only the significance fit's tiles
+// and the bands of the confidences' posteriors (a few tiles at a time), so its cache is held to what they need.
+std::size_t streamed_cache_tiles(std::size_t images, bool sparse);
+
 // The sizes of `request` with `images` images (reads the .npy header or the first image where needed).
 MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::size_t images);
 
