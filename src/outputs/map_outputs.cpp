@@ -7,6 +7,7 @@
 #include <future>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string_view>
 
 #include "figures.hpp"
 #include "report_data.hpp"
@@ -112,10 +113,14 @@ std::string unlaid_topology_svg(const mapping::TopologicalMap& map, std::size_t 
 
 // Runs Graphviz on a staged .dot file to make the .svg beside it. Edges are straight: neato's spline
 // routing takes minutes on a few hundred tangled places. The layout is bounded in time, so a map is never
-// held up by its picture: neato, else sfdp, which is fast at any size.
-void render_svg(const std::filesystem::path& dot_file, const std::filesystem::path& svg_file) {
+// held up by its picture: neato, else sfdp, which is fast at any size; sfdp alone past kNeatoNodes drawn nodes,
+// where it draws as well in a fraction of the time (2,627 nodes: 2 s against neato's 14 s).
+constexpr std::size_t kNeatoNodes = 1000;
+
+void render_svg(const std::filesystem::path& dot_file, const std::filesystem::path& svg_file, std::size_t nodes) {
   const std::string files = " -Tsvg '" + dot_file.string() + "' -o '" + svg_file.string() + "' 2>/dev/null";
   for (const char* layout : {"timeout 60 dot -Kneato", "timeout 120 dot -Ksfdp"}) {
+    if (nodes > kNeatoNodes && std::string_view(layout).find("neato") != std::string_view::npos) continue;
     if (std::system((std::string(layout) + files).c_str()) == 0) return;
   }
   throw InputError("topology.svg", "Graphviz 'dot' failed or is missing (scripts/setup.sh installs graphviz)");
@@ -219,7 +224,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
   const TopologyDrawing topology = topology_dot(map);
   out.write("topology.dot", topology.dot);
   if (topology.nodes <= kMaxLaidOutNodes) {
-    render_svg(out.staged("topology.dot"), out.staged("topology.svg"));
+    render_svg(out.staged("topology.dot"), out.staged("topology.svg"), topology.nodes);
   } else {
     out.write("topology.svg", unlaid_topology_svg(map, topology.nodes));
   }
