@@ -111,7 +111,6 @@ std::vector<SequenceMatch> seqslam_matches(const SimilarityMatrix& similarity, c
     throw std::invalid_argument("velocity_steps must be at most " + std::to_string(Lines::max_velocities));
   }
   if (config.self && !similarity.square()) throw std::invalid_argument("self mode needs a square similarity matrix");
-  const SimilarityMatrix e = similarity::enhance_contrast(similarity, config.contrast_window);
   std::vector<float> velocities;
   for (std::size_t v = 0; v < config.velocity_steps; ++v) {
     const float t =
@@ -133,10 +132,26 @@ std::vector<SequenceMatch> seqslam_matches(const SimilarityMatrix& similarity, c
   }
   std::vector<SequenceMatch> out(similarity.rows);
   const int threads = config.threads == 0 ? omp_get_max_threads() : static_cast<int>(config.threads);
+  // In self mode the lines ending at q read columns j - offset <= j <= q - min_separation of rows q - k, k < len:
+  // row r is read only before column r + len - min_separation, so only that prefix is enhanced (the same bits).
+  const SimilarityMatrix* e = &similarity;
+  SimilarityMatrix enhanced;
+  if (config.contrast_window > 0) {
+    enhanced = SimilarityMatrix(similarity.rows, similarity.cols);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+    for (long ri = 0; ri < static_cast<long>(similarity.rows); ++ri) {
+      const auto r = static_cast<std::size_t>(ri);
+      std::size_t end = similarity.cols;
+      if (config.self) end = std::min(end, r + len > config.min_separation ? r + len - config.min_separation : 0);
+      similarity::enhance_row_prefix(similarity.row(r).data(), similarity.cols, config.contrast_window, end,
+                                     enhanced.row(r).data());
+    }
+    e = &enhanced;
+  }
   const Lines lines{offset, first, len, config.self, config.min_separation};
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
   for (long qi = 0; qi < static_cast<long>(similarity.rows); ++qi) {
-    out[static_cast<std::size_t>(qi)] = best_line(e, static_cast<std::size_t>(qi), lines);
+    out[static_cast<std::size_t>(qi)] = best_line(*e, static_cast<std::size_t>(qi), lines);
   }
   return out;
 }

@@ -68,17 +68,23 @@ namespace {
 }  // namespace
 
 void enhance_row(const float* row, std::size_t cols, std::size_t window, float* out) {
+  enhance_row_prefix(row, cols, window, cols, out);
+}
+
+void enhance_row_prefix(const float* row, std::size_t cols, std::size_t window, std::size_t end, float* out) {
+  if (end > cols) throw std::invalid_argument("enhance_row_prefix: end past the row");
   const std::size_t w = std::min(window, cols);  // a wider window is the whole row
-  std::vector<double> sum(cols), sum2(cols);
+  std::vector<double> sum(end), sum2(end);
   // Cells whose window is not clipped (c in [w, cols - w)) have windows of 2w + 1 cells starting one apart:
-  // one call sums them all. The clipped cells at both ends take one call each.
-  std::size_t in_lo = w, in_hi = cols > w ? cols - w : 0;
+  // one call sums them all. The clipped cells at both ends take one call each. Each cell's sums are its own
+  // terms in order, so stopping at `end` changes no bit of the cells before it.
+  std::size_t in_lo = w, in_hi = std::min(end, cols > w ? cols - w : 0);
   if (in_hi > in_lo) {
     window_sums(sum.data() + in_lo, sum2.data() + in_lo, row + (in_lo - w), 1, 2 * w + 1, in_hi - in_lo);
   } else {
     in_lo = in_hi = 0;
   }
-  for (std::size_t c = 0; c < cols; ++c) {
+  for (std::size_t c = 0; c < end; ++c) {
     if (c == in_lo && in_hi > in_lo) {
       scores(row, sum.data(), sum2.data(), static_cast<double>(2 * w + 1), in_lo, in_hi, out);
       c = in_hi - 1;

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "seqtopo/baseline/seqslam.hpp"
+#include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::baseline {
 namespace {
@@ -70,6 +71,32 @@ TEST(SeqSlam, EqualsBruteForceDefinition) {
         EXPECT_EQ(got[q].match, best_j);
         EXPECT_EQ(got[q].score, best);  // the same sums in the same order
       }
+    }
+  }
+}
+
+// Self mode enhances only the part of each row its lines read: the matches are those on the whole enhanced matrix.
+TEST(SeqSlam, SelfModeMatchesOnTheWholeEnhancedMatrix) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0F, 1.0F);
+  for (int round = 0; round < 12; ++round) {
+    const std::size_t n = 20 + rng() % 70;
+    SimilarityMatrix s(n, n);
+    for (auto& v : s.values) v = u(rng);
+    SeqSlamConfig config;
+    config.self = true;
+    config.min_separation = 2 + static_cast<std::size_t>(round) * 3;  // below, at and above the sequence length
+    config.sequence_length = 3 + static_cast<std::size_t>(round) % 8;
+    config.contrast_window = 1 + static_cast<std::size_t>(round) % 6;
+    const auto got = seqslam_matches(s, config);
+    SeqSlamConfig on_enhanced = config;
+    on_enhanced.contrast_window = 0;
+    const auto expected = seqslam_matches(similarity::enhance_contrast(s, config.contrast_window), on_enhanced);
+    ASSERT_EQ(got.size(), expected.size());
+    for (std::size_t q = 0; q < n; ++q) {
+      ASSERT_EQ(got[q].valid, expected[q].valid) << round << ": " << q;
+      EXPECT_EQ(got[q].match, expected[q].match) << round << ": " << q;
+      EXPECT_EQ(got[q].score, expected[q].score) << round << ": " << q;
     }
   }
 }

@@ -68,6 +68,24 @@ TEST(ContrastEnhancement, BitsOfTheFixedArithmetic) {
   }
 }
 
+TEST(ContrastEnhancement, PrefixIsTheRowsFirstCellsBitForBit) {
+  for (unsigned seed = 0; seed < 10; ++seed) {
+    const std::size_t cols = 9 + 11 * seed, window = 1 + (seed * 5) % 17;
+    const auto s = random_matrix(1, cols, 300 + seed);
+    std::vector<float> whole(cols);
+    enhance_row(s.values.data(), cols, window, whole.data());
+    for (std::size_t end = 0; end <= cols; ++end) {
+      std::vector<float> part(cols, -7.0F);
+      enhance_row_prefix(s.values.data(), cols, window, end, part.data());
+      for (std::size_t c = 0; c < cols; ++c) {
+        ASSERT_EQ(part[c], c < end ? whole[c] : -7.0F) << seed << ": end " << end << ", cell " << c;
+      }
+    }
+  }
+  std::vector<float> out(4);
+  EXPECT_THROW(enhance_row_prefix(out.data(), 4, 1, 5, out.data()), std::invalid_argument);
+}
+
 TEST(ContrastEnhancement, WindowSumsDownColumnsInOrder) {
   const auto s = random_matrix(9, 37, 5);  // 37 columns: two blocks of 16 and a tail
   std::vector<double> sum(37), sum2(37);

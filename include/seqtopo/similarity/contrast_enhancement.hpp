@@ -30,6 +30,10 @@ void window_sums(double* sum, double* sum2, const float* first, std::size_t stri
 // uses the whole row for every cell. `out` may not alias `row`.
 void enhance_row(const float* row, std::size_t cols, std::size_t window, float* out);
 
+// out[c] of enhance_row for c < end only (end <= cols), the same bits, the rest of out untouched: for readers
+// of part of a row (the SeqSLAM-style baseline's self mode reads only frames at least min_separation back).
+void enhance_row_prefix(const float* row, std::size_t cols, std::size_t window, std::size_t end, float* out);
+
 // Every row enhanced (enhance_row). window = 0 returns the matrix unchanged.
 SimilarityMatrix enhance_contrast(const SimilarityMatrix& similarity, std::size_t window);
 
