@@ -106,7 +106,7 @@ Settings resolve_settings(const MapOptions& o) {
     if (*o.odometry_gate == "none") {
       s.map.odometry_gate.reset();
     } else {
-      // BASE,DRIFT[,WINDOW]
+      // BASE,DRIFT[,WINDOW[,TURN]]
       std::vector<std::string> fields;
       for (std::size_t from = 0;;) {
         const auto comma = o.odometry_gate->find(',', from);
@@ -114,16 +114,17 @@ Settings resolve_settings(const MapOptions& o) {
         if (comma == std::string::npos) break;
         from = comma + 1;
       }
-      if (fields.size() < 2 || fields.size() > 3) {
+      if (fields.size() < 2 || fields.size() > 4) {
         throw InputError("--odometry-gate",
-                         "expected BASE,DRIFT[,WINDOW] (metres, metres per metre travelled, metres; all >= 0) or "
-                         "none, got '" +
+                         "expected BASE,DRIFT[,WINDOW[,TURN]] (metres, metres per metre travelled, metres, radians "
+                         "per metre travelled; all >= 0) or none, got '" +
                              *o.odometry_gate + "'");
       }
       mapping::OdometryGate gate;
       gate.base = parse_number<double>("--odometry-gate", fields[0], kNonNegative);
       gate.drift = parse_number<double>("--odometry-gate", fields[1], kNonNegative);
-      if (fields.size() == 3) gate.trim_window = parse_number<double>("--odometry-gate", fields[2], kNonNegative);
+      if (fields.size() >= 3) gate.trim_window = parse_number<double>("--odometry-gate", fields[2], kNonNegative);
+      if (fields.size() == 4) gate.turn = parse_number<double>("--odometry-gate", fields[3], kNonNegative);
       s.map.odometry_gate = gate;
     }
   }
@@ -341,12 +342,13 @@ const RegisterCommand registered{
        app.add_option(
            "--odometry-gate", o->odometry_gate,
            fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
-                       "(metres travelled between them) apart, and trim an alignment's ends where the shapes of its "
-                       "two traversals over WINDOW metres part by more than 3 times their scatter in its middle "
-                       "(1 m to BASE; WINDOW 0: no trimming), as "
-                       "BASE,DRIFT[,WINDOW], or none (default {},{},{})",
-                       mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift,
-                       mapping::OdometryGate{}.trim_window));
+                       "(metres travelled between them) apart, or whose two traversals odometry turns against each "
+                       "other by more than a right angle + TURN * (metres travelled between them), and trim an "
+                       "alignment's ends where the shapes of its two traversals over WINDOW metres part by more "
+                       "than 3 times their scatter in its middle (1 m to BASE; WINDOW 0: no trimming), as "
+                       "BASE,DRIFT[,WINDOW[,TURN]], or none (default {},{},{},{})",
+                       mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift, mapping::OdometryGate{}.trim_window,
+                       mapping::OdometryGate{}.turn));
        add_number_or(app, "--e-value", o->e_value, "none", o->no_e_value, kPositive,
                      fmt::format("a revisit's E-value (alignments this good expected by chance in this sequence) is "
                                  "at most this, or none for the fixed --threshold (default {}, paper preset none)",

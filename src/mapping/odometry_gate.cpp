@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -11,9 +12,9 @@ namespace {
 void check_gate(const OdometryGate& gate) {
   const auto bad = [](double v) { return std::isnan(v) || v < 0; };
   if (bad(gate.base) || bad(gate.drift) || bad(gate.min_consistent) || gate.min_consistent > 1 ||
-      bad(gate.trim_window) || bad(gate.trim_floor)) {
+      bad(gate.trim_window) || bad(gate.trim_floor) || bad(gate.turn)) {
     throw std::invalid_argument(
-        "odometry gate: base, drift, trim_window and trim_floor must be >= 0, min_consistent in [0, 1]");
+        "odometry gate: base, drift, trim_window, trim_floor and turn must be >= 0, min_consistent in [0, 1]");
   }
 }
 
@@ -40,6 +41,7 @@ std::vector<double> travelled_distance(std::span<const Pose2> odometry) {
 struct Rigid {
   double c = 1, s = 0, tx = 0, ty = 0;
   bool defined = false;  // false: the j-side points coincide, no rotation is determined
+  double spread = 0;     // rms distance of the j-side points from their centre
   double residual(const Pose2& a, const Pose2& b) const {
     return std::hypot(a.x - (c * b.x - s * b.y + tx), a.y - (s * b.x + c * b.y + ty));
   }
@@ -64,6 +66,7 @@ Rigid superpose(const align::LocalAlignment& alignment, std::span<const Pose2> o
     spread += px * px + py * py;
   }
   Rigid r;
+  r.spread = std::sqrt(spread / count);
   // Below a centimetre of spread the direction of the j-side is noise.
   r.defined = spread > 1e-4 * count && std::hypot(dot, cross) > 0;
   if (r.defined) {
@@ -125,6 +128,25 @@ std::pair<double, double> apart_and_allowed(std::span<const Pose2> odometry, con
           gate.base + gate.drift * std::abs(travelled[i] - travelled[j])};
 }
 
+namespace {
+
+// Whether the rotation superposing the alignment's two traversals stays within a right angle plus the heading
+// drift over the median travel between its pairs (the header); true when the stretch is too short to tell.
+bool turns_consistently(const align::LocalAlignment& alignment, std::span<const Pose2> odometry,
+                        const std::vector<double>& travelled, const OdometryGate& gate) {
+  constexpr double kLeastSpread = 1.0;  // [m]
+  const Rigid whole = superpose(alignment, odometry, 0, alignment.pairs.size() - 1);
+  if (!whole.defined || whole.spread < kLeastSpread) return true;
+  std::vector<double> between;
+  between.reserve(alignment.pairs.size());
+  for (const auto& [i, j] : alignment.pairs) between.push_back(std::abs(travelled[i] - travelled[j]));
+  const auto mid = between.begin() + static_cast<std::ptrdiff_t>(between.size() / 2);
+  std::nth_element(between.begin(), mid, between.end());
+  return std::abs(std::atan2(whole.s, whole.c)) <= std::numbers::pi / 2 + gate.turn * *mid;
+}
+
+}  // namespace
+
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
                                            std::span<const Pose2> odometry, const OdometryGate& gate) {
   check_gate(gate);
@@ -139,7 +161,9 @@ std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignme
       consistent += apart <= allowed;
     }
     out.push_back(!alignment.pairs.empty() &&
-                  static_cast<double>(consistent) >= gate.min_consistent * static_cast<double>(alignment.pairs.size()));
+                  static_cast<double>(consistent) >=
+                      gate.min_consistent * static_cast<double>(alignment.pairs.size()) &&
+                  turns_consistently(alignment, odometry, travelled, gate));
   }
   return out;
 }

@@ -147,11 +147,73 @@ TEST(OdometryGate, KeepsParallelZigZagAndReversePasses) {
   EXPECT_EQ(trim_to_odometry({pairs_of(diagonal(0, 70))}, still, gate).front().pairs, diagonal(0, 70));
 }
 
+// Two passes of a 20 m stretch (41 images at 0.5 m): the first east along y = 0 (images 0..40), the second
+// (images 41..81) the same positions turned by `turn` about the stretch's middle (10, 0), as odometry whose
+// heading drifted by that much between them.
+std::vector<Pose2> second_pass_turned(double turn) {
+  std::vector<Pose2> poses;
+  for (int k = 0; k <= 40; ++k) poses.push_back({0.5 * k, 0, 0});
+  for (int k = 0; k <= 40; ++k) {
+    const double x = 0.5 * k - 10;
+    poses.push_back({10 + std::cos(turn) * x, std::sin(turn) * x, turn});
+  }
+  return poses;
+}
+
+TEST(OdometryGate, DropsALookAlikeWhoseTraversalsMoveAgainstTheAlignment) {
+  // Two identical corridors side by side, 6 m apart: the first walked east, the second west. The second's image
+  // at x looks like the first's at 20 - x (the corridor turned round), so a forward alignment pairs images that
+  // cross at mid-corridor. A distance gate loose enough for 6 m passes it; the traversals' rotation does not.
+  std::vector<Pose2> odometry;
+  for (int k = 0; k <= 40; ++k) odometry.push_back({0.5 * k, 0, 0});
+  for (int k = 0; k <= 40; ++k) odometry.push_back({20 - 0.5 * k, 6, 3.14159});
+  std::vector<std::pair<std::size_t, std::size_t>> look_alike, beside;
+  for (std::size_t k = 0; k <= 40; ++k) look_alike.emplace_back(41 + k, k);
+  // Paired with the image beside it (a reverse alignment of parallel lanes): the traversals turn by nothing.
+  for (std::size_t k = 0; k <= 40; ++k) beside.emplace_back(41 + k, 40 - k);
+  const OdometryGate loose{.base = 25};
+  EXPECT_EQ(consistent_with_odometry({pairs_of(look_alike), pairs_of(beside)}, odometry, loose),
+            (std::vector<bool>{false, true}));
+  // Without the rotation allowance's limit (turn large) both pass; the distance rule alone cannot tell.
+  EXPECT_EQ(consistent_with_odometry({pairs_of(look_alike), pairs_of(beside)}, odometry, {.base = 25, .turn = 1}),
+            (std::vector<bool>{true, true}));
+  // Three pairs 1 m long (rms 0.41 m about their centre): too short a stretch to read a direction from.
+  EXPECT_TRUE(consistent_with_odometry({pairs_of({{60, 20}, {61, 21}, {62, 22}})}, odometry, loose)[0]);
+}
+
+TEST(OdometryGate, TurnAllowanceIsARightAnglePlusTheHeadingDriftOverTheTravel) {
+  const std::vector<std::pair<std::size_t, std::size_t>> revisit = [] {
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (std::size_t k = 0; k <= 40; ++k) pairs.emplace_back(41 + k, k);
+    return pairs;
+  }();
+  const OdometryGate gate{.base = 100, .turn = 0.01};
+  for (const double turn : {0.3, 1.0, 1.5, 1.8, 2.0, 2.2, 2.6, 3.0}) {
+    const auto odometry = second_pass_turned(turn);
+    // Brute force from the header's rule: the median over the pairs of the path length between them.
+    std::vector<double> between;
+    for (auto [i, j] : revisit) {
+      double travelled = 0;
+      for (std::size_t k = j + 1; k <= i; ++k) {
+        travelled += std::hypot(odometry[k].x - odometry[k - 1].x, odometry[k].y - odometry[k - 1].y);
+      }
+      between.push_back(travelled);
+    }
+    std::nth_element(between.begin(), between.begin() + 20, between.end());
+    const bool expected = turn <= 3.14159265358979 / 2 + 0.01 * between[20];
+    EXPECT_EQ(consistent_with_odometry({pairs_of(revisit)}, odometry, gate)[0], expected) << turn;
+  }
+  // The allowance around this geometry (travel about 20-40 m) lies between 1.8 and 2.2 rad: both sides are tested.
+  EXPECT_TRUE(consistent_with_odometry({pairs_of(revisit)}, second_pass_turned(1.8), gate)[0]);
+  EXPECT_FALSE(consistent_with_odometry({pairs_of(revisit)}, second_pass_turned(2.2), gate)[0]);
+}
+
 TEST(OdometryGate, RejectsBadInput) {
   const auto odometry = out_and_back();
   EXPECT_THROW(consistent_with_odometry({pairs_of({{90, 1}})}, odometry), std::invalid_argument);
   EXPECT_THROW(consistent_with_odometry({}, odometry, {.base = -1}), std::invalid_argument);
   EXPECT_THROW(consistent_with_odometry({}, odometry, {.min_consistent = 1.5}), std::invalid_argument);
+  EXPECT_THROW(consistent_with_odometry({}, odometry, {.turn = -0.1}), std::invalid_argument);
   EXPECT_FALSE(consistent_with_odometry({pairs_of({})}, odometry)[0]);
   EXPECT_THROW(trim_to_odometry({pairs_of({{90, 1}, {91, 2}, {92, 3}})}, odometry), std::invalid_argument);
   EXPECT_THROW(trim_to_odometry({pairs_of({})}, odometry, {.trim_window = -1}), std::invalid_argument);

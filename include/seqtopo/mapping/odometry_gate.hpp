@@ -9,6 +9,16 @@
 //     |p_i - p_j| <= base + drift * (distance travelled between j and i)   (odometry positions p)
 // and an alignment is kept when at least `min_consistent` of its pairs are.
 //
+// Distance alone misses look-alikes that the robot passes close by: two identical corridors side by side, or
+// a corridor walked out and back whose far end looks like its near end. Such an alignment pairs two
+// traversals that move *against* the alignment's direction (a forward alignment of two passes going opposite
+// ways, a reverse one of two passes going the same way), and at mid-corridor its images are close. The rigid
+// motion superposing the alignment's two traversals (below) tells: for a revisit it turns by the heading
+// odometry drifted between them, for such a look-alike by about half a turn. An alignment is also
+// inconsistent when that rotation exceeds a right angle (a revisit may cross its first pass at any angle)
+// plus `turn` x (the median metres travelled between its pairs). The rotation is only read when the paired
+// stretch spans at least 1 m (rms about its centre); a shorter one's direction is a few frames' jitter.
+//
 // Where two paths share a stretch and then part at a junction, the images just past the junction still
 // look alike from both arms (they see the junction), so a local alignment runs on a few metres past it and
 // merges places of different arms. Odometry's shape over a few metres is nearly exact, so the kept
@@ -34,10 +44,12 @@ struct OdometryGate {
   double min_consistent = 0.5;  // fraction of an alignment's pairs that must be consistent
   double trim_window = 10.0;    // [m] travel over which the two traversals' shapes are compared (0: no trimming)
   double trim_floor = 1.0;      // [m] the least tolerance of the trimming (at most base)
+  double turn = 0.005;          // [rad per m travelled] heading drift allowed beyond a right angle (see above)
 };
 
-// One flag per alignment: true = consistent with the odometry. Throws std::invalid_argument when a pair
-// indexes past the odometry or a setting is negative / NaN (min_consistent must be in [0, 1]).
+// One flag per alignment: true = consistent with the odometry (distance and rotation, above). Throws
+// std::invalid_argument when a pair indexes past the odometry or a setting is negative / NaN (min_consistent
+// must be in [0, 1]).
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
                                            std::span<const Pose2> odometry, const OdometryGate& gate = {});
 
