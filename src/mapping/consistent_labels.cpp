@@ -8,6 +8,11 @@
 namespace seqtopo::mapping {
 namespace {
 
+// The images first..last of one traversal (inclusive).
+struct Stretch {
+  std::size_t first = 0, last = 0;
+};
+
 // Places as disjoint sets whose members are kept sorted, so a merge can be checked against the passes.
 class Places {
  public:
@@ -93,19 +98,37 @@ ConsistentLabelling label_consistently(std::size_t images, const std::vector<ali
   Places places(images);
   ConsistentLabelling out;
   std::vector<std::vector<bool>> accepted(alignments.size());
+  // Per image, the stretches of the other traversal that stronger alignments already matched it into.
+  std::vector<std::vector<Stretch>> matched_into(images);
+  const auto already_placed = [&](std::size_t x, std::size_t y) {
+    return std::any_of(matched_into[x].begin(), matched_into[x].end(),
+                       [y](const Stretch& s) { return s.first <= y && y <= s.last; });
+  };
   for (std::size_t k : order) {
     const auto& a = alignments[k];
     accepted[k].assign(a.pairs.size(), false);
     for (std::size_t p = 0; p < a.pairs.size(); ++p) {
       const auto [i, j] = a.pairs[p];
       if (places.find(i) != places.find(j) &&
-          (places.holds_pass_of(i, j, config.min_separation) || places.holds_pass_of(j, i, config.min_separation))) {
+          (already_placed(i, j) || already_placed(j, i) || places.holds_pass_of(i, j, config.min_separation) ||
+           places.holds_pass_of(j, i, config.min_separation))) {
         ++out.redundant;
       } else if (places.merge(i, j, config.min_separation, config.max_visit_span)) {
         accepted[k][p] = true;
       } else {
         ++out.refused;
       }
+    }
+    Stretch is{images, 0}, js{images, 0};
+    for (std::size_t p = 0; p < a.pairs.size(); ++p) {
+      if (!accepted[k][p]) continue;
+      is = {std::min(is.first, a.pairs[p].first), std::max(is.last, a.pairs[p].first)};
+      js = {std::min(js.first, a.pairs[p].second), std::max(js.last, a.pairs[p].second)};
+    }
+    for (std::size_t p = 0; p < a.pairs.size(); ++p) {
+      if (!accepted[k][p]) continue;
+      matched_into[a.pairs[p].first].push_back(js);
+      matched_into[a.pairs[p].second].push_back(is);
     }
   }
   // Images skipped inside an accepted stretch of an alignment join the place of the image before them. An image

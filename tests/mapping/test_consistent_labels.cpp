@@ -10,6 +10,7 @@
 
 #include "seqtopo/mapping/consistent_labels.hpp"
 #include "seqtopo/mapping/place_labels.hpp"
+#include "seqtopo/mapping/topological_map.hpp"
 
 namespace seqtopo::mapping {
 namespace {
@@ -121,6 +122,79 @@ TEST(ConsistentLabels, AHalfSpeedPassFillsItsGapsWithoutBubbles) {
   const auto strict = label(80, {a}, 10, 0);
   EXPECT_NE(strict.labels[41], strict.labels[0]);
   EXPECT_EQ(strict.accepted.pairs.size(), 20U);  // a frame refused by its place is no loop closure
+}
+
+std::size_t longest_stretch(const std::vector<PlaceLabel>& labels, std::size_t min_separation);
+
+// The topological map of a labelling, as map_builder makes it (graph edges and junctions).
+TopologicalMap graph_of(const ConsistentLabelling& r, const std::vector<LocalAlignment>& alignments) {
+  return build_topology(r.labels, alignments, r.accepted);
+}
+
+// Edges (p, q), p < q, of a path through `places` in order.
+std::vector<std::pair<PlaceLabel, PlaceLabel>> path_edges(std::vector<PlaceLabel> places) {
+  std::vector<std::pair<PlaceLabel, PlaceLabel>> edges;
+  for (std::size_t k = 1; k < places.size(); ++k) {
+    edges.emplace_back(std::min(places[k - 1], places[k]), std::max(places[k - 1], places[k]));
+  }
+  return edges;
+}
+
+std::vector<std::pair<PlaceLabel, PlaceLabel>> sorted_unique(std::vector<std::pair<PlaceLabel, PlaceLabel>> edges) {
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+TEST(ConsistentLabels, AZigZagPassHoldsEachPlaceForAFewFramesAndClosesOneCycle) {
+  // A loop of 40 images (places 0..39), then a second pass over places 0..19 that zig-zags: it holds each place
+  // for one to three frames, so its alignment pairs a frame here and there and skips the rest by gaps.
+  const std::vector<std::size_t> frames_per_place = {1, 2, 3, 1, 2, 2, 3, 1, 1, 2, 3, 2, 1, 2, 2, 3, 1, 2, 2, 1};
+  LocalAlignment a;
+  a.score = 10;
+  std::vector<std::size_t> place_of_frame;  // the true place of each frame of the second pass
+  for (std::size_t p = 0; p < frames_per_place.size(); ++p) {
+    a.pairs.emplace_back(40 + place_of_frame.size(), p);  // the first frame at each place is aligned
+    for (std::size_t f = 0; f < frames_per_place[p]; ++f) place_of_frame.push_back(p);
+  }
+  const std::size_t n = 40 + place_of_frame.size();
+  a.a_begin = 40;
+  a.a_end = n;  // the last frame is the last pair
+  a.b_begin = 0;
+  a.b_end = 20;
+  const std::vector<LocalAlignment> alignments = {a};
+  const auto r = label(n, alignments, 10, 3);
+  for (std::size_t f = 0; f < place_of_frame.size(); ++f) {
+    EXPECT_EQ(r.labels[40 + f], r.labels[place_of_frame[f]]) << "frame " << 40 + f;
+  }
+  EXPECT_EQ(count_places(r.labels), 40U);
+  // The graph: the loop 0..39 closed by the second pass's return to place 0; the pass ends at place 19, where
+  // the sequence stops (no junction: the path does not leave the old one, it ends).
+  std::vector<PlaceLabel> loop;
+  for (std::size_t k = 0; k < 40; ++k) loop.push_back(r.labels[k]);
+  loop.push_back(r.labels[0]);
+  const auto map = graph_of(r, alignments);
+  EXPECT_EQ(map.edges, sorted_unique(path_edges(loop)));
+  EXPECT_TRUE(map.junctions.empty());
+}
+
+TEST(ConsistentLabels, TwoCrossingAlignmentsKeepTheStrongerOnesPlaces) {
+  // Images 40..59 revisit 0..19 forward (the true revisit, stronger); a weaker reverse alignment of the same
+  // images crosses it in the middle of the matrix (49/50 against 10/9), as a corridor that looks alike both
+  // ways gives. Then 60..69 go somewhere new.
+  const std::vector<LocalAlignment> alignments = {run(40, 0, 20, 10), run(40, 0, 20, 6, Direction::reverse)};
+  const auto r = label(70, alignments, 10);
+  for (std::size_t k = 0; k < 20; ++k) EXPECT_EQ(r.labels[40 + k], r.labels[k]) << k;
+  EXPECT_TRUE(r.accepted.kept[0]);
+  EXPECT_FALSE(r.accepted.kept[1]) << "the crossing alignment would fold the first pass onto itself";
+  // Its pairs near the crossing join neighbouring images at most (a place may hold 2 frames of one pass).
+  EXPECT_LE(longest_stretch(r.labels, 10), 2U);
+  // The graph: the path 0..39, back to place 0 and along 0..19 again, then off to 60..69 from place 19.
+  std::vector<PlaceLabel> walk;
+  for (std::size_t k = 0; k < 70; ++k) walk.push_back(r.labels[k]);
+  const auto map = graph_of(r, alignments);
+  EXPECT_EQ(map.edges, sorted_unique(path_edges(walk)));
+  EXPECT_EQ(map.junctions, (std::vector<PlaceLabel>{r.labels[19]})) << "where the second pass leaves the first";
 }
 
 TEST(ConsistentLabels, AShadowBesideARevisitAddsNothing) {

@@ -12,7 +12,11 @@
 // depend on the order the alignments are given in), each alignment's pairs in increasing i. A proposal (i, j)
 // is redundant when i's place already holds another image of j's pass (or j's place one of i's pass): that
 // pass has matched there already, and the proposal is a shadow of the match (the diagonal a few frames
-// beside a revisit, which a local aligner also reports). Otherwise it is accepted when the merged place
+// beside a revisit, which a local aligner also reports). It is redundant too when a stronger alignment already
+// matched i into the stretch of images that j lies in (the first..last image of that alignment's accepted
+// pairs on j's side), or j into i's: that alignment has said where in the stretch i lies, and a weaker one that
+// crosses it (a reverse alignment of a forward revisit, say) would fold the stretch onto itself at places more
+// than min_separation apart, which the pass rule cannot see. Otherwise it is accepted when the merged place
 // still holds no pass longer than max_visit_span frames, else refused.
 //
 // The paper's three inconsistent alignments (1..5 = 11..15, 11..15 = 21..25, 1..5 = 22..26) thus give the
