@@ -1,5 +1,6 @@
 """pip install . : builds the Python module seqtopo._core and the seqtopo command with CMake and packages them
-with python/seqtopo (the command as seqtopo/bin/seqtopo, run by the `seqtopo` console entry point).
+with python/seqtopo (the command as seqtopo/bin/seqtopo and the program it starts, seqtopo/bin/seqtopo-main, run by
+the `seqtopo` console entry point).
 
 CMake configures the whole project with SEQTOPO_BUILD_PYTHON=ON (tests and benchmarks off) for the
 interpreter running this script and builds the targets seqtopo_python and seqtopo. While it builds, the stages
@@ -69,10 +70,12 @@ class CMakeBuild(build_ext):
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(built, target)
-        # The command-line tool, run by the `seqtopo` console entry point (seqtopo/_cli.py).
-        tool = os.path.join(os.path.dirname(target), "bin", "seqtopo")
-        os.makedirs(os.path.dirname(tool), exist_ok=True)
-        shutil.copy2(os.path.join(build_dir, "src", "seqtopo"), tool)
+        # The command-line tool, run by the `seqtopo` console entry point (seqtopo/_cli.py): the launcher and the
+        # program it starts, side by side.
+        tools = os.path.join(os.path.dirname(target), "bin")
+        os.makedirs(tools, exist_ok=True)
+        for name in ("seqtopo", "seqtopo-main"):
+            shutil.copy2(os.path.join(build_dir, "src", name), os.path.join(tools, name))
         progress.done("seqtopo._core and the seqtopo command")
 
 

@@ -7,12 +7,10 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
-#include <string_view>
 #include <thread>
 
 #include "command_registry.hpp"
@@ -156,31 +154,6 @@ void watch_stop_signals() {
   seqtopo::io::remove_staged_outputs_and_exit(128 + byte);
 }
 
-// The commands that hold N x N matrices fault them in 4 KiB pages unless malloc asks the kernel for transparent
-// huge pages (madvise), and glibc does that only when GLIBC_TUNABLES says so at start-up. Such a command
-// therefore runs itself again, once, with glibc.malloc.hugetlb=1 added: on the 3,600 Nordland frames
-// `seqtopo map` took 195,000 page faults and 3.9 s, now 31,000 and 2.2 s. A GLIBC_TUNABLES that already names
-// glibc.malloc.hugetlb (=0 turns this off) is left as it is, and so is everything when the exec fails.
-void run_with_huge_pages(int argc, char** argv) {
-#if !defined(__SANITIZE_ADDRESS__)
-  static constexpr std::string_view heavy[] = {"map", "localize", "similarity", "bench"};
-  if (argc < 2 || std::find(std::begin(heavy), std::end(heavy), std::string_view(argv[1])) == std::end(heavy)) return;
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  const std::string before = tunables == nullptr ? "" : tunables;
-  if (before.find("glibc.malloc.hugetlb") != std::string::npos) return;
-  const std::string after = (before.empty() ? "" : before + ":") + "glibc.malloc.hugetlb=1";
-  if (::setenv("GLIBC_TUNABLES", after.c_str(), 1) != 0) return;
-  ::execv("/proc/self/exe", argv);
-  if (tunables == nullptr) {
-    ::unsetenv("GLIBC_TUNABLES");
-  } else {
-    ::setenv("GLIBC_TUNABLES", before.c_str(), 1);
-  }
-#else
-  (void)argc, (void)argv;  // AddressSanitizer's allocator reads no glibc tunables
-#endif
-}
-
 void install_stop_signals() {
   if (::pipe2(signal_pipe, O_CLOEXEC) != 0) return;  // no clean stop, the default ones
   bool any = false;
@@ -208,7 +181,6 @@ int finish(int status) {
 }  // namespace seqtopo::cli
 
 int main(int argc, char** argv) {
-  seqtopo::cli::run_with_huge_pages(argc, argv);
   seqtopo::cli::install_stop_signals();
   // One line on stderr and the exit status (1: bad input or a failure, 2: a bad command line).
   const auto fail = [](const std::string& message, int status) {

@@ -268,7 +268,7 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   if (request.streaming) descriptors.resize(1);
   std::size_t pixels = image::JointHistogramConfig::bins;
   if (kind == InputKind::images) {
-    const auto files = list_images(request.input.path);
+    const auto files = list_input_images(request.input).files;
     if (!files.empty()) {
       try {
         const RgbImage first = image::load_image(files.front());

@@ -220,6 +220,7 @@ ImageListing list_images(const fs::path& folder, const ListOptions& options) {
 std::vector<fs::path> list_images(const fs::path& folder) { return list_images(folder, ListOptions{}).files; }
 
 ImageListing list_input_images(const SequenceInput& input) {
+  if (input.listing) return *input.listing;
   return list_images(input.path, ListOptions{.recursive = input.recursive, .skip_unreadable = input.skip_unreadable});
 }
 

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
@@ -75,7 +76,10 @@ PreparedSession prepare_session(const SessionSource& source) {
 
   // The number of frames after `every`, where it is known without decoding.
   std::optional<std::size_t> count;
-  if (kind == InputKind::images) count = list_input_images(input).files.size();
+  if (kind == InputKind::images) {
+    s.input.listing = std::make_shared<const ImageListing>(list_input_images(input));
+    count = s.input.listing->files.size();
+  }
   if (kind == InputKind::descriptors || kind == InputKind::similarity) {
     const auto header = io::read_npy_header(input.path);
     if (!header.shape.empty()) count = header.shape[0];

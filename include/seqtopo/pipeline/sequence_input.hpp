@@ -2,6 +2,7 @@
 // What a sequence comes from (INTERFACE.md, "INPUT kinds"), and the listing of an image folder.
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -16,6 +17,8 @@ enum class InputKind { automatic, images, video, descriptors, similarity, bag };
 // "auto", "images", "video", "descriptors", "similarity", "bag"; throws std::invalid_argument otherwise.
 InputKind parse_input_kind(std::string_view name);
 std::string_view input_kind_name(InputKind kind);
+
+struct ImageListing;
 
 struct SequenceInput {
   // {path}, {path, kind} and {path, kind, every} as before; the other settings are set by name.
@@ -37,6 +40,9 @@ struct SequenceInput {
   // When not empty: only these frames of the sequence (indices after `every`, increasing), e.g. one frame
   // per D metres of odometry (recording/frame_selection.hpp).
   std::vector<std::size_t> frames;
+  // Image folders: the folder's listing once it has been made (list_input_images returns it instead of listing
+  // the folder again; a run lists its folder once, not at every step that needs the files).
+  std::shared_ptr<const ImageListing> listing;
 };
 
 // The kind `automatic` stands for: a folder holds images, unless it is a ROS 2 bag folder (metadata.yaml
@@ -74,7 +80,7 @@ struct ImageListing {
 
 ImageListing list_images(const std::filesystem::path& folder, const ListOptions& options);
 
-// The listing of an image-folder input with its options (recursive, skip_unreadable).
+// The listing of an image-folder input with its options (recursive, skip_unreadable): input.listing when set.
 ImageListing list_input_images(const SequenceInput& input);
 
 // A frame's name for the report: the file name, or the path relative to the folder when recursive.
