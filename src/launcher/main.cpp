@@ -6,8 +6,8 @@
 // process starts. This small program, which links nothing but the C and C++ runtimes, adds
 // glibc.malloc.hugetlb=1 for them and starts seqtopo-main, whose start-up (its image and video libraries) is
 // the expensive one. On the 3,600 Nordland frames `seqtopo map` took 195,000 page faults and 3.9 s, with huge
-// pages 31,000 and 2.2 s. A GLIBC_TUNABLES that already names glibc.malloc.hugetlb (=0 turns this off) is left
-// as it is, and so is the environment of `--online`, whose frames should not wait for the kernel to compact
+// pages 36,000 and 2.7 s (BENCHMARK.md). A GLIBC_TUNABLES that already names glibc.malloc.hugetlb (=0 turns this off)
+// is left as it is, and so is the environment of `--online`, whose frames should not wait for the kernel to compact
 // memory into huge pages.
 #include <unistd.h>
 
