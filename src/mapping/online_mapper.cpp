@@ -633,11 +633,10 @@ void OnlineMapper::find_candidates(align::Direction direction, std::vector<Onlin
   }
 }
 
-void OnlineMapper::drop_candidates(align::Direction direction, const std::unordered_map<std::uint64_t, Island>* live,
-                                   std::vector<OnlineEvent>& events) {
+void OnlineMapper::drop_candidates(align::Direction direction, IslandRow* live, std::vector<OnlineEvent>& events) {
   const bool at_finish = live == nullptr;
   for (auto it = candidates_.begin(); it != candidates_.end();) {
-    if (it->first.second != direction || (live && live->contains(it->first.first))) {
+    if (it->first.second != direction || (live && live->find(it->first.first) != nullptr)) {
       ++it;
       continue;
     }
@@ -645,7 +644,7 @@ void OnlineMapper::drop_candidates(align::Direction direction, const std::unorde
     // nearby start whose island scores best, the smallest start cell of equal ones).
     if (live) {
       std::optional<std::pair<float, std::uint64_t>> heir;
-      for (const auto& [start, island] : *live) {
+      for (const auto& [start, island] : live->islands) {
         if (!near_cells(start, it->first.first) || candidates_.contains({start, direction})) continue;
         const std::pair<float, std::uint64_t> key{island.best, ~start};
         if (!heir || key > *heir) heir = key;
@@ -685,22 +684,69 @@ bool OnlineMapper::beside_a_revisit(const Island& island, align::Direction direc
   return false;
 }
 
-void OnlineMapper::update_islands(align::Direction direction, std::unordered_map<std::uint64_t, Island>& live) {
+std::size_t OnlineMapper::IslandRow::slot(std::uint64_t start) const {
+  std::uint64_t x = start * 0x9E3779B97F4A7C15ULL;  // Fibonacci hashing: the high bits mix every bit of the key
+  x ^= x >> 29U;
+  return static_cast<std::size_t>(x) & (slots_.size() - 1);
+}
+
+OnlineMapper::Island* OnlineMapper::IslandRow::find(std::uint64_t start) {
+  if (slots_.empty()) return nullptr;
+  for (std::size_t s = slot(start);; s = (s + 1) & (slots_.size() - 1)) {
+    const std::uint32_t at = slots_[s];
+    if (at == 0) return nullptr;
+    if (islands[at - 1].first == start) return &islands[at - 1].second;
+  }
+}
+
+OnlineMapper::Island& OnlineMapper::IslandRow::add(std::uint64_t start, const Island& island) {
+  islands.emplace_back(start, island);
+  std::size_t s = slot(start);
+  while (slots_[s] != 0) s = (s + 1) & (slots_.size() - 1);
+  slots_[s] = static_cast<std::uint32_t>(islands.size());
+  used_.push_back(s);
+  return islands.back().second;
+}
+
+void OnlineMapper::IslandRow::clear(std::size_t bound) {
+  islands.clear();
+  if (slots_.size() < 2 * bound) {
+    std::size_t size = 16;
+    while (size < 2 * bound) size *= 2;
+    slots_.assign(size, 0);
+  } else {
+    for (const std::size_t s : used_) slots_[s] = 0;
+  }
+  used_.clear();
+}
+
+void OnlineMapper::update_islands(align::Direction direction, IslandRow& live) {
   const bool forward = direction == align::Direction::forward;
   const std::vector<float>& row = forward ? forward_ : reverse_;
   const std::vector<std::uint64_t>& starts = forward ? forward_start_ : reverse_start_;
-  next_islands_.clear();
+  // Each start's best cell of the row, the first of equal ones; a run of cells of one start is looked up once.
+  next_islands_.clear(row.size());
+  Island* run = nullptr;
   for (std::size_t j = 0; j < row.size(); ++j) {
-    if (row[j] <= 0) continue;
-    auto [it, inserted] = next_islands_.try_emplace(starts[j], Island{row[j], frames_, j});
-    if (!inserted && row[j] > it->second.best) it->second = {row[j], frames_, j};
+    if (row[j] <= 0) {
+      run = nullptr;
+      continue;
+    }
+    if (run == nullptr || starts[j] != starts[j - 1]) {
+      run = next_islands_.find(starts[j]);
+      if (run == nullptr) {
+        run = &next_islands_.add(starts[j], Island{row[j], frames_, j});
+        continue;
+      }
+    }
+    if (row[j] > run->best) *run = {row[j], frames_, j};
   }
   // An island no cell of this row carries has died: its score is final (cells only descend from the row before
   // and from their own row).
   const std::size_t keep = config_.island_sample;
-  for (const auto& [start, island] : live) {
-    if (auto it = next_islands_.find(start); it != next_islands_.end()) {
-      if (island.best >= it->second.best) it->second = island;
+  for (const auto& [start, island] : live.islands) {
+    if (Island* next = next_islands_.find(start); next != nullptr) {
+      if (island.best >= next->best) *next = island;
       continue;
     }
     if (beside_a_revisit(island, direction)) continue;

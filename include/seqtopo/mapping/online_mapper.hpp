@@ -229,14 +229,28 @@ class OnlineMapper {
     float best = 0;
     std::size_t i = 0, j = 0;  // the cell of its best value (the first reached)
   };
-  void update_islands(align::Direction direction, std::unordered_map<std::uint64_t, Island>& live);
+  // The islands a row carries, in the order the row first reaches them, indexed by start cell (open addressing).
+  // A row holds runs of cells of one start: one probe per run, into tables kept from row to row, costs a fraction
+  // of a hash map's lookup and node allocation per cell.
+  class IslandRow {
+   public:
+    std::vector<std::pair<std::uint64_t, Island>> islands;
+    Island* find(std::uint64_t start);
+    Island& add(std::uint64_t start, const Island& island);  // a start not in the row yet
+    void clear(std::size_t bound);                           // empty, for at most `bound` islands
+
+   private:
+    std::size_t slot(std::uint64_t start) const;
+    std::vector<std::uint32_t> slots_;  // index + 1 into islands, 0: empty; a power of two of at least 2 x bound
+    std::vector<std::size_t> used_;     // the slots filled
+  };
+  void update_islands(align::Direction direction, IslandRow& live);
   bool beside_a_revisit(const Island& island, align::Direction direction) const;
   void update_threshold();
   void find_candidates(align::Direction direction, std::vector<OnlineEvent>& events);
   // Withdraws the candidates of `direction` whose path no cell of the newest row carries (`live`: the row's islands);
   // every one with nullptr (the run ended).
-  void drop_candidates(align::Direction direction, const std::unordered_map<std::uint64_t, Island>* live,
-                       std::vector<OnlineEvent>& events);
+  void drop_candidates(align::Direction direction, IslandRow* live, std::vector<OnlineEvent>& events);
 
   OnlineMapConfig config_;
   std::size_t frames_ = 0;
@@ -265,7 +279,7 @@ class OnlineMapper {
   std::map<std::uint64_t, std::size_t> ended_starts_;  // start cell of an ended track -> its last frame
   // Islands: the best value so far of each start cell in the newest row, per table; the sample of dead islands'
   // scores (a min-heap of at most island_sample values) and the fit.
-  std::unordered_map<std::uint64_t, Island> forward_islands_, reverse_islands_, next_islands_;
+  IslandRow forward_islands_, reverse_islands_, next_islands_;
   // The columns of the loop closures emitted at each frame (withdrawn ones too), with their direction: islands
   // beside them are the revisit's shadows, not chance.
   std::unordered_map<std::size_t, std::vector<std::pair<std::size_t, align::Direction>>> closure_columns_;
