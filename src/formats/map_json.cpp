@@ -108,8 +108,12 @@ std::string alignments_json(const mapping::MapResult& result) {
   for (std::size_t k = 0; k < insignificant.size() && k < result.insignificant_e_values.size(); ++k) {
     insignificant[k]["e_value"] = number_or_null(result.insignificant_e_values[k]);
   }
+  nlohmann::json rejected = alignments_to_json(result.rejected)["alignments"];
+  for (std::size_t k = 0; k < rejected.size() && k < result.rejected_verdicts.size(); ++k) {
+    rejected[k]["reason"] = std::string(mapping::verdict_name(result.rejected_verdicts[k]));
+  }
   return nlohmann::json{{"alignments", alignment_list(result)},
-                        {"rejected_by_odometry", alignments_to_json(result.rejected)["alignments"]},
+                        {"rejected_by_odometry", std::move(rejected)},
                         {"insignificant", std::move(insignificant)},
                         {"significance", significance_json(result)}}
              .dump(1) +

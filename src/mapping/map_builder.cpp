@@ -459,13 +459,14 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
                    [&](std::size_t x, std::size_t y) { return result.path_scores[x] > result.path_scores[y]; });
   select_alignments(result, order);
   if (!odometry.empty() && c.odometry_gate) {
-    const std::vector<bool> keep = consistent_with_odometry(result.alignments, odometry, *c.odometry_gate);
+    const std::vector<OdometryVerdict> verdicts = odometry_verdicts(result.alignments, odometry, *c.odometry_gate);
     std::vector<std::size_t> kept;
-    for (std::size_t k = 0; k < keep.size(); ++k) {
-      if (keep[k]) {
+    for (std::size_t k = 0; k < verdicts.size(); ++k) {
+      if (verdicts[k] == OdometryVerdict::consistent) {
         kept.push_back(k);
       } else {
         result.rejected.push_back(std::move(result.alignments[k]));  // not selected below
+        result.rejected_verdicts.push_back(verdicts[k]);
       }
     }
     select_alignments(result, kept);

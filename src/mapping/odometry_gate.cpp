@@ -147,11 +147,23 @@ bool turns_consistently(const align::LocalAlignment& alignment, std::span<const 
 
 }  // namespace
 
-std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
-                                           std::span<const Pose2> odometry, const OdometryGate& gate) {
+std::string_view verdict_name(OdometryVerdict verdict) {
+  switch (verdict) {
+    case OdometryVerdict::consistent:
+      return "consistent";
+    case OdometryVerdict::apart:
+      return "apart";
+    case OdometryVerdict::turned:
+      return "turned";
+  }
+  return "consistent";
+}
+
+std::vector<OdometryVerdict> odometry_verdicts(const std::vector<align::LocalAlignment>& alignments,
+                                               std::span<const Pose2> odometry, const OdometryGate& gate) {
   check_gate(gate);
   const std::vector<double> travelled = travelled_distance(odometry);
-  std::vector<bool> out;
+  std::vector<OdometryVerdict> out;
   out.reserve(alignments.size());
   for (const auto& alignment : alignments) {
     check_pairs(alignment, odometry.size());
@@ -160,10 +172,22 @@ std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignme
       const auto [apart, allowed] = apart_and_allowed(odometry, travelled, gate, i, j);
       consistent += apart <= allowed;
     }
-    out.push_back(!alignment.pairs.empty() &&
-                  static_cast<double>(consistent) >=
-                      gate.min_consistent * static_cast<double>(alignment.pairs.size()) &&
-                  turns_consistently(alignment, odometry, travelled, gate));
+    if (alignment.pairs.empty() ||
+        static_cast<double>(consistent) < gate.min_consistent * static_cast<double>(alignment.pairs.size())) {
+      out.push_back(OdometryVerdict::apart);
+    } else {
+      out.push_back(turns_consistently(alignment, odometry, travelled, gate) ? OdometryVerdict::consistent
+                                                                             : OdometryVerdict::turned);
+    }
+  }
+  return out;
+}
+
+std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
+                                           std::span<const Pose2> odometry, const OdometryGate& gate) {
+  std::vector<bool> out;
+  for (const OdometryVerdict v : odometry_verdicts(alignments, odometry, gate)) {
+    out.push_back(v == OdometryVerdict::consistent);
   }
   return out;
 }

@@ -228,6 +228,8 @@ TEST_F(MapCommand, PaperPresetUsesOdometryOnlyForThePicture) {
   ASSERT_EQ(run_cli("map --odometry " + odometry.string() + " --out " + gated.string()).status, 0);
   const auto vetoed = nlohmann::json::parse(read_file(gated / "alignments.json"));
   EXPECT_FALSE(vetoed.at("rejected_by_odometry").empty());
+  // A straight line never comes back: each revisit is too far apart by the odometry, and says so.
+  for (const auto& a : vetoed.at("rejected_by_odometry")) EXPECT_EQ(a.at("reason"), "apart");
 }
 
 }  // namespace

@@ -39,6 +39,8 @@ TEST(OdometryGate, KeepsTheRevisitAndDropsTheShiftedCopy) {
   const auto keep = consistent_with_odometry({pairs_of(revisit), pairs_of(shifted)}, odometry);
   EXPECT_TRUE(keep[0]);
   EXPECT_FALSE(keep[1]);
+  EXPECT_EQ(odometry_verdicts({pairs_of(revisit), pairs_of(shifted)}, odometry),
+            (std::vector<OdometryVerdict>{OdometryVerdict::consistent, OdometryVerdict::apart}));
   // A loose enough gate lets the shifted copy through: 10 m apart after 10 m of travel.
   EXPECT_TRUE(consistent_with_odometry({pairs_of(shifted)}, odometry, {.base = 0.1, .drift = 1.0})[0]);
 }
@@ -174,6 +176,10 @@ TEST(OdometryGate, DropsALookAlikeWhoseTraversalsMoveAgainstTheAlignment) {
   const OdometryGate loose{.base = 25};
   EXPECT_EQ(consistent_with_odometry({pairs_of(look_alike), pairs_of(beside)}, odometry, loose),
             (std::vector<bool>{false, true}));
+  EXPECT_EQ(odometry_verdicts({pairs_of(look_alike), pairs_of(beside)}, odometry, loose),
+            (std::vector<OdometryVerdict>{OdometryVerdict::turned, OdometryVerdict::consistent}));
+  // At the default allowance (2 m + 10 % of the 26 m between the passes) the 6 m apart come first.
+  EXPECT_EQ(odometry_verdicts({pairs_of(look_alike)}, odometry).front(), OdometryVerdict::apart);
   // Without the rotation allowance's limit (turn large) both pass; the distance rule alone cannot tell.
   EXPECT_EQ(consistent_with_odometry({pairs_of(look_alike), pairs_of(beside)}, odometry, {.base = 25, .turn = 1}),
             (std::vector<bool>{true, true}));
@@ -236,6 +242,7 @@ TEST(OdometryGate, BuildMapDropsContradictedAlignmentsBeforePruning) {
   EXPECT_EQ(without.alignments.size(), with.alignments.size() + with.rejected.size());
   ASSERT_EQ(with.rejected.size(), 1U);
   EXPECT_EQ(with.rejected.front().direction, align::Direction::forward);
+  EXPECT_EQ(with.rejected_verdicts, std::vector<OdometryVerdict>{OdometryVerdict::apart});
   for (const auto& a : with.alignments) EXPECT_EQ(a.direction, align::Direction::reverse);
   // Without the gate the copy merges images 20 apart; with it, no image shares a place with one 20 away.
   EXPECT_EQ(without.map.labels[30], without.map.labels[10]);

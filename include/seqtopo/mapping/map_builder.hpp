@@ -118,10 +118,11 @@ struct MapDecisions {
 };
 
 struct MapResult {
-  SimilarityMatrix scores;                        // what was aligned (S, or its contrast-enhanced form); empty
-                                                  // from build_map_from_scores
-  std::vector<align::LocalAlignment> alignments;  // best first, forward and reverse merged
-  std::vector<align::LocalAlignment> rejected;    // found, but contradicted by the odometry (not in `alignments`)
+  SimilarityMatrix scores;                         // what was aligned (S, or its contrast-enhanced form); empty
+                                                   // from build_map_from_scores
+  std::vector<align::LocalAlignment> alignments;   // best first, forward and reverse merged
+  std::vector<align::LocalAlignment> rejected;     // found, but contradicted by the odometry (not in `alignments`)
+  std::vector<OdometryVerdict> rejected_verdicts;  // why, one per `rejected` (apart or turned)
   // Per alignment (parallel to `alignments`): the score of its path without the cap, and its E-value (NaN
   // without significance).
   std::vector<double> path_scores, e_values;

@@ -31,6 +31,7 @@
 // the traversals costs nothing; two paths that bend apart do.
 #include <cstddef>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
@@ -47,9 +48,18 @@ struct OdometryGate {
   double turn = 0.005;          // [rad per m travelled] heading drift allowed beyond a right angle (see above)
 };
 
-// One flag per alignment: true = consistent with the odometry (distance and rotation, above). Throws
-// std::invalid_argument when a pair indexes past the odometry or a setting is negative / NaN (min_consistent
-// must be in [0, 1]).
+// What the gate says of an alignment: consistent, its images too far apart, or its traversals turned against
+// each other (the distance test is read first).
+enum class OdometryVerdict { consistent, apart, turned };
+std::string_view verdict_name(OdometryVerdict verdict);  // "consistent", "apart", "turned"
+
+// One verdict per alignment. Throws std::invalid_argument when a pair indexes past the odometry or a setting is
+// negative / NaN (min_consistent must be in [0, 1]).
+std::vector<OdometryVerdict> odometry_verdicts(const std::vector<align::LocalAlignment>& alignments,
+                                               std::span<const Pose2> odometry, const OdometryGate& gate = {});
+
+// One flag per alignment: true = consistent with the odometry (distance and rotation, above). Throws like
+// odometry_verdicts().
 std::vector<bool> consistent_with_odometry(const std::vector<align::LocalAlignment>& alignments,
                                            std::span<const Pose2> odometry, const OdometryGate& gate = {});
 
