@@ -386,6 +386,9 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       offset += c.contrast_offset_step;
     }
     d.statistics = fit.statistics;
+    // K is per cell: a fit on diagonal blocks of a long sequence counts the chance alignments of the whole
+    // search (the chance agreement below keeps the fit's own area: which of its alignments are chance).
+    d.statistics.area = significance::search_area(n, n, true, c.min_separation, c.reverse);
     d.chance_length = fit.chance_length;
     d.chance_mean = fit.cell_mean;
     if (fit.statistics.valid()) {
@@ -395,12 +398,12 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       // On a grid of 1/64 score units, which both engines represent exactly (the fast engine's scale is a power
       // of two of at least 64 for caps up to 512), so they agree on what is significant.
       const auto grid = [](double v) { return static_cast<float>(std::ceil(std::max(v, 1.0 / 64) * 64.0) / 64.0); };
-      engine.threshold = grid(fit.statistics.score_at(*c.max_e_value / d.odometry_chance_agreement));
+      engine.threshold = grid(d.statistics.score_at(*c.max_e_value / d.odometry_chance_agreement));
       // The cap from the score's own significance: the odometry does not change how far chance extends a path.
-      if (c.cap_from_statistics) engine.cap = grid(c.cap_factor * grid(fit.statistics.score_at(*c.max_e_value)));
+      if (c.cap_from_statistics) engine.cap = grid(c.cap_factor * grid(d.statistics.score_at(*c.max_e_value)));
       // What the filter removed: chance alignments of the statistics' run above the raw threshold.
       for (std::size_t k = 0; k < fit.alignments.size(); ++k) {
-        const double e = fit.statistics.e_value(fit.path_scores[k]);
+        const double e = d.statistics.e_value(fit.path_scores[k]);
         if (e * d.odometry_chance_agreement > *c.max_e_value && fit.alignments[k].score >= c.threshold) {
           result.insignificant.push_back(fit.alignments[k]);
           result.insignificant_e_values.push_back(e);

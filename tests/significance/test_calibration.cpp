@@ -3,7 +3,9 @@
 // texture is its half-life and follows a higher frame rate; a planted revisit is found at any frame rate.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
@@ -38,6 +40,38 @@ TEST(Calibration, OnNoiseTheEValuesCountTheChanceAlignmentsAndTheDefaultReportsN
   const double mean = permissive / sequences;
   EXPECT_GT(mean, 3.0 / 3) << "E-values far too pessimistic";
   EXPECT_LT(mean, 3.0 * 3) << "E-values far too optimistic";
+}
+
+// Past 2 x 2,000 frames the statistics are fitted on diagonal blocks; K is per cell, so the E-values still count
+// the chance alignments of the whole search (8,000 frames: four times the blocks' area), not of the blocks.
+TEST(Calibration, OnALongNoiseSequenceTheEValuesCountTheWholeSearch) {
+  const std::size_t n = 8000;
+  double permissive = 0;
+  const int sequences = 2;
+  const double e_value = 5;
+  for (int seed = 1; seed <= sequences; ++seed) {
+    // Contrast-enhanced noise: a symmetric, roughly normal score per pair (a sum of 64 random bits).
+    const auto noise = [seed](std::size_t i, std::size_t j) {
+      std::uint64_t x = (std::min(i, j) << 32U) ^ std::max(i, j) ^ (static_cast<std::uint64_t>(seed) << 58U);
+      x += 0x9E3779B97F4A7C15ULL;
+      x = (x ^ (x >> 30U)) * 0xBF58476D1CE4E5B9ULL;
+      x = (x ^ (x >> 27U)) * 0x94D049BB133111EBULL;
+      x ^= x >> 31U;
+      return static_cast<align::Score>((std::popcount(x) - 32.0) / 4.0);
+    };
+    mapping::MapConfig config;
+    config.min_revisit_places = 0;
+    config.max_e_value = e_value;
+    config.frames_per_place = 1.0;
+    config.engine = mapping::MapConfig::Engine::fast;
+    const auto r = mapping::build_map_from_enhanced(align::ScoreSource::function(n, n, noise), config);
+    ASSERT_TRUE(r.decisions.statistics.valid()) << seed;
+    EXPECT_DOUBLE_EQ(r.decisions.statistics.area, significance::search_area(n, n, true, 10, true));
+    for (double e : r.e_values) permissive += e <= e_value ? 1 : 0;
+  }
+  const double mean = permissive / sequences;
+  EXPECT_GT(mean, e_value / 3) << "E-values far too pessimistic";
+  EXPECT_LT(mean, e_value * 3) << "E-values far too optimistic (the blocks' area instead of the whole search?)";
 }
 
 TEST(Calibration, ThePlaceScaleOfAnAr1TextureIsItsHalfLifeAndFollowsTheFrameRate) {
