@@ -62,7 +62,8 @@ class CMakeBuild(build_ext):
         progress = BuildProgress()
         progress.run(configure, "configuring with CMake in " + os.path.relpath(build_dir, ROOT))
         jobs = os.environ.get("SEQTOPO_BUILD_JOBS") or str(os.cpu_count() or 1)
-        progress.run(["cmake", "--build", build_dir, "--target", "seqtopo_python", "seqtopo", "-j", jobs],
+        targets = ["seqtopo_python", "seqtopo", "seqtopo_codecs"]
+        progress.run(["cmake", "--build", build_dir, "--target", *targets, "-j", jobs],
                      "building the module and the command with %s jobs (a first build takes minutes)" % jobs)
 
         suffix = sysconfig.get_config_var("EXT_SUFFIX")
@@ -70,12 +71,16 @@ class CMakeBuild(build_ext):
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(built, target)
+        # OpenCV's codecs, which the module and the command open on first use, beside each (image/codecs.hpp).
+        codecs = os.path.join(build_dir, "src", "libseqtopo_codecs.so")
+        shutil.copy2(codecs, os.path.dirname(target))
         # The command-line tool, run by the `seqtopo` console entry point (seqtopo/_cli.py): the launcher and the
         # program it starts, side by side.
         tools = os.path.join(os.path.dirname(target), "bin")
         os.makedirs(tools, exist_ok=True)
         for name in ("seqtopo", "seqtopo-main"):
             shutil.copy2(os.path.join(build_dir, "src", name), os.path.join(tools, name))
+        shutil.copy2(codecs, tools)
         progress.done("seqtopo._core and the seqtopo command")
 
 

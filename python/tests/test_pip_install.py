@@ -48,3 +48,11 @@ def test_pip_install_from_source_tree(tmp_path):
     module = subprocess.run([str(python), "-m", "seqtopo", "align", "--help"], capture_output=True, text=True, env=env,
                             cwd=tmp_path)
     assert module.returncode == 0 and "Usage: seqtopo align" in module.stdout, module
+    # It decodes the images and encodes the figures with the codecs plugin installed beside it (seqtopo/bin/), not
+    # the one in the build folder.
+    corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
+    mapped = subprocess.run([str(command), "map", str(corridor), "--out", str(tmp_path / "corridor")],
+                            capture_output=True, text=True, env=dict(env, LD_DEBUG="files"), cwd=tmp_path)
+    assert mapped.returncode == 0, mapped.stderr[-3000:]
+    opened = [line for line in mapped.stderr.splitlines() if "file=" in line and "libseqtopo_codecs.so" in line]
+    assert opened and all(str(env_dir) in line for line in opened), opened

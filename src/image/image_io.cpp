@@ -5,13 +5,12 @@
 #include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 #include <stdexcept>
 #include <vector>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/image/codecs.hpp"
 
 namespace seqtopo::image {
 
@@ -76,12 +75,7 @@ RgbImage decode_image(std::span<const std::uint8_t> bytes, const std::string& su
   if (bytes.empty()) throw InputError(subject, "empty, not an image");
   const std::vector<std::uint8_t> copy(bytes.begin(), bytes.end());
   if (truncated_jpeg(copy)) throw InputError(subject, "corrupt image (truncated JPEG)");
-  cv::Mat decoded;
-  try {
-    decoded = cv::imdecode(copy, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception&) {
-    decoded.release();
-  }
+  const cv::Mat decoded = codecs::decode(copy);
   if (decoded.empty() || decoded.cols <= 0 || decoded.rows <= 0) {
     throw InputError(subject, "cannot decode image (corrupt or unsupported format)");
   }
@@ -102,26 +96,20 @@ RgbImage load_image(const fs::path& path) {
 
 namespace {
 
-cv::VideoCapture open_video(const fs::path& path) {
+codecs::Video open_video(const fs::path& path) {
   quiet_opencv();
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw InputError(path.string(), "no such video file");
-  cv::VideoCapture capture;
-  try {
-    // File back-ends only, FFmpeg first: CAP_ANY would also probe camera back-ends (gphoto2, libdc1394)
-    // with a file name, which is slow and leaks inside those libraries.
-    if (!capture.open(path.string(), cv::CAP_FFMPEG)) capture.open(path.string(), cv::CAP_GSTREAMER);
-  } catch (const cv::Exception&) {
-  }
-  if (!capture.isOpened()) throw InputError(path.string(), "cannot open as a video (corrupt or unsupported format)");
+  codecs::Video capture(path);
+  if (!capture.opened()) throw InputError(path.string(), "cannot open as a video (corrupt or unsupported format)");
   return capture;
 }
 
 }  // namespace
 
 std::optional<std::size_t> video_frame_count(const fs::path& path) {
-  cv::VideoCapture capture = open_video(path);
-  const double n = capture.get(cv::CAP_PROP_FRAME_COUNT);
+  const codecs::Video capture = open_video(path);
+  const double n = capture.frame_count();
   if (!(n > 0) || n > 1e12) return std::nullopt;
   return static_cast<std::size_t>(n);
 }
@@ -129,7 +117,7 @@ std::optional<std::size_t> video_frame_count(const fs::path& path) {
 void for_each_video_frame(const fs::path& path, std::size_t every,
                           const std::function<void(std::size_t, const RgbImage&)>& visit) {
   if (every == 0) throw std::invalid_argument("--every must be at least 1");
-  cv::VideoCapture capture = open_video(path);
+  codecs::Video capture = open_video(path);
   std::size_t index = 0, kept = 0;
   cv::Mat frame;
   while (capture.grab()) {

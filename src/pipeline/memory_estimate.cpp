@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/image/codecs.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/image/joint_histogram.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -244,6 +245,9 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   in.sparse = request.streaming && request.sparse;
   in.neighbours = request.sparse_neighbours;
   in.place_from_similarity = s.map.place_units && !s.map.frames_per_place && request.odometry.empty();
+  // The run decodes images or at least encodes its figures: the codecs' libraries (~80 MB resident) are part
+  // of the process it will be.
+  image::codecs::load();
   in.base_bytes = resident_bytes();
   const std::filesystem::path& truth = request.truth.same_place;
   in.baseline = !truth.empty() && !request.streaming;

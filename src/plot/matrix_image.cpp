@@ -5,10 +5,10 @@
 #include <limits>
 #include <numeric>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "axes.hpp"
+#include "seqtopo/image/codecs.hpp"
 
 namespace seqtopo::plot {
 namespace {
@@ -127,15 +127,13 @@ cv::Mat reduced_grey(const DenseMatrix<float>& m, ValueRange range, int max_size
 
 std::string matrix_grey_png(const DenseMatrix<float>& m, ValueRange range, int max_size) {
   if (m.empty()) return {};
-  std::vector<std::uint8_t> bytes;
-  cv::imencode(".png", reduced_grey(m, range, max_size), bytes);
+  const std::vector<std::uint8_t> bytes = image::codecs::encode_png(reduced_grey(m, range, max_size));
   return {bytes.begin(), bytes.end()};
 }
 
 std::string matrix_grey_jpeg(const DenseMatrix<float>& m, ValueRange range, int max_size) {
   if (m.empty()) return {};
-  std::vector<std::uint8_t> bytes;
-  cv::imencode(".jpg", reduced_grey(m, range, max_size), bytes, {cv::IMWRITE_JPEG_QUALITY, 90});
+  const std::vector<std::uint8_t> bytes = image::codecs::encode_jpeg(reduced_grey(m, range, max_size), 90);
   return {bytes.begin(), bytes.end()};
 }
 

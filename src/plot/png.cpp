@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "seqtopo/image/codecs.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 
 namespace seqtopo::plot {
@@ -15,8 +15,7 @@ std::string encode_png(const RgbImage& image) {
   const cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.pixels.data()));
   cv::Mat bgr;
   cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  std::vector<std::uint8_t> bytes;
-  cv::imencode(".png", bgr, bytes);
+  const std::vector<std::uint8_t> bytes = image::codecs::encode_png(bgr);
   return {bytes.begin(), bytes.end()};
 }
 
@@ -25,8 +24,7 @@ std::string encode_jpeg(const RgbImage& image, int quality) {
   const cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.pixels.data()));
   cv::Mat bgr;
   cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  std::vector<std::uint8_t> bytes;
-  cv::imencode(".jpg", bgr, bytes, {cv::IMWRITE_JPEG_QUALITY, std::clamp(quality, 1, 100)});
+  const std::vector<std::uint8_t> bytes = image::codecs::encode_jpeg(bgr, std::clamp(quality, 1, 100));
   return {bytes.begin(), bytes.end()};
 }
 

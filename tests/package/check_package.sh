@@ -22,6 +22,14 @@ cmake --build "$tmp/examples" >/dev/null
 corridor="$tmp/prefix/share/seqtopo/rtabmap-corridor"
 "$tmp/examples/02_images_to_map" "$corridor" "$corridor/ground_truth.bmp" "$tmp/corridor-map" 2>/dev/null
 for f in map.json alignments.json report.html; do test -s "$tmp/corridor-map/$f"; done
+# The installed command opens the installed codecs plugin: PREFIX/lib, found from PREFIX/libexec/seqtopo/.
+LD_DEBUG=files "$tmp/prefix/bin/seqtopo" map "$corridor" --out "$tmp/cli-map" >/dev/null 2>"$tmp/ld.log"
+test -s "$tmp/cli-map/map.json"
+if ! grep -q "file=$tmp/prefix/lib/libseqtopo_codecs.so " "$tmp/ld.log"; then
+  echo "the installed seqtopo did not open $tmp/prefix/lib/libseqtopo_codecs.so:"
+  grep "libseqtopo_codecs" "$tmp/ld.log" | head -3
+  exit 1
+fi
 
 disabled=()
 for p in OpenMP OpenCV Eigen3 Ceres CLI11 nlohmann_json fmt faiss; do

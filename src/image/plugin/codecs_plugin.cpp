@@ -1,0 +1,97 @@
+// libseqtopo_codecs.so: OpenCV's imgcodecs and videoio behind the table of codec_table.hpp, loaded by
+// src/image/codecs.cpp when the first image is decoded or encoded.
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+#include <string>
+
+#include "codec_table.hpp"
+
+namespace {
+
+using seqtopo::image::codecs::CodecTable;
+
+bool decode(const std::uint8_t* data, std::size_t size, cv::Mat* out) {
+  try {
+    const cv::Mat bytes(1, static_cast<int>(size), CV_8U, const_cast<std::uint8_t*>(data));
+    *out = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+    return !out->empty();
+  } catch (...) {
+    out->release();
+    return false;
+  }
+}
+
+bool read_grey(const char* path, cv::Mat* out) {
+  try {
+    *out = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    return !out->empty();
+  } catch (...) {
+    out->release();
+    return false;
+  }
+}
+
+bool encode(const char* extension, const cv::Mat* image, int jpeg_quality, std::vector<std::uint8_t>* out) {
+  try {
+    const std::string ext(extension);
+    return cv::imencode(ext, *image, *out,
+                        ext == ".jpg" ? std::vector<int>{cv::IMWRITE_JPEG_QUALITY, jpeg_quality} : std::vector<int>{});
+  } catch (...) {
+    return false;
+  }
+}
+
+void* video_open(const char* path) {
+  auto* capture = new cv::VideoCapture;
+  try {
+    if (!capture->open(path, cv::CAP_FFMPEG)) capture->open(path, cv::CAP_GSTREAMER);
+  } catch (...) {
+  }
+  if (!capture->isOpened()) {
+    delete capture;
+    return nullptr;
+  }
+  return capture;
+}
+
+double video_frame_count(void* video) {
+  try {
+    return static_cast<cv::VideoCapture*>(video)->get(cv::CAP_PROP_FRAME_COUNT);
+  } catch (...) {
+    return 0;
+  }
+}
+
+bool video_grab(void* video) {
+  try {
+    return static_cast<cv::VideoCapture*>(video)->grab();
+  } catch (...) {
+    return false;
+  }
+}
+
+bool video_retrieve(void* video, cv::Mat* frame) {
+  try {
+    return static_cast<cv::VideoCapture*>(video)->retrieve(*frame) && !frame->empty();
+  } catch (...) {
+    frame->release();
+    return false;
+  }
+}
+
+void video_close(void* video) { delete static_cast<cv::VideoCapture*>(video); }
+
+}  // namespace
+
+extern "C" const CodecTable* seqtopo_codec_table() {
+  static const CodecTable table{seqtopo::image::codecs::kCodecTableVersion,
+                                decode,
+                                read_grey,
+                                encode,
+                                video_open,
+                                video_frame_count,
+                                video_grab,
+                                video_retrieve,
+                                video_close};
+  return &table;
+}
