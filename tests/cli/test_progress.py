@@ -9,6 +9,7 @@ import os
 import pty
 import re
 import select
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -75,6 +76,7 @@ class Progress(unittest.TestCase):
     def setUp(self):
         self.assertTrue(CLI and os.access(CLI, os.X_OK), "SEQTOPO_CLI=%r is not the seqtopo binary" % CLI)
         self.dir = tempfile.mkdtemp(prefix="seqtopo-progress-")
+        self.addCleanup(shutil.rmtree, self.dir, ignore_errors=True)
 
     def test_a_terminal_sees_a_bar_with_rate_and_eta(self):
         # No input: the bundled corridor with its ground truth, six stages.
