@@ -1,7 +1,6 @@
 #include "seqtopo/image/codecs.hpp"
 
 #include <dlfcn.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -85,16 +84,13 @@ Plugin load() {
   }
   std::string tried, first_failure;
   for (const auto& file : candidates) {
+    tried += (tried.empty() ? "" : ", ") + file;
     // A path that names no file is skipped quietly; one that exists but fails to load is the error to report.
     std::error_code ec;
-    if (file.find('/') != std::string::npos && !fs::exists(file, ec)) {
-      tried += (tried.empty() ? "" : ", ") + file;
-      continue;
-    }
+    if (file.find('/') != std::string::npos && !fs::exists(file, ec)) continue;
     std::string why;
     if ((p.table = open_table(file, why)) != nullptr) return p;
     if (first_failure.empty()) first_failure = why;
-    tried += (tried.empty() ? "" : ", ") + file;
   }
   p.error = "image codecs: cannot load " + std::string(kPlugin) +
             (first_failure.empty() ? " (looked for " + tried + ")" : ": " + first_failure) +

@@ -51,7 +51,7 @@ RgbImage to_rgb(const cv::Mat& decoded) {
 
 // A JPEG that stops before its end-of-image marker decodes to a partly grey picture with only a warning;
 // such a file is reported as corrupt instead of silently compared.
-bool truncated_jpeg(const std::vector<std::uint8_t>& bytes) {
+bool truncated_jpeg(std::span<const std::uint8_t> bytes) {
   if (bytes.size() < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return false;
   std::size_t end = bytes.size();
   while (end > 2 && (bytes[end - 1] == 0x00 || bytes[end - 1] == 0x0A || bytes[end - 1] == 0x0D)) --end;  // padding
@@ -73,9 +73,8 @@ void quiet_opencv() {
 RgbImage decode_image(std::span<const std::uint8_t> bytes, const std::string& subject) {
   quiet_opencv();
   if (bytes.empty()) throw InputError(subject, "empty, not an image");
-  const std::vector<std::uint8_t> copy(bytes.begin(), bytes.end());
-  if (truncated_jpeg(copy)) throw InputError(subject, "corrupt image (truncated JPEG)");
-  const cv::Mat decoded = codecs::decode(copy);
+  if (truncated_jpeg(bytes)) throw InputError(subject, "corrupt image (truncated JPEG)");
+  const cv::Mat decoded = codecs::decode(bytes);
   if (decoded.empty() || decoded.cols <= 0 || decoded.rows <= 0) {
     throw InputError(subject, "cannot decode image (corrupt or unsupported format)");
   }
