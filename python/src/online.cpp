@@ -148,7 +148,7 @@ void bind_online(py::module_& m) {
       py::init([](const std::string& distance, std::size_t contrast_window, float contrast_offset, float gap,
                   std::optional<float> cap, std::optional<double> max_e_value, std::optional<double> candidate_e_value,
                   float threshold, std::size_t min_separation, bool reverse, std::size_t reach, float x_drop,
-                  std::size_t min_revisit_frames, std::size_t patience, std::size_t island_sample) {
+                  std::size_t min_revisit_frames, std::size_t patience, std::size_t island_sample, bool adapt_offset) {
         OnlineMapConfig config;
         config.distance = similarity::parse_distance(distance);
         config.contrast_window = contrast_window;
@@ -159,6 +159,7 @@ void bind_online(py::module_& m) {
         config.candidate_e_value = candidate_e_value;
         config.threshold = threshold;
         config.island_sample = island_sample;
+        config.adapt_offset = adapt_offset;
         config.min_separation = min_separation;
         config.reverse = reverse;
         config.reach = reach;
@@ -176,7 +177,8 @@ void bind_online(py::module_& m) {
       py::arg("reverse") = OnlineMapConfig{}.reverse, py::arg("reach") = OnlineMapConfig{}.reach,
       py::arg("x_drop") = OnlineMapConfig{}.x_drop,
       py::arg("min_revisit_frames") = OnlineMapConfig{}.min_revisit_frames,
-      py::arg("patience") = OnlineMapConfig{}.patience, py::arg("island_sample") = OnlineMapConfig{}.island_sample);
+      py::arg("patience") = OnlineMapConfig{}.patience, py::arg("island_sample") = OnlineMapConfig{}.island_sample,
+      py::arg("adapt_offset") = OnlineMapConfig{}.adapt_offset);
   c.def_property_readonly("distance",
                           [](const OnlineMapConfig& x) { return std::string(similarity::distance_name(x.distance)); });
   c.def_readonly("contrast_window", &OnlineMapConfig::contrast_window);
@@ -187,6 +189,7 @@ void bind_online(py::module_& m) {
   c.def_readonly("candidate_e_value", &OnlineMapConfig::candidate_e_value);
   c.def_readonly("threshold", &OnlineMapConfig::threshold);
   c.def_readonly("island_sample", &OnlineMapConfig::island_sample);
+  c.def_readonly("adapt_offset", &OnlineMapConfig::adapt_offset);
   c.def_readonly("min_separation", &OnlineMapConfig::min_separation);
   c.def_readonly("reverse", &OnlineMapConfig::reverse);
   c.def_readonly("reach", &OnlineMapConfig::reach);
@@ -273,6 +276,9 @@ void bind_online(py::module_& m) {
             return d;
           },
           "The island statistics of the last frame (lambda, k, area, fitted), None before a fit.")
+      .def_property_readonly(
+          "contrast_offset", [](const PyOnlineMapper& self) { return self.mapper.contrast_offset(); },
+          "The contrast offset of the next frame: the config's, raised while chance paths grow with the sequence.")
       .def_property_readonly("island_scores",
                              [](const PyOnlineMapper& self) { return copy_array<double>(self.mapper.island_scores()); })
       .def_property_readonly("last_scores",

@@ -192,7 +192,14 @@ void run_map_online(const OnlineCliOptions& o) {
   if (st.valid()) {
     summary += fmt::format(R"(, "lambda": {}, "k": {}, "area": {}, "fitted": {})", st.lambda, st.k, st.area, st.fitted);
   }
-  summary += "}";
+  summary += fmt::format(R"(, "contrast_offset": {}, "offset_changes": [)", run.contrast_offset);
+  for (std::size_t k = 0; k < run.offset_changes.size(); ++k) {
+    const auto& x = run.offset_changes[k];
+    summary += fmt::format(
+        R"({}{{"frame": {}, "from": {}, "to": {}, "chance_length": {}, "bound": {}, "frames_per_place": {}}})",
+        k ? ", " : "", x.frame, x.from, x.to, x.chance_length, x.bound, x.frames_per_place);
+  }
+  summary += "]}";
   if (metrics) summary += ", \"metrics\": " + metrics_json(*metrics);
   if (offline_metrics) summary += ", \"offline_metrics\": " + metrics_json(*offline_metrics);
   summary += "}\n";
@@ -201,6 +208,12 @@ void run_map_online(const OnlineCliOptions& o) {
   std::cerr << fmt::format(
       "seqtopo map: {} frames online, {} loop closures, per frame median {:.2f} ms, p99 {:.2f} ms\n", run.frames,
       run.loop_closures.size(), 1e3 * quantile(run.frame_seconds, 0.5), 1e3 * quantile(run.frame_seconds, 0.99));
+  for (const auto& x : run.offset_changes) {
+    std::cerr << fmt::format(
+        "seqtopo map: online contrast offset {:.2f}: chance islands grow with the sequence ({:.1f} places at "
+        "{:.2f} frames per place, linear phase); raised to {:.2f} after frame {}\n",
+        x.from, x.chance_length, x.frames_per_place, x.to, x.frame);
+  }
   if (st.valid()) {
     std::cerr << fmt::format(
         "seqtopo map: online significance: lambda {:.3g}, K {:.3g} (from {} chance islands); at the last frame E <= "

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "median.hpp"
+#include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::mapping {
@@ -19,6 +21,9 @@ constexpr std::uint64_t kNoStart = std::numeric_limits<std::uint64_t>::max();
 // (tests: with the best quarter, the islands at E <= 0.5 of noise runs average 1.05; with 1/64, 0.68).
 constexpr std::size_t kMinIslandTail = 48;
 constexpr std::size_t kTailFraction = 64;
+// The place scale is estimated from the lags 0 .. kScaleLags of the first kScaleFrames frames (offline: 200 lags of
+// every frame), again every kScaleEvery frames until then.
+constexpr std::size_t kScaleLags = 200, kScaleFrames = 2000, kScaleEvery = 16;
 
 std::uint64_t cell(std::size_t i, std::size_t j) { return (static_cast<std::uint64_t>(i) << 32U) | j; }
 std::size_t cell_i(std::uint64_t c) { return static_cast<std::size_t>(c >> 32U); }
@@ -87,6 +92,13 @@ void validate(const OnlineMapConfig& c) {
   if (!(c.threshold > 0) || !std::isfinite(c.threshold)) fail("threshold must be finite and > 0");
   if (c.cap && c.threshold > *c.cap) fail("threshold must not exceed the cap");
   if (!std::isfinite(c.contrast_offset)) fail("contrast offset must be finite");
+  if (c.adapt_offset && !(c.contrast_offset_step > 0 && std::isfinite(c.contrast_offset_step))) {
+    fail("contrast offset step must be finite and > 0");
+  }
+  if (c.adapt_offset && !(c.max_contrast_offset >= c.contrast_offset && std::isfinite(c.max_contrast_offset))) {
+    fail("the largest contrast offset must be finite and at least the contrast offset");
+  }
+  if (c.self_similarity && !std::isfinite(*c.self_similarity)) fail("self similarity must be finite");
   if (c.max_e_value && !(*c.max_e_value > 0 && std::isfinite(*c.max_e_value))) fail("E-value must be finite and > 0");
   if (c.candidate_e_value &&
       !(std::isfinite(*c.candidate_e_value) && *c.candidate_e_value > (c.max_e_value ? *c.max_e_value : 0.0))) {
@@ -101,7 +113,8 @@ void validate(const OnlineMapConfig& c) {
   }
 }
 
-OnlineMapper::OnlineMapper(const OnlineMapConfig& config) : config_(config), threshold_(config.threshold) {
+OnlineMapper::OnlineMapper(const OnlineMapConfig& config)
+    : config_(config), offset_(config.contrast_offset), threshold_(config.threshold) {
   validate(config_);
 }
 
@@ -176,6 +189,7 @@ void OnlineMapper::enhance(const std::vector<std::span<const float>>& rows) {
   const std::size_t sep = config_.min_separation;
   const std::size_t n = t >= sep ? t - sep + 1 : 0;
   const std::size_t w = config_.contrast_window;
+  sample_lags(rows);
   scores_.assign(n, 0.0F);
   if (w == 0) {
     for (const auto& row : rows) {
@@ -221,7 +235,74 @@ void OnlineMapper::enhance(const std::vector<std::span<const float>>& rows) {
       scores_[j] += 0.5F * (enhanced[j] + column);
     }
   }
-  for (auto& v : scores_) v = (rows.size() == 1 ? v : v / static_cast<float>(rows.size())) - config_.contrast_offset;
+  for (auto& v : scores_) v = (rows.size() == 1 ? v : v / static_cast<float>(rows.size())) - offset_;
+}
+
+void OnlineMapper::sample_lags(const std::vector<std::span<const float>>& rows) {
+  const std::size_t t = frames_;
+  if (!config_.self_similarity || !config_.adapt_offset || t >= kScaleFrames) return;
+  if (lag_samples_.size() != rows.size())
+    lag_samples_.assign(rows.size(), std::vector<std::vector<float>>(kScaleLags + 1));
+  for (std::size_t c = 0; c < rows.size(); ++c) {
+    auto& by_lag = lag_samples_[c];
+    by_lag[0].push_back(*config_.self_similarity);
+    for (std::size_t k = 1; k <= std::min(kScaleLags, t); ++k) by_lag[k].push_back(rows[c][t - k]);
+  }
+}
+
+void OnlineMapper::check_phase() {
+  if (!config_.adapt_offset || config_.contrast_window == 0 || lag_samples_.empty() ||
+      offset_ + config_.contrast_offset_step > config_.max_contrast_offset + 1e-6F) {
+    return;
+  }
+  // The place scale of the frames so far (the mean of the similarities' that have one), as the offline map's.
+  const std::size_t n = std::min(frames_ + 1, kScaleFrames);
+  if (!scale_at_ || (frames_ < kScaleFrames && frames_ >= *scale_at_ + kScaleEvery)) {
+    scale_at_ = frames_;
+    double sum = 0;
+    std::size_t found = 0;
+    const std::size_t lags = std::min(kScaleLags, n / 3);
+    for (const auto& by_lag : lag_samples_) {
+      if (lags < 4) break;
+      // by_lag[k] holds S(t - k, t) for t < n, the pairs (i, i + k) of the first n frames.
+      const PlaceScale p =
+          frames_per_place_from_lags(std::vector<std::vector<float>>(by_lag.begin(), by_lag.begin() + lags + 1), n);
+      if (p.found) sum += p.frames_per_place, ++found;
+    }
+    frames_per_place_ = found > 0 ? sum / static_cast<double>(found) : 1.0;
+  }
+  std::vector<std::pair<double, double>> sample = island_heap_;
+  std::sort(sample.begin(), sample.end(), std::greater<>());
+  const std::size_t tail = std::min(sample.size(), islands_died_ / kTailFraction);
+  std::vector<double> lengths;
+  for (std::size_t r = statistics_.first_fitted_rank - 1; r < tail; ++r) {
+    lengths.push_back(sample[r].second / frames_per_place_);
+  }
+  if (lengths.empty()) return;
+  const double length = detail::median(std::move(lengths));
+  const double fpp2 = frames_per_place_ * frames_per_place_;
+  const double bound = std::max(4.0, std::log(std::max(statistics_.area / fpp2, 1.0)));
+  if (length <= bound) return;
+  // The linear phase: raise the offset for the frames that follow, and sample the islands anew (those that
+  // started before are scored at the old offset).
+  offset_changes_.push_back(
+      {frames_, offset_, offset_ + config_.contrast_offset_step, length, bound, frames_per_place_});
+  offset_ += config_.contrast_offset_step;
+  // Every live path is scored again as if the new offset had held from its start (one pair a frame): the paths
+  // the linear phase let grow through chance fall away, a revisit keeps most of its score.
+  for (auto [row, starts] : {std::pair(&forward_, &forward_start_), std::pair(&reverse_, &reverse_start_)}) {
+    for (std::size_t j = 0; j < row->size(); ++j) {
+      if ((*starts)[j] == kNoStart) continue;
+      const auto pairs = static_cast<float>(frames_ - cell_i((*starts)[j]) + 1);
+      (*row)[j] -= config_.contrast_offset_step * pairs;
+      if ((*row)[j] <= 0) (*row)[j] = 0, (*starts)[j] = kNoStart;
+    }
+  }
+  island_heap_.clear();
+  islands_died_ = 0;
+  sample_from_ = frames_ + 1;
+  statistics_ = {};
+  sample_changed_ = false;
 }
 
 std::vector<OnlineEvent> OnlineMapper::add_similarities(const std::vector<std::vector<float>>& rows) {
@@ -670,7 +751,8 @@ void OnlineMapper::drop_candidates(align::Direction direction, IslandRow* live, 
 }
 
 std::vector<double> OnlineMapper::island_scores() const {
-  std::vector<double> out = island_heap_;
+  std::vector<double> out;
+  for (const auto& island : island_heap_) out.push_back(island.first);
   std::sort(out.begin(), out.end(), std::greater<>());
   return out;
 }
@@ -749,9 +831,9 @@ void OnlineMapper::update_islands(align::Direction direction, IslandRow& live) {
       if (island.best >= next->best) *next = island;
       continue;
     }
-    if (beside_a_revisit(island, direction)) continue;
+    if (cell_i(start) < sample_from_ || beside_a_revisit(island, direction)) continue;
     ++islands_died_;
-    const double score = island.best;
+    const std::pair<double, double> score{island.best, static_cast<double>(island.i - cell_i(start) + 1)};
     if (island_heap_.size() < keep) {
       island_heap_.push_back(score);
       std::push_heap(island_heap_.begin(), island_heap_.end(), std::greater<>());
@@ -780,6 +862,8 @@ void OnlineMapper::update_threshold() {
     scores.resize(tail);
     statistics_ = significance::fit_declumped_scores(scores, area);
     sample_changed_ = false;
+    statistics_.area = area;
+    if (statistics_.valid()) check_phase();
   }
   statistics_.area = area;
   if (!statistics_.valid()) {

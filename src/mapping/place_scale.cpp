@@ -27,6 +27,15 @@ PlaceScale estimate_frames_per_place(const align::ScoreSource& s, std::size_t ma
     s.read_row(i, i, end, row.data());
     for (std::size_t k = 0; k < end - i; ++k) by_lag[k].push_back(row[k]);
   }
+  return frames_per_place_from_lags(std::move(by_lag), n);
+}
+
+PlaceScale frames_per_place_from_lags(std::vector<std::vector<float>> by_lag, std::size_t n) {
+  if (by_lag.size() < 5) return {};
+  const std::size_t lags = by_lag.size() - 1;
+  for (const auto& v : by_lag) {
+    if (v.empty()) return {};
+  }
   std::vector<double> c(lags + 1);
   for (std::size_t k = 0; k <= lags; ++k) c[k] = median(std::move(by_lag[k]));
   const double far = median(std::vector<double>(c.begin() + static_cast<std::ptrdiff_t>(lags / 2), c.end()));

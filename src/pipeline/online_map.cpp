@@ -61,6 +61,8 @@ class Feeder {
     run_.loop_closures = mapper_.loop_closures();
     run_.threshold = mapper_.threshold();
     run_.statistics = mapper_.statistics();
+    run_.contrast_offset = mapper_.contrast_offset();
+    run_.offset_changes = mapper_.offset_changes();
   }
 
  private:

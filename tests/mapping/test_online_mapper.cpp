@@ -484,5 +484,75 @@ TEST(OnlineMapper, RefusesBadFrames) {
   EXPECT_THROW(OnlineMapper{tiny}, std::invalid_argument);
 }
 
+namespace {
+
+// Descriptors of no revisit: AR(1) Gaussian vectors, x_t = rho x_{t-1} + sqrt(1 - rho^2) e_t (rho = 0: white
+// noise).
+std::vector<std::vector<float>> noise_descriptors(std::size_t n, double rho, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> normal;
+  std::vector<float> x(128);
+  for (auto& v : x) v = normal(rng);
+  std::vector<std::vector<float>> out;
+  while (out.size() < n) {
+    for (auto& v : x) v = static_cast<float>(rho) * v + static_cast<float>(std::sqrt(1 - rho * rho)) * normal(rng);
+    out.push_back(x);
+  }
+  return out;
+}
+
+struct NoiseRun {
+  std::size_t closures = 0;
+  float offset = 0;
+  std::vector<OnlineMapper::OffsetChange> changes;
+};
+
+NoiseRun map_noise(const std::vector<std::vector<float>>& frames, const OnlineMapConfig& c) {
+  OnlineMapper m(c);
+  for (const auto& f : frames) m.add_descriptor(f);
+  m.finish();
+  return {m.loop_closures().size(), m.contrast_offset(), m.offset_changes()};
+}
+
+}  // namespace
+
+// White-noise descriptors put the default offset's chance paths in the linear phase: they grow through the whole
+// run and reach any threshold (offline, the map raises its offset for them too). The mapper measures it on its
+// islands and raises the offset; without the check the same runs report chance revisits.
+TEST(OnlineMapper, ChancePathsInTheLinearPhaseRaiseTheOffset) {
+  std::size_t with = 0, without = 0;
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const auto frames = noise_descriptors(300, 0.0, seed);
+    OnlineMapConfig c;
+    const NoiseRun adapted = map_noise(frames, c);
+    ASSERT_FALSE(adapted.changes.empty()) << "seed " << seed;
+    EXPECT_GT(adapted.offset, c.contrast_offset);
+    EXPECT_GT(adapted.changes[0].chance_length, adapted.changes[0].bound);
+    EXPECT_FLOAT_EQ(adapted.changes[0].to - adapted.changes[0].from, c.contrast_offset_step);
+    with += adapted.closures;
+    c.adapt_offset = false;
+    const NoiseRun fixed = map_noise(frames, c);
+    EXPECT_TRUE(fixed.changes.empty());
+    EXPECT_FLOAT_EQ(fixed.offset, c.contrast_offset);
+    without += fixed.closures;
+  }
+  // A path that reached the threshold before the check could see the phase keeps its loop closures (one run).
+  EXPECT_LE(20 * with, without) << "chance loop closures on white noise";
+  EXPECT_GT(without, 100U) << "the runs no longer need the check: the test shows nothing";
+}
+
+// The same white noise from an offset of 1: its chance paths stay short (the logarithmic phase), so the check
+// leaves the offset alone.
+TEST(OnlineMapper, TheLogarithmicPhaseKeepsTheOffset) {
+  OnlineMapConfig c;
+  c.contrast_offset = 1.0F;
+  for (std::uint32_t seed = 1; seed <= 4; ++seed) {
+    const NoiseRun run = map_noise(noise_descriptors(300, 0.0, seed), c);
+    EXPECT_TRUE(run.changes.empty()) << "seed " << seed;
+    EXPECT_FLOAT_EQ(run.offset, c.contrast_offset);
+    EXPECT_EQ(run.closures, 0U) << "seed " << seed;
+  }
+}
+
 }  // namespace
 }  // namespace seqtopo::mapping

@@ -95,7 +95,19 @@ struct OnlineMapConfig {
   // How add_descriptor compares two descriptors (cosine for descriptors.npy rows, sad for patch thumbnails).
   similarity::Distance distance = similarity::Distance::cosine;
   std::size_t contrast_window = 10;  // w [frames]; 0: S aligned as it is (no enhancement, no offset)
-  float contrast_offset = 0.5F;      // [standard deviations] (the offline default)
+  float contrast_offset = 0.5F;      // [standard deviations] (the offline default); the first tried, see below
+  // After each fit, the chance islands' median length in places (the frames from an island's start to its best
+  // cell, over the frames per place estimated from the similarities so far, place_scale.hpp) is checked against
+  // the logarithmic phase as the offline map checks its chance alignments: at most max(4, ln(area in places)).
+  // Longer, and the chance paths grow with the sequence (the linear phase: no threshold keeps them out), so the
+  // offset is raised by contrast_offset_step for the frames that follow (up to max_contrast_offset) and the
+  // islands are sampled anew. Only for the scores the mapper enhances itself (not add_scores).
+  bool adapt_offset = true;
+  float contrast_offset_step = 0.25F;
+  float max_contrast_offset = 3.0F;
+  // S(t, t) of the similarity rows, which they do not hold (0 for S = -distance: add_descriptor's and the image
+  // rows'); unset: unknown, and the place scale is not estimated (islands are measured in frames).
+  std::optional<float> self_similarity = 0.0F;
   float gap = 1.5F;
   std::optional<float> cap = 40.0F;
   // A track's peak must reach the score of this E-value (unset: `threshold` always).
@@ -192,6 +204,16 @@ class OnlineMapper {
   // a fit).
   float threshold() const { return threshold_; }
   const significance::ScoreStatistics& statistics() const { return statistics_; }
+  // The contrast offset of the next frame, and each time adapt_offset raised it.
+  struct OffsetChange {
+    std::size_t frame = 0;  // the last frame at the old offset
+    float from = 0, to = 0;
+    double chance_length = 0;     // [places] the fitted islands' median length
+    double bound = 0;             // [places] the logarithmic phase's
+    double frames_per_place = 1;  // the estimate it was measured in
+  };
+  float contrast_offset() const { return offset_; }
+  const std::vector<OffsetChange>& offset_changes() const { return offset_changes_; }
   // The scores of the islands that have died so far (the best island_sample of them), best first; empty
   // without max_e_value.
   std::vector<double> island_scores() const;
@@ -283,8 +305,18 @@ class OnlineMapper {
   // The columns of the loop closures emitted at each frame (withdrawn ones too), with their direction: islands
   // beside them are the revisit's shadows, not chance.
   std::unordered_map<std::size_t, std::vector<std::pair<std::size_t, align::Direction>>> closure_columns_;
-  std::vector<double> island_heap_;
+  // The sample: (score, length in frames) of the best dead islands, a min-heap by score.
+  std::vector<std::pair<double, double>> island_heap_;
   std::size_t islands_died_ = 0;
+  std::size_t sample_from_ = 0;  // islands that started before this frame stay out (an earlier offset's)
+  float offset_ = 0;
+  std::vector<OffsetChange> offset_changes_;
+  // S(i, i + k) for k = 1 .. kScaleLags of the first frames, per similarity: the place scale.
+  std::vector<std::vector<std::vector<float>>> lag_samples_;
+  double frames_per_place_ = 1;
+  std::optional<std::size_t> scale_at_;  // the frame of the last estimate
+  void sample_lags(const std::vector<std::span<const float>>& rows);
+  void check_phase();
   bool sample_changed_ = false;
   significance::ScoreStatistics statistics_;
   float threshold_ = 0;

@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include "seqtopo/align/score_source.hpp"
 #include "seqtopo/core/pose2.hpp"
@@ -41,6 +42,10 @@ inline constexpr std::size_t kPlaceScaleFrames = 100000;
 // `similarity` is a square self-similarity (higher = more similar; any scale). Throws std::invalid_argument on
 // a non-square or empty source.
 PlaceScale estimate_frames_per_place(const align::ScoreSource& similarity, std::size_t max_lag = 200);
+
+// The same estimate from samples already read: by_lag[k] holds S(i, i + k) for the sampled frames i of a sequence
+// of n frames (by_lag.size() - 1 lags, emptied). For a sequence seen a frame at a time (mapping::OnlineMapper).
+PlaceScale frames_per_place_from_lags(std::vector<std::vector<float>> by_lag, std::size_t n);
 
 // With odometry the scale is the travelled distance instead: place_length [m] over the median distance between
 // consecutive poses, at least 1 (found is false when the robot does not move). The default place length is the

@@ -55,6 +55,9 @@ struct OnlineMapRun {
   // from (invalid when none could be fitted, or with max_e_value unset).
   float threshold = 0;
   significance::ScoreStatistics statistics;
+  // The contrast offset of the last frame, and where the logarithmic-phase check raised it (OnlineMapConfig).
+  float contrast_offset = 0;
+  std::vector<mapping::OnlineMapper::OffsetChange> offset_changes;
 };
 
 // Called after each frame with its events (possibly none), and once after the last frame with finish()'s.
