@@ -196,8 +196,9 @@ void run_map_online(const OnlineCliOptions& o) {
   for (std::size_t k = 0; k < run.offset_changes.size(); ++k) {
     const auto& x = run.offset_changes[k];
     summary += fmt::format(
-        R"({}{{"frame": {}, "from": {}, "to": {}, "chance_length": {}, "bound": {}, "frames_per_place": {}}})",
-        k ? ", " : "", x.frame, x.from, x.to, x.chance_length, x.bound, x.frames_per_place);
+        R"({}{{"frame": {}, "from": {}, "to": {}, "check": "{}", "global_rate": {}, "chance_length": {}, "bound": {}, )"
+        R"("frames_per_place": {}}})",
+        k ? ", " : "", x.frame, x.from, x.to, x.check, x.global_rate, x.chance_length, x.bound, x.frames_per_place);
   }
   summary += "]}";
   if (metrics) summary += ", \"metrics\": " + metrics_json(*metrics);
@@ -209,10 +210,16 @@ void run_map_online(const OnlineCliOptions& o) {
       "seqtopo map: {} frames online, {} loop closures, per frame median {:.2f} ms, p99 {:.2f} ms\n", run.frames,
       run.loop_closures.size(), 1e3 * quantile(run.frame_seconds, 0.5), 1e3 * quantile(run.frame_seconds, 0.99));
   for (const auto& x : run.offset_changes) {
-    std::cerr << fmt::format(
-        "seqtopo map: online contrast offset {:.2f}: chance islands grow with the sequence ({:.1f} places at "
-        "{:.2f} frames per place, linear phase); raised to {:.2f} after frame {}\n",
-        x.from, x.chance_length, x.frames_per_place, x.to, x.frame);
+    const std::string why =
+        x.check == "scores"
+            ? fmt::format("the scores' global alignment rate is {:.3f} a step, above {:.2f} (linear phase)",
+                          x.global_rate, request.config.max_global_rate.value_or(0.0F))
+            : fmt::format(
+                  "chance islands grow with the sequence ({:.1f} places at {:.2f} frames per place, linear "
+                  "phase)",
+                  x.chance_length, x.frames_per_place);
+    std::cerr << fmt::format("seqtopo map: online contrast offset {:.2f}: {}; raised to {:.2f} after frame {}\n",
+                             x.from, why, x.to, x.frame);
   }
   if (st.valid()) {
     std::cerr << fmt::format(

@@ -9,6 +9,7 @@
 
 #include "median.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
+#include "seqtopo/significance/alignment_phase.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::mapping {
@@ -24,6 +25,9 @@ constexpr std::size_t kTailFraction = 64;
 // The place scale is estimated from the lags 0 .. kScaleLags of the first kScaleFrames frames (offline: 200 lags of
 // every frame), again every kScaleEvery frames until then.
 constexpr std::size_t kScaleLags = 200, kScaleFrames = 2000, kScaleEvery = 16;
+// The scores' own phase (significance/alignment_phase.hpp) is checked on a 256 x 256 table drawn from the first
+// scores, once 2,048 are in and again each time their number doubles, up to 65,536.
+constexpr std::size_t kPhaseTable = 256, kPhaseMinCells = 2048, kPhaseCells = 65536;
 
 std::uint64_t cell(std::size_t i, std::size_t j) { return (static_cast<std::uint64_t>(i) << 32U) | j; }
 std::size_t cell_i(std::uint64_t c) { return static_cast<std::size_t>(c >> 32U); }
@@ -99,6 +103,7 @@ void validate(const OnlineMapConfig& c) {
     fail("the largest contrast offset must be finite and at least the contrast offset");
   }
   if (c.self_similarity && !std::isfinite(*c.self_similarity)) fail("self similarity must be finite");
+  if (c.max_global_rate && !std::isfinite(*c.max_global_rate)) fail("the largest global rate must be finite");
   if (c.max_e_value && !(*c.max_e_value > 0 && std::isfinite(*c.max_e_value))) fail("E-value must be finite and > 0");
   if (c.candidate_e_value &&
       !(std::isfinite(*c.candidate_e_value) && *c.candidate_e_value > (c.max_e_value ? *c.max_e_value : 0.0))) {
@@ -236,6 +241,25 @@ void OnlineMapper::enhance(const std::vector<std::span<const float>>& rows) {
     }
   }
   for (auto& v : scores_) v = (rows.size() == 1 ? v : v / static_cast<float>(rows.size())) - offset_;
+  if (config_.adapt_offset) {
+    for (std::size_t j = 0; j < n && phase_cells_.size() < kPhaseCells; ++j)
+      phase_cells_.push_back(scores_[j] + offset_);
+  }
+}
+
+void OnlineMapper::check_scores_phase() {
+  if (phase_cells_.size() < std::max(kPhaseMinCells, 2 * phase_checked_at_)) return;
+  phase_checked_at_ = phase_cells_.size();
+  std::vector<float> cells(phase_cells_.size());
+  while (offset_ + config_.contrast_offset_step <= config_.max_contrast_offset + 1e-6F) {
+    for (std::size_t k = 0; k < cells.size(); ++k) cells[k] = phase_cells_[k] - offset_;
+    const double rate = significance::resampled_global_rate(cells, kPhaseTable, config_.gap);
+    if (rate <= *config_.max_global_rate) break;
+    OffsetChange change;
+    change.check = "scores";
+    change.global_rate = rate;
+    raise_offset(std::move(change));
+  }
 }
 
 void OnlineMapper::sample_lags(const std::vector<std::span<const float>>& rows) {
@@ -270,7 +294,10 @@ void OnlineMapper::check_phase() {
       if (p.found) sum += p.frames_per_place, ++found;
     }
     frames_per_place_ = found > 0 ? sum / static_cast<double>(found) : 1.0;
+    scale_found_ = found > 0;
   }
+  // Lengths need a scale: a smooth sequence shorter than 50 of its places, or one that drifts, has none yet.
+  if (!scale_found_) return;
   std::vector<std::pair<double, double>> sample = island_heap_;
   std::sort(sample.begin(), sample.end(), std::greater<>());
   const std::size_t tail = std::min(sample.size(), islands_died_ / kTailFraction);
@@ -283,10 +310,21 @@ void OnlineMapper::check_phase() {
   const double fpp2 = frames_per_place_ * frames_per_place_;
   const double bound = std::max(4.0, std::log(std::max(statistics_.area / fpp2, 1.0)));
   if (length <= bound) return;
-  // The linear phase: raise the offset for the frames that follow, and sample the islands anew (those that
-  // started before are scored at the old offset).
-  offset_changes_.push_back(
-      {frames_, offset_, offset_ + config_.contrast_offset_step, length, bound, frames_per_place_});
+  OffsetChange change;
+  change.check = "islands";
+  change.chance_length = length;
+  change.bound = bound;
+  change.frames_per_place = frames_per_place_;
+  raise_offset(std::move(change));
+}
+
+// The linear phase: raise the offset for the frames that follow, and sample the islands anew (those that started
+// before are scored at the old offset).
+void OnlineMapper::raise_offset(OffsetChange change) {
+  change.frame = frames_;
+  change.from = offset_;
+  change.to = offset_ + config_.contrast_offset_step;
+  offset_changes_.push_back(std::move(change));
   offset_ += config_.contrast_offset_step;
   // Every live path is scored again as if the new offset had held from its start (one pair a frame): the paths
   // the linear phase let grow through chance fall away, a revisit keeps most of its score.
@@ -901,6 +939,7 @@ std::vector<OnlineEvent> OnlineMapper::step() {
     }
   }
   update_threshold();
+  if (config_.adapt_offset && config_.max_global_rate && config_.contrast_window > 0) check_scores_phase();
   ++frames_;
   return events;
 }

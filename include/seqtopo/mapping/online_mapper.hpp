@@ -96,15 +96,23 @@ struct OnlineMapConfig {
   similarity::Distance distance = similarity::Distance::cosine;
   std::size_t contrast_window = 10;  // w [frames]; 0: S aligned as it is (no enhancement, no offset)
   float contrast_offset = 0.5F;      // [standard deviations] (the offline default); the first tried, see below
-  // After each fit, the chance islands' median length in places (the frames from an island's start to its best
-  // cell, over the frames per place estimated from the similarities so far, place_scale.hpp) is checked against
-  // the logarithmic phase as the offline map checks its chance alignments: at most max(4, ln(area in places)).
-  // Longer, and the chance paths grow with the sequence (the linear phase: no threshold keeps them out), so the
-  // offset is raised by contrast_offset_step for the frames that follow (up to max_contrast_offset) and the
-  // islands are sampled anew. Only for the scores the mapper enhances itself (not add_scores).
+  // The logarithmic phase is checked twice (docs/online.md), and where the chance paths grow with the sequence
+  // (the linear phase: no threshold keeps them out) the offset is raised by contrast_offset_step for the frames
+  // that follow (up to max_contrast_offset), live paths are rescored and the islands sampled anew:
+  //  * the scores: the global alignment rate of a table drawn from the first scores
+  //    (significance/alignment_phase.hpp) must not exceed max_global_rate, checked from 2,048 scores on;
+  //  * the islands: after each fit, their median length in places (the frames from an island's start to its best
+  //    cell, over the frames per place estimated from the similarities so far, place_scale.hpp) must stay within
+  //    max(4, ln(area in places)), the offline map's bound for its chance alignments; checked once a scale is
+  //    found.
+  // Only for the scores the mapper enhances itself (not add_scores).
   bool adapt_offset = true;
   float contrast_offset_step = 0.25F;
   float max_contrast_offset = 3.0F;
+  // The scores' global alignment rate above this [score units a step] is the linear phase (unset: not checked).
+  // Measured at the default offset: white-noise descriptors -0.08 to 0; the corridor, Nordland, the synthetic
+  // route and smooth noise -0.19 to -0.35 (docs/online.md).
+  std::optional<float> max_global_rate = -0.1F;
   // S(t, t) of the similarity rows, which they do not hold (0 for S = -distance: add_descriptor's and the image
   // rows'); unset: unknown, and the place scale is not estimated (islands are measured in frames).
   std::optional<float> self_similarity = 0.0F;
@@ -208,9 +216,12 @@ class OnlineMapper {
   struct OffsetChange {
     std::size_t frame = 0;  // the last frame at the old offset
     float from = 0, to = 0;
-    double chance_length = 0;     // [places] the fitted islands' median length
-    double bound = 0;             // [places] the logarithmic phase's
-    double frames_per_place = 1;  // the estimate it was measured in
+    // "scores": the global alignment rate of the scores so far was above max_global_rate (global_rate);
+    // "islands": the fitted islands' median length (chance_length, in places at frames_per_place) above the
+    // logarithmic phase's bound.
+    std::string check;
+    double global_rate = 0;
+    double chance_length = 0, bound = 0, frames_per_place = 1;
   };
   float contrast_offset() const { return offset_; }
   const std::vector<OffsetChange>& offset_changes() const { return offset_changes_; }
@@ -315,8 +326,14 @@ class OnlineMapper {
   std::vector<std::vector<std::vector<float>>> lag_samples_;
   double frames_per_place_ = 1;
   std::optional<std::size_t> scale_at_;  // the frame of the last estimate
+  bool scale_found_ = false;
+  // The enhanced scores (without the offset) of the first frames, for the global alignment rate.
+  std::vector<float> phase_cells_;
+  std::size_t phase_checked_at_ = 0;  // cells at the last check
   void sample_lags(const std::vector<std::span<const float>>& rows);
   void check_phase();
+  void check_scores_phase();
+  void raise_offset(OffsetChange change);
   bool sample_changed_ = false;
   significance::ScoreStatistics statistics_;
   float threshold_ = 0;
