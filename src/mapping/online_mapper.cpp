@@ -23,7 +23,8 @@ constexpr std::uint64_t kNoStart = std::numeric_limits<std::uint64_t>::max();
 constexpr std::size_t kMinIslandTail = 48;
 constexpr std::size_t kTailFraction = 64;
 // The place scale is estimated from the lags 0 .. kScaleLags of the first kScaleFrames frames (offline: 200 lags of
-// every frame), again every kScaleEvery frames until then.
+// every frame), again once the frames have grown by a quarter (at least 16) until then: a few milliseconds each,
+// rare enough to stay out of the per-frame 99th percentile.
 constexpr std::size_t kScaleLags = 200, kScaleFrames = 2000, kScaleEvery = 16;
 // The scores' own phase (significance/alignment_phase.hpp) is checked on a 256 x 256 table drawn from the first
 // scores, once 2,048 are in and again each time their number doubles, up to 65,536.
@@ -279,9 +280,19 @@ void OnlineMapper::check_phase() {
       offset_ + config_.contrast_offset_step > config_.max_contrast_offset + 1e-6F) {
     return;
   }
+  std::vector<std::pair<double, double>> sample = island_heap_;
+  std::sort(sample.begin(), sample.end(), std::greater<>());
+  const std::size_t tail = std::min(sample.size(), islands_died_ / kTailFraction);
+  std::vector<double> lengths;
+  for (std::size_t r = statistics_.first_fitted_rank - 1; r < tail; ++r) lengths.push_back(sample[r].second);
+  if (lengths.empty()) return;
+  const double frames = detail::median(std::move(lengths));
+  // Within the bound counted in frames, the lengths are within it in places too (f frames a place divide the
+  // length by f and lower the bound by 2 ln f only), so the scale is estimated only past it.
+  if (frames <= std::max(4.0, std::log(std::max(statistics_.area, 1.0)))) return;
   // The place scale of the frames so far (the mean of the similarities' that have one), as the offline map's.
   const std::size_t n = std::min(frames_ + 1, kScaleFrames);
-  if (!scale_at_ || (frames_ < kScaleFrames && frames_ >= *scale_at_ + kScaleEvery)) {
+  if (!scale_at_ || (frames_ < kScaleFrames && frames_ >= *scale_at_ + std::max(kScaleEvery, *scale_at_ / 4))) {
     scale_at_ = frames_;
     double sum = 0;
     std::size_t found = 0;
@@ -298,17 +309,9 @@ void OnlineMapper::check_phase() {
   }
   // Lengths need a scale: a smooth sequence shorter than 50 of its places, or one that drifts, has none yet.
   if (!scale_found_) return;
-  std::vector<std::pair<double, double>> sample = island_heap_;
-  std::sort(sample.begin(), sample.end(), std::greater<>());
-  const std::size_t tail = std::min(sample.size(), islands_died_ / kTailFraction);
-  std::vector<double> lengths;
-  for (std::size_t r = statistics_.first_fitted_rank - 1; r < tail; ++r) {
-    lengths.push_back(sample[r].second / frames_per_place_);
-  }
-  if (lengths.empty()) return;
-  const double length = detail::median(std::move(lengths));
-  const double fpp2 = frames_per_place_ * frames_per_place_;
-  const double bound = std::max(4.0, std::log(std::max(statistics_.area / fpp2, 1.0)));
+  const double length = frames / frames_per_place_;
+  const double bound =
+      std::max(4.0, std::log(std::max(statistics_.area / (frames_per_place_ * frames_per_place_), 1.0)));
   if (length <= bound) return;
   OffsetChange change;
   change.check = "islands";
