@@ -16,6 +16,7 @@
 #include "seqtopo/mapping/graph_cleanup.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/significance/alignment_ends.hpp"
+#include "seqtopo/significance/alignment_phase.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::mapping {
@@ -81,6 +82,7 @@ struct FitRun {
   std::size_t fitted = 0;    // alignments the fit could use (not shadows)
   double chance_length = 0;  // [places]
   double cell_mean = 0;      // of the cells the run read, off the self band
+  double global_rate = 0;    // of a table drawn from them (significance/alignment_phase.hpp)
 };
 
 // The statistics' run: the best `fit_alignments` declumped alignments of `scores` (any score > 0), with the
@@ -89,10 +91,13 @@ struct FitRun {
 // spread evenly along them, read once into memory: the statistics of a cell do not depend on the sequence's
 // length (the area scales them), and the fit then costs the same for 10^4 frames streamed as for 4,000.
 constexpr std::size_t kFitBlock = 2000, kFitBlocks = 4;
+// The global alignment rate is taken on a 256 x 256 table drawn from about 65,536 of the fit's cells.
+constexpr std::size_t kPhaseTable = 256, kPhaseCells = 65536;
 
 // The statistics' run's alignments, best first, in the full sequence's indices; `area` the cells searched.
 std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scores, align::AlignConfig engine,
-                                                  const MapConfig& c, double& area, double& cell_mean) {
+                                                  const MapConfig& c, double& area, double& cell_mean,
+                                                  std::vector<float>& cell_sample) {
   const std::size_t n = scores.rows();
   const bool whole = n <= 2 * kFitBlock;
   // A sequence this short is fitted whole, from a copy in memory when the source is not (a streamed source
@@ -102,13 +107,20 @@ std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scor
   if (!whole) engine.max_alignments = (engine.max_alignments + blocks - 1) / blocks;
   std::vector<align::LocalAlignment> all;
   std::vector<align::Score> block(size * size);
+  const double block_cells = significance::search_area(size, size, true, c.min_separation, false);
+  const auto phase_stride =
+      std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(blocks) * block_cells / kPhaseCells));
   double sum = 0;  // of the cells off the self band, for their mean
   std::size_t cells = 0;
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t start = blocks == 1 ? 0 : (n - size) * b / (blocks - 1);
     for (std::size_t i = 0; i < size; ++i) scores.read_row(start + i, start, start + size, block.data() + i * size);
     for (std::size_t i = c.min_separation; i < size; ++i) {
-      for (std::size_t j = 0; j + c.min_separation <= i; ++j) sum += block[i * size + j], ++cells;
+      for (std::size_t j = 0; j + c.min_separation <= i; ++j) {
+        sum += block[i * size + j];
+        // Every stride-th cell, about kPhaseCells of the blocks' (the same cells whatever the thread count).
+        if (cells++ % phase_stride == 0) cell_sample.push_back(block[i * size + j]);
+      }
     }
     auto found =
         run_engine(align::ScoreSource::dense(block, size, size), engine, MapConfig::Engine::fast, c.reverse, c.threads);
@@ -134,7 +146,9 @@ FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, doub
   engine.max_alignments = alignments;
   FitRun run;
   double area = 0;
-  run.alignments = fit_alignments(scores, engine, c, area, run.cell_mean);
+  std::vector<float> cells;
+  run.alignments = fit_alignments(scores, engine, c, area, run.cell_mean, cells);
+  if (!cells.empty()) run.global_rate = significance::resampled_global_rate(cells, kPhaseTable, c.gap);
   std::vector<double> best_first;
   std::vector<std::size_t> fitted;  // indices of the alignments in best_first
   for (std::size_t k = 0; k < run.alignments.size(); ++k) {
@@ -368,21 +382,30 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
         fit = fit_statistics(minus(enhanced, offset), c, d.frames_per_place, m);
         if (fit.statistics.valid() || fit.alignments.size() < m || m >= 16 * c.fit_alignments) break;
       }
-      const bool logarithmic = fit.statistics.valid() && logarithmic_phase(fit.chance_length, area_places);
+      const bool short_chance = logarithmic_phase(fit.chance_length, area_places);
+      const bool falling = !c.max_global_rate || fit.global_rate <= *c.max_global_rate;
+      const bool logarithmic = fit.statistics.valid() && short_chance && falling;
       if (logarithmic || !fit.statistics.valid() || !c.adapt_offset || c.contrast_window == 0 ||
           offset + c.contrast_offset_step > c.max_contrast_offset + 1e-6F) {
         if (!logarithmic && fit.statistics.valid()) {
           d.notes.push_back(
-              fmt::format("chance alignments stay long ({:.1f} places) even at contrast offset {:.2f}: "
-                          "revisits may be overestimated",
-                          fit.chance_length, offset));
+              short_chance ? fmt::format("the scores' global alignment rate stays at {:.3f} a step even at contrast "
+                                         "offset {:.2f}: revisits may be overestimated",
+                                         fit.global_rate, offset)
+                           : fmt::format("chance alignments stay long ({:.1f} places) even at contrast offset {:.2f}: "
+                                         "revisits may be overestimated",
+                                         fit.chance_length, offset));
         }
         break;
       }
       d.notes.push_back(
-          fmt::format("contrast offset {:.2f}: chance alignments grow with the sequence ({:.1f} places, "
-                      "linear phase); raised to {:.2f}",
-                      offset, fit.chance_length, offset + c.contrast_offset_step));
+          short_chance
+              ? fmt::format("contrast offset {:.2f}: the scores' global alignment rate is {:.3f} a step, above {:.2f} "
+                            "(linear phase); raised to {:.2f}",
+                            offset, fit.global_rate, *c.max_global_rate, offset + c.contrast_offset_step)
+              : fmt::format("contrast offset {:.2f}: chance alignments grow with the sequence ({:.1f} places, "
+                            "linear phase); raised to {:.2f}",
+                            offset, fit.chance_length, offset + c.contrast_offset_step));
       offset += c.contrast_offset_step;
     }
     d.statistics = fit.statistics;

@@ -42,6 +42,29 @@ TEST(Calibration, OnNoiseTheEValuesCountTheChanceAlignmentsAndTheDefaultReportsN
   EXPECT_LT(mean, 3.0 * 3) << "E-values far too optimistic";
 }
 
+// Short white-noise sequences: their chance alignments are too short for the length check to see the linear
+// phase, yet the offset of 0.5 leaves them near it (a fit on them puts chance alignments at E <= 0.01). The
+// scores' global alignment rate (significance/alignment_phase.hpp) sees it and the offset is raised.
+TEST(Calibration, OnShortNoiseTheScoresGlobalRateRaisesTheOffset) {
+  std::size_t with = 0, without = 0, raised = 0;
+  for (std::size_t frames : {150, 300}) {
+    for (int seed = 1; seed <= 12; ++seed) {
+      const auto s = cosine_similarity({.frames = frames, .dim = 128, .seed = static_cast<std::uint64_t>(seed)});
+      mapping::MapConfig config;
+      const auto checked = mapping::build_map(s, config);
+      raised += checked.decisions.contrast_offset > config.contrast_offset ? 1 : 0;
+      for (double e : checked.e_values) with += e <= 0.01 ? 1 : 0;
+      config.max_global_rate.reset();
+      const auto unchecked = mapping::build_map(s, config);
+      for (double e : unchecked.e_values) without += e <= 0.01 ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(raised, 24U);
+  // At E <= 0.01, 24 noise sequences expect 0.24 chance alignments (1 here); without the check 13.
+  EXPECT_LE(with, 2U);
+  EXPECT_GE(without, 6U) << "the runs no longer need the check: the test shows nothing";
+}
+
 // Past 2 x 2,000 frames the statistics are fitted on diagonal blocks; K is per cell, so the E-values still count
 // the chance alignments of the whole search (8,000 frames: four times the blocks' area), not of the blocks.
 TEST(Calibration, OnALongNoiseSequenceTheEValuesCountTheWholeSearch) {

@@ -46,9 +46,13 @@ struct MapConfig {
   // alignments on the sequence's own scores stay short (the logarithmic phase of local alignment scores,
   // Arratia & Waterman 1994): below it, the best chance alignment grows with the sequence's length and no
   // threshold separates revisits from chance.
+  // Two checks (docs/significance.md): the chance alignments' median length (at most max(4, ln(area)) places),
+  // and the global alignment rate of a table drawn from the scores (significance/alignment_phase.hpp: at most
+  // max_global_rate a step; unset: not checked), which sees the phase in sequences too short for the lengths.
   bool adapt_offset = true;
   float contrast_offset_step = 0.25F;
   float max_contrast_offset = 3.0F;
+  std::optional<float> max_global_rate = -0.1F;
   std::size_t min_separation = 10;  // [places] pairs closer than this in time never count
   // Windows and separations in places: each place spans frames_per_place images (place_scale.hpp), estimated
   // from the similarity when nullopt. place_units false counts them in frames, as the paper does.
