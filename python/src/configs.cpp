@@ -158,15 +158,15 @@ void bind_map(py::module_& m) {
       "('non-intersecting' or 'locally-optimal', docs/alignment_sets.md), trim_chance_ends (alignments' ends\n"
       "cut back where their pairs are more likely chance than revisit, significance/alignment_ends.hpp),\n"
       "odometry_evidence (with odometry: an alignment's agreement with it lowers its E-value, map_builder.hpp).");
-  c.def(py::init([labelling_value](std::size_t contrast_window, float contrast_offset, float gap,
-                                   std::optional<float> cap, bool cap_from_statistics, float cap_factor,
-                                   std::optional<double> max_e_value, float threshold, double min_revisit_places,
-                                   bool adapt_offset, std::size_t min_separation, bool place_units,
-                                   std::optional<double> frames_per_place, bool reverse, const std::string& labelling,
-                                   double max_visit_span, bool clean_graph, PruningConfig pruning,
-                                   TopologyConfig topology, unsigned threads, float contrast_offset_step,
-                                   float max_contrast_offset, std::size_t fit_alignments, std::size_t confidence_band,
-                                   const std::string& alignment_set, bool trim_chance_ends, bool odometry_evidence) {
+  c.def(py::init([labelling_value](
+                     std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap,
+                     bool cap_from_statistics, float cap_factor, std::optional<double> max_e_value, float threshold,
+                     double min_revisit_places, bool adapt_offset, std::size_t min_separation, bool place_units,
+                     std::optional<double> frames_per_place, bool reverse, const std::string& labelling,
+                     double max_visit_span, bool clean_graph, PruningConfig pruning, TopologyConfig topology,
+                     unsigned threads, float contrast_offset_step, float max_contrast_offset,
+                     std::size_t fit_alignments, std::size_t confidence_band, const std::string& alignment_set,
+                     bool trim_chance_ends, bool odometry_evidence, std::optional<float> max_global_rate) {
           MapConfig config;
           config.contrast_window = contrast_window;
           config.contrast_offset = contrast_offset;
@@ -195,6 +195,7 @@ void bind_map(py::module_& m) {
           config.alignment_set = align::parse_alignment_set(alignment_set);
           config.trim_chance_ends = trim_chance_ends;
           config.odometry_evidence = odometry_evidence;
+          config.max_global_rate = max_global_rate;
           return config;
         }),
         py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
@@ -210,7 +211,8 @@ void bind_map(py::module_& m) {
         py::arg("max_contrast_offset") = d.max_contrast_offset, py::arg("fit_alignments") = d.fit_alignments,
         py::arg("confidence_band") = d.confidence_band,
         py::arg("alignment_set") = std::string(align::to_string(d.alignment_set)),
-        py::arg("trim_chance_ends") = d.trim_chance_ends, py::arg("odometry_evidence") = d.odometry_evidence)
+        py::arg("trim_chance_ends") = d.trim_chance_ends, py::arg("odometry_evidence") = d.odometry_evidence,
+        py::arg("max_global_rate") = d.max_global_rate)
       .def_readwrite("contrast_window", &MapConfig::contrast_window)
       .def_readwrite("contrast_offset", &MapConfig::contrast_offset)
       .def_readwrite("gap", &MapConfig::gap)
@@ -223,6 +225,7 @@ void bind_map(py::module_& m) {
       .def_readwrite("adapt_offset", &MapConfig::adapt_offset)
       .def_readwrite("contrast_offset_step", &MapConfig::contrast_offset_step)
       .def_readwrite("max_contrast_offset", &MapConfig::max_contrast_offset)
+      .def_readwrite("max_global_rate", &MapConfig::max_global_rate)
       .def_readwrite("min_separation", &MapConfig::min_separation)
       .def_readwrite("place_units", &MapConfig::place_units)
       .def_readwrite("frames_per_place", &MapConfig::frames_per_place)
