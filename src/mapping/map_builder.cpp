@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -82,7 +83,8 @@ struct FitRun {
   std::size_t fitted = 0;    // alignments the fit could use (not shadows)
   double chance_length = 0;  // [places]
   double cell_mean = 0;      // of the cells the run read, off the self band
-  double global_rate = 0;    // of a table drawn from them (significance/alignment_phase.hpp)
+  // of a table drawn from them (significance/alignment_phase.hpp); none drawn: no sign of the linear phase
+  double global_rate = -std::numeric_limits<double>::infinity();
 };
 
 // The statistics' run: the best `fit_alignments` declumped alignments of `scores` (any score > 0), with the
