@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <istream>
+#include <optional>
 #include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
@@ -113,6 +115,28 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
     default:
       break;
   }
+  // A matrix input is read whole; a similarity's own diagonal is S(t, t), which its rows below leave out (the place
+  // scale needs it: mapping::OnlineMapConfig::self_similarity).
+  std::optional<DenseMatrix<float>> matrix;
+  if (run.kind == InputKind::descriptors || run.kind == InputKind::similarity) {
+    matrix = io::read_npy_matrix<float>(input.path);
+    if (matrix->rows == 0 || matrix->cols == 0) throw InputError(subject, "holds no row");
+    if (run.kind == InputKind::similarity) {
+      if (matrix->rows != matrix->cols) {
+        throw InputError(subject,
+                         fmt::format("a similarity matrix must be square, got {} x {}", matrix->rows, matrix->cols));
+      }
+      std::vector<float> diagonal;  // finite values only (a non-finite one is refused with its row below)
+      for (std::size_t t = 0; t < matrix->rows; ++t) {
+        if (std::isfinite((*matrix)(t, t))) diagonal.push_back((*matrix)(t, t));
+      }
+      if (!diagonal.empty()) {
+        const auto middle = diagonal.begin() + static_cast<std::ptrdiff_t>(diagonal.size() / 2);
+        std::nth_element(diagonal.begin(), middle, diagonal.end());
+        config.self_similarity = *middle;
+      }
+    }
+  }
   Feeder feeder(config, run, on_frame);
   OnlineImageRows image_rows(request.similarity);
   auto add_image = [&](std::string name, const RgbImage& image) {
@@ -143,12 +167,8 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
       add_image(fmt::format("frame {}", index), image);
     });
   } else if (run.kind == InputKind::descriptors || run.kind == InputKind::similarity) {
-    const DenseMatrix<float> rows = io::read_npy_matrix<float>(input.path);
-    if (rows.rows == 0 || rows.cols == 0) throw InputError(subject, "holds no row");
+    const DenseMatrix<float>& rows = *matrix;
     const bool similarity = run.kind == InputKind::similarity;
-    if (similarity && rows.rows != rows.cols) {
-      throw InputError(subject, fmt::format("a similarity matrix must be square, got {} x {}", rows.rows, rows.cols));
-    }
     for (std::size_t t = 0; t < rows.rows; ++t) {
       const auto row = rows.row(t);
       for (float v : row) {

@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -18,6 +20,8 @@
 
 #include "common/cli_run.hpp"
 #include "common/temp_dir.hpp"
+#include "seqtopo/core/dense_matrix.hpp"
+#include "seqtopo/io/npy.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -155,6 +159,9 @@ TEST(MapOnline, WritesTheOnlineAndTheOfflineOutputs) {
   EXPECT_EQ(summary["significance"]["max_e_value"].get<double>(), 0.01);
   EXPECT_EQ(summary["significance"]["threshold"].get<double>(), 20.0);
   EXPECT_FALSE(summary["significance"].contains("lambda"));
+  // Its scores are in the logarithmic phase: the offset stays.
+  EXPECT_EQ(summary["significance"]["contrast_offset"].get<double>(), 0.5);
+  EXPECT_TRUE(summary["significance"]["offset_changes"].empty());
   std::ifstream events(dir.path / "out" / "events.jsonl");
   std::string line;
   std::size_t closures = 0;
@@ -165,6 +172,39 @@ TEST(MapOnline, WritesTheOnlineAndTheOfflineOutputs) {
     EXPECT_TRUE(e.contains("e_value") && e["e_value"].is_null()) << line;
   }
   EXPECT_GT(closures, 0U);
+}
+
+// White-noise descriptors, and their cosine similarity as a similarity.npy: the offset is raised where the scores'
+// chance paths would grow with the run (one stderr line, online.json), and no chance loop closure stands.
+TEST(MapOnline, WhiteNoiseRaisesTheOffsetAndGivesNoLoopClosure) {
+  const seqtopo::test_support::TempDir dir;
+  const std::size_t n = 300, dim = 128;
+  std::mt19937 rng(11);
+  std::normal_distribution<float> normal;
+  seqtopo::DenseMatrix<float> x(n, dim);
+  for (auto& v : x.values) v = normal(rng);
+  seqtopo::DenseMatrix<float> s(n, n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      double dot = 0, a = 0, b = 0;
+      for (std::size_t k = 0; k < dim; ++k) dot += x(i, k) * x(j, k), a += x(i, k) * x(i, k), b += x(j, k) * x(j, k);
+      s(i, j) = static_cast<float>(dot / std::sqrt(a * b));
+    }
+  }
+  seqtopo::io::write_npy(dir.path / "descriptors.npy", x);
+  seqtopo::io::write_npy(dir.path / "similarity.npy", s);
+  for (const char* input : {"descriptors.npy", "similarity.npy"}) {
+    const fs::path out = dir.path / (std::string("out_") + input);
+    const auto o =
+        run_cli("map " + (dir.path / input).string() + " --online --no-offline-outputs --out " + out.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find("online contrast offset 0.50: the scores' global alignment rate"), std::string::npos) << o.err;
+    const auto summary = nlohmann::json::parse(read_text(out / "online.json"));
+    EXPECT_GT(summary["significance"]["contrast_offset"].get<double>(), 0.5) << input;
+    ASSERT_FALSE(summary["significance"]["offset_changes"].empty()) << input;
+    EXPECT_EQ(summary["significance"]["offset_changes"][0]["check"], "scores") << input;
+    EXPECT_EQ(lines_of(read_text(out / "online_loop_closures.csv")).size(), 1U) << input << ": only the header";
+  }
 }
 
 TEST(MapOnline, BadInputGivesOneLine) {
