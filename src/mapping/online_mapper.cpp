@@ -344,6 +344,7 @@ void OnlineMapper::raise_offset(OffsetChange change) {
   sample_from_ = frames_ + 1;
   statistics_ = {};
   sample_changed_ = false;
+  threshold_ = config_.threshold;  // until the new sample is large enough for a fit
 }
 
 std::vector<OnlineEvent> OnlineMapper::add_similarities(const std::vector<std::vector<float>>& rows) {
