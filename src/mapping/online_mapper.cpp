@@ -275,16 +275,13 @@ void OnlineMapper::sample_lags(const std::vector<std::span<const float>>& rows) 
   }
 }
 
-void OnlineMapper::check_phase() {
+void OnlineMapper::check_phase(const std::vector<std::pair<double, double>>& fitted) {
   if (!config_.adapt_offset || config_.contrast_window == 0 || lag_samples_.empty() ||
       offset_ + config_.contrast_offset_step > config_.max_contrast_offset + 1e-6F) {
     return;
   }
-  std::vector<std::pair<double, double>> sample = island_heap_;
-  std::sort(sample.begin(), sample.end(), std::greater<>());
-  const std::size_t tail = std::min(sample.size(), islands_died_ / kTailFraction);
   std::vector<double> lengths;
-  for (std::size_t r = statistics_.first_fitted_rank - 1; r < tail; ++r) lengths.push_back(sample[r].second);
+  for (std::size_t r = statistics_.first_fitted_rank - 1; r < fitted.size(); ++r) lengths.push_back(fitted[r].second);
   if (lengths.empty()) return;
   const double frames = detail::median(std::move(lengths));
   // Within the bound counted in frames, the lengths are within it in places too (f frames a place divide the
@@ -900,12 +897,15 @@ void OnlineMapper::update_threshold() {
   const double area =
       significance::search_area(frames_ + 1, frames_ + 1, true, config_.min_separation, config_.reverse);
   if (sample_changed_ || !statistics_.valid()) {
-    std::vector<double> scores = island_scores();
-    scores.resize(tail);
+    // The best `tail` islands, best first: their scores for the fit, their lengths for the phase check.
+    std::vector<std::pair<double, double>> sample = island_heap_;
+    std::sort(sample.begin(), sample.end(), std::greater<>());
+    sample.resize(tail);
+    std::vector<double> scores(tail);
+    for (std::size_t r = 0; r < tail; ++r) scores[r] = sample[r].first;
     statistics_ = significance::fit_declumped_scores(scores, area);
     sample_changed_ = false;
-    statistics_.area = area;
-    if (statistics_.valid()) check_phase();
+    if (statistics_.valid()) check_phase(sample);
   }
   statistics_.area = area;
   if (!statistics_.valid()) {

@@ -331,7 +331,8 @@ class OnlineMapper {
   std::vector<float> phase_cells_;
   std::size_t phase_checked_at_ = 0;  // cells at the last check
   void sample_lags(const std::vector<std::span<const float>>& rows);
-  void check_phase();
+  // `fitted`: the (score, length) of the islands the fit took, best first.
+  void check_phase(const std::vector<std::pair<double, double>>& fitted);
   void check_scores_phase();
   void raise_offset(OffsetChange change);
   bool sample_changed_ = false;
