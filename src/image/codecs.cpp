@@ -140,14 +140,6 @@ Video::~Video() {
 
 Video::Video(Video&& other) noexcept : handle_(std::exchange(other.handle_, nullptr)) {}
 
-Video& Video::operator=(Video&& other) noexcept {
-  if (this != &other) {
-    if (handle_ != nullptr) table().video_close(handle_);
-    handle_ = std::exchange(other.handle_, nullptr);
-  }
-  return *this;
-}
-
 double Video::frame_count() const { return handle_ != nullptr ? table().video_frame_count(handle_) : 0.0; }
 
 bool Video::grab() { return handle_ != nullptr && table().video_grab(handle_); }

@@ -38,8 +38,7 @@ class Video {
  public:
   explicit Video(const std::filesystem::path& path);
   ~Video();
-  Video(Video&& other) noexcept;
-  Video& operator=(Video&& other) noexcept;
+  Video(Video&& other) noexcept;  // returned by value; never assigned
   Video(const Video&) = delete;
   Video& operator=(const Video&) = delete;
 
