@@ -242,7 +242,7 @@ void OnlineMapper::enhance(const std::vector<std::span<const float>>& rows) {
     }
   }
   for (auto& v : scores_) v = (rows.size() == 1 ? v : v / static_cast<float>(rows.size())) - offset_;
-  if (config_.adapt_offset) {
+  if (config_.adapt_offset && config_.max_global_rate) {  // kept only for check_scores_phase
     for (std::size_t j = 0; j < n && phase_cells_.size() < kPhaseCells; ++j)
       phase_cells_.push_back(scores_[j] + offset_);
   }
