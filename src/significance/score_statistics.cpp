@@ -9,17 +9,21 @@ namespace seqtopo::significance {
 
 double ScoreStatistics::e_value(double score) const {
   if (!valid()) return std::numeric_limits<double>::quiet_NaN();
-  return k * area * std::exp(-lambda * score);
+  if (!(spacings > 0) || score <= anchor_score) return k * area * std::exp(-lambda * score);
+  const double at_anchor = k * area * std::exp(-lambda * anchor_score);
+  return at_anchor * std::exp(-spacings * std::log1p(lambda * (score - anchor_score) / spacings));
 }
 
 double ScoreStatistics::bit_score(double score) const {
   if (!valid()) return std::numeric_limits<double>::quiet_NaN();
-  return (lambda * score - std::log(k)) / std::log(2.0);
+  return std::log2(area / e_value(score));
 }
 
 double ScoreStatistics::score_at(double e) const {
   if (!valid() || !(e > 0)) return std::numeric_limits<double>::quiet_NaN();
-  return std::log(k * area / e) / lambda;
+  const double at_anchor = k * area * std::exp(-lambda * anchor_score);
+  if (!(spacings > 0) || e >= at_anchor) return std::log(k * area / e) / lambda;
+  return anchor_score + spacings / lambda * std::expm1(std::log(at_anchor / e) / spacings);
 }
 
 namespace {
@@ -45,11 +49,15 @@ ScoreStatistics tail_fit(std::span<const double> scores, double area, std::size_
   if (!(weighted_spacings > 0)) return s;
   s.lambda = static_cast<double>(m - first) / weighted_spacings;
   double intercept = 0;  // ln(K * area)
+  double anchor = 0;
   for (std::size_t r = first; r <= m; ++r) {
     intercept += std::log(static_cast<double>(r - real)) + s.lambda * scores[r - 1];
+    anchor += scores[r - 1];
   }
   intercept /= static_cast<double>(m - first + 1);
   s.k = std::exp(intercept) / area;
+  s.anchor_score = anchor / static_cast<double>(m - first + 1);
+  s.spacings = static_cast<double>(m - first);
   s.fitted = m - first + 1;
   s.first_fitted_rank = first;
   return s;

@@ -51,9 +51,63 @@ TEST(ScoreStatistics, TheFitRecoversLambdaAndKOfAPoissonTail) {
       EXPECT_GT(e, 20 / 2.0) << seed;
       EXPECT_LT(e, 20 * 2.0) << seed;
       EXPECT_NEAR(fit.score_at(fit.e_value(scores[5])), scores[5], 1e-9 * std::abs(scores[5]) + 1e-9);
-      EXPECT_NEAR(fit.bit_score(scores[5]), (fit.lambda * scores[5] - std::log(fit.k)) / std::log(2.0), 1e-9);
+      EXPECT_NEAR(fit.bit_score(scores[5]), std::log2(area / fit.e_value(scores[5])), 1e-9);
+      // 1000 spacings: the predictive E-value is the plug-in one, K area exp(-lambda s), within a few percent.
+      const double plug_in = fit.k * area * std::exp(-fit.lambda * scores[5]);
+      EXPECT_NEAR(fit.e_value(scores[5]), plug_in, 0.05 * plug_in) << seed;
     }
   }
+}
+
+// What an E-value threshold promises: the score a fit puts at E = 0.01 is reached by chance 0.01 times on
+// average, over the samples the fit could have come from. From 45 chance alignments (35 spacings fitted) the
+// plug-in threshold, with lambda's error multiplied by the extrapolation, lets in about twice that; the
+// predictive one keeps the promise. Checked against the true law the samples are drawn from.
+TEST(ScoreStatistics, AThresholdFromFewAlignmentsKeepsItsEValueOnAverage) {
+  const double lambda = 0.5, k = 0.01, area = 1e5, e = 0.01;
+  double predictive = 0, plug_in = 0;
+  const int samples = 4000;
+  for (int seed = 1; seed <= samples; ++seed) {
+    const auto fit = fit_declumped_scores(poisson_scores(lambda, k, area, 45, static_cast<std::uint32_t>(seed)), area);
+    ASSERT_TRUE(fit.valid()) << seed;
+    ASSERT_EQ(fit.spacings, 35.0) << seed;
+    ScoreStatistics exact = fit;
+    exact.spacings = 0;
+    const auto truth = [&](double score) { return k * area * std::exp(-lambda * score); };
+    predictive += truth(fit.score_at(e)) / samples;
+    plug_in += truth(exact.score_at(e)) / samples;
+    EXPECT_NEAR(fit.e_value(fit.score_at(e)), e, 1e-9 * e);
+    EXPECT_GT(fit.score_at(e), exact.score_at(e)) << seed;
+  }
+  EXPECT_NEAR(predictive, e, 0.25 * e) << "plug-in: " << plug_in;
+  EXPECT_GT(plug_in, 1.5 * e) << "predictive: " << predictive;
+}
+
+// The predictive tail against a Monte Carlo average of the plug-in tail over lambda's posterior,
+// Gamma(n, n / lambda-hat).
+TEST(ScoreStatistics, ThePredictiveEValueIsThePlugInOneAveragedOverLambda) {
+  ScoreStatistics s;
+  s.lambda = 0.8;
+  s.k = 0.02;
+  s.area = 5e4;
+  s.anchor_score = 3.0;
+  s.spacings = 20;
+  std::mt19937 rng(3);
+  std::gamma_distribution<double> posterior(s.spacings, s.lambda / s.spacings);
+  const int draws = 200000;
+  for (double score : {4.0, 10.0, 16.0}) {
+    double mean = 0;
+    std::mt19937 same(rng);
+    for (int d = 0; d < draws; ++d) {
+      mean += s.k * s.area * std::exp(-s.lambda * s.anchor_score) *
+              std::exp(-posterior(same) * (score - s.anchor_score)) / draws;
+    }
+    EXPECT_NEAR(s.e_value(score), mean, 0.02 * mean) << score;
+  }
+  // At and below the anchor the fit's count itself.
+  EXPECT_DOUBLE_EQ(s.e_value(2.0), s.k * s.area * std::exp(-s.lambda * 2.0));
+  EXPECT_NEAR(s.score_at(s.e_value(12.0)), 12.0, 1e-9);
+  EXPECT_NEAR(s.score_at(s.e_value(1.0)), 1.0, 1e-9);
 }
 
 TEST(ScoreStatistics, RealAlignmentsAtTheTopAreSetAsideAndFarBelowOneChanceHit) {
