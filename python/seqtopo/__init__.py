@@ -476,6 +476,7 @@ def map_sequence(
     streaming: bool = False,
     sparse: bool = False,
     neighbours: int = 10,
+    diagonal_reach: int | None = None,
     names: list[str] | None = None,
     **overrides,
 ) -> "MapRun":
@@ -492,7 +493,8 @@ def map_sequence(
     (x, y, theta [m, m, rad], cumulative), ``ground_truth`` an N x N same-place matrix or N x 2 positions with
     ``gt_radius`` [m], ``gt_places`` the true place per image (``gt_junctions``: the true junction places),
     ``gt_poses`` N x 3 true poses. ``names``: one per matrix, for the report. ``streaming`` and ``sparse``
-    (with ``neighbours`` candidates per frame) are the command's ``--streaming`` and ``--sparse``."""
+    (with ``neighbours`` candidates per frame and ``diagonal_reach``) are the command's ``--streaming`` and
+    ``--sparse`` (``--neighbours``, ``--diagonal-reach``)."""
     if config is None:
         config = map_preset(preset)["config"]
     config = _config(config, MapConfig, overrides)
@@ -513,6 +515,8 @@ def map_sequence(
             if truth.ndim == 2 and truth.shape[1] in (2, 3) and truth.shape[0] != truth.shape[1]:
                 if gt_radius is None:
                     raise ValueError("ground_truth: positions (N x 2) need gt_radius [m]")
+                if not _np.isfinite(truth).all():
+                    raise ValueError("ground_truth: positions must be finite")
                 truth = _same_place_from_poses(truth, gt_radius)
             same_place = truth.astype(_np.float32)
         raw = _core.map_similarities(
@@ -536,7 +540,7 @@ def map_sequence(
         return "" if p is None else _os.fspath(p)
     raw = _core.map_sequence(_os.fspath(path), preset, config, list(descriptors or []), metric, kappa, input_kind,
                              every, threads, fs(odometry), fs(ground_truth), gt_radius, fs(gt_places), fs(gt_poses),
-                             streaming, sparse, neighbours)
+                             streaming, sparse, neighbours, diagonal_reach)
     return MapRun(raw)
 
 

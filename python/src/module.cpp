@@ -287,7 +287,7 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
                               const std::filesystem::path& odometry, const std::filesystem::path& ground_truth,
                               std::optional<double> gt_radius, const std::filesystem::path& gt_places,
                               const std::filesystem::path& gt_poses, bool streaming, bool sparse,
-                              std::size_t neighbours) {
+                              std::size_t neighbours, std::optional<std::size_t> diagonal_reach) {
   pipeline::MapRequest request;
   request.preset = preset;
   request.settings = pipeline::map_preset(preset);
@@ -309,6 +309,7 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
   request.streaming = streaming || sparse;
   request.sparse = sparse;
   request.sparse_neighbours = neighbours;
+  if (diagonal_reach) request.sparse_diagonal_reach = *diagonal_reach;
   const py::gil_scoped_release release;
   return pipeline::map_sequence(request);
 }
@@ -322,11 +323,21 @@ pipeline::MapRun map_similarities(const py::sequence& similarities, const std::v
                                   const std::vector<int>& true_junctions, const py::object& true_poses) {
   std::vector<MatrixView> views;
   for (std::size_t k = 0; k < similarities.size(); ++k) views.push_back(matrix_view(similarities[k], "similarity"));
-  const auto poses_of = [](const py::object& object, const char* name) {
+  const std::size_t n = views.empty() ? 0 : views.front().rows;
+  // Truth or odometry of another length than the sequence would be read against the wrong images.
+  const auto require_images = [n](std::size_t rows, const std::string& name, const char* what) {
+    if (rows != n) {
+      throw std::invalid_argument(name + ": " + std::to_string(rows) + " " + what + " for " + std::to_string(n) +
+                                  " images");
+    }
+  };
+  const auto poses_of = [&](const py::object& object, const char* name) {
     std::vector<Pose2> poses;
     if (object.is_none()) return poses;
     const MatrixView view = matrix_view(object, name);
     if (view.cols != 3) throw std::invalid_argument(std::string(name) + ": expected N x 3 (x, y, theta)");
+    require_images(view.rows, name, "rows");
+    require_finite(view, name);
     for (std::size_t i = 0; i < view.rows; ++i) {
       poses.push_back({view.data[3 * i], view.data[3 * i + 1], view.data[3 * i + 2]});
     }
@@ -334,12 +345,15 @@ pipeline::MapRun map_similarities(const py::sequence& similarities, const std::v
   };
   const std::vector<Pose2> odo = poses_of(odometry, "odometry");
   pipeline::MapTruth truth;
-  truth.poses = poses_of(true_poses, "true_poses");
+  truth.poses = poses_of(true_poses, "gt_poses");
+  if (!true_places.empty()) require_images(true_places.size(), "gt_places", "places");
   truth.places = true_places;
   truth.junctions = true_junctions;
   if (!same_place.is_none()) {
     const MatrixView view = matrix_view(same_place, "ground_truth");
     if (view.rows != view.cols) throw std::invalid_argument("ground_truth: expected an N x N matrix");
+    require_images(view.rows, "ground_truth", "rows");
+    require_finite(view, "ground_truth");
     auto matrix = std::make_shared<DenseMatrix<std::uint8_t>>(view.rows, view.cols, std::uint8_t{0});
     for (std::size_t k = 0; k < view.size(); ++k) matrix->values[k] = view.data[k] != 0 ? 1 : 0;
     truth.same_place = [matrix](std::size_t i, std::size_t j) {
@@ -615,7 +629,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("map_sequence", &map_sequence, py::arg("path"), py::arg("preset"), py::arg("config"), py::arg("descriptors"),
         py::arg("metric"), py::arg("kappa"), py::arg("input_kind"), py::arg("every"), py::arg("threads"),
         py::arg("odometry"), py::arg("ground_truth"), py::arg("gt_radius"), py::arg("gt_places"), py::arg("gt_poses"),
-        py::arg("streaming"), py::arg("sparse"), py::arg("neighbours"));
+        py::arg("streaming"), py::arg("sparse"), py::arg("neighbours"), py::arg("diagonal_reach"));
   m.def("write_map_outputs", &write_map_outputs, py::arg("run"), py::arg("folder"));
   m.def("map_similarities", &map_similarities, py::arg("similarities"), py::arg("names"), py::arg("config"),
         py::arg("odometry"), py::arg("same_place"), py::arg("true_places"), py::arg("true_junctions"),

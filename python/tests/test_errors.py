@@ -92,3 +92,38 @@ def test_misuse_raises_value_error():
         seqtopo.align(np.ones((4, 4), dtype=np.float32), gap=-1.0)
     with pytest.raises(ValueError, match="descriptors differ in length|dimension"):
         seqtopo.similarity(np.ones((3, 4), np.float32), np.ones((3, 5), np.float32))
+
+
+def test_truth_and_odometry_of_another_length_or_not_finite_are_refused():
+    d = route_descriptors()
+    n = len(d)
+    xy = np.stack([np.arange(n, dtype=np.float32), np.zeros(n, np.float32)], axis=1)
+    odometry = np.zeros((n, 3), np.float32)
+    # Each of these was once mapped and scored against the wrong images (F1 0 or a wrong F1, no error).
+    bad = [
+        (dict(ground_truth=np.eye(5)), "ground_truth: 5 rows for 116 images"),
+        (dict(ground_truth=xy[:10], gt_radius=2.0), "ground_truth: 10 rows for 116 images"),
+        (dict(ground_truth=np.where(np.eye(n) > 0, np.nan, 0)), "ground_truth: non-finite"),
+        (dict(odometry=odometry[:-1]), "odometry: 115 rows for 116 images"),
+        (dict(odometry=np.where(np.arange(n)[:, None] == 7, np.nan, odometry)), "odometry: non-finite value at row 7"),
+        (dict(gt_places=list(range(3))), "gt_places: 3 places for 116 images"),
+        (dict(gt_poses=np.zeros((4, 3))), "gt_poses: 4 rows for 116 images"),
+    ]
+    for kwargs, message in bad:
+        with pytest.raises(ValueError, match=message):
+            seqtopo.map_sequence(d, **kwargs)
+    seqtopo.map_sequence(d, ground_truth=xy, gt_radius=2.0, odometry=odometry)  # the right lengths map
+
+
+@pytest.mark.parametrize("field, value, message", [
+    ("frames_per_place", -3.0, "frames_per_place must be >= 1"),
+    ("frames_per_place", 0.0, "frames_per_place must be >= 1"),
+    ("max_e_value", 0.0, "max_e_value must be > 0"),
+    ("threshold", -1.0, "threshold must be >= 0"),
+    ("gap", float("nan"), "gap must be >= 0"),
+])
+def test_a_map_config_out_of_range_names_its_field(field, value, message):
+    config = seqtopo.MapConfig()
+    setattr(config, field, value)
+    with pytest.raises(ValueError, match="MapConfig." + message):
+        seqtopo.build_map(seqtopo.similarity(route_descriptors()).similarity, config)

@@ -15,6 +15,7 @@ std::string trim(std::string_view t) {
 }  // namespace
 
 std::vector<ConfigEntry> parse_config(std::string_view text, const std::string& path) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // a UTF-8 byte-order mark (editors on Windows)
   std::vector<std::string_view> lines;
   for (std::size_t start = 0; start <= text.size();) {
     const auto end = text.find('\n', start);

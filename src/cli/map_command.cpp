@@ -51,7 +51,7 @@ struct MapOptions {
   bool no_reverse = false;
   std::optional<bool> graph_cleanup, odometry_evidence;
   bool streaming = false, sparse = false;
-  std::optional<std::size_t> neighbours;
+  std::optional<std::size_t> neighbours, diagonal_reach;
   std::string ground_truth, gt_places, gt_poses;
   std::optional<double> gt_radius;
   unsigned threads = 0;
@@ -194,8 +194,48 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
   }
 }
 
+// The options of the offline map that --online does not read (its offline outputs too are the online run's
+// defaults): given with --online they would be ignored without a word, so they are refused.
+std::vector<std::string> ignored_online(const MapOptions& o) {
+  std::vector<std::string> given;
+  const auto check = [&](bool set, const char* name) {
+    if (set) given.emplace_back(name);
+  };
+  check(!o.odometry_files.empty(), "--odometry");
+  check(!o.times_files.empty(), "--times");
+  check(!o.odometry_topic.empty(), "--odometry-topic");
+  check(o.every_metres.has_value(), "--every-metres");
+  check(o.preset != "default", "--preset");
+  check(o.descriptor.has_value(), "--descriptor");
+  check(o.metric_name.has_value(), "--metric");
+  check(o.kappa || o.kappa_auto, "--kappa");
+  check(o.frames_per_place || o.fpp_auto, "--frames-per-place");
+  check(o.cap_factor.has_value(), "--cap-factor");
+  check(o.odometry_gate.has_value(), "--odometry-gate");
+  check(o.odometry_evidence.has_value(), "--odometry-evidence");
+  check(o.engine.has_value(), "--engine");
+  check(o.alignment_set.has_value(), "--alignment-set");
+  check(o.graph_cleanup.has_value(), "--graph-cleanup");
+  check(o.streaming, "--streaming");
+  check(o.sparse, "--sparse");
+  check(o.neighbours.has_value(), "--neighbours");
+  check(o.diagonal_reach.has_value(), "--diagonal-reach");
+  check(!o.gt_places.empty(), "--gt-places");
+  check(!o.gt_poses.empty(), "--gt-poses");
+  check(!o.sequence.image_topic.empty(), "--image-topic");
+  check(o.sequence.recursive, "--recursive");
+  check(o.sequence.skip_unreadable, "--skip-unreadable");
+  return given;
+}
+
 void run(MapOptions o) {
   if (o.online) {
+    if (const auto ignored = ignored_online(o); !ignored.empty()) {
+      throw InputError("--online", fmt::format("does not take {} (the offline map's option{}; map without --online "
+                                               "to use {})",
+                                               fmt::join(ignored, ", "), ignored.size() > 1 ? "s" : "",
+                                               ignored.size() > 1 ? "them" : "it"));
+    }
     run_map_online({o.inputs,          o.out,        o.input_kind,          o.ground_truth,
                     o.every,           o.gap,        o.threshold,           o.cap,
                     o.contrast_offset, o.no_cap,     o.no_reverse,          o.min_separation,
@@ -208,6 +248,7 @@ void run(MapOptions o) {
   // output), so a mistake costs one line and no time.
   pipeline::MapRequest request;
   if (o.neighbours && !o.sparse) throw InputError("--neighbours", "is the sparse mode's: give --sparse too");
+  if (o.diagonal_reach && !o.sparse) throw InputError("--diagonal-reach", "is the sparse mode's: give --sparse too");
   if (o.sparse) o.streaming = true;  // the sparse mode streams the scores at its candidates
   request.settings = resolve_settings(o);
   request.preset = o.preset;
@@ -256,6 +297,7 @@ void run(MapOptions o) {
   request.choose_engine = !o.engine && !o.streaming;
   request.sparse = o.sparse;
   if (o.neighbours) request.sparse_neighbours = *o.neighbours;
+  if (o.diagonal_reach) request.sparse_diagonal_reach = *o.diagonal_reach;
   const pipeline::MapJob job(request);
   if (o.streaming) check_streaming(o, request.settings, job.input_kind());
   std::vector<std::filesystem::path> inputs(o.inputs.begin(), o.inputs.end());
@@ -339,6 +381,11 @@ const RegisterCommand registered{
                     "the revisits (docs/scaling.md)");
        add_number(app, "--neighbours", o->neighbours, kAtLeastOne,
                   "--sparse: candidates per frame (default 10), nearest first");
+       add_number(app, "--diagonal-reach", o->diagonal_reach, kNonNegative,
+                  fmt::format("--sparse: the diagonals this many frames around each candidate pair are candidates "
+                              "too, so a revisit whose frames seldom have their true match among the nearest grows "
+                              "from a few (default {})",
+                              pipeline::MapRequest{}.sparse_diagonal_reach));
        app.add_option(
            "--odometry-gate", o->odometry_gate,
            fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "

@@ -38,11 +38,12 @@ double quantile(std::vector<double> v, double q) {
 class LinkFolder {
  public:
   explicit LinkFolder(const std::vector<fs::path>& files)
-      : dir_(fs::temp_directory_path() / fmt::format("seqtopo-online-{}", ::getpid())) {
+      : dir_(fs::temp_directory_path() / fmt::format("seqtopo-online-{}", ::getpid())), files_(files) {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     for (std::size_t k = 0; k < files.size(); ++k) {
-      fs::create_symlink(fs::absolute(files[k]), dir_ / fmt::format("{:08d}{}", k, files[k].extension().string()));
+      links_.push_back(dir_ / fmt::format("{:08d}{}", k, files[k].extension().string()));
+      fs::create_symlink(fs::absolute(files[k]), links_.back());
     }
   }
   ~LinkFolder() {
@@ -52,9 +53,30 @@ class LinkFolder {
   LinkFolder(const LinkFolder&) = delete;
   LinkFolder& operator=(const LinkFolder&) = delete;
   const fs::path& dir() const { return dir_; }
+  // An error about the links, about the files they stand for (the user's paths, not the links' names).
+  InputError translated(const InputError& e) const {
+    const auto original = [&](const std::string& text) {
+      // Links (whole paths first, then bare names) become markers, the markers the user's paths: a user's path
+      // that looks like a link's name is never replaced again.
+      const auto marker = [](std::size_t k) { return fmt::format("\x01{}\x02", k); };
+      const auto replace_all = [](std::string& s, const std::string& from, const std::string& to) {
+        for (std::size_t at = 0; (at = s.find(from, at)) != std::string::npos; at += to.size()) {
+          s.replace(at, from.size(), to);
+        }
+      };
+      std::string out = text;
+      for (std::size_t k = 0; k < links_.size(); ++k) replace_all(out, links_[k].string(), marker(k));
+      for (std::size_t k = 0; k < links_.size(); ++k) replace_all(out, links_[k].filename().string(), marker(k));
+      replace_all(out, dir_.string(), "stdin");
+      for (std::size_t k = 0; k < links_.size(); ++k) replace_all(out, marker(k), files_[k].string());
+      return out;
+    };
+    return {original(e.subject()), original(e.what())};
+  }
 
  private:
   fs::path dir_;
+  std::vector<fs::path> files_, links_;
 };
 
 std::string metrics_json(const evaluation::LoopClosureMetrics& m) {
@@ -169,8 +191,13 @@ void run_map_online(const OnlineCliOptions& o) {
     }
     map_request.truth.same_place = o.ground_truth;
     map_request.truth.radius = o.gt_radius;
-    const pipeline::MapJob job(map_request);
-    offline = job.run();
+    try {
+      const pipeline::MapJob job(map_request);
+      offline = job.run();
+    } catch (const InputError& e) {
+      if (!links) throw;
+      throw links->translated(e);
+    }
     outputs::write_map_outputs(*offline, out);
     outputs::write_map_report(*offline, out, {});
     offline_metrics = offline->metrics;
@@ -209,6 +236,7 @@ void run_map_online(const OnlineCliOptions& o) {
   std::cerr << fmt::format(
       "seqtopo map: {} frames online, {} loop closures, per frame median {:.2f} ms, p99 {:.2f} ms\n", run.frames,
       run.loop_closures.size(), 1e3 * quantile(run.frame_seconds, 0.5), 1e3 * quantile(run.frame_seconds, 0.99));
+  for (const auto& warning : run.warnings) std::cerr << "seqtopo map: " << warning << "\n";
   for (const auto& x : run.offset_changes) {
     const std::string why =
         x.check == "scores"

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/io/csv.hpp"
 
 namespace seqtopo::formats {
 namespace {
@@ -38,6 +39,7 @@ struct PoseTable {
 PoseTable read_table(const std::filesystem::path& path, const std::vector<std::vector<std::string>>& headers) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string(), "cannot open file");
+  io::skip_byte_order_mark(in);
   auto where = [&](std::size_t line_no) { return path.string() + ":" + std::to_string(line_no); };
   auto expected = [&] {
     std::string text;

@@ -6,6 +6,7 @@
 
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
+#include "seqtopo/io/csv.hpp"
 
 namespace seqtopo::formats {
 namespace {
@@ -63,6 +64,7 @@ template <typename F>
 void for_each_line(const fs::path& path, char separator, F&& row) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string(), "cannot open file");
+  io::skip_byte_order_mark(in);
   std::string line;
   std::size_t line_no = 0;
   while (std::getline(in, line)) {
@@ -183,6 +185,7 @@ std::vector<double> read_times_txt(const fs::path& path) {
 PoseFile read_pose_file(const fs::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string(), "cannot open file");
+  io::skip_byte_order_mark(in);
   std::string line;
   std::size_t line_no = 0;
   while (std::getline(in, line)) {

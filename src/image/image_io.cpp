@@ -86,6 +86,9 @@ RgbImage decode_image(std::span<const std::uint8_t> bytes, const std::string& su
 }
 
 RgbImage load_image(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError(path.string(), "a folder, not an image");
+  if (!fs::exists(path, ec)) throw InputError(path.string(), "no such image file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "cannot open image");
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -113,10 +116,12 @@ std::optional<std::size_t> video_frame_count(const fs::path& path) {
   return static_cast<std::size_t>(n);
 }
 
-void for_each_video_frame(const fs::path& path, std::size_t every,
-                          const std::function<void(std::size_t, const RgbImage&)>& visit) {
+VideoFrames for_each_video_frame(const fs::path& path, std::size_t every,
+                                 const std::function<void(std::size_t, const RgbImage&)>& visit) {
   if (every == 0) throw std::invalid_argument("--every must be at least 1");
   codecs::Video capture = open_video(path);
+  VideoFrames frames;
+  if (const double n = capture.frame_count(); n > 0 && n <= 1e12) frames.announced = static_cast<std::size_t>(n);
   std::size_t index = 0, kept = 0;
   cv::Mat frame;
   while (capture.grab()) {
@@ -130,6 +135,16 @@ void for_each_video_frame(const fs::path& path, std::size_t every,
     ++index;
   }
   if (kept == 0) throw InputError(path.string(), "video holds no frame");
+  frames.read = index;
+  return frames;
+}
+
+std::string video_ended_early(const fs::path& path, const VideoFrames& frames) {
+  if (!frames.announced) return {};
+  const auto announced = static_cast<double>(*frames.announced), read = static_cast<double>(frames.read);
+  if (read >= 0.98 * announced - 1) return {};
+  return "warning: " + path.string() + ": the video ended after " + std::to_string(frames.read) + " of the " +
+         std::to_string(*frames.announced) + " frames it announces (truncated or damaged?); only those are mapped";
 }
 
 }  // namespace seqtopo::image

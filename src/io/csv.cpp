@@ -7,11 +7,19 @@
 
 namespace seqtopo::io {
 
+void skip_byte_order_mark(std::istream& in) {
+  char bom[3] = {};
+  if (in.read(bom, 3) && bom[0] == '\xEF' && bom[1] == '\xBB' && bom[2] == '\xBF') return;
+  in.clear();
+  in.seekg(0);
+}
+
 std::vector<CsvRow> read_csv(const std::filesystem::path& path, const std::vector<std::string>& header) {
   std::string header_text;
   for (std::size_t k = 0; k < header.size(); ++k) header_text += (k ? "," : "") + header[k];
   std::ifstream in(path);
   if (!in) throw InputError(path.string(), "cannot open file");
+  skip_byte_order_mark(in);
   std::vector<CsvRow> rows;
   bool header_seen = false;
   std::string line;

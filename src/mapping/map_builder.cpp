@@ -315,6 +315,27 @@ void add_confidences(const align::ScoreSource& scores, const align::AlignConfig&
 
 }  // namespace
 
+void check_map_config(const MapConfig& c) {
+  const auto require = [](bool ok, const char* field, const char* range) {
+    if (!ok) throw std::invalid_argument(fmt::format("MapConfig.{} must be {}", field, range));
+  };
+  const auto finite_at_least = [](double v, double low) { return std::isfinite(v) && v >= low; };
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
+  require(finite_at_least(c.gap, 0), "gap", ">= 0");
+  require(!c.cap || positive(*c.cap), "cap", "> 0");
+  require(positive(c.cap_factor), "cap_factor", "> 0");
+  require(!c.max_e_value || positive(*c.max_e_value), "max_e_value", "> 0");
+  require(finite_at_least(c.threshold, 0), "threshold", ">= 0");
+  require(finite_at_least(c.min_revisit_places, 0), "min_revisit_places", ">= 0");
+  require(std::isfinite(c.contrast_offset), "contrast_offset", "finite");
+  require(positive(c.contrast_offset_step), "contrast_offset_step", "> 0");
+  require(std::isfinite(c.max_contrast_offset), "max_contrast_offset", "finite");
+  require(!c.max_global_rate || std::isfinite(*c.max_global_rate), "max_global_rate", "finite");
+  require(!c.frames_per_place || finite_at_least(*c.frames_per_place, 1), "frames_per_place", ">= 1");
+  require(positive(c.max_visit_span), "max_visit_span", "> 0");
+  require(c.fit_alignments > 0, "fit_alignments", ">= 1");
+}
+
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config, std::span<const Pose2> odometry) {
   return build_map(std::vector<SimilarityMatrix>{similarity}, config, odometry);
 }
@@ -323,6 +344,7 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
                     std::span<const Pose2> odometry) {
   const auto start = std::chrono::steady_clock::now();
   if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
+  check_map_config(config);
   MapConfig c = config;
   const bool estimate = config.place_units && !config.frames_per_place;
   std::optional<PlaceScale> scale;
@@ -361,6 +383,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     throw std::invalid_argument("odometry has " + std::to_string(odometry.size()) + " poses, the sequence " +
                                 std::to_string(n) + " images");
   }
+  check_map_config(config);
   MapResult result;
   auto& d = result.decisions;
   auto start = std::chrono::steady_clock::now();

@@ -84,7 +84,8 @@ EngineChoice choose_engine(const MapRequest& request, InputKind kind, std::size_
     if (sparse <= *budget / 2) {
       return {MapEngine::sparse,
               fmt::format("engine sparse: streamed every pair the run would need {}, more than half of {}; aligning "
-                          "each frame's {} nearest neighbours it needs about {}",
+                          "each frame's {} nearest neighbours it needs about {} (a revisit under strong appearance "
+                          "change, whose frames' nearest neighbours are seldom right, needs --diagonal-reach)",
                           similarity::format_bytes(streamed), total, request.sparse_neighbours,
                           similarity::format_bytes(sparse))};
     }

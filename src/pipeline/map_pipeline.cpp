@@ -204,12 +204,14 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   if (request.sparse) {
     scale::CandidateConfig cc;
     cc.neighbours = request.sparse_neighbours;
+    cc.diagonal_reach = request.sparse_diagonal_reach;
     cc.exclude = framed.min_separation;
     scale::CandidateStats stats;
     candidates = scale::sparse_map_scores(*streamed, request.sparse_background, cc, &stats);
     run.sparse_pairs = stats.pairs;
-    say(observer, fmt::format("      sparse: {} candidate pairs ({} nearest neighbours per frame), background {:.3g}",
-                              stats.pairs, cc.neighbours, request.sparse_background));
+    say(observer, fmt::format("      sparse: {} candidate pairs ({} nearest neighbours per frame, diagonals {} frames "
+                              "around them), background {:.3g}",
+                              stats.pairs, cc.neighbours, cc.diagonal_reach, request.sparse_background));
   }
   clock.end();
 

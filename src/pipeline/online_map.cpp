@@ -163,9 +163,12 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
       add_image(image_name(input.path, file, input.recursive), image);
     }
   } else if (run.kind == InputKind::video) {
-    image::for_each_video_frame(input.path, input.every, [&](std::size_t index, const RgbImage& image) {
-      add_image(fmt::format("frame {}", index), image);
-    });
+    const auto read = image::for_each_video_frame(
+        input.path, input.every,
+        [&](std::size_t index, const RgbImage& image) { add_image(fmt::format("frame {}", index), image); });
+    if (std::string warning = image::video_ended_early(input.path, read); !warning.empty()) {
+      run.warnings.push_back(std::move(warning));
+    }
   } else if (run.kind == InputKind::descriptors || run.kind == InputKind::similarity) {
     const DenseMatrix<float>& rows = *matrix;
     const bool similarity = run.kind == InputKind::similarity;
@@ -180,6 +183,10 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
     }
   } else {
     throw InputError(subject, "unsupported input for --online");
+  }
+  if (run.frame_names.size() < 2) {
+    throw InputError(from_stream ? "stdin" : subject,
+                     fmt::format("needs at least 2 images, got {}", run.frame_names.size()));
   }
   feeder.finish();
   return run;

@@ -365,13 +365,16 @@ Described describe_video(const Source& s, Descriptors ds, const SimilarityConfig
   return describe_stream(s, ds, c, [&](const std::function<void(std::string, const RgbImage&)>& visit) {
     std::size_t next = 0;
     const auto& frames = s.input.frames;
-    for_each_video_frame(s.input.path, s.input.every, [&](std::size_t index, const RgbImage& frame) {
+    const auto read = for_each_video_frame(s.input.path, s.input.every, [&](std::size_t index, const RgbImage& frame) {
       if (!frames.empty()) {
         if (next >= frames.size() || frames[next] != index / s.input.every) return;
         ++next;
       }
       visit("frame " + std::to_string(index), frame);
     });
+    if (const std::string warning = image::video_ended_early(s.input.path, read); !warning.empty() && c.note) {
+      c.note(warning);
+    }
     if (next < frames.size()) {
       throw InputError(s.input.path.string(),
                        "frame " + std::to_string(frames[next]) + " was selected, but the video has fewer frames");

@@ -21,6 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Up to this many rows (256 MiB of float32) a square descriptors.npy is read once more to see if it is symmetric.
+constexpr std::size_t kSymmetryCheckRows = 8192;
+
 // The number a file name's stem is, when it is one ("1403636579763555584.png", "12.5.jpg").
 std::optional<double> number_name(const fs::path& file) {
   const std::string stem = file.stem().string();
@@ -79,10 +82,33 @@ PreparedSession prepare_session(const SessionSource& source) {
   if (kind == InputKind::images) {
     s.input.listing = std::make_shared<const ImageListing>(list_input_images(input));
     count = s.input.listing->files.size();
+    if (input.every > 1) {
+      s.notes.push_back(
+          fmt::format("warning: --every {} keeps every K-th frame of a video, bag or descriptors.npy; "
+                      "the image folder {} is read whole ({} images)",
+                      input.every, input.path.string(), *count));
+    }
   }
   if (kind == InputKind::descriptors || kind == InputKind::similarity) {
     const auto header = io::read_npy_header(input.path);
     if (!header.shape.empty()) count = header.shape[0];
+    // The kind of a .npy comes from its name: a similarity matrix saved under another name would be mapped as
+    // descriptors, and quietly give another map. A square symmetric array is almost surely one.
+    if (kind == InputKind::descriptors && input.kind == InputKind::automatic && header.shape.size() == 2 &&
+        header.shape[0] == header.shape[1] && header.shape[0] >= 2 && header.shape[0] <= kSymmetryCheckRows) {
+      const auto m = io::read_npy_matrix<float>(input.path);
+      bool symmetric = true;
+      for (std::size_t i = 0; i < m.rows && symmetric; ++i) {
+        for (std::size_t j = 0; j < i && symmetric; ++j) symmetric = m(i, j) == m(j, i);
+      }
+      if (symmetric) {
+        s.notes.push_back(
+            fmt::format("{}: a symmetric {} x {} array, read as descriptors (one row per image) since "
+                        "its name has no \"similarity\"; a similarity matrix needs --input-kind "
+                        "similarity",
+                        input.path.string(), m.rows, m.cols));
+      }
+    }
   }
 
   std::vector<Pose2> poses;  // one per frame (after every)

@@ -96,6 +96,9 @@ TEST_F(HostileUser, ConfigFileErrorsNameTheFileAndLine) {
   expect_error(map(json), json, 1, "JSON");
   const auto nan = dir_.write("nan.yaml", "gap: nan\n").string();
   expect_error(map(nan), nan + ":1", 1, "--gap: expected a finite number >= 0, got 'nan'");
+  // A UTF-8 byte-order mark (an editor's) before the first name is not part of it.
+  const auto marked = dir_.write("marked.yaml", "\xEF\xBB\xBFgap: nan\n").string();
+  expect_error(map(marked), marked + ":1", 1, "--gap: expected a finite number >= 0, got 'nan'");
   const auto flag = dir_.write("flag.yaml", "no-reverse: yes\n").string();
   expect_error(map(flag), flag + ":1", 1, "true or false");
   const auto nested = dir_.write("nested.yaml", "config: other.yaml\n").string();
@@ -126,6 +129,20 @@ TEST_F(HostileUser, EveryZeroAndKappaInfFailBeforeTheOutputFolder) {
 }
 
 // Finding 9: `--threads 10000` was not capped. Beyond 4096 it is refused; up to it, no more threads than cores run.
+// The kind of a .npy comes from its name: a similarity matrix saved as s.npy was mapped as 40 descriptors
+// without a word. It still is (a square array can be descriptors), but a symmetric one is said to be.
+TEST_F(HostileUser, ASymmetricSquareNpyReadAsDescriptorsIsSaid) {
+  const std::string s = small_similarity();
+  const auto as_descriptors = run_cli("map " + s + out_arg());
+  ASSERT_EQ(as_descriptors.status, 0) << as_descriptors.err;
+  EXPECT_NE(as_descriptors.err.find(s + ": a symmetric 40 x 40 array, read as descriptors"), std::string::npos)
+      << as_descriptors.err;
+  fs::remove_all(out());
+  const auto told = run_cli("map " + s + " --input-kind similarity" + out_arg());
+  ASSERT_EQ(told.status, 0) << told.err;
+  EXPECT_EQ(told.err.find("read as descriptors"), std::string::npos) << told.err;
+}
+
 TEST_F(HostileUser, ThreadsAreCappedAtTheCores) {
   expect_error(run_cli("map --threads 10000" + out_arg()), "--threads", 2, "[0, 4096]");
   // the process's threads, sampled while it maps the bundled corridor with --threads 4096

@@ -66,6 +66,16 @@ void expect_clean_error(const CommandResult& o, const std::string& subject) {
   EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << "one line: " << o.err;
 }
 
+// An error found once frames are in: the line saying where events.jsonl is written comes first.
+void expect_error_after_frames(const CommandResult& o, const std::string& subject) {
+  EXPECT_NE(o.status, 0);
+  EXPECT_NE(o.status, -1) << "must exit, not crash";
+  const auto lines = lines_of(o.err);
+  ASSERT_EQ(lines.size(), 2U) << o.err;
+  EXPECT_EQ(lines[0].rfind("seqtopo map: events.jsonl is written to ", 0), 0U) << o.err;
+  EXPECT_EQ(lines[1].rfind("seqtopo: error: " + subject, 0), 0U) << o.err;
+}
+
 TEST(MapOnline, EventsOfFrameKAreReadableBeforeFrameKPlusOneIsGiven) {
   const seqtopo::test_support::TempDir dir;
   const auto files = corridor();
@@ -218,6 +228,18 @@ TEST(MapOnline, BadInputGivesOneLine) {
   expect_clean_error(run_cli("map - --online" + out, missing_image + "\n"), missing_image);
   expect_clean_error(run_cli("map - --online" + out, "\n"), "stdin");
   expect_clean_error(run_cli("map - --online --threshold 100" + out, "x\n"), "--online");
+  // One image is no sequence (the offline map named its own link folder); a folder is not an image.
+  const auto images = corridor();
+  expect_error_after_frames(run_cli("map - --online" + out, path_lines({images[0]})),
+                            "stdin: needs at least 2 images, got 1");
+  expect_error_after_frames(run_cli("map - --online" + out, path_lines({images[0], images[0].parent_path()})),
+                            images[0].parent_path().string() + ": a folder, not an image");
+  // The offline map's options are refused, not ignored.
+  const std::string folder = images[0].parent_path().string();
+  const auto odometry = dir.path / "odometry.csv";
+  std::ofstream(odometry) << "index,x,y,theta\n";
+  const auto ignored = run_cli("map " + folder + " --online --odometry " + odometry.string() + " --preset paper" + out);
+  expect_clean_error(ignored, "--online: does not take --odometry, --preset (the offline map's options");
   EXPECT_FALSE(fs::exists(dir.path / "out")) << "no output folder on error";
 }
 

@@ -242,7 +242,9 @@ TEST_F(MapStreaming, SparseEqualsStreamedWhereTheCandidatesCoverTheRevisits) {
   ASSERT_EQ(streamed.status, 0) << streamed.err;
   const auto sparse = run_cli("map " + walk + " --sparse --neighbours 40" + truth + " --out " + path("sparse"));
   ASSERT_EQ(sparse.status, 0) << sparse.err;
-  EXPECT_NE(sparse.err.find("candidate pairs (40 nearest neighbours per frame)"), std::string::npos) << sparse.err;
+  EXPECT_NE(sparse.err.find("candidate pairs (40 nearest neighbours per frame, diagonals 0 frames around them)"),
+            std::string::npos)
+      << sparse.err;
   EXPECT_EQ(read_file(fs::path(path("sparse")) / "loop_closures.csv"),
             read_file(fs::path(path("streamed")) / "loop_closures.csv"));
   const auto scored = [&](const char* run) {
@@ -253,6 +255,41 @@ TEST_F(MapStreaming, SparseEqualsStreamedWhereTheCandidatesCoverTheRevisits) {
   const auto refused = run_cli("map " + walk + " --neighbours 5 --out " + path("refused"));
   EXPECT_NE(refused.status, 0);
   EXPECT_EQ(refused.err.rfind("seqtopo: error: --neighbours: ", 0), 0U) << refused.err;
+  const auto reach = run_cli("map " + walk + " --diagonal-reach 5 --out " + path("refused"));
+  EXPECT_NE(reach.status, 0);
+  EXPECT_EQ(reach.err.rfind("seqtopo: error: --diagonal-reach: ", 0), 0U) << reach.err;
+}
+
+// A revisit seen with much noise (frames 400-549 repeat 100-249, noise 2.5 times the texture's): a frame's
+// nearest neighbour is seldom its true match, so the candidates miss most of the revisit; the diagonals around
+// them (--diagonal-reach) bring its other pairs back, as a revisit under appearance change needs.
+TEST_F(MapStreaming, SparseDiagonalsAroundFewCandidatesRecoverTheRevisits) {
+  const std::size_t n = 600, dim = 32;
+  std::mt19937 random(5);
+  std::normal_distribution<float> normal;
+  DenseMatrix<float> x(n, dim);
+  std::ofstream poses(path("poses.csv"));
+  poses << "index,x,y\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool revisit = i >= 400 && i < 550;
+    for (std::size_t d = 0; d < dim; ++d) x(i, d) = revisit ? x(i - 300, d) + 2.5F * normal(random) : normal(random);
+    poses << i << "," << (revisit ? i - 300 : i) << ",0\n";
+  }
+  poses.close();
+  seqtopo::io::write_npy(path("noisy.npy"), x);
+  const std::string truth = " --ground-truth " + path("poses.csv") + " --gt-radius 0.5";
+  const auto found = [&](const std::string& options, const char* out) {
+    const auto run =
+        run_cli("map " + path("noisy.npy") + " --sparse --neighbours 1" + options + truth + " --out " + path(out));
+    EXPECT_EQ(run.status, 0) << run.err;
+    return nlohmann::json::parse(read_file(fs::path(path(out)) / "metrics.json"))
+        .at("loop_closure")
+        .at("tp")
+        .get<int>();
+  };
+  const int alone = found("", "alone"), grown = found(" --diagonal-reach 10", "grown");
+  EXPECT_LT(alone, 100) << "the nearest neighbours alone find the revisit: the test shows nothing";
+  EXPECT_GT(grown, 140) << alone << " -> " << grown;
 }
 
 TEST_F(MapStreaming, RefusesWhatNeedsTheMatrixInOneLine) {

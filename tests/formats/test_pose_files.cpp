@@ -37,6 +37,19 @@ TEST(PoseFiles, TimestampedCsv) {
   EXPECT_EQ(error_of([&] { read_pose_file(nan); }), nan.string() + ":2: field 'x' is not finite");
 }
 
+// Spreadsheets save CSV with a UTF-8 byte-order mark before the header: the same poses as without it.
+TEST(PoseFiles, AByteOrderMarkBeforeTheHeaderIsSkipped) {
+  TempDir dir;
+  const std::string text = "index,x,y,theta\n0,0,0,0\n1,1.5,0,0.25\n";
+  const auto plain = dir.write("plain.csv", text), marked = dir.write("marked.csv", "\xEF\xBB\xBF" + text);
+  const auto expected = read_odometry_csv(plain);
+  ASSERT_EQ(expected.size(), 2U);
+  EXPECT_EQ(read_odometry_csv(marked), expected);
+  EXPECT_EQ(read_poses_csv(marked), read_poses_csv(plain));
+  const auto timed = dir.write("timed.csv", "\xEF\xBB\xBFtimestamp,x,y,yaw\n10.5,1,2,0.25\n11,2,3,0\n");
+  EXPECT_EQ(read_pose_file(timed).kind, PoseFileKind::timestamped_csv);
+}
+
 TEST(PoseFiles, TumWithCommentsAndYaw) {
   TempDir dir;
   const double yaw = 0.7;

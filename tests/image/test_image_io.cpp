@@ -65,6 +65,7 @@ TEST(LoadImage, CorruptFilesAreNamed) {
   expect_error_naming(empty, [&] { load_image(empty); });
   expect_error_naming(cut, [&] { load_image(cut); });
   expect_error_naming(dir.path / "missing.png", [&] { load_image(dir.path / "missing.png"); });
+  expect_error_naming(dir.path, [&] { load_image(dir.path); });  // a folder, not the stream library's text
 }
 
 TEST(Video, EveryKthFrame) {
@@ -89,6 +90,39 @@ TEST(Video, EveryKthFrame) {
   ASSERT_TRUE(count.has_value());
   EXPECT_EQ(*count, 10U);
   EXPECT_THROW(for_each_video_frame(file, 0, [](std::size_t, const RgbImage&) {}), std::invalid_argument);
+}
+
+// A video cut short (a copy that stopped, a full disk) still opens and yields its first frames: the pass says
+// how many it read against those the container announced, and a warning names the file; the whole file none.
+TEST(Video, OneEndingBeforeTheFramesItAnnouncesIsWarnedOf) {
+  TempDir dir;
+  const fs::path file = dir.path / "whole.avi", cut = dir.path / "cut.avi";
+  {
+    cv::VideoWriter writer(file.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10, cv::Size(64, 48));
+    ASSERT_TRUE(writer.isOpened());
+    cv::Mat frame(48, 64, CV_8UC3);
+    for (int k = 0; k < 40; ++k) {
+      cv::randu(frame, cv::Scalar::all(0), cv::Scalar::all(255));
+      writer.write(frame);
+    }
+  }
+  const auto whole = for_each_video_frame(file, 1, [](std::size_t, const RgbImage&) {});
+  EXPECT_EQ(whole.read, 40U);
+  ASSERT_TRUE(whole.announced.has_value());
+  EXPECT_EQ(video_ended_early(file, whole), "");
+  {
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  }
+  const auto part = for_each_video_frame(cut, 1, [](std::size_t, const RgbImage&) {});
+  EXPECT_LT(part.read, 30U);
+  ASSERT_TRUE(part.announced.has_value());
+  EXPECT_EQ(*part.announced, 40U);
+  EXPECT_EQ(video_ended_early(cut, part), "warning: " + cut.string() + ": the video ended after " +
+                                              std::to_string(part.read) +
+                                              " of the 40 frames it announces (truncated or damaged?); only those "
+                                              "are mapped");
 }
 
 TEST(Video, UnreadableIsNamed) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include "seqtopo/mapping/map_builder.hpp"
 
@@ -122,6 +123,34 @@ TEST(MapFromScores, RefusesBadSizes) {
   const auto odometry = straight_odometry(199);
   EXPECT_THROW(build_map_from_scores(align::ScoreSource::dense(s.values, 200, 200), {}, odometry),
                std::invalid_argument);
+}
+
+// Settings out of range once ran (a negative frames per place asked for a vector larger than memory, a zero one
+// divided by it): each is refused, naming its field.
+TEST(MapFromScores, RefusesSettingsOutOfRangeNamingThem) {
+  const SimilarityMatrix s = revisit_matrix(200, 9);
+  const auto refused = [&](MapConfig c) -> std::string {
+    try {
+      build_map(s, c);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  MapConfig c;
+  c.frames_per_place = -3.0;
+  EXPECT_EQ(refused(c), "MapConfig.frames_per_place must be >= 1");
+  c = {};
+  c.max_e_value = 0.0;
+  EXPECT_EQ(refused(c), "MapConfig.max_e_value must be > 0");
+  c = {};
+  c.threshold = -1.0F;
+  c.max_e_value.reset();
+  EXPECT_EQ(refused(c), "MapConfig.threshold must be >= 0");
+  c = {};
+  c.cap = 0.0F;
+  EXPECT_EQ(refused(c), "MapConfig.cap must be > 0");
+  EXPECT_EQ(refused({}), "");
 }
 
 }  // namespace

@@ -24,9 +24,20 @@ RgbImage decode_image(std::span<const std::uint8_t> bytes, const std::string& su
 // naming the file when it cannot be opened as a video.
 std::optional<std::size_t> video_frame_count(const std::filesystem::path& path);
 
+// The frames a pass over a video read, and those its container announced (when it did).
+struct VideoFrames {
+  std::size_t read = 0;
+  std::optional<std::size_t> announced;
+};
+
 // Calls `visit(frame_index, image)` for frames 0, every, 2 * every, ... in order. Throws InputError
 // naming the file when it cannot be opened or yields no frame, std::invalid_argument when every == 0.
-void for_each_video_frame(const std::filesystem::path& path, std::size_t every,
-                          const std::function<void(std::size_t, const RgbImage&)>& visit);
+VideoFrames for_each_video_frame(const std::filesystem::path& path, std::size_t every,
+                                 const std::function<void(std::size_t, const RgbImage&)>& visit);
+
+// A warning line when the video ended clearly before the frames its container announced (a truncated or
+// damaged file, whose frames read are all a run gets), else "". The announced count may be approximate, so a
+// shortfall of up to 2 % (and 1 frame) is not one.
+std::string video_ended_early(const std::filesystem::path& path, const VideoFrames& frames);
 
 }  // namespace seqtopo::image

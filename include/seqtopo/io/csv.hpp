@@ -4,6 +4,7 @@
 // quoted (none of these files needs commas inside a field).
 #include <cstddef>
 #include <filesystem>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,10 @@ struct CsvRow {
   std::string where;                // "file:line", for error messages about this row
   std::vector<std::string> fields;  // as many as the header has
 };
+
+// Skips a UTF-8 byte-order mark at the stream's start (spreadsheets write one before the header); every text
+// file reader calls it after opening.
+void skip_byte_order_mark(std::istream& in);
 
 // Throws InputError naming the file (missing, empty) or file:line (another header, a row with
 // another number of fields).

@@ -156,8 +156,12 @@ struct MapResult {
 //     from its uncapped path score (times the odometry's chance agreement for those that agree, with
 //     odometry_evidence), revisits shorter than min_revisit_places dropped; the odometry gate;
 //  5. consistent labels (or per-column pruning and transitive labels), the graph clean-up, topology.
-// Throws std::invalid_argument for a non-square or empty matrix, or odometry of another length.
-// `odometry` (one pose per image, or empty) feeds config.odometry_gate.
+// Throws std::invalid_argument for a non-square or empty matrix, odometry of another length, or a config that
+// check_map_config refuses. `odometry` (one pose per image, or empty) feeds config.odometry_gate.
+// Throws std::invalid_argument naming the first setting out of its range (the command line's limits: a
+// negative gap or threshold, an E-value, cap or frames per place that is not positive, ...).
+void check_map_config(const MapConfig& config);
+
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config = {},
                     std::span<const Pose2> odometry = {});
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config = {},

@@ -69,6 +69,10 @@ struct MapRequest {
   // with the sparse engine (scale/sparse_alignment.hpp); every other pair scores `sparse_background`.
   bool sparse = false;
   std::size_t sparse_neighbours = 10;
+  // The diagonal and anti-diagonal this many frames around every candidate pair are candidates too
+  // (scale::CandidateConfig::diagonal_reach): a revisit under strong appearance change, whose frames' true
+  // matches are seldom among their nearest neighbours, grows from a few seeds.
+  std::size_t sparse_diagonal_reach = 0;
   float sparse_background = -1.0F;
   // No engine asked for: the run chooses exact, fast or streaming by the memory it needs (engine_choice.hpp)
   // and says which and why.

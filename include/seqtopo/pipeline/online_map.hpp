@@ -58,6 +58,7 @@ struct OnlineMapRun {
   // The contrast offset of the last frame, and where the logarithmic-phase check raised it (OnlineMapConfig).
   float contrast_offset = 0;
   std::vector<mapping::OnlineMapper::OffsetChange> offset_changes;
+  std::vector<std::string> warnings;  // about the input (a video that ended before the frames it announced)
 };
 
 // Called after each frame with its events (possibly none), and once after the last frame with finish()'s.
