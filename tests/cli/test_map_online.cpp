@@ -22,6 +22,7 @@
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/plot/png.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -234,6 +235,14 @@ TEST(MapOnline, BadInputGivesOneLine) {
                             "stdin: needs at least 2 images, got 1");
   expect_error_after_frames(run_cli("map - --online" + out, path_lines({images[0], images[0].parent_path()})),
                             images[0].parent_path().string() + ": a folder, not an image");
+  // An image of another size among the paths: the offline map's error names the user's file, not the link the
+  // run made for it in a folder of its own.
+  const fs::path small = dir.path / "small.png";
+  seqtopo::plot::write_png(small, seqtopo::RgbImage(16, 12));
+  const auto mixed = run_cli("map - --online" + out, path_lines({images[0], images[1], images[2], small}));
+  EXPECT_NE(mixed.status, 0);
+  EXPECT_NE(mixed.err.find(small.string()), std::string::npos) << mixed.err;
+  EXPECT_EQ(mixed.err.find("seqtopo-online"), std::string::npos) << mixed.err;
   // The offline map's options are refused, not ignored.
   const std::string folder = images[0].parent_path().string();
   const auto odometry = dir.path / "odometry.csv";
