@@ -609,12 +609,14 @@ def localize_sequences(
     baselines. Returns a :class:`LocalizeRun`."""
     config = _config(config, LocalizeConfig, overrides)
     with _tempfile.TemporaryDirectory(prefix="seqtopo-") as scratch:
+        written = {}  # files made here from arrays: an error names the argument, not the file
         if isinstance(map, _np.ndarray):
             if query is not None:
                 raise ValueError("map: an array is the query x map similarity; give no query with it")
             path = _os.path.join(scratch, "similarity.npy")
             _np.save(path, _np.ascontiguousarray(map, dtype=_np.float32))
             map = path
+            written[path] = "map"
         truth = ""
         if ground_truth is not None:
             if isinstance(ground_truth, str) or isinstance(ground_truth, _os.PathLike):
@@ -624,8 +626,18 @@ def localize_sequences(
                 truth = _os.path.join(scratch, "truth.csv")
                 with open(truth, "w") as f:
                     f.write("query,map\n" + "".join(f"{q},{m}\n" for q, m in pairs))
-        raw = _core.localize_sequences(_os.fspath(map), "" if query is None else _os.fspath(query), descriptor,
-                                       metric, kappa, input_kind, every, threads, config, online, truth, tolerance)
+                written[truth] = "ground_truth"
+        try:
+            raw = _core.localize_sequences(_os.fspath(map), "" if query is None else _os.fspath(query), descriptor,
+                                           metric, kappa, input_kind, every, threads, config, online, truth,
+                                           tolerance)
+        except (ValueError, InputError) as error:
+            message = str(error)
+            for path, name in written.items():
+                message = message.replace(path, name)
+            if message == str(error):
+                raise
+            raise type(error)(message) from None
     return LocalizeRun(raw)
 
 

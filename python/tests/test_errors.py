@@ -127,3 +127,11 @@ def test_a_map_config_out_of_range_names_its_field(field, value, message):
     setattr(config, field, value)
     with pytest.raises(ValueError, match="MapConfig." + message):
         seqtopo.build_map(seqtopo.similarity(route_descriptors()).similarity, config)
+
+
+def test_localize_errors_name_the_array_arguments_not_their_scratch_files():
+    s = seqtopo.similarity(route_descriptors()[:40], route_descriptors()[40:]).similarity
+    with pytest.raises((ValueError, seqtopo.InputError)) as error:
+        seqtopo.localize_sequences(s, ground_truth=[(0, 5000)])
+    assert str(error.value).startswith("ground_truth"), str(error.value)
+    assert "truth.csv" not in str(error.value)
