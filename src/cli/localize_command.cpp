@@ -222,7 +222,8 @@ const RegisterCommand registered{
            "query traverse of the same kind ('-' with --online: image paths on standard input, one per line)");
        app.add_option("--out", o->out_dir, "output folder")->capture_default_str();
        app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
-       add_number(app, "--every", o->every, kAtLeastOne, "video: keep every K-th frame");
+       add_number(app, "--every", o->every, kAtLeastOne,
+                  "keep every K-th frame: of a video or bag, the images of a folder, the rows of descriptors.npy");
        app.add_option("--descriptor", o->descriptor,
                       "patch|joint-histogram|panorama|npy (descriptors.npy inputs use their rows)")
            ->capture_default_str();

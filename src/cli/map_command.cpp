@@ -351,7 +351,10 @@ const RegisterCommand registered{
                       "sessions mapped together (no transition between one's end and the next one's start)");
        app.add_option("--out", o->out, "output folder")->capture_default_str();
        app.add_option("--input-kind", o->input_kind, "auto|images|video|descriptors|similarity")->capture_default_str();
-       add_number(app, "--every", o->every, kAtLeastOne, "video: use every K-th frame");
+       add_number(app, "--every", o->every, kAtLeastOne,
+                  "keep every K-th frame: of a video or bag, the images of a folder, the rows of descriptors.npy "
+                  "(odometry and times files list every frame and are thinned alike; a ground truth lists the frames "
+                  "kept)");
        app.add_option("--preset", o->preset, "paper (joint histogram, chi2, EKF) or default")->capture_default_str();
        app.add_option("--descriptor", o->descriptor,
                       "joint-histogram|patch|panorama|npy (npy: the rows of a descriptors.npy INPUT), or several "

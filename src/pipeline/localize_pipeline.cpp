@@ -151,7 +151,7 @@ void for_each_frame(const SequenceInput& input, const Describer& describe, const
 #endif
     }
     case InputKind::descriptors: {
-      const auto rows = io::read_npy_matrix<float>(input.path);
+      const auto rows = read_input_rows(input);
       if (rows.empty()) throw InputError(input.path.string(), "no descriptors (empty array)");
       for (std::size_t i = 0; i < rows.rows; ++i) {
         arrived();

@@ -119,7 +119,8 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
   // scale needs it: mapping::OnlineMapConfig::self_similarity).
   std::optional<DenseMatrix<float>> matrix;
   if (run.kind == InputKind::descriptors || run.kind == InputKind::similarity) {
-    matrix = io::read_npy_matrix<float>(input.path);
+    if (run.kind == InputKind::similarity) refuse_every_for_similarity(input);
+    matrix = read_input_rows(input);
     if (matrix->rows == 0 || matrix->cols == 0) throw InputError(subject, "holds no row");
     if (run.kind == InputKind::similarity) {
       if (matrix->rows != matrix->cols) {

@@ -7,6 +7,7 @@
 
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/image_io.hpp"
+#include "seqtopo/io/npy.hpp"
 
 namespace seqtopo::pipeline {
 
@@ -221,7 +222,34 @@ std::vector<fs::path> list_images(const fs::path& folder) { return list_images(f
 
 ImageListing list_input_images(const SequenceInput& input) {
   if (input.listing) return *input.listing;
-  return list_images(input.path, ListOptions{.recursive = input.recursive, .skip_unreadable = input.skip_unreadable});
+  ImageListing listing =
+      list_images(input.path, ListOptions{.recursive = input.recursive, .skip_unreadable = input.skip_unreadable});
+  if (input.every > 1) {
+    std::vector<fs::path> kept;
+    for (std::size_t k = 0; k < listing.files.size(); k += input.every) kept.push_back(std::move(listing.files[k]));
+    listing.files = std::move(kept);
+  }
+  return listing;
+}
+
+DenseMatrix<float> read_input_rows(const SequenceInput& input) {
+  DenseMatrix<float> all = io::read_npy_matrix<float>(input.path);
+  if (input.every <= 1 || all.rows == 0) return all;
+  DenseMatrix<float> kept((all.rows + input.every - 1) / input.every, all.cols);
+  for (std::size_t r = 0; r < kept.rows; ++r) {
+    const auto row = all.row(r * input.every);
+    std::copy(row.begin(), row.end(), kept.row(r).begin());
+  }
+  return kept;
+}
+
+void refuse_every_for_similarity(const SequenceInput& input) {
+  if (input.every > 1) {
+    throw InputError("--every",
+                     "keeps every K-th frame of images, videos, bags and descriptors; the similarity "
+                     "matrix " +
+                         input.path.string() + " is used whole");
+  }
 }
 
 std::string image_name(const fs::path& folder, const fs::path& file, bool recursive) {

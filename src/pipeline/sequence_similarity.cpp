@@ -166,10 +166,11 @@ Source resolve(const SequenceInput& input) {
     case InputKind::similarity: {
       const io::NpyHeader header = io::read_npy_header(input.path);
       if (header.shape.size() != 2) throw InputError(input.path.string(), "expected a 2-D array");
-      s.count = input.frames.empty() ? header.shape[0] : input.frames.size();
+      s.count = input.frames.empty() ? (header.shape[0] + input.every - 1) / input.every : input.frames.size();
       if (s.kind == InputKind::similarity && !input.frames.empty()) {
         throw InputError(input.path.string(), "frames cannot be selected from a similarity matrix");
       }
+      if (s.kind == InputKind::similarity) refuse_every_for_similarity(input);
       s.dimension = header.shape[1];
       break;
     }
@@ -504,8 +505,7 @@ Described describe(const Source& s, Descriptors ds, const SimilarityConfig& c) {
       return describe_bag(s, ds, c);
     case InputKind::descriptors: {
       Described out;  // one set, the file's rows, whatever was asked (effective_descriptor)
-      out.sets.push_back(
-          similarity::DescriptorSet::from_dense(kept_rows(io::read_npy_matrix<float>(s.input.path), s.input)));
+      out.sets.push_back(similarity::DescriptorSet::from_dense(kept_rows(read_input_rows(s.input), s.input)));
       if (out.sets[0].dense.empty()) throw InputError(s.input.path.string(), "no descriptors (empty array)");
       out.names = row_names(out.sets[0].dense.rows, "row");
       return out;

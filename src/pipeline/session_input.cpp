@@ -44,11 +44,14 @@ std::vector<T> thin(const std::vector<T>& all, std::size_t every) {
 }  // namespace
 
 std::optional<std::vector<double>> frame_times(const SequenceInput& input, const fs::path& times) {
-  if (!times.empty()) return formats::read_times_txt(times);
+  // A times file has a line per frame of the video or image of the folder; the listing is already thinned.
+  if (!times.empty()) return thin(formats::read_times_txt(times), input.every);
   const InputKind kind = resolve_input_kind(input);
   if (kind != InputKind::images) return std::nullopt;
   std::error_code ec;
-  if (fs::exists(input.path / "times.txt", ec)) return formats::read_times_txt(input.path / "times.txt");
+  if (fs::exists(input.path / "times.txt", ec)) {
+    return thin(formats::read_times_txt(input.path / "times.txt"), input.every);
+  }
   const ImageListing listing = list_input_images(input);
   std::vector<double> out;
   for (const auto& f : listing.files) {
@@ -82,16 +85,11 @@ PreparedSession prepare_session(const SessionSource& source) {
   if (kind == InputKind::images) {
     s.input.listing = std::make_shared<const ImageListing>(list_input_images(input));
     count = s.input.listing->files.size();
-    if (input.every > 1) {
-      s.notes.push_back(
-          fmt::format("warning: --every {} keeps every K-th frame of a video, bag or descriptors.npy; "
-                      "the image folder {} is read whole ({} images)",
-                      input.every, input.path.string(), *count));
-    }
   }
   if (kind == InputKind::descriptors || kind == InputKind::similarity) {
+    if (kind == InputKind::similarity) refuse_every_for_similarity(input);
     const auto header = io::read_npy_header(input.path);
-    if (!header.shape.empty()) count = header.shape[0];
+    if (!header.shape.empty()) count = (header.shape[0] + input.every - 1) / input.every;
     // The kind of a .npy comes from its name: a similarity matrix saved under another name would be mapped as
     // descriptors, and quietly give another map. A square symmetric array is almost surely one.
     if (kind == InputKind::descriptors && input.kind == InputKind::automatic && header.shape.size() == 2 &&
@@ -160,7 +158,7 @@ PreparedSession prepare_session(const SessionSource& source) {
                          "holds timestamped poses, but the images have no times: give --times times.txt, put a "
                          "times.txt in the image folder, or name the images by their time");
       }
-      times = kind == InputKind::images ? *t : thin(*t, input.every);
+      times = *t;
       if (count && times.size() != *count) {
         throw InputError(source.times.empty() ? input.path.string() : source.times.string(),
                          fmt::format("{} image times for {} images", times.size(), *count));
@@ -177,8 +175,8 @@ PreparedSession prepare_session(const SessionSource& source) {
     } catch (const std::invalid_argument& e) {
       throw InputError(timed_subject, e.what());
     }
-  } else if (!poses.empty() && kind == InputKind::video && input.every > 1) {
-    poses = thin(poses, input.every);  // a per-frame file covers every frame of the video
+  } else if (!poses.empty() && input.every > 1) {
+    poses = thin(poses, input.every);  // a per-frame file covers every frame of the video, folder or array
   }
   if (!poses.empty() && count && poses.size() != *count) {
     throw InputError(s.odometry_subject, fmt::format("has {} poses, the sequence has {} images", poses.size(), *count));

@@ -12,6 +12,8 @@
 
 #include "common/cli_run.hpp"
 #include "common/temp_dir.hpp"
+#include "seqtopo/core/dense_matrix.hpp"
+#include "seqtopo/io/npy.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -163,6 +165,62 @@ TEST(CliDetails, OnlineLatencyIsProcessingAndTheWaitIsApart) {
   for (std::size_t q = 1; q < 3; ++q) EXPECT_GT(wait[q], 500.0) << "frame " << q;
   const std::string csv = read_file(dir.path / "out" / "latency.csv");
   EXPECT_EQ(csv.rfind("query,latency_ms,wait_ms\n", 0), 0U) << csv;
+}
+
+// --every K was read for videos and bags only: an image folder and a descriptors.npy were mapped whole without a
+// word. It keeps every K-th image (and odometry row) of a folder and every K-th row of an array: the same map as the
+// thinned folder or array given whole. A similarity matrix is refused, not thinned.
+TEST(CliDetails, EveryKeepsEveryKthImageOfAFolderAndRowOfAnArray) {
+  TempDir dir;
+  const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  fs::create_directories(dir.path / "half");
+  std::ofstream all_odometry(dir.path / "odometry.csv"), half_odometry(dir.path / "half.csv");
+  all_odometry << "index,x,y,theta\n";
+  half_odometry << "index,x,y,theta\n";
+  for (int k = 1; k <= 84; ++k) {
+    all_odometry << k - 1 << "," << 0.3 * k << ",0,0\n";
+    if ((k - 1) % 2 != 0) continue;
+    fs::copy_file(corridor / (std::to_string(k) + ".jpg"), dir.path / "half" / (std::to_string(k) + ".jpg"));
+    half_odometry << (k - 1) / 2 << "," << 0.3 * k << ",0,0\n";
+  }
+  all_odometry.close();
+  half_odometry.close();
+  const auto every = run_cli("map " + corridor.string() + " --every 2 --odometry " +
+                             (dir.path / "odometry.csv").string() + " --out " + (dir.path / "every").string());
+  ASSERT_EQ(every.status, 0) << every.err;
+  const auto half = run_cli("map " + (dir.path / "half").string() + " --odometry " + (dir.path / "half.csv").string() +
+                            " --out " + (dir.path / "whole").string());
+  ASSERT_EQ(half.status, 0) << half.err;
+  const auto map = nlohmann::json::parse(read_file(dir.path / "every" / "map.json"));
+  EXPECT_EQ(map.at("labels").size(), 42U);
+  for (const char* file : {"map.json", "alignments.json", "loop_closures.csv"}) {
+    EXPECT_EQ(read_file(dir.path / "every" / file), read_file(dir.path / "whole" / file)) << file;
+  }
+
+  std::mt19937 random(3);
+  std::normal_distribution<float> normal;
+  seqtopo::DenseMatrix<float> rows(301, 16), kept(101, 16);
+  for (std::size_t i = 0; i < rows.rows; ++i) {
+    for (std::size_t d = 0; d < rows.cols; ++d) {
+      rows(i, d) = normal(random) + (i >= 200 && i < 260 ? 3.0F * static_cast<float>((i - 150) % 7) : 0.0F);
+      if (i % 3 == 0) kept(i / 3, d) = rows(i, d);
+    }
+  }
+  seqtopo::io::write_npy(dir.path / "rows.npy", rows);
+  seqtopo::io::write_npy(dir.path / "kept.npy", kept);
+  const auto thinned =
+      run_cli("map " + (dir.path / "rows.npy").string() + " --every 3 --out " + (dir.path / "r3").string());
+  ASSERT_EQ(thinned.status, 0) << thinned.err;
+  const auto given = run_cli("map " + (dir.path / "kept.npy").string() + " --out " + (dir.path / "k").string());
+  ASSERT_EQ(given.status, 0) << given.err;
+  EXPECT_EQ(read_file(dir.path / "r3" / "map.json"), read_file(dir.path / "k" / "map.json"));
+  EXPECT_NE(thinned.err.find("101 images"), std::string::npos) << thinned.err;
+
+  seqtopo::io::write_npy(dir.path / "similarity.npy", seqtopo::DenseMatrix<float>(20, 20, 0.5F));
+  const auto refused =
+      run_cli("map " + (dir.path / "similarity.npy").string() + " --every 2 --out " + (dir.path / "s").string());
+  EXPECT_NE(refused.status, 0);
+  EXPECT_EQ(refused.err.rfind("seqtopo: error: --every: ", 0), 0U) << refused.err;
 }
 
 }  // namespace

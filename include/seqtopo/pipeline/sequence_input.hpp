@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "seqtopo/core/dense_matrix.hpp"
+
 namespace seqtopo::pipeline {
 
 // bag: a ROS 1 .bag, a ROS 2 .db3 or .mcap file, or a ROS 2 bag folder (metadata.yaml beside its .db3 or
@@ -29,7 +31,9 @@ struct SequenceInput {
 
   std::filesystem::path path;
   InputKind kind = InputKind::automatic;
-  std::size_t every = 1;  // video and bag: keep frames 0, K, 2K, ...
+  // Keep frames 0, K, 2K, ... of a video, bag, image folder (its listing) or descriptors.npy (its rows); the
+  // poses, times and ground truth are then those of the frames kept. A similarity.npy refuses K > 1.
+  std::size_t every = 1;
   // Image folders: also the images of every subfolder, in the order of list_images.
   bool recursive = false;
   // Image folders: an entry that looks like an image but cannot be read (a dangling or looping symbolic
@@ -80,8 +84,15 @@ struct ImageListing {
 
 ImageListing list_images(const std::filesystem::path& folder, const ListOptions& options);
 
-// The listing of an image-folder input with its options (recursive, skip_unreadable): input.listing when set.
+// The listing of an image-folder input with its options (recursive, skip_unreadable), every input.every-th
+// image: input.listing when set (made by this function, so already thinned).
 ImageListing list_input_images(const SequenceInput& input);
+
+// The rows of a descriptors.npy input, every input.every-th (InputError naming the file when unreadable).
+DenseMatrix<float> read_input_rows(const SequenceInput& input);
+
+// A similarity.npy input: InputError naming --every when it asks for every K-th frame (a matrix is not thinned).
+void refuse_every_for_similarity(const SequenceInput& input);
 
 // A frame's name for the report: the file name, or the path relative to the folder when recursive.
 std::string image_name(const std::filesystem::path& folder, const std::filesystem::path& file, bool recursive);
