@@ -107,21 +107,23 @@ codecs::Video open_video(const fs::path& path) {
   return capture;
 }
 
-}  // namespace
-
-std::optional<std::size_t> video_frame_count(const fs::path& path) {
-  const codecs::Video capture = open_video(path);
+// The frames an open video's container announces, when it gives a plausible count.
+std::optional<std::size_t> announced_frames(const codecs::Video& capture) {
   const double n = capture.frame_count();
   if (!(n > 0) || n > 1e12) return std::nullopt;
   return static_cast<std::size_t>(n);
 }
+
+}  // namespace
+
+std::optional<std::size_t> video_frame_count(const fs::path& path) { return announced_frames(open_video(path)); }
 
 VideoFrames for_each_video_frame(const fs::path& path, std::size_t every,
                                  const std::function<void(std::size_t, const RgbImage&)>& visit) {
   if (every == 0) throw std::invalid_argument("--every must be at least 1");
   codecs::Video capture = open_video(path);
   VideoFrames frames;
-  if (const double n = capture.frame_count(); n > 0 && n <= 1e12) frames.announced = static_cast<std::size_t>(n);
+  frames.announced = announced_frames(capture);
   std::size_t index = 0, kept = 0;
   cv::Mat frame;
   while (capture.grab()) {

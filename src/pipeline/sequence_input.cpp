@@ -224,11 +224,7 @@ ImageListing list_input_images(const SequenceInput& input) {
   if (input.listing) return *input.listing;
   ImageListing listing =
       list_images(input.path, ListOptions{.recursive = input.recursive, .skip_unreadable = input.skip_unreadable});
-  if (input.every > 1) {
-    std::vector<fs::path> kept;
-    for (std::size_t k = 0; k < listing.files.size(); k += input.every) kept.push_back(std::move(listing.files[k]));
-    listing.files = std::move(kept);
-  }
+  if (input.every > 1) listing.files = every_kth(listing.files, input.every);
   return listing;
 }
 

@@ -33,24 +33,16 @@ std::optional<double> number_name(const fs::path& file) {
   return v;
 }
 
-// Every `every`-th of `all`, then the kept frames.
-template <typename T>
-std::vector<T> thin(const std::vector<T>& all, std::size_t every) {
-  std::vector<T> out;
-  for (std::size_t k = 0; k < all.size(); k += every) out.push_back(all[k]);
-  return out;
-}
-
 }  // namespace
 
 std::optional<std::vector<double>> frame_times(const SequenceInput& input, const fs::path& times) {
   // A times file has a line per frame of the video or image of the folder; the listing is already thinned.
-  if (!times.empty()) return thin(formats::read_times_txt(times), input.every);
+  if (!times.empty()) return every_kth(formats::read_times_txt(times), input.every);
   const InputKind kind = resolve_input_kind(input);
   if (kind != InputKind::images) return std::nullopt;
   std::error_code ec;
   if (fs::exists(input.path / "times.txt", ec)) {
-    return thin(formats::read_times_txt(input.path / "times.txt"), input.every);
+    return every_kth(formats::read_times_txt(input.path / "times.txt"), input.every);
   }
   const ImageListing listing = list_input_images(input);
   std::vector<double> out;
@@ -149,7 +141,7 @@ PreparedSession prepare_session(const SessionSource& source) {
   if (!timed.empty()) {
     std::vector<double> times;
 #ifdef SEQTOPO_HAVE_RECORDING
-    if (bag) times = thin(bag->image_times(image_topic), input.every);
+    if (bag) times = every_kth(bag->image_times(image_topic), input.every);
 #endif
     if (kind != InputKind::bag) {
       const auto t = frame_times(input, source.times);
@@ -176,7 +168,7 @@ PreparedSession prepare_session(const SessionSource& source) {
       throw InputError(timed_subject, e.what());
     }
   } else if (!poses.empty() && input.every > 1) {
-    poses = thin(poses, input.every);  // a per-frame file covers every frame of the video, folder or array
+    poses = every_kth(poses, input.every);  // a per-frame file covers every frame of the video, folder or array
   }
   if (!poses.empty() && count && poses.size() != *count) {
     throw InputError(s.odometry_subject, fmt::format("has {} poses, the sequence has {} images", poses.size(), *count));

@@ -88,6 +88,14 @@ ImageListing list_images(const std::filesystem::path& folder, const ListOptions&
 // image: input.listing when set (made by this function, so already thinned).
 ImageListing list_input_images(const SequenceInput& input);
 
+// Elements 0, every, 2 * every, ... of `all` (every >= 1): the frames --every keeps.
+template <typename T>
+std::vector<T> every_kth(const std::vector<T>& all, std::size_t every) {
+  std::vector<T> out;
+  for (std::size_t k = 0; k < all.size(); k += every) out.push_back(all[k]);
+  return out;
+}
+
 // The rows of a descriptors.npy input, every input.every-th (InputError naming the file when unreadable).
 DenseMatrix<float> read_input_rows(const SequenceInput& input);
 
