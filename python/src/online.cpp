@@ -144,41 +144,43 @@ struct PyOnlineMapper {
 void bind_online(py::module_& m) {
   py::class_<OnlineMapConfig> c(m, "OnlineMapConfig",
                                 "Settings of the online mapper (docs/online.md); every field a keyword argument.");
-  c.def(
-      py::init([](const std::string& distance, std::size_t contrast_window, float contrast_offset, float gap,
-                  std::optional<float> cap, std::optional<double> max_e_value, std::optional<double> candidate_e_value,
-                  float threshold, std::size_t min_separation, bool reverse, std::size_t reach, float x_drop,
-                  std::size_t min_revisit_frames, std::size_t patience, std::size_t island_sample, bool adapt_offset) {
-        OnlineMapConfig config;
-        config.distance = similarity::parse_distance(distance);
-        config.contrast_window = contrast_window;
-        config.contrast_offset = contrast_offset;
-        config.gap = gap;
-        config.cap = cap;
-        config.max_e_value = max_e_value;
-        config.candidate_e_value = candidate_e_value;
-        config.threshold = threshold;
-        config.island_sample = island_sample;
-        config.adapt_offset = adapt_offset;
-        config.min_separation = min_separation;
-        config.reverse = reverse;
-        config.reach = reach;
-        config.x_drop = x_drop;
-        config.min_revisit_frames = min_revisit_frames;
-        config.patience = patience;
-        mapping::validate(config);
-        return config;
-      }),
-      py::kw_only(), py::arg("distance") = "cosine", py::arg("contrast_window") = OnlineMapConfig{}.contrast_window,
-      py::arg("contrast_offset") = OnlineMapConfig{}.contrast_offset, py::arg("gap") = OnlineMapConfig{}.gap,
-      py::arg("cap") = OnlineMapConfig{}.cap, py::arg("max_e_value") = OnlineMapConfig{}.max_e_value,
-      py::arg("candidate_e_value") = OnlineMapConfig{}.candidate_e_value,
-      py::arg("threshold") = OnlineMapConfig{}.threshold, py::arg("min_separation") = OnlineMapConfig{}.min_separation,
-      py::arg("reverse") = OnlineMapConfig{}.reverse, py::arg("reach") = OnlineMapConfig{}.reach,
-      py::arg("x_drop") = OnlineMapConfig{}.x_drop,
-      py::arg("min_revisit_frames") = OnlineMapConfig{}.min_revisit_frames,
-      py::arg("patience") = OnlineMapConfig{}.patience, py::arg("island_sample") = OnlineMapConfig{}.island_sample,
-      py::arg("adapt_offset") = OnlineMapConfig{}.adapt_offset);
+  c.def(py::init([](const std::string& distance, std::size_t contrast_window, float contrast_offset, float gap,
+                    std::optional<float> cap, std::optional<double> max_e_value,
+                    std::optional<double> candidate_e_value, float threshold, std::size_t min_separation, bool reverse,
+                    std::size_t reach, float x_drop, std::size_t min_revisit_frames, std::size_t patience,
+                    std::size_t island_sample, bool adapt_offset, std::size_t early_fit_frames) {
+          OnlineMapConfig config;
+          config.distance = similarity::parse_distance(distance);
+          config.contrast_window = contrast_window;
+          config.contrast_offset = contrast_offset;
+          config.gap = gap;
+          config.cap = cap;
+          config.max_e_value = max_e_value;
+          config.candidate_e_value = candidate_e_value;
+          config.threshold = threshold;
+          config.island_sample = island_sample;
+          config.adapt_offset = adapt_offset;
+          config.early_fit_frames = early_fit_frames;
+          config.min_separation = min_separation;
+          config.reverse = reverse;
+          config.reach = reach;
+          config.x_drop = x_drop;
+          config.min_revisit_frames = min_revisit_frames;
+          config.patience = patience;
+          mapping::validate(config);
+          return config;
+        }),
+        py::kw_only(), py::arg("distance") = "cosine", py::arg("contrast_window") = OnlineMapConfig{}.contrast_window,
+        py::arg("contrast_offset") = OnlineMapConfig{}.contrast_offset, py::arg("gap") = OnlineMapConfig{}.gap,
+        py::arg("cap") = OnlineMapConfig{}.cap, py::arg("max_e_value") = OnlineMapConfig{}.max_e_value,
+        py::arg("candidate_e_value") = OnlineMapConfig{}.candidate_e_value,
+        py::arg("threshold") = OnlineMapConfig{}.threshold,
+        py::arg("min_separation") = OnlineMapConfig{}.min_separation, py::arg("reverse") = OnlineMapConfig{}.reverse,
+        py::arg("reach") = OnlineMapConfig{}.reach, py::arg("x_drop") = OnlineMapConfig{}.x_drop,
+        py::arg("min_revisit_frames") = OnlineMapConfig{}.min_revisit_frames,
+        py::arg("patience") = OnlineMapConfig{}.patience, py::arg("island_sample") = OnlineMapConfig{}.island_sample,
+        py::arg("adapt_offset") = OnlineMapConfig{}.adapt_offset,
+        py::arg("early_fit_frames") = OnlineMapConfig{}.early_fit_frames);
   c.def_property_readonly("distance",
                           [](const OnlineMapConfig& x) { return std::string(similarity::distance_name(x.distance)); });
   c.def_readonly("contrast_window", &OnlineMapConfig::contrast_window);
@@ -190,6 +192,7 @@ void bind_online(py::module_& m) {
   c.def_readonly("threshold", &OnlineMapConfig::threshold);
   c.def_readonly("island_sample", &OnlineMapConfig::island_sample);
   c.def_readonly("adapt_offset", &OnlineMapConfig::adapt_offset);
+  c.def_readonly("early_fit_frames", &OnlineMapConfig::early_fit_frames);
   c.def_readonly("min_separation", &OnlineMapConfig::min_separation);
   c.def_readonly("reverse", &OnlineMapConfig::reverse);
   c.def_readonly("reach", &OnlineMapConfig::reach);
@@ -262,7 +265,7 @@ void bind_online(py::module_& m) {
                              [](const PyOnlineMapper& self) { return copy_array(self.mapper.reverse_row()); })
       .def_property_readonly(
           "threshold", [](const PyOnlineMapper& self) { return self.mapper.threshold(); },
-          "The score a revisit needs at the next frame (from max_e_value and the island statistics after the last).")
+          "The score a revisit needs at the next frame (from max_e_value and the statistics after the last).")
       .def_property_readonly(
           "statistics",
           [](const PyOnlineMapper& self) -> py::object {
@@ -273,9 +276,11 @@ void bind_online(py::module_& m) {
             d["k"] = st.k;
             d["area"] = st.area;
             d["fitted"] = st.fitted;
+            d["fitted_to"] = self.mapper.statistics_from_table() ? "table" : "islands";
             return d;
           },
-          "The island statistics of the last frame (lambda, k, area, fitted), None before a fit.")
+          "The statistics of the last frame (lambda, k, area, fitted, fitted_to: 'islands', or 'table' while the "
+          "islands are too few), None before a fit.")
       .def_property_readonly(
           "contrast_offset", [](const PyOnlineMapper& self) { return self.mapper.contrast_offset(); },
           "The contrast offset of the next frame: the config's, raised while chance paths grow with the sequence.")

@@ -95,3 +95,16 @@ def test_images_and_refusals():
     with pytest.raises(ValueError, match="candidates' E-value"):
         seqtopo.OnlineMapConfig(candidate_e_value=0.001)  # below the E-value of a revisit (0.01)
     assert seqtopo.OnlineMapConfig(candidate_e_value=None).candidate_e_value is None
+
+
+def test_a_short_run_is_fitted_on_its_table_until_the_islands_suffice():
+    frames = np.random.default_rng(4).standard_normal((150, 128)).astype(np.float32)
+    early = seqtopo.OnlineMapper(seqtopo.OnlineMapConfig(contrast_offset=1.0))
+    feed(early, frames)
+    st = early.statistics
+    assert st is not None and st["fitted_to"] == "table", st
+    assert 0 < early.threshold < 20
+    late = seqtopo.OnlineMapper(seqtopo.OnlineMapConfig(contrast_offset=1.0, early_fit_frames=0))
+    feed(late, frames)
+    assert late.statistics is None
+    assert late.threshold == 20

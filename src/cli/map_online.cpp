@@ -217,7 +217,8 @@ void run_map_online(const OnlineCliOptions& o) {
       fmt::format(R"(, "significance": {{"max_e_value": {}, "threshold": {})",
                   request.config.max_e_value ? fmt::format("{}", *request.config.max_e_value) : "null", run.threshold);
   if (st.valid()) {
-    summary += fmt::format(R"(, "lambda": {}, "k": {}, "area": {}, "fitted": {})", st.lambda, st.k, st.area, st.fitted);
+    summary += fmt::format(R"(, "lambda": {}, "k": {}, "area": {}, "fitted": {}, "fitted_to": "{}")", st.lambda, st.k,
+                           st.area, st.fitted, run.statistics_from_table ? "table" : "islands");
   }
   summary += fmt::format(R"(, "contrast_offset": {}, "offset_changes": [)", run.contrast_offset);
   for (std::size_t k = 0; k < run.offset_changes.size(); ++k) {
@@ -251,9 +252,11 @@ void run_map_online(const OnlineCliOptions& o) {
   }
   if (st.valid()) {
     std::cerr << fmt::format(
-        "seqtopo map: online significance: lambda {:.3g}, K {:.3g} (from {} chance islands); at the last frame E <= "
+        "seqtopo map: online significance: lambda {:.3g}, K {:.3g} (from {} chance {}); at the last frame E <= "
         "{:g} needed a score of {:.3g}\n",
-        st.lambda, st.k, st.fitted, *request.config.max_e_value, run.threshold);
+        st.lambda, st.k, st.fitted,
+        run.statistics_from_table ? "alignments of the table so far: too few islands yet" : "islands",
+        *request.config.max_e_value, run.threshold);
   }
   if (metrics) {
     std::cerr << fmt::format("seqtopo map: online loop closures: precision {:.3f} recall {:.3f} F1 {:.3f}\n",

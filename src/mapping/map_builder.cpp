@@ -175,6 +175,17 @@ FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, doub
   return run;
 }
 
+// A sequence full of revisits and their shadows may leave too few chance alignments among the first
+// fit_alignments: look further, up to 16 times as far.
+FitRun fit_looking_further(const align::ScoreSource& scores, const MapConfig& c, double frames_per_place) {
+  FitRun fit;
+  for (std::size_t m = c.fit_alignments;; m *= 4) {
+    fit = fit_statistics(scores, c, frames_per_place, m);
+    if (fit.statistics.valid() || fit.alignments.size() < m || m >= 16 * c.fit_alignments) break;
+  }
+  return fit;
+}
+
 // MapConfig::odometry_evidence: the share of the statistics' run's chance alignments (E > 1) that the odometry
 // gate passes, (passed + 1) / (tested + 2); 1 with fewer than 20 of them.
 double chance_agreement(const FitRun& fit, std::span<const Pose2> odometry, const OdometryGate& gate) {
@@ -315,6 +326,17 @@ void add_confidences(const align::ScoreSource& scores, const align::AlignConfig&
 
 }  // namespace
 
+TableFit fit_table_statistics(const align::ScoreSource& scores, const MapConfig& config, double frames_per_place) {
+  FitRun fit = fit_looking_further(scores, config, frames_per_place);
+  fit.statistics.area =
+      significance::search_area(scores.rows(), scores.cols(), true, config.min_separation, config.reverse);
+  TableFit out{fit.statistics, fit.chance_length, fit.global_rate};
+  out.logarithmic = fit.statistics.valid() &&
+                    logarithmic_phase(fit.chance_length, fit.statistics.area / (frames_per_place * frames_per_place)) &&
+                    (!config.max_global_rate || fit.global_rate <= *config.max_global_rate);
+  return out;
+}
+
 void check_map_config(const MapConfig& c) {
   const auto require = [](bool ok, const char* field, const char* range) {
     if (!ok) throw std::invalid_argument(fmt::format("MapConfig.{} must be {}", field, range));
@@ -401,12 +423,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
         significance::search_area(n, n, true, c.min_separation, c.reverse) / (d.frames_per_place * d.frames_per_place);
     FitRun fit;
     while (true) {
-      // A sequence full of revisits and their shadows may leave too few chance alignments among the first
-      // fit_alignments: look further, up to 16 times as far.
-      for (std::size_t m = c.fit_alignments;; m *= 4) {
-        fit = fit_statistics(minus(enhanced, offset), c, d.frames_per_place, m);
-        if (fit.statistics.valid() || fit.alignments.size() < m || m >= 16 * c.fit_alignments) break;
-      }
+      fit = fit_looking_further(minus(enhanced, offset), c, d.frames_per_place);
       const bool short_chance = logarithmic_phase(fit.chance_length, area_places);
       const bool falling = !c.max_global_rate || fit.global_rate <= *c.max_global_rate;
       const bool logarithmic = fit.statistics.valid() && short_chance && falling;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "median.hpp"
+#include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/significance/alignment_phase.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
@@ -275,6 +276,27 @@ void OnlineMapper::sample_lags(const std::vector<std::span<const float>>& rows) 
   }
 }
 
+void OnlineMapper::update_place_scale() {
+  // The place scale of the frames so far (the mean of the similarities' that have one), as the offline map's.
+  const std::size_t n = std::min(frames_ + 1, kScaleFrames);
+  // Until a scale is found, every few frames (the early fit waits for it); then as the frames grow by a quarter.
+  const std::size_t every = scale_found_ ? std::max(kScaleEvery, *scale_at_ / 4) : 4;
+  if (scale_at_ && (frames_ >= kScaleFrames || frames_ < *scale_at_ + every)) return;
+  scale_at_ = frames_;
+  double sum = 0;
+  std::size_t found = 0;
+  const std::size_t lags = std::min(kScaleLags, n / 3);
+  for (const auto& by_lag : lag_samples_) {
+    if (lags < 4) break;
+    // by_lag[k] holds S(t - k, t) for t < n, the pairs (i, i + k) of the first n frames.
+    const PlaceScale p =
+        frames_per_place_from_lags(std::vector<std::vector<float>>(by_lag.begin(), by_lag.begin() + lags + 1), n);
+    if (p.found) sum += p.frames_per_place, ++found;
+  }
+  frames_per_place_ = found > 0 ? sum / static_cast<double>(found) : 1.0;
+  scale_found_ = found > 0;
+}
+
 void OnlineMapper::check_phase(const std::vector<std::pair<double, double>>& fitted) {
   if (!config_.adapt_offset || config_.contrast_window == 0 || lag_samples_.empty() ||
       offset_ + config_.contrast_offset_step > config_.max_contrast_offset + 1e-6F) {
@@ -287,23 +309,7 @@ void OnlineMapper::check_phase(const std::vector<std::pair<double, double>>& fit
   // Within the bound counted in frames, the lengths are within it in places too (f frames a place divide the
   // length by f and lower the bound by 2 ln f only), so the scale is estimated only past it.
   if (frames <= std::max(4.0, std::log(std::max(statistics_.area, 1.0)))) return;
-  // The place scale of the frames so far (the mean of the similarities' that have one), as the offline map's.
-  const std::size_t n = std::min(frames_ + 1, kScaleFrames);
-  if (!scale_at_ || (frames_ < kScaleFrames && frames_ >= *scale_at_ + std::max(kScaleEvery, *scale_at_ / 4))) {
-    scale_at_ = frames_;
-    double sum = 0;
-    std::size_t found = 0;
-    const std::size_t lags = std::min(kScaleLags, n / 3);
-    for (const auto& by_lag : lag_samples_) {
-      if (lags < 4) break;
-      // by_lag[k] holds S(t - k, t) for t < n, the pairs (i, i + k) of the first n frames.
-      const PlaceScale p =
-          frames_per_place_from_lags(std::vector<std::vector<float>>(by_lag.begin(), by_lag.begin() + lags + 1), n);
-      if (p.found) sum += p.frames_per_place, ++found;
-    }
-    frames_per_place_ = found > 0 ? sum / static_cast<double>(found) : 1.0;
-    scale_found_ = found > 0;
-  }
+  update_place_scale();
   // Lengths need a scale: a smooth sequence shorter than 50 of its places, or one that drifts, has none yet.
   if (!scale_found_) return;
   const double length = frames / frames_per_place_;
@@ -336,6 +342,9 @@ void OnlineMapper::raise_offset(OffsetChange change) {
       if ((*row)[j] <= 0) (*row)[j] = 0, (*starts)[j] = kNoStart;
     }
   }
+  for (auto& v : early_cells_) v -= config_.contrast_offset_step;  // the table as at the new offset
+  next_early_fit_ = 0;
+  early_fitted_ = false;
   island_heap_.clear();
   islands_died_ = 0;
   sample_from_ = frames_ + 1;
@@ -888,15 +897,46 @@ void OnlineMapper::update_islands(align::Direction direction, IslandRow& live) {
   std::swap(live, next_islands_);
 }
 
+void OnlineMapper::fit_early(double area) {
+  const std::size_t n = frames_ + 1, sep = config_.min_separation;
+  // Only a sequence of 50 places or more has a scale (place_scale.hpp); a shorter one, or a smooth one whose
+  // chance alignments are few and long, gives too few independent ones for a fit.
+  if (n <= config_.early_fit_frames && n >= next_early_fit_ && !lag_samples_.empty()) update_place_scale();
+  if (n <= config_.early_fit_frames && n >= next_early_fit_ && scale_found_) {
+    next_early_fit_ = n + std::max<std::size_t>(4, n / 8);
+    // The rows so far as the lower triangle of a square table: the self search reads only i - j >= sep.
+    std::vector<float> table(n * n, 0.0F);
+    std::size_t at = 0;
+    for (std::size_t i = sep; i < n; ++i) {
+      std::copy_n(early_cells_.begin() + static_cast<std::ptrdiff_t>(at), i - sep + 1, table.begin() + i * n);
+      at += i - sep + 1;
+    }
+    MapConfig c;
+    c.gap = config_.gap;
+    c.min_separation = sep;
+    c.reverse = config_.reverse;
+    c.threads = 1;
+    // Trusted only where the offline map would trust them, in the logarithmic phase by both its checks (at its
+    // own bound on the global rate, whatever the online setting): in the linear phase the mapper's own checks
+    // raise the offset first, or the islands wait for more frames.
+    const TableFit fit = fit_table_statistics(align::ScoreSource::dense(table, n, n), c, frames_per_place_);
+    early_fitted_ = fit.logarithmic;
+    statistics_ = early_fitted_ ? fit.statistics : significance::ScoreStatistics{};
+  }
+  if (early_fitted_) statistics_.area = area;  // the fit of the frames so far, extrapolated past the last one
+}
+
 void OnlineMapper::update_threshold() {
   const std::size_t tail = std::min(island_heap_.size(), islands_died_ / kTailFraction);
-  if (!config_.max_e_value || tail < kMinIslandTail) {
+  const double area =
+      significance::search_area(frames_ + 1, frames_ + 1, true, config_.min_separation, config_.reverse);
+  if (config_.max_e_value && tail < kMinIslandTail && config_.early_fit_frames > 0) fit_early(area);
+  if (!config_.max_e_value || (tail < kMinIslandTail && !early_fitted_)) {
     threshold_ = config_.threshold;
     return;
   }
-  const double area =
-      significance::search_area(frames_ + 1, frames_ + 1, true, config_.min_separation, config_.reverse);
-  if (sample_changed_ || !statistics_.valid()) {
+  if (tail >= kMinIslandTail && (sample_changed_ || !statistics_.valid() || early_fitted_)) {
+    early_fitted_ = false;
     // The best `tail` islands, best first: their scores for the fit, their lengths for the phase check.
     std::vector<std::pair<double, double>> sample = island_heap_;
     std::sort(sample.begin(), sample.end(), std::greater<>());
@@ -923,6 +963,11 @@ std::optional<double> OnlineMapper::e_value(float score) const {
 }
 
 std::vector<OnlineEvent> OnlineMapper::step() {
+  if (config_.max_e_value && frames_ < config_.early_fit_frames) {
+    early_cells_.insert(early_cells_.end(), scores_.begin(), scores_.end());
+  } else {
+    std::vector<float>().swap(early_cells_);
+  }
   parent_.push_back(frames_);
   size_.push_back(1);
   std::vector<OnlineEvent> events;

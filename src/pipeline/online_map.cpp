@@ -63,6 +63,7 @@ class Feeder {
     run_.loop_closures = mapper_.loop_closures();
     run_.threshold = mapper_.threshold();
     run_.statistics = mapper_.statistics();
+    run_.statistics_from_table = mapper_.statistics_from_table();
     run_.contrast_offset = mapper_.contrast_offset();
     run_.offset_changes = mapper_.offset_changes();
   }

@@ -578,5 +578,83 @@ TEST(OnlineMapper, TheLogarithmicPhaseKeepsTheOffset) {
   }
 }
 
+// A run too short for the islands: the statistics come from the offline fit of its table so far, and a planted
+// revisit is reported at their E-value, sooner than at the fallback threshold of 20.
+TEST(OnlineMapper, AShortRunIsFittedOnItsTableUntilTheIslandsSuffice) {
+  std::mt19937 rng(3);
+  std::normal_distribution<float> normal;
+  auto frames = noise_descriptors(130, 0.0, 21);
+  for (std::size_t t = 80; t < 125; ++t) {  // frames 80..124 revisit 10..54
+    for (std::size_t k = 0; k < frames[t].size(); ++k) frames[t][k] = frames[t - 70][k] + 1.5F * normal(rng);
+  }
+  const auto first_begin = [&](const OnlineMapConfig& c, OnlineMapper& m) {
+    std::optional<std::size_t> at;
+    for (const auto& f : frames) {
+      for (const auto& e : m.add_descriptor(f)) {
+        if (e.kind == OnlineEventKind::revisit_begin && !at) {
+          EXPECT_EQ(e.i - e.j, 70U) << "on the planted diagonal";
+          at = e.frame;
+        }
+      }
+    }
+    EXPECT_EQ(m.contrast_offset(), c.contrast_offset) << "the logarithmic phase";
+    return at;
+  };
+  OnlineMapConfig c;
+  c.contrast_offset = 1.0F;  // white noise's logarithmic phase (TheLogarithmicPhaseKeepsTheOffset)
+  OnlineMapper early(c);
+  const auto with = first_begin(c, early);
+  ASSERT_TRUE(with.has_value());
+  EXPECT_LE(*with, 80U + 10U) << "reported within 10 frames of the revisit's start";
+  ASSERT_TRUE(early.statistics().valid());
+  EXPECT_TRUE(early.statistics_from_table()) << "130 frames leave too few dead islands";
+  EXPECT_EQ(early.statistics().area, significance::search_area(130, 130, true, c.min_separation, true));
+  EXPECT_FLOAT_EQ(early.threshold(), static_cast<float>(early.statistics().score_at(*c.max_e_value)));
+  EXPECT_LT(early.threshold(), c.threshold);
+  // Every loop closure on the planted diagonal; a few may run past its ends, where the path began or ended on
+  // chance cells (docs/online.md).
+  std::size_t on = 0, inside = 0;
+  for (const auto& lc : early.loop_closures()) {
+    if (lc.i - lc.j < 69 || lc.i - lc.j > 71) continue;
+    ++on;
+    inside += lc.i >= 80 && lc.i < 125;
+  }
+  EXPECT_EQ(early.loop_closures().size(), on) << "no loop closure off the revisit";
+  EXPECT_GE(inside, 40U);
+  EXPECT_LE(on - inside, 4U);
+
+  c.early_fit_frames = 0;
+  OnlineMapper fixed(c);
+  const auto without = first_begin(c, fixed);
+  EXPECT_FALSE(fixed.statistics().valid());
+  EXPECT_EQ(fixed.threshold(), c.threshold);
+  ASSERT_TRUE(without.has_value());
+  EXPECT_GT(*without, *with + 5) << "the fallback threshold of 20 takes longer to reach";
+}
+
+// The early statistics keep their E-value on noise: over 100 runs of 150 white-noise frames, revisits begin no
+// more often than about 2 E ln(N / t0) a run (t0 = 50, where the first fits come); the fixed threshold never
+// lets one through in so short a run, and the early fit was used in every run.
+TEST(OnlineMapper, TheEarlyFitKeepsItsEValueOnNoise) {
+  for (const double e : {0.01, 0.1}) {
+    OnlineMapConfig c;
+    c.contrast_offset = 1.0F;
+    c.max_e_value = e;
+    c.candidate_e_value.reset();
+    std::size_t begins = 0, fitted = 0;
+    constexpr int runs = 100;
+    for (int r = 0; r < runs; ++r) {
+      OnlineMapper m(c);
+      for (const auto& f : noise_descriptors(150, 0.0, 1000 + static_cast<std::uint32_t>(r))) {
+        for (const auto& ev : m.add_descriptor(f)) begins += ev.kind == OnlineEventKind::revisit_begin;
+      }
+      fitted += m.statistics_from_table();
+    }
+    EXPECT_EQ(fitted, static_cast<std::size_t>(runs)) << "E = " << e;
+    const double expected = runs * 2 * e * std::log(150.0 / 50.0);
+    EXPECT_LE(static_cast<double>(begins), expected + 3 * std::sqrt(expected) + 1) << "E = " << e;
+  }
+}
+
 }  // namespace
 }  // namespace seqtopo::mapping

@@ -187,6 +187,22 @@ MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfi
 // applied), self alignment.
 align::AlignConfig align_config(const MapConfig& config);
 
+// Step 3's statistics alone: lambda and K fitted to the best config.fit_alignments declumped alignments of
+// `scores` (aligned as they are, in frames: no offset, no place units), shadows left out and the first ranks set
+// aside as real, looking up to 16 times as far when revisits and their shadows leave too few; area the self
+// search's (both directions with config.reverse). Invalid when too few chance alignments remain. With the two
+// checks of the logarithmic phase build_map makes before it trusts them (the scores' global alignment rate
+// against config.max_global_rate; the chance alignments' median length in places against the log of the area in
+// places). For a caller that holds the table of a short sequence (mapping/online_mapper.hpp, before its islands
+// suffice).
+struct TableFit {
+  significance::ScoreStatistics statistics;
+  double chance_length = 0;  // [places]
+  double global_rate = 0;    // [score units a step]
+  bool logarithmic = false;  // valid statistics, and both checks hold
+};
+TableFit fit_table_statistics(const align::ScoreSource& scores, const MapConfig& config, double frames_per_place = 1);
+
 // The config with its windows and separations converted from places to frames (unchanged without place_units).
 MapConfig settings_in_frames(const MapConfig& config, double frames_per_place);
 

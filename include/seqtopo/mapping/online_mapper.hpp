@@ -30,7 +30,8 @@
 // then the score whose E-value is max_e_value (at most the cap): the expected number of chance revisits at
 // least that good in the frames so far. It grows like 2 ln(t) / lambda, and the expected number of chance
 // revisits reported over a whole run, frames t0 .. N, is about 2 max_e_value ln(N / t0). Until the sample is
-// large enough for a fit (and with max_e_value unset) the threshold is `threshold`.
+// large enough for a fit, the offline fit of the table so far stands in (early_fit_frames); without either (and
+// with max_e_value unset) the threshold is `threshold`.
 //
 // Events, from the rows alone:
 //  * a revisit (a track) is a peak of F or R in row t that reaches the threshold (the largest value within
@@ -123,7 +124,12 @@ struct OnlineMapConfig {
   // A revisit candidate's score must reach the score of this E-value (unset: no candidates); above max_e_value,
   // and unused without it.
   std::optional<double> candidate_e_value = 1.0;
-  float threshold = 20.0F;          // [score units] without max_e_value, or before the statistics can be fitted
+  float threshold = 20.0F;  // [score units] without max_e_value, or before the statistics can be fitted
+  // Until the dead islands suffice for a fit (a few hundred frames), the statistics are fitted as the offline map
+  // fits them (mapping::fit_table_statistics: the declumped alignments of the table so far, kept in memory while
+  // the run has at most this many frames), again each time the frames grow by an eighth; 0: never, `threshold`
+  // until the islands suffice. A short run (the bundled corridor's 84 frames) then reports at its own E-value.
+  std::size_t early_fit_frames = 1024;
   std::size_t island_sample = 512;  // the best chance islands kept for the fit
   std::size_t min_separation = 10;  // [frames] pairs closer in time are never scored
   bool reverse = true;
@@ -212,6 +218,8 @@ class OnlineMapper {
   // a fit).
   float threshold() const { return threshold_; }
   const significance::ScoreStatistics& statistics() const { return statistics_; }
+  // Whether they came from the table so far (early_fit_frames: its declumped alignments) rather than the islands.
+  bool statistics_from_table() const { return early_fitted_; }
   // The contrast offset of the next frame, and each time adapt_offset raised it.
   struct OffsetChange {
     std::size_t frame = 0;  // the last frame at the old offset
@@ -331,6 +339,7 @@ class OnlineMapper {
   std::vector<float> phase_cells_;
   std::size_t phase_checked_at_ = 0;  // cells at the last check
   void sample_lags(const std::vector<std::span<const float>>& rows);
+  void update_place_scale();  // frames_per_place_ and scale_found_, again each time the frames grow by a quarter
   // `fitted`: the (score, length) of the islands the fit took, best first.
   void check_phase(const std::vector<std::pair<double, double>>& fitted);
   void check_scores_phase();
@@ -338,6 +347,12 @@ class OnlineMapper {
   bool sample_changed_ = false;
   significance::ScoreStatistics statistics_;
   float threshold_ = 0;
+  // The aligned scores of the first early_fit_frames frames, row after row (as at the current offset), for the
+  // fit before the islands suffice; statistics_ came from it (early_fitted_), next due at next_early_fit_ frames.
+  std::vector<float> early_cells_;
+  std::size_t next_early_fit_ = 0;
+  bool early_fitted_ = false;
+  void fit_early(double area);
   // Revisit candidates not yet confirmed or withdrawn: their ids by their path's start cell and direction.
   using Candidates = std::map<std::pair<std::uint64_t, align::Direction>, std::size_t>;
   Candidates candidates_;

@@ -51,10 +51,12 @@ struct OnlineMapRun {
   std::vector<mapping::OnlineLoopClosure> loop_closures;  // standing at the end
   std::vector<double> frame_seconds;                      // the mapper's work per frame (not the reading and decoding)
   std::size_t frames = 0;
-  // The significance after the last frame: the threshold a revisit needed and the island statistics it came
-  // from (invalid when none could be fitted, or with max_e_value unset).
+  // The significance after the last frame: the threshold a revisit needed and the statistics it came from
+  // (invalid when none could be fitted, or with max_e_value unset), fitted to the islands or, while they were too
+  // few, to the declumped alignments of the table so far (statistics_from_table).
   float threshold = 0;
   significance::ScoreStatistics statistics;
+  bool statistics_from_table = false;
   // The contrast offset of the last frame, and where the logarithmic-phase check raised it (OnlineMapConfig).
   float contrast_offset = 0;
   std::vector<mapping::OnlineMapper::OffsetChange> offset_changes;
