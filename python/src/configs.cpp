@@ -157,7 +157,8 @@ void bind_map(py::module_& m) {
       "reverse passes in parallel when > 1; the result does not depend on it), alignment_set\n"
       "('non-intersecting' or 'locally-optimal', docs/alignment_sets.md), trim_chance_ends (alignments' ends\n"
       "cut back where their pairs are more likely chance than revisit, significance/alignment_ends.hpp),\n"
-      "odometry_evidence (with odometry: an alignment's agreement with it lowers its E-value, map_builder.hpp).");
+      "odometry_evidence (with odometry: an alignment's agreement with it lowers its E-value, map_builder.hpp),\n"
+      "drop_blind_descriptors (a fused descriptor that sees no revisit is left out, up to max_blind_check_frames).");
   c.def(py::init([labelling_value](
                      std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap,
                      bool cap_from_statistics, float cap_factor, std::optional<double> max_e_value, float threshold,
@@ -166,7 +167,8 @@ void bind_map(py::module_& m) {
                      double max_visit_span, bool clean_graph, PruningConfig pruning, TopologyConfig topology,
                      unsigned threads, float contrast_offset_step, float max_contrast_offset,
                      std::size_t fit_alignments, std::size_t confidence_band, const std::string& alignment_set,
-                     bool trim_chance_ends, bool odometry_evidence, std::optional<float> max_global_rate) {
+                     bool trim_chance_ends, bool odometry_evidence, std::optional<float> max_global_rate,
+                     bool drop_blind_descriptors, std::size_t max_blind_check_frames) {
           MapConfig config;
           config.contrast_window = contrast_window;
           config.contrast_offset = contrast_offset;
@@ -196,6 +198,8 @@ void bind_map(py::module_& m) {
           config.trim_chance_ends = trim_chance_ends;
           config.odometry_evidence = odometry_evidence;
           config.max_global_rate = max_global_rate;
+          config.drop_blind_descriptors = drop_blind_descriptors;
+          config.max_blind_check_frames = max_blind_check_frames;
           return config;
         }),
         py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
@@ -212,7 +216,8 @@ void bind_map(py::module_& m) {
         py::arg("confidence_band") = d.confidence_band,
         py::arg("alignment_set") = std::string(align::to_string(d.alignment_set)),
         py::arg("trim_chance_ends") = d.trim_chance_ends, py::arg("odometry_evidence") = d.odometry_evidence,
-        py::arg("max_global_rate") = d.max_global_rate)
+        py::arg("max_global_rate") = d.max_global_rate, py::arg("drop_blind_descriptors") = d.drop_blind_descriptors,
+        py::arg("max_blind_check_frames") = d.max_blind_check_frames)
       .def_readwrite("contrast_window", &MapConfig::contrast_window)
       .def_readwrite("contrast_offset", &MapConfig::contrast_offset)
       .def_readwrite("gap", &MapConfig::gap)
@@ -242,6 +247,8 @@ void bind_map(py::module_& m) {
       .def_readwrite("confidence_band", &MapConfig::confidence_band)
       .def_readwrite("trim_chance_ends", &MapConfig::trim_chance_ends)
       .def_readwrite("odometry_evidence", &MapConfig::odometry_evidence)
+      .def_readwrite("drop_blind_descriptors", &MapConfig::drop_blind_descriptors)
+      .def_readwrite("max_blind_check_frames", &MapConfig::max_blind_check_frames)
       .def_property(
           "alignment_set", [](const MapConfig& x) { return std::string(align::to_string(x.alignment_set)); },
           [](MapConfig& x, const std::string& name) { x.alignment_set = align::parse_alignment_set(name); });

@@ -35,6 +35,7 @@ nlohmann::json significance_json(const mapping::MapResult& result) {
                       {"cap", d.cap ? nlohmann::json(*d.cap) : nlohmann::json(nullptr)},
                       {"score_threshold", d.score_threshold},
                       {"notes", d.notes}};
+  if (!d.blind_descriptors.empty()) j["blind_descriptors"] = d.blind_descriptors;
   if (d.statistics.valid()) {
     j["lambda"] = d.statistics.lambda;
     j["k"] = d.statistics.k;

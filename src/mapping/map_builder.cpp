@@ -358,6 +358,57 @@ void check_map_config(const MapConfig& c) {
   require(c.fit_alignments > 0, "fit_alignments", ">= 1");
 }
 
+namespace {
+
+// MapConfig::drop_blind_descriptors: the similarities that see no revisit (ascending; empty when the check does not
+// apply or none is blind). Blind: its own map has no loop closure, another's has one at E <= max_e_value / D
+// (choosing among D descriptors is a test each, Bonferroni: a chance alignment of one descriptor on a sequence
+// without a revisit is not made the map more often than the fusion's own would be), and on that map's pairs its
+// enhanced scores are no higher than on the rest of the search, within 3 standard errors. The last condition
+// keeps a descriptor too weak to map alone that still adds evidence (a simulated figure-eight: the joint
+// histogram alone finds nothing, but scores the panorama signature's pairs 0.63 above its chance cells, t = 11,
+// and the fusion maps better than either).
+std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& similarities, const MapConfig& c,
+                                           std::size_t contrast_window, std::span<const Pose2> odometry) {
+  const std::size_t n = similarities.front().rows;
+  if (!c.drop_blind_descriptors || similarities.size() < 2 || !c.max_e_value || contrast_window == 0 ||
+      n > c.max_blind_check_frames) {
+    return {};
+  }
+  const double strict = *c.max_e_value / static_cast<double>(similarities.size());
+  std::vector<std::size_t> unseeing;
+  std::vector<std::pair<std::size_t, std::size_t>> seen;  // the pairs of the maps that see at `strict`
+  for (std::size_t k = 0; k < similarities.size(); ++k) {
+    const SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
+    const MapResult alone = build_map_from_enhanced(align::ScoreSource::dense(e.values, e.rows, e.cols), c, odometry);
+    if (alone.pruning.pairs.empty()) unseeing.push_back(k);
+    bool sees = false;
+    for (const auto& p : alone.pruning.pairs) sees |= alone.e_values[p.alignment] <= strict;
+    if (sees) {
+      for (const auto& p : alone.pruning.pairs) seen.emplace_back(p.i, p.j);
+    }
+  }
+  if (seen.size() < 2 || unseeing.size() == similarities.size()) return {};
+  std::vector<std::size_t> blind;
+  for (std::size_t k : unseeing) {
+    const SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
+    double chance = 0;
+    std::size_t cells = 0;
+    for (std::size_t i = c.min_separation; i < n; ++i) {
+      for (std::size_t j = 0; j + c.min_separation <= i; ++j) chance += e(i, j), ++cells;
+    }
+    chance /= static_cast<double>(std::max<std::size_t>(cells, 1));
+    double sum = 0, sum2 = 0;
+    for (const auto& [i, j] : seen) sum += e(i, j), sum2 += static_cast<double>(e(i, j)) * e(i, j);
+    const auto m = static_cast<double>(seen.size());
+    const double mean = sum / m, sd = std::sqrt(std::max(0.0, sum2 / m - mean * mean));
+    if (mean - chance < 3 * sd / std::sqrt(m)) blind.push_back(k);
+  }
+  return blind;
+}
+
+}  // namespace
+
 MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config, std::span<const Pose2> odometry) {
   return build_map(std::vector<SimilarityMatrix>{similarity}, config, odometry);
 }
@@ -377,10 +428,23 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
     c.frames_per_place = scale->frames_per_place;
   }
   const MapConfig framed = settings_in_frames(c, c.frames_per_place.value_or(1.0));
-  SimilarityMatrix enhanced = enhanced_scores(similarities, framed.contrast_window);
+  const std::vector<std::size_t> blind = blind_descriptors(similarities, c, framed.contrast_window, odometry);
+  std::vector<SimilarityMatrix> seeing;
+  for (std::size_t k = 0; k < similarities.size(); ++k) {
+    if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(similarities[k]);
+  }
+  SimilarityMatrix enhanced = enhanced_scores(blind.empty() ? similarities : seeing, framed.contrast_window);
   const double seconds_scores = seconds_since(start);
   MapResult result =
       build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols), c, odometry);
+  result.decisions.blind_descriptors = blind;
+  for (std::size_t k : blind) {
+    result.decisions.notes.insert(
+        result.decisions.notes.begin(),
+        fmt::format("descriptor {} of {} sees no revisit (none on its own, nor higher scores than chance on the pairs "
+                    "another maps): left out of the fusion",
+                    k + 1, similarities.size()));
+  }
   result.decisions.frames_per_place_estimated = estimate;
   if (scale && !scale->found) {
     result.decisions.notes.insert(result.decisions.notes.begin(), kNoPlaceScaleNote);
