@@ -429,8 +429,8 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
   }
   const MapConfig framed = settings_in_frames(c, c.frames_per_place.value_or(1.0));
   const std::vector<std::size_t> blind = blind_descriptors(similarities, c, framed.contrast_window, odometry);
-  std::vector<SimilarityMatrix> seeing;
-  for (std::size_t k = 0; k < similarities.size(); ++k) {
+  std::vector<SimilarityMatrix> seeing;  // a copy only when some are left out
+  for (std::size_t k = 0; k < similarities.size() && !blind.empty(); ++k) {
     if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(similarities[k]);
   }
   SimilarityMatrix enhanced = enhanced_scores(blind.empty() ? similarities : seeing, framed.contrast_window);
@@ -438,12 +438,12 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
   MapResult result =
       build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols), c, odometry);
   result.decisions.blind_descriptors = blind;
-  for (std::size_t k : blind) {
+  for (auto k = blind.rbegin(); k != blind.rend(); ++k) {  // first in the notes, in the descriptors' order
     result.decisions.notes.insert(
         result.decisions.notes.begin(),
         fmt::format("descriptor {} of {} sees no revisit (none on its own, nor higher scores than chance on the pairs "
                     "another maps): left out of the fusion",
-                    k + 1, similarities.size()));
+                    *k + 1, similarities.size()));
   }
   result.decisions.frames_per_place_estimated = estimate;
   if (scale && !scale->found) {

@@ -39,6 +39,15 @@ void say(const MapObserver& observer, const std::string& text) {
 
 // The timing and the one progress line of the map stage, the same for every path.
 void report_map(MapRun& run, const MapObserver& observer) {
+  // The map names a descriptor it left out by its place in the fusion; the run knows its name.
+  for (std::size_t k : run.result.decisions.blind_descriptors) {
+    const std::string place = fmt::format("descriptor {} of {}", k + 1, run.matrices.size());
+    for (auto& note : run.result.decisions.notes) {
+      if (note.starts_with(place + " ") && k < run.descriptor_names.size()) {
+        note.insert(place.size(), fmt::format(" ({})", run.descriptor_names[k]));
+      }
+    }
+  }
   const auto& d = run.result.decisions;
   if (run.map_config.place_units) {
     say(observer, fmt::format("      {:.2f} frames per place{}: contrast window {} frames, min separation {} frames",

@@ -4,6 +4,7 @@
 // geometric rates are over.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -13,7 +14,9 @@
 #include "common/cli_run.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
+#include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/plot/png.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -224,3 +227,32 @@ TEST(CliDetails, EveryKeepsEveryKthImageOfAFolderAndRowOfAnArray) {
 }
 
 }  // namespace
+
+// The corridor with its second lap 40 % darker: the joint histogram's absolute bins see no revisit, so the default
+// leaves it out of the fusion, says so naming it, and maps as the patch thumbnails alone do.
+TEST(CliDetails, ADescriptorBlindToTheRevisitIsLeftOutOfTheFusion) {
+  TempDir dir;
+  const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  fs::create_directories(dir.path / "dark");
+  for (int k = 1; k <= 84; ++k) {
+    seqtopo::RgbImage image = seqtopo::image::load_image(corridor / (std::to_string(k) + ".jpg"));
+    if (k > 40) {
+      for (auto& v : image.pixels) v = static_cast<std::uint8_t>(v * 0.6F);
+    }
+    char name[16];
+    std::snprintf(name, sizeof name, "%02d.png", k);
+    seqtopo::plot::write_png(dir.path / "dark" / name, image);
+  }
+  const std::string truth = " --ground-truth " + (corridor / "ground_truth.bmp").string();
+  const auto fused = run_cli("map " + (dir.path / "dark").string() + truth + " --out " + (dir.path / "fused").string());
+  ASSERT_EQ(fused.status, 0) << fused.err;
+  EXPECT_NE(fused.err.find("(joint-histogram) sees no revisit"), std::string::npos) << fused.err;
+  const auto alignments = nlohmann::json::parse(read_file(dir.path / "fused" / "alignments.json"));
+  EXPECT_EQ(alignments["significance"]["blind_descriptors"], nlohmann::json::array({0}));
+  const auto patch = run_cli("map " + (dir.path / "dark").string() + truth + " --descriptor patch --out " +
+                             (dir.path / "patch").string());
+  ASSERT_EQ(patch.status, 0) << patch.err;
+  EXPECT_EQ(read_file(dir.path / "fused" / "loop_closures.csv"), read_file(dir.path / "patch" / "loop_closures.csv"));
+  const auto metrics = nlohmann::json::parse(read_file(dir.path / "fused" / "metrics.json"));
+  EXPECT_GT(metrics["loop_closure"]["f1"].get<double>(), 0.8);
+}
