@@ -56,6 +56,7 @@ def main():
     cases = [
         ("corridor", corridor_variant, "native", list(range(corridor))),
         ("corridor, every 2nd frame", corridor_variant, "every2", list(range(0, corridor, 2))),
+        ("corridor, every 2nd frame from frame 1", corridor_variant, "odd2", list(range(1, corridor, 2))),
         ("corridor, each frame 5 times", corridor_variant, "x5", [k for k in range(corridor) for _ in range(5)]),
         ("Nordland", nordland_variant, "native", list(range(nordland))),
         ("Nordland, every 2nd frame", nordland_variant, "every2", list(range(0, nordland, 2))),
