@@ -231,7 +231,7 @@ ImageListing list_input_images(const SequenceInput& input) {
 DenseMatrix<float> read_input_rows(const SequenceInput& input) {
   DenseMatrix<float> all = io::read_npy_matrix<float>(input.path);
   if (input.every <= 1 || all.rows == 0) return all;
-  DenseMatrix<float> kept((all.rows + input.every - 1) / input.every, all.cols);
+  DenseMatrix<float> kept(every_kth_count(all.rows, input.every), all.cols);
   for (std::size_t r = 0; r < kept.rows; ++r) {
     const auto row = all.row(r * input.every);
     std::copy(row.begin(), row.end(), kept.row(r).begin());

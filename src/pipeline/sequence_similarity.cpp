@@ -146,15 +146,15 @@ Source resolve(const SequenceInput& input) {
       if (!input.frames.empty()) {
         s.count = input.frames.size();
       } else if (const auto frames = video_frame_count(input.path)) {
-        s.count = (*frames + input.every - 1) / input.every;
+        s.count = every_kth_count(*frames, input.every);
       }
       break;
     case InputKind::bag: {
 #ifdef SEQTOPO_HAVE_RECORDING
       const recording::Recording bag(input.path);
       s.image_topic = bag.image_topic(input.image_topic);
-      s.count = input.frames.empty() ? (bag.message_count(s.image_topic) + input.every - 1) / input.every
-                                     : input.frames.size();
+      s.count =
+          input.frames.empty() ? every_kth_count(bag.message_count(s.image_topic), input.every) : input.frames.size();
 #else
       throw InputError(input.path.string(),
                        "this seqtopo was built without bag support (the recording module needs librosbag-dev, "
@@ -166,7 +166,7 @@ Source resolve(const SequenceInput& input) {
     case InputKind::similarity: {
       const io::NpyHeader header = io::read_npy_header(input.path);
       if (header.shape.size() != 2) throw InputError(input.path.string(), "expected a 2-D array");
-      s.count = input.frames.empty() ? (header.shape[0] + input.every - 1) / input.every : input.frames.size();
+      s.count = input.frames.empty() ? every_kth_count(header.shape[0], input.every) : input.frames.size();
       if (s.kind == InputKind::similarity && !input.frames.empty()) {
         throw InputError(input.path.string(), "frames cannot be selected from a similarity matrix");
       }

@@ -81,7 +81,7 @@ PreparedSession prepare_session(const SessionSource& source) {
   if (kind == InputKind::descriptors || kind == InputKind::similarity) {
     if (kind == InputKind::similarity) refuse_every_for_similarity(input);
     const auto header = io::read_npy_header(input.path);
-    if (!header.shape.empty()) count = (header.shape[0] + input.every - 1) / input.every;
+    if (!header.shape.empty()) count = every_kth_count(header.shape[0], input.every);
     // The kind of a .npy comes from its name: a similarity matrix saved under another name would be mapped as
     // descriptors, and quietly give another map. A square symmetric array is almost surely one.
     if (kind == InputKind::descriptors && input.kind == InputKind::automatic && header.shape.size() == 2 &&
@@ -121,7 +121,7 @@ PreparedSession prepare_session(const SessionSource& source) {
     bag.emplace(input.path);
     image_topic = bag->image_topic(input.image_topic);
     bag->check_first_image(image_topic);
-    count = (bag->message_count(image_topic) + input.every - 1) / input.every;
+    count = every_kth_count(bag->message_count(image_topic), input.every);
     if (source.odometry.empty()) {
       if (const auto topic = bag->odometry_topic(source.odometry_topic)) {
         timed = bag->poses(*topic);

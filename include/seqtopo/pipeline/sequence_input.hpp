@@ -88,6 +88,9 @@ ImageListing list_images(const std::filesystem::path& folder, const ListOptions&
 // image: input.listing when set (made by this function, so already thinned).
 ImageListing list_input_images(const SequenceInput& input);
 
+// How many of n frames --every keeps (every >= 1): 0, every, 2 * every, ... below n.
+inline std::size_t every_kth_count(std::size_t n, std::size_t every) { return (n + every - 1) / every; }
+
 // Elements 0, every, 2 * every, ... of `all` (every >= 1): the frames --every keeps.
 template <typename T>
 std::vector<T> every_kth(const std::vector<T>& all, std::size_t every) {
