@@ -358,6 +358,13 @@ void check_map_config(const MapConfig& c) {
   require(c.fit_alignments > 0, "fit_alignments", ">= 1");
 }
 
+std::string blind_descriptor_note(std::size_t k, std::size_t count, std::string_view name) {
+  return fmt::format(
+      "descriptor {} of {}{} sees no revisit (none on its own, nor higher scores than chance on the pairs another "
+      "maps): left out of the fusion",
+      k + 1, count, name.empty() ? std::string() : fmt::format(" ({})", name));
+}
+
 namespace {
 
 // MapConfig::drop_blind_descriptors: the similarities that see no revisit (ascending; empty when the check does not
@@ -391,6 +398,7 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
   if (seen.size() < 2 || unseeing.size() == similarities.size()) return {};
   std::vector<std::size_t> blind;
   for (std::size_t k : unseeing) {
+    // Enhanced again rather than kept from the loop above: one N x N table at a time.
     const SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
     double chance = 0;
     std::size_t cells = 0;
@@ -439,11 +447,7 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
       build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols), c, odometry);
   result.decisions.blind_descriptors = blind;
   for (auto k = blind.rbegin(); k != blind.rend(); ++k) {  // first in the notes, in the descriptors' order
-    result.decisions.notes.insert(
-        result.decisions.notes.begin(),
-        fmt::format("descriptor {} of {} sees no revisit (none on its own, nor higher scores than chance on the pairs "
-                    "another maps): left out of the fusion",
-                    *k + 1, similarities.size()));
+    result.decisions.notes.insert(result.decisions.notes.begin(), blind_descriptor_note(*k, similarities.size()));
   }
   result.decisions.frames_per_place_estimated = estimate;
   if (scale && !scale->found) {

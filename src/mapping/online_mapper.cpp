@@ -901,27 +901,29 @@ void OnlineMapper::fit_early(double area) {
   const std::size_t n = frames_ + 1, sep = config_.min_separation;
   // Only a sequence of 50 places or more has a scale (place_scale.hpp); a shorter one, or a smooth one whose
   // chance alignments are few and long, gives too few independent ones for a fit.
-  if (n <= config_.early_fit_frames && n >= next_early_fit_ && !lag_samples_.empty()) update_place_scale();
-  if (n <= config_.early_fit_frames && n >= next_early_fit_ && scale_found_) {
-    next_early_fit_ = n + std::max<std::size_t>(4, n / 8);
-    // The rows so far as the lower triangle of a square table: the self search reads only i - j >= sep.
-    std::vector<float> table(n * n, 0.0F);
-    std::size_t at = 0;
-    for (std::size_t i = sep; i < n; ++i) {
-      std::copy_n(early_cells_.begin() + static_cast<std::ptrdiff_t>(at), i - sep + 1, table.begin() + i * n);
-      at += i - sep + 1;
+  if (n <= config_.early_fit_frames && n >= next_early_fit_) {
+    if (!lag_samples_.empty()) update_place_scale();
+    if (scale_found_) {
+      next_early_fit_ = n + std::max<std::size_t>(4, n / 8);
+      // The rows so far as the lower triangle of a square table: the self search reads only i - j >= sep.
+      std::vector<float> table(n * n, 0.0F);
+      std::size_t at = 0;
+      for (std::size_t i = sep; i < n; ++i) {
+        std::copy_n(early_cells_.begin() + static_cast<std::ptrdiff_t>(at), i - sep + 1, table.begin() + i * n);
+        at += i - sep + 1;
+      }
+      MapConfig c;
+      c.gap = config_.gap;
+      c.min_separation = sep;
+      c.reverse = config_.reverse;
+      c.threads = 1;
+      // Trusted only where the offline map would trust them, in the logarithmic phase by both its checks (at its
+      // own bound on the global rate, whatever the online setting): in the linear phase the mapper's own checks
+      // raise the offset first, or the islands wait for more frames.
+      const TableFit fit = fit_table_statistics(align::ScoreSource::dense(table, n, n), c, frames_per_place_);
+      early_fitted_ = fit.logarithmic;
+      statistics_ = early_fitted_ ? fit.statistics : significance::ScoreStatistics{};
     }
-    MapConfig c;
-    c.gap = config_.gap;
-    c.min_separation = sep;
-    c.reverse = config_.reverse;
-    c.threads = 1;
-    // Trusted only where the offline map would trust them, in the logarithmic phase by both its checks (at its
-    // own bound on the global rate, whatever the online setting): in the linear phase the mapper's own checks
-    // raise the offset first, or the islands wait for more frames.
-    const TableFit fit = fit_table_statistics(align::ScoreSource::dense(table, n, n), c, frames_per_place_);
-    early_fitted_ = fit.logarithmic;
-    statistics_ = early_fitted_ ? fit.statistics : significance::ScoreStatistics{};
   }
   if (early_fitted_) statistics_.area = area;  // the fit of the frames so far, extrapolated past the last one
 }

@@ -41,11 +41,10 @@ void say(const MapObserver& observer, const std::string& text) {
 void report_map(MapRun& run, const MapObserver& observer) {
   // The map names a descriptor it left out by its place in the fusion; the run knows its name.
   for (std::size_t k : run.result.decisions.blind_descriptors) {
-    const std::string place = fmt::format("descriptor {} of {}", k + 1, run.matrices.size());
+    if (k >= run.descriptor_names.size()) continue;
+    const std::string unnamed = mapping::blind_descriptor_note(k, run.matrices.size());
     for (auto& note : run.result.decisions.notes) {
-      if (note.starts_with(place + " ") && k < run.descriptor_names.size()) {
-        note.insert(place.size(), fmt::format(" ({})", run.descriptor_names[k]));
-      }
+      if (note == unnamed) note = mapping::blind_descriptor_note(k, run.matrices.size(), run.descriptor_names[k]);
     }
   }
   const auto& d = run.result.decisions;

@@ -5,6 +5,8 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
@@ -213,6 +215,10 @@ struct TableFit {
   bool logarithmic = false;  // valid statistics, and both checks hold
 };
 TableFit fit_table_statistics(const align::ScoreSource& scores, const MapConfig& config, double frames_per_place = 1);
+
+// The note build_map adds for similarity k (0-based) of `count` left out as blind (MapConfig::drop_blind_descriptors);
+// with the descriptor's name when the caller knows it.
+std::string blind_descriptor_note(std::size_t k, std::size_t count, std::string_view name = {});
 
 // The config with its windows and separations converted from places to frames (unchanged without place_units).
 MapConfig settings_in_frames(const MapConfig& config, double frames_per_place);
