@@ -6,14 +6,14 @@ descriptor the map left out of the fusion, if any (docs/significance.md, "Other 
 
 Usage: bench/corridor_variants.py [SEQTOPO_BINARY]   (needs numpy and PIL: /usr/bin/python3 on Debian)
 """
-import json
 import os
-import subprocess
 import sys
 import tempfile
 
 import numpy as np
 from PIL import Image, ImageEnhance
+
+from frame_rates import map_folder
 
 FRAMES = 84
 
@@ -62,15 +62,11 @@ def main():
         for name, change, special in variants(rng):
             folder = make(root, data, name, change, special)
             out = folder + "_out"
-            r = subprocess.run([binary, "map", folder, "--ground-truth", folder + "_gt.png", "--out", out],
-                               capture_output=True, text=True)
-            if r.returncode != 0:
-                print(f"| {name} | failed: {r.stderr.strip().splitlines()[-1]} | | |")
+            m, significance, error = map_folder(binary, folder, ["--ground-truth", folder + "_gt.png"], out)
+            if error:
+                print(f"| {name} | failed: {error} | | |")
                 continue
-            with open(os.path.join(out, "metrics.json")) as f:
-                m = json.load(f)
-            with open(os.path.join(out, "alignments.json")) as f:
-                blind = json.load(f)["significance"].get("blind_descriptors", [])
+            blind = significance.get("blind_descriptors", [])
             names = ["joint histogram", "patch thumbnail"]
             print(f"| {name} | {m['loop_closure']['f1']:.3f} | {m.get('baseline', {}).get('f1', float('nan')):.3f} | "
                   f"{', '.join(names[k] for k in blind) or '—'} |", flush=True)

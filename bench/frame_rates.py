@@ -44,6 +44,18 @@ def nordland_variant(root, data, name, frames):
     return folder, ["--ground-truth", folder + "_poses.csv", "--gt-radius", "2"]
 
 
+def map_folder(binary, folder, args, out):
+    """`seqtopo map FOLDER ARGS --out OUT`: (metrics.json, alignments.json' significance), or the error's last line."""
+    r = subprocess.run([binary, "map", folder, *args, "--out", out], capture_output=True, text=True)
+    if r.returncode != 0:
+        return None, None, r.stderr.strip().splitlines()[-1]
+    with open(os.path.join(out, "metrics.json")) as f:
+        metrics = json.load(f)
+    with open(os.path.join(out, "alignments.json")) as f:
+        significance = json.load(f)["significance"]
+    return metrics, significance, None
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -70,14 +82,11 @@ def main():
         for label, make, name, frames in cases:
             folder, truth = make(root, a.data, name, frames)
             out = os.path.join(root, f"out_{name}_{label[:3]}")
-            r = subprocess.run([a.binary, "map", folder, *truth, "--out", out], capture_output=True, text=True)
-            if r.returncode != 0:
-                print(f"| {label} | {len(frames)} | failed: {r.stderr.strip().splitlines()[-1]} | | | | |")
+            m, significance, error = map_folder(a.binary, folder, truth, out)
+            if error:
+                print(f"| {label} | {len(frames)} | failed: {error} | | | | |")
                 continue
-            with open(os.path.join(out, "metrics.json")) as f:
-                m = json.load(f)
-            with open(os.path.join(out, "alignments.json")) as f:
-                fpp = json.load(f)["significance"]["frames_per_place"]
+            fpp = significance["frames_per_place"]
             lc, base = m["loop_closure"], m.get("baseline", {})
             print(f"| {label} | {len(frames)} | {lc['f1']:.3f} | {lc['precision']:.3f} | {lc['recall']:.3f} | "
                   f"{base.get('f1', float('nan')):.3f} | {fpp:.2f} |", flush=True)
