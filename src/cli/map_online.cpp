@@ -170,7 +170,7 @@ void run_map_online(const OnlineCliOptions& o) {
 
   std::optional<evaluation::LoopClosureMetrics> metrics, offline_metrics;
   if (!o.ground_truth.empty()) {
-    const auto truth = pipeline::load_same_place(o.ground_truth, o.gt_radius, run.frames);
+    const auto truth = pipeline::load_same_place(o.ground_truth, o.gt_radius, run.frames, o.every);
     const auto has_partner =
         evaluation::images_with_earlier_partner(run.frames, truth.same_place, truth.earlier_partners, c.min_separation);
     metrics = evaluation::evaluate_loop_closures(pipeline::online_scored_pairs(run.loop_closures), has_partner,

@@ -477,19 +477,23 @@ MapRun MapJob::run(const MapObserver& observer) const {
   const std::size_t n = run.result.map.labels.size();
   std::function<MapTruth()> load_truth;
   if (any_truth) {
-    load_truth = [&files, n, poses] {
+    // A ground truth of the whole recording is thinned as --every thinned it (one input; --every-metres's frames
+    // are listed as kept).
+    const std::size_t every =
+        inputs_.size() == 1 && inputs_.front().frames.empty() ? inputs_.front().every : std::size_t{1};
+    load_truth = [&files, n, poses, every] {
       MapTruth truth;
       if (!files.same_place.empty()) {
-        auto same_place = load_same_place(files.same_place, files.radius, n);
+        auto same_place = load_same_place(files.same_place, files.radius, n, every);
         truth.same_place = std::move(same_place.same_place);
         truth.earlier_partners = std::move(same_place.earlier_partners);
       }
       if (!files.places.empty()) {
-        auto places = load_true_places(files.places, n);
+        auto places = load_true_places(files.places, n, every);
         truth.places = std::move(places.places);
         truth.junctions = std::move(places.junctions);
       }
-      if (poses) truth.poses = load_true_poses(files.poses, n);
+      if (poses) truth.poses = load_true_poses(files.poses, n, every);
       return truth;
     };
   }
