@@ -257,6 +257,29 @@ def test_map_sequence_and_write_report_equal_cli(cli, tmp_path):
     assert (tmp_path / "py" / "report.html").stat().st_size > 0
 
 
+def test_a_ground_truth_of_every_frame_is_thinned_as_every_thins_the_frames(cli, tmp_path):
+    # --every 2 with the corridor's own 84 x 84 ground truth scores as the 42 x 42 one thinned here with numpy.
+    from PIL import Image
+
+    corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
+    truth = np.array(Image.open(corridor / "ground_truth.bmp"))
+    truth = truth[..., 0] if truth.ndim == 3 else truth
+    Image.fromarray(truth[::2, ::2]).save(tmp_path / "kept.png")
+    whole = seqtopo.map_sequence(corridor, every=2, ground_truth=corridor / "ground_truth.bmp")
+    kept = seqtopo.map_sequence(corridor, every=2, ground_truth=tmp_path / "kept.png")
+    assert whole.metrics["tp"] > 0
+    for key in ("tp", "fp", "fn", "f1", "auc"):
+        assert whole.metrics[key] == kept.metrics[key], key
+    run_cli(cli, "map", corridor, "--every", "2", "--ground-truth", corridor / "ground_truth.bmp", "--out",
+            tmp_path / "cli")
+    with open(tmp_path / "cli" / "metrics.json") as f:
+        assert json.load(f)["loop_closure"]["f1"] == whole.metrics["f1"]
+    # A ground truth of neither the 42 frames kept nor the 83 or 84 they were kept from is refused.
+    Image.fromarray(truth[:80, :80]).save(tmp_path / "short.png")
+    with pytest.raises(seqtopo.InputError, match="83 to 84 frames"):
+        seqtopo.map_sequence(corridor, every=2, ground_truth=tmp_path / "short.png")
+
+
 def test_paper_preset_from_python_equals_cli(cli, tmp_path):
     corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
     run_cli(cli, "map", corridor, "--preset", "paper", "--out", tmp_path / "cli")
