@@ -7,6 +7,8 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <string_view>
+#include <type_traits>
 
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
@@ -81,13 +83,20 @@ NpyHeader read_npy_header(const std::filesystem::path& path) {
   h.data_offset = prefix + header_len;
   std::string descr = dict_value(header, "descr", path);
   if (descr.size() >= 2 && (descr.front() == '\'' || descr.front() == '"')) descr = descr.substr(1, descr.size() - 2);
-  if (descr == "<f4" || descr == "=f4") {
-    h.dtype = "<f4";
-  } else if (descr == "<f8" || descr == "=f8") {
-    h.dtype = "<f8";
-  } else {
-    fail(path, "unsupported dtype '" + descr + "' (need float32 or float64, little-endian)");
-  }
+  // descr: byte order ('<' little, '>' big, '=' native, '|' not applicable), kind, bytes per value.
+  const auto unsupported = [&] {
+    fail(path, "unsupported dtype '" + descr +
+                   "' (need floats of 2, 4 or 8 bytes, integers of 1 to 8 bytes or booleans, as numpy saves them)");
+  };
+  if (descr.size() < 3 || std::string_view("<>=|").find(descr[0]) == std::string_view::npos) unsupported();
+  h.dtype = descr;
+  h.big_endian = descr[0] == '>';
+  h.kind = descr[1];
+  const std::string width = descr.substr(2);
+  h.item = width == "1" ? 1 : width == "2" ? 2 : width == "4" ? 4 : width == "8" ? 8 : 0;
+  const bool known = (h.kind == 'f' && h.item >= 2) || ((h.kind == 'i' || h.kind == 'u') && h.item >= 1) ||
+                     (h.kind == 'b' && h.item == 1);
+  if (!known) unsupported();
   const std::string fortran = dict_value(header, "fortran_order", path);
   if (fortran == "True") {
     h.fortran_order = true;
@@ -110,7 +119,7 @@ NpyHeader read_npy_header(const std::filesystem::path& path) {
   }
   // The data must be in the file: every size is checked against the file's, without a product that wraps
   // (a shape of 2^61 rows of 8 bytes would otherwise pass and fail later as "out of memory").
-  const std::size_t item = h.dtype == "<f4" ? 4 : 8;
+  const std::size_t item = h.item;
   in.seekg(0, std::ios::end);
   const auto end = in.tellg();
   if (end < 0) fail(path, "cannot read file size");
@@ -131,14 +140,52 @@ NpyHeader read_npy_header(const std::filesystem::path& path) {
   return h;
 }
 
+namespace {
+
+// IEEE 754 half precision to float (numpy's float16): subnormals, infinities and NaN included.
+float half_to_float(std::uint16_t h) {
+  const std::uint32_t sign = static_cast<std::uint32_t>(h & 0x8000U) << 16;
+  const std::uint32_t exponent = (h >> 10) & 0x1FU, mantissa = h & 0x3FFU;
+  if (exponent == 0) {
+    const float magnitude = std::ldexp(static_cast<float>(mantissa), -24);
+    return sign ? -magnitude : magnitude;
+  }
+  const std::uint32_t bits =
+      exponent == 0x1F ? sign | 0x7F800000U | (mantissa << 13) : sign | ((exponent + 112) << 23) | (mantissa << 13);
+  return std::bit_cast<float>(bits);
+}
+
+// Value k of the raw data, in the header's type and byte order.
+double value_at(const NpyHeader& h, const unsigned char* raw) {
+  unsigned char b[8];
+  for (std::size_t k = 0; k < h.item; ++k) b[k] = raw[h.big_endian ? h.item - 1 - k : k];
+  std::uint64_t u = 0;
+  for (std::size_t k = h.item; k-- > 0;) u = (u << 8) | b[k];
+  switch (h.kind) {
+    case 'f':
+      if (h.item == 2) return half_to_float(static_cast<std::uint16_t>(u));
+      if (h.item == 4) return std::bit_cast<float>(static_cast<std::uint32_t>(u));
+      return std::bit_cast<double>(u);
+    case 'i': {
+      const unsigned shift = static_cast<unsigned>(64 - 8 * h.item);
+      return static_cast<double>(static_cast<std::int64_t>(u << shift) >> shift);  // sign-extended
+    }
+    case 'b':
+      return u != 0 ? 1.0 : 0.0;
+    default:
+      return static_cast<double>(u);
+  }
+}
+
+}  // namespace
+
 template <typename T>
 DenseMatrix<T> read_npy_matrix(const std::filesystem::path& path) {
   const NpyHeader h = read_npy_header(path);
-  if (h.fortran_order) fail(path, "Fortran-order arrays are not supported (save with numpy.ascontiguousarray)");
   if (h.shape.size() != 2) fail(path, "expected a 2-D array, got " + std::to_string(h.shape.size()) + "-D");
   const std::size_t rows = h.shape[0], cols = h.shape[1];
   if (rows == 0 || cols == 0) fail(path, "empty array (" + std::to_string(rows) + " x " + std::to_string(cols) + ")");
-  const std::size_t item = h.dtype == "<f4" ? 4 : 8;
+  const std::size_t item = h.item;
   if (cols > std::numeric_limits<std::size_t>::max() / item / rows) fail(path, "array too large");
   const std::size_t count = rows * cols;
 
@@ -153,22 +200,28 @@ DenseMatrix<T> read_npy_matrix(const std::filesystem::path& path) {
   }
   in.seekg(static_cast<std::streamoff>(h.data_offset));
   DenseMatrix<T> m(rows, cols);
-  auto load = [&]<typename S>(S) {
-    std::vector<S> raw(count);
-    in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(count * sizeof(S)));
-    for (std::size_t k = 0; k < count; ++k) {
-      if (!std::isfinite(raw[k])) {
-        fail(path, "non-finite value at row " + std::to_string(k / cols) + ", column " + std::to_string(k % cols));
-      }
-      m.values[k] = static_cast<T>(raw[k]);
+  // Read in blocks of values, so a large array needs no second copy of itself.
+  constexpr std::size_t kBlock = 1 << 16;
+  std::vector<unsigned char> raw(std::min(count, kBlock) * item);
+  for (std::size_t first = 0; first < count; first += kBlock) {
+    const std::size_t n = std::min(kBlock, count - first);
+    if (!in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(n * item))) {
+      fail(path, "read failed");
     }
-  };
-  if (item == 4) {
-    load(float{});
-  } else {
-    load(double{});
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t at = first + k;
+      // C order: row after row; Fortran order: column after column.
+      const std::size_t r = h.fortran_order ? at % rows : at / cols, c = h.fortran_order ? at / rows : at % cols;
+      const double v = value_at(h, raw.data() + k * item);
+      if (!std::isfinite(v)) {
+        fail(path, "non-finite value at row " + std::to_string(r) + ", column " + std::to_string(c));
+      }
+      if (std::abs(v) > static_cast<double>(std::numeric_limits<T>::max())) {
+        fail(path, "value at row " + std::to_string(r) + ", column " + std::to_string(c) + " is too large for float32");
+      }
+      m(r, c) = static_cast<T>(v);
+    }
   }
-  if (!in) fail(path, "read failed");
   return m;
 }
 

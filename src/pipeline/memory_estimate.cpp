@@ -257,8 +257,8 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
     const auto header = io::read_npy_header(request.input.path);
     std::size_t count = 1;
     for (const std::size_t extent : header.shape) count = mul(count, extent);
-    const std::size_t item = header.dtype == "<f4" ? 4 : 8;
-    in.input_read_bytes = mul(count, item + 4);  // the raw values and their float copy
+    // The float copy, and the raw values read in blocks of 2^16 (io/npy.cpp).
+    in.input_read_bytes = mul(count, 4) + mul(std::min<std::size_t>(count, 1 << 16), header.item);
     const std::size_t cols = header.shape.size() == 2 ? header.shape[1] : 0;
     in.similarity_input = kind == InputKind::similarity;
     in.descriptor_bytes = {in.similarity_input ? 0 : mul(mul(images, cols), 4)};

@@ -1,6 +1,9 @@
-// .npy round trips and rejections (Fortran order, wrong dtype, NaN/Inf, wrong rank, truncation).
+// .npy round trips, every dtype and order numpy saves, and rejections (other dtypes, NaN/Inf, wrong rank,
+// truncation).
 #include <gtest/gtest.h>
 
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -94,12 +97,75 @@ TEST_F(Npy, ReadsWhatNumpyWrites) {
   EXPECT_EQ(read_npy_matrix<float>(v2)(0, 1), -2.0F);
 }
 
+// The 2 x 3 matrix {{1, -2, 0.5}, {65504, 2^-24, -0}} as numpy saves it in other dtypes and orders: every one
+// reads as the float32 one does.
+TEST_F(Npy, ReadsEveryDtypeAndOrderNumpySaves) {
+  const std::vector<float> expected{1, -2, 0.5F, 65504, std::ldexp(1.0F, -24), -0.0F};
+  const auto check = [&](const std::string& name, const std::string& descr, bool fortran, const std::string& data) {
+    SCOPED_TRACE(name);
+    const auto path = handmade(
+        name, "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") + ", 'shape': (2, 3), }",
+        data);
+    const auto m = read_npy_matrix<float>(path);
+    ASSERT_EQ(m.rows, 2U);
+    ASSERT_EQ(m.cols, 3U);
+    for (std::size_t k = 0; k < 6; ++k) EXPECT_EQ(m.values[k], expected[k]) << k;
+    EXPECT_EQ(read_npy_header(path).dtype, descr);
+  };
+  // float16: 1 = 0x3C00, -2 = 0xC000, 0.5 = 0x3800, 65504 = 0x7BFF (the largest), 2^-24 = 0x0001 (subnormal).
+  const std::vector<std::uint16_t> half{0x3C00, 0xC000, 0x3800, 0x7BFF, 0x0001, 0x8000};
+  check("half.npy", "<f2", false, raw(half));
+  std::vector<std::uint16_t> swapped;
+  for (auto h : half) swapped.push_back(static_cast<std::uint16_t>((h >> 8) | (h << 8)));
+  check("half_big.npy", ">f2", false, raw(swapped));
+  // big-endian float32: each value's four bytes reversed
+  std::string big;
+  for (float v : expected) {
+    const auto b = std::bit_cast<std::array<char, 4>>(v);
+    big.append(b.rbegin(), b.rend());
+  }
+  check("big.npy", ">f4", false, big);
+  // Fortran order: column after column
+  check("fortran.npy", "<f4", true,
+        raw(std::vector<float>{expected[0], expected[3], expected[1], expected[4], expected[2], expected[5]}));
+  check("fortran8.npy", "=f8", true,
+        raw(std::vector<double>{expected[0], expected[3], expected[1], expected[4], expected[2], expected[5]}));
+
+  // Integers and booleans: exact small values.
+  const auto ints = [&](const std::string& name, const std::string& descr, const std::string& data,
+                        const std::vector<float>& want) {
+    SCOPED_TRACE(name);
+    const auto m = read_npy_matrix<float>(
+        handmade(name, "{'descr': '" + descr + "', 'fortran_order': False, 'shape': (2, 3), }", data));
+    EXPECT_EQ(m.values, want);
+  };
+  ints("i1.npy", "|i1", raw(std::vector<std::int8_t>{-128, -1, 0, 1, 127, 5}), {-128, -1, 0, 1, 127, 5});
+  ints("u1.npy", "|u1", raw(std::vector<std::uint8_t>{0, 1, 128, 200, 255, 7}), {0, 1, 128, 200, 255, 7});
+  ints("i2.npy", "<i2", raw(std::vector<std::int16_t>{-32768, -300, 0, 300, 32767, 1}),
+       {-32768, -300, 0, 300, 32767, 1});
+  ints("i4big.npy", ">i4", std::string("\xff\xff\xff\xfe\x00\x00\x01\x00", 8) + std::string(16, '\0'),
+       {-2, 256, 0, 0, 0, 0});
+  ints("u4.npy", "<u4", raw(std::vector<std::uint32_t>{4000000000U, 0, 1, 2, 3, 4}), {4e9F, 0, 1, 2, 3, 4});
+  ints("i8.npy", "<i8", raw(std::vector<std::int64_t>{-5, 1LL << 40, 0, 1, 2, 3}),
+       {-5, static_cast<float>(1LL << 40), 0, 1, 2, 3});
+  ints("u8.npy", "<u8", raw(std::vector<std::uint64_t>{9, 8, 7, 6, 5, 4}), {9, 8, 7, 6, 5, 4});
+  ints("b1.npy", "|b1", raw(std::vector<std::uint8_t>{0, 1, 1, 0, 0, 1}), {0, 1, 1, 0, 0, 1});
+}
+
 TEST_F(Npy, Rejections) {
   const std::string six = raw(std::vector<float>{0, 1, 2, 3, 4, 5});
-  expect_rejected(handmade("fortran.npy", "{'descr': '<f4', 'fortran_order': True, 'shape': (2, 3), }", six),
-                  "Fortran");
-  expect_rejected(handmade("int.npy", "{'descr': '<i4', 'fortran_order': False, 'shape': (2, 3), }", six), "dtype");
-  expect_rejected(handmade("big.npy", "{'descr': '>f4', 'fortran_order': False, 'shape': (2, 3), }", six), "dtype");
+  for (const char* dtype : {"<c8", "<U4", "|O", "<f16", "<f3", "f4", "<x4", "|b2"}) {
+    expect_rejected(
+        handmade("other.npy", std::string("{'descr': '") + dtype + "', 'fortran_order': False, 'shape': (2, 3), }",
+                 six + six + six + six),
+        "dtype");
+  }
+  expect_rejected(handmade("big.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2), }",
+                           raw(std::vector<double>{1e300, 0})),
+                  "too large for float32");
+  expect_rejected(handmade("halfnan.npy", "{'descr': '<f2', 'fortran_order': False, 'shape': (1, 2), }",
+                           raw(std::vector<std::uint16_t>{0x3C00, 0x7E00})),
+                  "row 0, column 1");
   expect_rejected(handmade("1d.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (6,), }", six), "2-D");
   expect_rejected(handmade("3d.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (1, 2, 3), }", six), "2-D");
   expect_rejected(handmade("short.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (3, 3), }", six),

@@ -1,7 +1,9 @@
 #pragma once
-// NumPy .npy files (format versions 1-3): little-endian float32 / float64, C order.
-// Other dtypes, Fortran order, NaN/Inf values and shapes of the wrong rank are rejected with an
-// InputError naming the file.
+// NumPy .npy files (format versions 1-3). Read: float16/32/64, signed and unsigned integers of 1 to 8 bytes
+// and booleans, either byte order, C or Fortran order (numpy.load reads them all, and deep descriptors are
+// often saved as float16 or quantized to uint8), converted to float or double. Other dtypes (complex,
+// strings, records), NaN/Inf values and shapes of the wrong rank are rejected with an InputError naming the
+// file. Written: little-endian float32 / float64, C order.
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -13,7 +15,10 @@
 namespace seqtopo::io {
 
 struct NpyHeader {
-  std::string dtype;  // "<f4" or "<f8"
+  std::string dtype;     // the header's descr, e.g. "<f4", ">f8", "|u1", "<f2"
+  char kind = 'f';       // 'f' float, 'i' signed integer, 'u' unsigned integer, 'b' boolean
+  std::size_t item = 4;  // bytes per value
+  bool big_endian = false;
   bool fortran_order = false;
   std::vector<std::size_t> shape;
   std::size_t data_offset = 0;  // bytes from the start of the file to the data
