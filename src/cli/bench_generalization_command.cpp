@@ -4,7 +4,7 @@
 // where a single-frame matcher is right from a third of the time to nearly always. Each case is mapped by the
 // library's pipeline (pipeline::map_similarities, the code behind `seqtopo map descriptors.npy`) and scored
 // next to the SeqSLAM-style baseline on the same matrices. The frame-rate cases on real images are
-// bench/generalization.sh.
+// bench/frame_rates.py, the corridor's other-camera variants bench/corridor_variants.py.
 #include <fmt/format.h>
 
 #include <algorithm>
