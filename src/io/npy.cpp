@@ -1,5 +1,6 @@
 #include "seqtopo/io/npy.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <cmath>
@@ -155,25 +156,35 @@ float half_to_float(std::uint16_t h) {
   return std::bit_cast<float>(bits);
 }
 
-// Value k of the raw data, in the header's type and byte order.
+template <typename V>
+V load(const unsigned char* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// The value at `raw`, in the header's type and byte order.
 double value_at(const NpyHeader& h, const unsigned char* raw) {
-  unsigned char b[8];
-  for (std::size_t k = 0; k < h.item; ++k) b[k] = raw[h.big_endian ? h.item - 1 - k : k];
-  std::uint64_t u = 0;
-  for (std::size_t k = h.item; k-- > 0;) u = (u << 8) | b[k];
+  unsigned char swapped[8];
+  if (h.big_endian && h.item > 1) {
+    std::reverse_copy(raw, raw + h.item, swapped);
+    raw = swapped;
+  }
   switch (h.kind) {
     case 'f':
-      if (h.item == 2) return half_to_float(static_cast<std::uint16_t>(u));
-      if (h.item == 4) return std::bit_cast<float>(static_cast<std::uint32_t>(u));
-      return std::bit_cast<double>(u);
-    case 'i': {
-      const unsigned shift = static_cast<unsigned>(64 - 8 * h.item);
-      return static_cast<double>(static_cast<std::int64_t>(u << shift) >> shift);  // sign-extended
-    }
-    case 'b':
-      return u != 0 ? 1.0 : 0.0;
-    default:
-      return static_cast<double>(u);
+      return h.item == 4 ? load<float>(raw) : h.item == 8 ? load<double>(raw) : half_to_float(load<std::uint16_t>(raw));
+    case 'i':
+      return h.item == 1   ? load<std::int8_t>(raw)
+             : h.item == 2 ? load<std::int16_t>(raw)
+             : h.item == 4 ? load<std::int32_t>(raw)
+                           : static_cast<double>(load<std::int64_t>(raw));
+    case 'u':
+      return h.item == 1   ? load<std::uint8_t>(raw)
+             : h.item == 2 ? load<std::uint16_t>(raw)
+             : h.item == 4 ? load<std::uint32_t>(raw)
+                           : static_cast<double>(load<std::uint64_t>(raw));
+    default:  // 'b'
+      return raw[0] != 0 ? 1.0 : 0.0;
   }
 }
 

@@ -37,7 +37,8 @@ std::size_t row_step(const fs::path& file, std::size_t rows, std::size_t images,
 
 template <class T>
 std::vector<T> thinned(std::vector<T> all, std::size_t step) {
-  return step == 1 ? all : every_kth(all, step);
+  if (step == 1) return all;
+  return every_kth(all, step);
 }
 
 }  // namespace
