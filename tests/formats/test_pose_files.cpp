@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/input_error_text.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
@@ -14,14 +15,7 @@ namespace {
 
 using test_support::TempDir;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.subject() + ": " + e.what();
-  }
-  return "no error";
-}
+using test_support::error_of;
 
 TEST(PoseFiles, TimestampedCsv) {
   TempDir dir;

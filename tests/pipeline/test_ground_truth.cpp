@@ -8,6 +8,7 @@
 #include <functional>
 #include <string>
 
+#include "common/input_error_text.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
@@ -19,14 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 using test_support::TempDir;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.subject() + ": " + e.what();
-  }
-  return "no error";
-}
+using test_support::error_of;
 
 // A same-place image of `n` frames: frames i and j are one place when i % 3 == j % 3 and (i * j) % 5 != 1,
 // a pattern with no symmetry in the step, so a wrong thinning shows.

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/input_error_text.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/pipeline/session_input.hpp"
@@ -24,14 +25,7 @@ SessionSource make(const fs::path& input, const fs::path& odometry = {}, const f
   return s;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.subject() + ": " + e.what();
-  }
-  return "no error";
-}
+using test_support::error_of;
 
 TEST(PrepareSession, NumericNamesInNanosecondsAndTimestampedCsv) {
   TempDir dir;

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "bag_writer.hpp"
+#include "common/input_error_text.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/image_io.hpp"
@@ -40,14 +41,7 @@ RgbImage pattern(int w, int h, int seed) {
   return image;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.subject() + ": " + e.what();
-  }
-  return "no error";
-}
+using test_support::error_of;
 
 // Three rgb8 images on /camera, odometry on /odom (4 poses, other times), a PoseStamped on /pose.
 struct SmallBag {
