@@ -87,6 +87,21 @@ struct FitRun {
   double global_rate = -std::numeric_limits<double>::infinity();
 };
 
+// The fit's two checks of the logarithmic phase: its chance alignments stay short (against the search area in
+// places), and the scores' global alignment rate is at most config.max_global_rate. Statistics are trusted only
+// when they are valid and both hold: build_map's and the online early fit's (fit_table_statistics) rule alike.
+struct PhaseChecks {
+  bool short_chance = false;
+  bool logarithmic = false;
+};
+PhaseChecks phase_checks(const FitRun& fit, const MapConfig& c, double area_places) {
+  PhaseChecks p;
+  p.short_chance = logarithmic_phase(fit.chance_length, area_places);
+  const bool falling = !c.max_global_rate || fit.global_rate <= *c.max_global_rate;
+  p.logarithmic = fit.statistics.valid() && p.short_chance && falling;
+  return p;
+}
+
 // The statistics' run: the best `fit_alignments` declumped alignments of `scores` (any score > 0), with the
 // fast engine and a cap far above chance; the fit uses those that are not shadows of earlier ones.
 // Sequences longer than twice kFitBlock frames are fitted on kFitBlocks diagonal blocks of kFitBlock frames
@@ -331,9 +346,7 @@ TableFit fit_table_statistics(const align::ScoreSource& scores, const MapConfig&
   fit.statistics.area =
       significance::search_area(scores.rows(), scores.cols(), true, config.min_separation, config.reverse);
   TableFit out{fit.statistics, fit.chance_length, fit.global_rate};
-  out.logarithmic = fit.statistics.valid() &&
-                    logarithmic_phase(fit.chance_length, fit.statistics.area / (frames_per_place * frames_per_place)) &&
-                    (!config.max_global_rate || fit.global_rate <= *config.max_global_rate);
+  out.logarithmic = phase_checks(fit, config, fit.statistics.area / (frames_per_place * frames_per_place)).logarithmic;
   return out;
 }
 
@@ -492,9 +505,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     FitRun fit;
     while (true) {
       fit = fit_looking_further(minus(enhanced, offset), c, d.frames_per_place);
-      const bool short_chance = logarithmic_phase(fit.chance_length, area_places);
-      const bool falling = !c.max_global_rate || fit.global_rate <= *c.max_global_rate;
-      const bool logarithmic = fit.statistics.valid() && short_chance && falling;
+      const auto [short_chance, logarithmic] = phase_checks(fit, c, area_places);
       if (logarithmic || !fit.statistics.valid() || !c.adapt_offset || c.contrast_window == 0 ||
           offset + c.contrast_offset_step > c.max_contrast_offset + 1e-6F) {
         if (!logarithmic && fit.statistics.valid()) {
