@@ -221,16 +221,15 @@ DenseMatrix<T> read_npy_matrix(const std::filesystem::path& path) {
     }
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t at = first + k;
-      // C order: row after row; Fortran order: column after column.
-      const std::size_t r = h.fortran_order ? at % rows : at / cols, c = h.fortran_order ? at / rows : at % cols;
+      // C order: row after row, as m.values; Fortran order: column after column.
+      const std::size_t index = h.fortran_order ? (at % rows) * cols + at / rows : at;
       const double v = value_at(h, raw.data() + k * item);
-      if (!std::isfinite(v)) {
-        fail(path, "non-finite value at row " + std::to_string(r) + ", column " + std::to_string(c));
+      if (!std::isfinite(v) || std::abs(v) > static_cast<double>(std::numeric_limits<T>::max())) {
+        const std::string where = "row " + std::to_string(index / cols) + ", column " + std::to_string(index % cols);
+        fail(path,
+             std::isfinite(v) ? "value at " + where + " is too large for float32" : "non-finite value at " + where);
       }
-      if (std::abs(v) > static_cast<double>(std::numeric_limits<T>::max())) {
-        fail(path, "value at row " + std::to_string(r) + ", column " + std::to_string(c) + " is too large for float32");
-      }
-      m(r, c) = static_cast<T>(v);
+      m.values[index] = static_cast<T>(v);
     }
   }
   return m;
