@@ -449,6 +449,37 @@ def _arrays(x) -> bool:
         isinstance(m, _np.ndarray) for m in x))
 
 
+def _refuse_path_options(**given) -> None:
+    """Options that read or compute from files, given with arrays in memory: one error naming the first."""
+    defaults = {"streaming": False, "sparse": False, "descriptors": None, "input_kind": "auto", "metric": None,
+                "kappa": None}
+    for name, value in given.items():
+        if value is not None and value != defaults[name]:
+            what = ("compares descriptors; a similarity matrix is mapped as it is" if name in ("metric", "kappa")
+                    else "applies to a path input (an image folder, video or .npy file); save the array with "
+                         "numpy.save and give its path")
+            raise ValueError(f"{name}: {what}")
+
+
+def _thinned(name: str, value, recorded: int, every: int, recording_only: bool = False, square: bool = False):
+    """A per-frame array for descriptors thinned by `every` from `recorded` rows: the rows of the images kept as
+    they are, or the recording's rows thinned alike (as the command thins a ground truth file; an odometry lists
+    every frame of the recording). A same-place matrix is thinned on both axes."""
+    if value is None:
+        return None
+    value = _np.asarray(value)
+    square = square and value.ndim == 2 and value.shape[0] == value.shape[1]
+    kept = (recorded + every - 1) // every
+    rows = value.shape[0] if value.ndim > 0 else 0
+    if rows == recorded:
+        return value[::every, ::every] if square else value[::every]
+    if rows == kept and not recording_only:
+        return value
+    fits = f"the {recorded} frames of the recording" if recording_only else \
+        f"the {kept} images kept, or the {recorded} frames of the recording every={every} kept them from"
+    raise ValueError(f"{name}: has {rows} rows, the sequence has {kept} images after every={every} (give {fits})")
+
+
 def _same_place_from_poses(poses, radius: float):
     """N x N: images closer than radius [m] (the command line's poses.csv with --gt-radius)."""
     xy = _np.asarray(poses, dtype=_np.float64)[:, :2]
@@ -494,21 +525,39 @@ def map_sequence(
     ``gt_radius`` [m], ``gt_places`` the true place per image (``gt_junctions``: the true junction places),
     ``gt_poses`` N x 3 true poses. ``names``: one per matrix, for the report. ``streaming`` and ``sparse``
     (with ``neighbours`` candidates per frame and ``diagonal_reach``) are the command's ``--streaming`` and
-    ``--sparse`` (``--neighbours``, ``--diagonal-reach``)."""
+    ``--sparse`` (``--neighbours``, ``--diagonal-reach``), for a path input. ``every``: as the command's
+    ``--every``; with descriptors in memory it keeps rows 0, k, 2k, ..., thins ``odometry`` (every frame's) alike,
+    and a ground truth of every frame too (one of the rows kept is used as it is). Options that only apply to a
+    path input, or ``metric``/``kappa`` with similarity matrices, are refused rather than ignored."""
     if config is None:
         config = map_preset(preset)["config"]
     config = _config(config, MapConfig, overrides)
     if _arrays(path):
         matrices = list(path) if isinstance(path, (list, tuple)) else [path]
-        if len(matrices) == 1 and matrices[0].ndim == 2 and matrices[0].shape[0] != matrices[0].shape[1]:
-            matrices = [similarity(matrices[0], metric=metric, kappa=kappa, threads=threads).similarity]
-            names = names or ["descriptors (cosine)"]
-        for m in matrices:
-            _require_square(m)
+        descriptor_rows = len(matrices) == 1 and matrices[0].ndim == 2 and matrices[0].shape[0] != matrices[0].shape[1]
+        _refuse_path_options(streaming=streaming, sparse=sparse, descriptors=descriptors, input_kind=input_kind,
+                             metric=None if descriptor_rows else metric, kappa=None if descriptor_rows else kappa)
         for name, value in (("odometry", odometry), ("ground_truth", ground_truth), ("gt_places", gt_places),
                             ("gt_poses", gt_poses)):
             if value is not None and _is_path(value):
                 raise ValueError(f"{name}: give an array with arrays in memory (a file goes with a path input)")
+        if not isinstance(every, int) or isinstance(every, bool) or every < 1:
+            raise ValueError(f"every: must be an integer >= 1, got {every!r}")
+        if every > 1:
+            if not descriptor_rows:
+                raise ValueError("every: a similarity matrix is not thinned (as the command refuses --every with "
+                                 "similarity.npy); slice it: matrix[::k, ::k]")
+            recorded = matrices[0].shape[0]
+            matrices = [matrices[0][::every]]
+            odometry = _thinned("odometry", odometry, recorded, every, recording_only=True)
+            ground_truth = _thinned("ground_truth", ground_truth, recorded, every, square=True)
+            gt_places = _thinned("gt_places", gt_places, recorded, every)
+            gt_poses = _thinned("gt_poses", gt_poses, recorded, every)
+        if descriptor_rows:
+            matrices = [similarity(matrices[0], metric=metric, kappa=kappa, threads=threads).similarity]
+            names = names or ["descriptors (cosine)"]
+        for m in matrices:
+            _require_square(m)
         same_place = None
         if ground_truth is not None:
             truth = _np.asarray(ground_truth)

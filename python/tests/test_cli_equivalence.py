@@ -280,6 +280,49 @@ def test_a_ground_truth_of_every_frame_is_thinned_as_every_thins_the_frames(cli,
         seqtopo.map_sequence(corridor, every=2, ground_truth=tmp_path / "short.png")
 
 
+def test_every_thins_descriptors_in_memory_as_the_command_thins_their_file(tmp_path):
+    # A random walk whose frames 300-419 repeat 60-179 with noise; positions give the ground truth.
+    rng = np.random.default_rng(11)
+    x = np.cumsum(rng.standard_normal((520, 32)), axis=0).astype(np.float32)
+    x[300:420] = x[60:180] + 0.3 * rng.standard_normal((120, 32)).astype(np.float32)
+    positions = np.stack([np.arange(520.0), np.zeros(520)], axis=1)
+    positions[300:420, 0] = np.arange(60.0, 180.0)
+    positions[420:, 0] += 1000
+    np.save(tmp_path / "x.npy", x)
+    with open(tmp_path / "poses.csv", "w") as f:
+        f.write("index,x,y\n" + "".join(f"{i},{px},{py}\n" for i, (px, py) in enumerate(positions)))
+    memory = seqtopo.map_sequence(x, every=3, ground_truth=positions, gt_radius=1.5)
+    sliced = seqtopo.map_sequence(x[::3], ground_truth=positions[::3], gt_radius=1.5)
+    kept_truth = seqtopo.map_sequence(x, every=3, ground_truth=positions[::3], gt_radius=1.5)
+    from_file = seqtopo.map_sequence(tmp_path / "x.npy", every=3, ground_truth=tmp_path / "poses.csv", gt_radius=1.5)
+    assert memory.map.images == 174 and memory.metrics["tp"] > 30
+    for other in (sliced, kept_truth, from_file):
+        assert np.array_equal(other.map.loop_closures, memory.map.loop_closures)
+        for key in ("tp", "fp", "fn", "f1"):
+            assert other.metrics[key] == memory.metrics[key], key
+    # A truth of neither the 174 rows kept nor the 520 recorded, and an odometry of the rows kept, are refused.
+    with pytest.raises(ValueError, match="ground_truth: has 500 rows.*174 images kept, or the 520 frames"):
+        seqtopo.map_sequence(x, every=3, ground_truth=positions[:500], gt_radius=1.5)
+    with pytest.raises(ValueError, match="odometry: has 174 rows.*the 520 frames of the recording"):
+        seqtopo.map_sequence(x, every=3, odometry=np.zeros((174, 3)))
+
+
+@pytest.mark.parametrize("options, named", [
+    ({"every": 2}, "every: a similarity matrix is not thinned"),
+    ({"every": 0}, "every: must be an integer >= 1"),
+    ({"streaming": True}, "streaming: applies to a path input"),
+    ({"sparse": True}, "sparse: applies to a path input"),
+    ({"descriptors": ["patch"]}, "descriptors: applies to a path input"),
+    ({"input_kind": "video"}, "input_kind: applies to a path input"),
+    ({"metric": "cosine"}, "metric: compares descriptors"),
+])
+def test_options_that_do_not_apply_to_a_matrix_in_memory_are_refused(options, named):
+    # Each was silently ignored before, so the map was not the one asked for.
+    matrix = np.eye(60, dtype=np.float32)
+    with pytest.raises(ValueError, match=named):
+        seqtopo.map_sequence(matrix, **options)
+
+
 def test_paper_preset_from_python_equals_cli(cli, tmp_path):
     corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
     run_cli(cli, "map", corridor, "--preset", "paper", "--out", tmp_path / "cli")
