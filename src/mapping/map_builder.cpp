@@ -7,12 +7,15 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "median.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/align/pair_posterior.hpp"
+#include "seqtopo/align/parallel_path.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/mapping/graph_cleanup.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
@@ -199,6 +202,46 @@ FitRun fit_looking_further(const align::ScoreSource& scores, const MapConfig& c,
     if (fit.statistics.valid() || fit.alignments.size() < m || m >= 16 * c.fit_alignments) break;
   }
   return fit;
+}
+
+// A capped path's diagonal is the tie-breaking's, not the evidence's: each capped alignment moved to its best
+// parallel (align/parallel_path.hpp). Paths moved onto one revisit's cells are that revisit found more than
+// once: an alignment all of whose pairs are pairs of better ones (higher path scores) is left out; one that
+// adds pairs stays, for the pruning to weigh. The others stay in their order.
+std::vector<align::LocalAlignment> on_best_parallels(std::vector<align::LocalAlignment> found,
+                                                     const align::ScoreSource& scores, const align::AlignConfig& engine,
+                                                     double gap, std::size_t reach) {
+  bool moved = false;
+  for (auto& a : found) {
+    if (a.score < *engine.cap) continue;
+    align::LocalAlignment best = align::best_parallel_path(a, scores, engine, reach);
+    moved = moved || best.pairs != a.pairs;
+    a = std::move(best);
+  }
+  if (!moved) return found;
+  std::vector<double> path(found.size());
+  std::vector<std::size_t> order(found.size());
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    path[k] = significance::path_score(found[k], scores, gap, gap);
+    order[k] = k;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return path[x] > path[y]; });
+  std::set<std::tuple<align::Direction, std::size_t, std::size_t>> taken;
+  std::vector<bool> keep(found.size(), false);
+  for (const std::size_t k : order) {
+    const auto& a = found[k];
+    const auto shared = std::count_if(a.pairs.begin(), a.pairs.end(), [&](const auto& p) {
+      return taken.contains({a.direction, p.first, p.second});
+    });
+    if (static_cast<std::size_t>(shared) == a.pairs.size()) continue;
+    keep[k] = true;
+    for (const auto& [i, j] : a.pairs) taken.insert({a.direction, i, j});
+  }
+  std::vector<align::LocalAlignment> kept;
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    if (keep[k]) kept.push_back(std::move(found[k]));
+  }
+  return kept;
 }
 
 // MapConfig::odometry_evidence: the share of the statistics' run's chance alignments (E > 1) that the odometry
@@ -573,6 +616,10 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
                    ? (c.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
                                 : align::locally_optimal_alignments(scores, engine))
                    : run_engine(scores, engine, c.engine, c.reverse, c.threads);
+  if (c.max_e_value && engine.cap) {
+    found = on_best_parallels(std::move(found), scores, engine, c.gap,
+                              in_frames(significance::kShadowReach, d.frames_per_place));
+  }
   for (auto& a : found) {
     const double path = significance::path_score(a, scores, c.gap, c.gap);
     const double e = d.statistics.valid() ? d.statistics.e_value(path) : std::nan("");
