@@ -19,4 +19,18 @@ LocalAlignment pairs_between(const LocalAlignment& alignment, std::size_t first,
   return out;
 }
 
+double path_score(const LocalAlignment& a, const ScoreSource& scores, double gap_a, double gap_b) {
+  double total = 0;
+  for (std::size_t k = 0; k < a.pairs.size(); ++k) {
+    const auto [i, j] = a.pairs[k];
+    total += scores.at(i, j);
+    if (k == 0) continue;
+    const auto [pi, pj] = a.pairs[k - 1];
+    const std::size_t skipped_a = i - pi - 1;
+    const std::size_t skipped_b = (j > pj ? j - pj : pj - j) - 1;
+    total -= gap_a * static_cast<double>(skipped_a) + gap_b * static_cast<double>(skipped_b);
+  }
+  return total;
+}
+
 }  // namespace seqtopo::align

@@ -173,7 +173,7 @@ LocalizeResult localize_sequence(const SimilarityMatrix& s, const LocalizeConfig
   std::vector<double> path_scores, best_first;
   for (std::size_t k = 0; k < r.alignments.size(); ++k) {
     const auto& a = r.alignments[k];
-    path_scores.push_back(c.cap ? significance::path_score(a, source, c.gap, c.gap) : a.score);
+    path_scores.push_back(c.cap ? align::path_score(a, source, c.gap, c.gap) : a.score);
     if (!significance::shadows_earlier(r.alignments, k, significance::kShadowReach)) best_first.push_back(a.score);
   }
   r.statistics = significance::fit_declumped_scores(

@@ -13,9 +13,9 @@
 #include <tuple>
 
 #include "median.hpp"
+#include "seqtopo/align/band_realignment.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/align/pair_posterior.hpp"
-#include "seqtopo/align/parallel_path.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/mapping/graph_cleanup.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
@@ -175,8 +175,7 @@ FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, doub
     // Chance alignments stay far below the run's cap, where the engine's score is the path's; a path is scored
     // again only when the cap may have clipped it.
     const auto& a = run.alignments[k];
-    run.path_scores.push_back(a.score < 0.5F * *engine.cap ? a.score
-                                                           : significance::path_score(a, scores, c.gap, c.gap));
+    run.path_scores.push_back(a.score < 0.5F * *engine.cap ? a.score : align::path_score(a, scores, c.gap, c.gap));
     if (significance::shadows_earlier(run.alignments, k, significance::kShadowReach)) continue;
     best_first.push_back(run.alignments[k].score);
     fitted.push_back(k);
@@ -204,43 +203,40 @@ FitRun fit_looking_further(const align::ScoreSource& scores, const MapConfig& c,
   return fit;
 }
 
-// A capped path's diagonal is the tie-breaking's, not the evidence's: each capped alignment moved to its best
-// parallel (align/parallel_path.hpp). Paths moved onto one revisit's cells are that revisit found more than
-// once: an alignment all of whose pairs are pairs of better ones (higher path scores) is left out; one that
-// adds pairs stays, for the pruning to weigh. The others stay in their order.
-std::vector<align::LocalAlignment> on_best_parallels(std::vector<align::LocalAlignment> found,
-                                                     const align::ScoreSource& scores, const align::AlignConfig& engine,
-                                                     double gap, std::size_t reach) {
+// A capped path's diagonals are the tie-breaking's, not the evidence's: each capped alignment is re-aligned
+// without the cap in a band around it (align/band_realignment.hpp), over the rows it covers once its chance ends
+// are trimmed (re-aligning first can reach the last row through a gap that the trim then counts against the
+// tail). Paths moved onto one revisit's cells are that revisit found more than once: an alignment all of whose
+// pairs are pairs of better ones (higher path scores) is left out; one that adds pairs stays, for the pruning to
+// weigh. Returns the indices of the alignments kept, in order.
+std::vector<std::size_t> realign_in_bands(std::vector<align::LocalAlignment>& alignments,
+                                          const align::ScoreSource& scores, const align::AlignConfig& engine,
+                                          double gap, std::size_t reach) {
+  std::vector<std::size_t> order(alignments.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   bool moved = false;
-  for (auto& a : found) {
+  for (auto& a : alignments) {
     if (a.score < *engine.cap) continue;
-    align::LocalAlignment best = align::best_parallel_path(a, scores, engine, reach);
+    align::LocalAlignment best = align::realign_in_band(a, scores, engine, reach);
     moved = moved || best.pairs != a.pairs;
     a = std::move(best);
   }
-  if (!moved) return found;
-  std::vector<double> path(found.size());
-  std::vector<std::size_t> order(found.size());
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    path[k] = significance::path_score(found[k], scores, gap, gap);
-    order[k] = k;
-  }
+  if (!moved) return order;
+  std::vector<double> path(alignments.size());
+  for (std::size_t k = 0; k < alignments.size(); ++k) path[k] = align::path_score(alignments[k], scores, gap, gap);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return path[x] > path[y]; });
   std::set<std::tuple<align::Direction, std::size_t, std::size_t>> taken;
-  std::vector<bool> keep(found.size(), false);
+  std::vector<std::size_t> kept;
   for (const std::size_t k : order) {
-    const auto& a = found[k];
+    const auto& a = alignments[k];
     const auto shared = std::count_if(a.pairs.begin(), a.pairs.end(), [&](const auto& p) {
       return taken.contains({a.direction, p.first, p.second});
     });
     if (static_cast<std::size_t>(shared) == a.pairs.size()) continue;
-    keep[k] = true;
+    kept.push_back(k);
     for (const auto& [i, j] : a.pairs) taken.insert({a.direction, i, j});
   }
-  std::vector<align::LocalAlignment> kept;
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    if (keep[k]) kept.push_back(std::move(found[k]));
-  }
+  std::sort(kept.begin(), kept.end());
   return kept;
 }
 
@@ -616,12 +612,8 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
                    ? (c.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
                                 : align::locally_optimal_alignments(scores, engine))
                    : run_engine(scores, engine, c.engine, c.reverse, c.threads);
-  if (c.max_e_value && engine.cap) {
-    found = on_best_parallels(std::move(found), scores, engine, c.gap,
-                              in_frames(significance::kShadowReach, d.frames_per_place));
-  }
   for (auto& a : found) {
-    const double path = significance::path_score(a, scores, c.gap, c.gap);
+    const double path = align::path_score(a, scores, c.gap, c.gap);
     const double e = d.statistics.valid() ? d.statistics.e_value(path) : std::nan("");
     if (a.pairs.size() < d.min_revisit_pairs) {
       result.insignificant.push_back(std::move(a));
@@ -644,6 +636,10 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       d.notes.push_back(
           fmt::format("{} aligned pairs at alignments' ends more likely chance than revisit trimmed off", trimmed));
     }
+  }
+  if (c.max_e_value && engine.cap) {
+    select_alignments(result, realign_in_bands(result.alignments, scores, engine, c.gap,
+                                               in_frames(significance::kShadowReach, d.frames_per_place)));
   }
   // Most significant first: capped scores tie at the cap, their paths' scores do not. Pruning and labels
   // then prefer the strongest of overlapping alignments (parallel shadows of one revisit, crossing chances).

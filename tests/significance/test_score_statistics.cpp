@@ -155,7 +155,7 @@ TEST(ScoreStatistics, ThePathScoreSumsThePairsAndChargesTheSkippedImages) {
   align::LocalAlignment a;
   a.pairs = {{1, 0}, {2, 1}, {4, 2}, {5, 4}};
   const double expected = (1 + 0) + (2 + 10) + (4 + 20) + (5 + 40) - 1.5 - 2.0;
-  EXPECT_DOUBLE_EQ(path_score(a, align::ScoreSource::dense(values, 6, 6), 1.5, 2.0), expected);
+  EXPECT_DOUBLE_EQ(align::path_score(a, align::ScoreSource::dense(values, 6, 6), 1.5, 2.0), expected);
 }
 
 }  // namespace

@@ -51,4 +51,9 @@ struct LocalAlignment {
 // spanning them again; score and direction as they were (trimming a revisit's ends keeps its evidence).
 LocalAlignment pairs_between(const LocalAlignment& alignment, std::size_t first, std::size_t last);
 
+// The score of an alignment's own path, with no cap: the sum of its pairs' scores minus a gap penalty for every
+// element skipped between consecutive pairs (gap_a per skipped element of A, gap_b of B). For a capped alignment
+// this is the evidence the cap hides; for an uncapped one it equals the engine's score.
+double path_score(const LocalAlignment& alignment, const ScoreSource& scores, double gap_a, double gap_b);
+
 }  // namespace seqtopo::align

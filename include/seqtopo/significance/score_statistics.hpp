@@ -67,11 +67,6 @@ struct FitConfig {
 // there are too few alignments, their scores do not fall with the rank, or the area is empty.
 ScoreStatistics fit_declumped_scores(std::span<const double> scores, double area, const FitConfig& config = {});
 
-// The score of an alignment's own path, with no cap: the sum of its pairs' scores minus a gap penalty for every
-// element skipped between consecutive pairs (gap_a per skipped element of A, gap_b of B). For a capped alignment
-// this is the evidence the cap hides; for an uncapped one it equals the engine's score.
-double path_score(const align::LocalAlignment& alignment, const align::ScoreSource& scores, double gap_a, double gap_b);
-
 // Karlin & Altschul's lambda of the cell scores themselves, the positive root of mean(exp(lambda s)) = 1: the
 // exact value for ungapped alignments, an upper bound on the gapped one. For searches too small for the fit it
 // still makes lambda * score a log-odds in the scores' own scale. 0 when there is no root (no positive score,
