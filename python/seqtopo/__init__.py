@@ -331,7 +331,25 @@ def _config(config, cls, overrides):
     if unknown:
         raise TypeError(f"{cls.__name__} has no field {', '.join(sorted(unknown))}")
     fields.update(overrides)
-    return cls(**fields)
+    try:
+        return cls(**fields)
+    except TypeError:
+        # pybind11 lists every constructor argument; say which override it could not take, and why.
+        for name, value in overrides.items():
+            try:
+                setattr(cls(), name, value)
+            except TypeError:
+                current = getattr(cls(), name)
+                if isinstance(current, bool):
+                    why = "must be True or False"
+                elif isinstance(current, int):
+                    why = "must be an integer >= 0"
+                elif current is None or isinstance(current, float):
+                    why = "must be a number"
+                else:
+                    why = f"must be a {type(current).__name__}"
+                raise ValueError(f"{name}: {why}, got {value!r}") from None
+        raise
 
 
 def _fields(cls) -> list[str]:

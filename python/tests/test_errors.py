@@ -135,3 +135,19 @@ def test_localize_errors_name_the_array_arguments_not_their_scratch_files():
         seqtopo.localize_sequences(s, ground_truth=[(0, 5000)])
     assert str(error.value).startswith("ground_truth"), str(error.value)
     assert "truth.csv" not in str(error.value)
+
+
+@pytest.mark.parametrize("override, message", [
+    ({"contrast_window": -3}, "contrast_window: must be an integer >= 0, got -3"),
+    ({"min_separation": 2.5}, "min_separation: must be an integer >= 0, got 2.5"),
+    ({"gap": "x"}, "gap: must be a number, got 'x'"),
+    ({"reverse": "no"}, "reverse: must be True or False, got 'no'"),
+])
+def test_a_config_override_of_the_wrong_kind_names_itself(override, message):
+    # pybind11 alone answers with every constructor argument and not the one it could not take.
+    with pytest.raises(ValueError) as error:
+        seqtopo.map_sequence(np.eye(40, dtype=np.float32), **override)
+    assert str(error.value) == message
+    with pytest.raises(ValueError) as error:
+        seqtopo.build_map(np.eye(40, dtype=np.float32), **override)
+    assert str(error.value) == message
