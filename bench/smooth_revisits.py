@@ -5,9 +5,9 @@ correlation length of 3, 10 and 30 frames and a random walk (1,600 frames, 64-D)
 The ground truth counts only the nearest frame kept (radius every / 2 frames): a map that pairs a frame with the
 neighbour of its own partner is wrong here, as it would be with a tight radius in metres.
 
-Usage: bench/smooth_revisits.py [SEQTOPO_BINARY] [--seeds 3]
+Usage: bench/smooth_revisits.py [SEQTOPO_BINARY] [--seeds 3] [--online]
 Prints one Markdown row per texture: seqtopo's F1 mean and worst over directions, rates and seeds, and the
-SeqSLAM-style baseline's mean F1 on the same scores.
+SeqSLAM-style baseline's mean F1 on the same scores (with --online: the online map's loop closures, no baseline).
 """
 import argparse
 import json
@@ -49,7 +49,9 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("binary", nargs="?", default=os.path.join(here, "..", "build", "release", "src", "seqtopo"))
     p.add_argument("--seeds", type=int, default=3)
+    p.add_argument("--online", action="store_true", help="score `seqtopo map --online`'s loop closures")
     args = p.parse_args()
+    mode = ["--online", "--no-offline-outputs"] if args.online else []
     print("| texture | maps | seqtopo F1 mean | worst | SeqSLAM-style F1 mean |")
     print("|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as root:
@@ -63,16 +65,20 @@ def main():
                         sequence(folder, "walk" if length == 0 else "ar1", length, reverse, seed)
                         r = subprocess.run([args.binary, "map", os.path.join(folder, "x.npy"), "--every", str(every),
                                             "--ground-truth", os.path.join(folder, "poses.csv"), "--gt-radius",
-                                            str(every / 2 + 0.01), "--out", os.path.join(folder, "out")],
+                                            str(every / 2 + 0.01), "--out", os.path.join(folder, "out"), *mode],
                                            capture_output=True, text=True)
                         if r.returncode != 0:
                             sys.exit(r.stderr.strip().splitlines()[-1])
+                        if args.online:
+                            with open(os.path.join(folder, "out", "online.json")) as f:
+                                ours.append(json.load(f)["metrics"]["f1"])
+                            continue
                         with open(os.path.join(folder, "out", "metrics.json")) as f:
                             m = json.load(f)
                         ours.append(m["loop_closure"]["f1"])
                         baseline.append(m["baseline"]["f1"])
-            print(f"| {texture} | {len(ours)} | {statistics.mean(ours):.3f} | {min(ours):.3f} | "
-                  f"{statistics.mean(baseline):.3f} |", flush=True)
+            base = "—" if args.online else f"{statistics.mean(baseline):.3f}"
+            print(f"| {texture} | {len(ours)} | {statistics.mean(ours):.3f} | {min(ours):.3f} | {base} |", flush=True)
 
 
 if __name__ == "__main__":

@@ -605,7 +605,13 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
     const long hi = std::min(static_cast<long>(n) - 1, predicted + static_cast<long>(reach));
     long best = -1;
     for (long j = lo; j <= hi; ++j) {
-      if (best < 0 || row[static_cast<std::size_t>(j)] > row[static_cast<std::size_t>(best)]) best = j;
+      const auto at = static_cast<std::size_t>(j);
+      // Capped cells tie: among them the frame's own evidence, its score with column j, decides (the first
+      // maximum would keep the path on one side of a smooth revisit's band of diagonals).
+      if (best < 0 || row[at] > row[static_cast<std::size_t>(best)] ||
+          (row[at] == row[static_cast<std::size_t>(best)] && scores_[at] > scores_[static_cast<std::size_t>(best)])) {
+        best = j;
+      }
     }
     const float value = best >= 0 ? row[static_cast<std::size_t>(best)] : 0.0F;
     // A score falling frame after frame is a revisit that has ended (or a poor stretch): asleep until its path

@@ -214,6 +214,36 @@ TEST(OnlineMapper, PlantedRevisitsGiveTheOfflineEnginesLoopClosures) {
   EXPECT_EQ(begins_reverse, 1U);
 }
 
+TEST(OnlineMapper, ATrackCappedInABandFollowsTheDiagonalTheFrameScoresBest) {
+  // A smooth revisit: frames 60..119 repeat 20..79, its diagonal i - j = 40 scores 1.5 and the two beside it 1.0,
+  // all else -1. Once the track reaches the cap every cell of the band holds it; the frame's own scores decide,
+  // and every loop closure from then on is on the revisit's own diagonal (the first maximum took diagonal 41).
+  const std::size_t n = 130;
+  SimilarityMatrix s(n, n);
+  for (auto& v : s.values) v = -1.0F;
+  for (std::size_t i = 60; i < 120; ++i) {
+    for (const std::size_t d : {39U, 40U, 41U}) s(i, i - d) = s(i - d, i) = d == 40 ? 1.5F : 1.0F;
+  }
+  OnlineMapConfig c = planted_config();
+  c.cap = 12.0F;
+  c.threshold = 8.0F;
+  c.x_drop = 8.0F;
+  OnlineMapper m(c);
+  std::vector<OnlineEvent> closures;
+  for (std::size_t t = 0; t < n; ++t) {
+    for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+      if (e.kind == OnlineEventKind::loop_closure && e.direction == Direction::forward) closures.push_back(e);
+    }
+  }
+  std::size_t capped = 0;
+  for (const auto& e : closures) {
+    if (e.frame < 75 || e.frame >= 120 || e.i != e.frame) continue;  // past the cap, live, inside the revisit
+    ++capped;
+    EXPECT_EQ(e.i - e.j, 40U) << "frame " << e.i;
+  }
+  EXPECT_GE(capped, 40U);
+}
+
 TEST(OnlineMapper, AThirdTraversalMergesTheFirstTwoAndLateClosuresAreWithdrawn) {
   // The second traversal does not match the first directly; the third matches both.
   const Fed linked = feed(planted(false), planted_config());
