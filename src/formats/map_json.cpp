@@ -36,6 +36,7 @@ nlohmann::json significance_json(const mapping::MapResult& result) {
                       {"score_threshold", d.score_threshold},
                       {"notes", d.notes}};
   if (!d.blind_descriptors.empty()) j["blind_descriptors"] = d.blind_descriptors;
+  if (!d.low_information_frames.empty()) j["low_information_frames"] = d.low_information_frames;
   if (d.statistics.valid()) {
     j["lambda"] = d.statistics.lambda;
     j["k"] = d.statistics.k;

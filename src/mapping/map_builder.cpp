@@ -12,6 +12,7 @@
 #include <string>
 #include <tuple>
 
+#include "masked_frames.hpp"
 #include "median.hpp"
 #include "seqtopo/align/band_realignment.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
@@ -22,9 +23,31 @@
 #include "seqtopo/significance/alignment_ends.hpp"
 #include "seqtopo/significance/alignment_phase.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
+#include "seqtopo/similarity/hubness.hpp"
 
 namespace seqtopo::mapping {
 namespace {
+
+// Sorted frame indices as one flag per frame; throws std::invalid_argument for one past the sequence.
+std::vector<bool> frame_flags(std::size_t n, std::span<const std::size_t> frames) {
+  std::vector<bool> flags(n, false);
+  for (std::size_t f : frames) {
+    if (f >= n) {
+      throw std::invalid_argument("low-information frame " + std::to_string(f) + " is past the sequence's " +
+                                  std::to_string(n) + " frames");
+    }
+    flags[f] = true;
+  }
+  return flags;
+}
+
+std::vector<std::size_t> flagged(const std::vector<bool>& flags) {
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < flags.size(); ++k) {
+    if (flags[k]) out.push_back(k);
+  }
+  return out;
+}
 
 using detail::median;
 
@@ -335,11 +358,13 @@ void select_alignments(MapResult& result, const std::vector<std::size_t>& which)
   result.e_values = std::move(e_values);
 }
 
-// Per pair: the probability that its alignment is not chance, exp(-E) (no chance alignment this good is
-// expected: Poisson), times the pair's posterior within its alignment (align/pair_posterior.hpp), with lambda
-// from the statistics (1 without them: the scores are then log-odds as they stand).
+// Per pair: the probability that its alignment is a revisit (significance::revisit_probability of its E-value),
+// times the pair's posterior within its alignment (align/pair_posterior.hpp), with lambda from the statistics (1
+// without them: the scores are then log-odds as they stand). A pair of a masked frame has no posterior of its own
+// (its scores are flat): it stands where the evidence on either side puts it, as sure as the less sure of the two,
+// and less where the two passes cross the stretch in different numbers of frames.
 void add_confidences(const align::ScoreSource& scores, const align::AlignConfig& engine, const MapConfig& c,
-                     const MapDecisions& d, MapResult& result) {
+                     const MapDecisions& d, const std::vector<bool>& masked, MapResult& result) {
   align::PosteriorConfig pc;
   pc.lambda = d.statistics.valid() ? d.statistics.lambda : 1.0;
   pc.gap_a = engine.gap_a;
@@ -347,13 +372,29 @@ void add_confidences(const align::ScoreSource& scores, const align::AlignConfig&
   pc.band = std::max<std::size_t>(c.confidence_band, static_cast<std::size_t>(std::ceil(d.frames_per_place)));
   pc.self = true;
   pc.min_separation = c.min_separation;
-  pc.tolerance = static_cast<std::size_t>(std::lround(d.frames_per_place));  // within a place: the same place
+  // Right within the tolerance the evaluation of place recognition uses, or a place when that is wider.
+  pc.tolerance = std::max(c.confidence_tolerance, static_cast<std::size_t>(std::lround(d.frames_per_place)));
   result.posteriors.assign(result.alignments.size(), {});
   // Only the alignments that contributed pairs: the others are not in the outputs' pairs.
   std::vector<bool> needed(result.alignments.size(), false);
   for (const auto& p : result.pruning.pairs) needed[p.alignment] = true;
   for (std::size_t k = 0; k < result.alignments.size(); ++k) {
     if (needed[k]) result.posteriors[k] = align::pair_posteriors(result.alignments[k], scores, pc);
+    if (needed[k]) {
+      // Given that the row is on the revisit (the change point of alignment_ends.hpp kept it there): where along
+      // it. Unconditioned, a pair near an end is only as sure as a chain is to reach it at all, about 1/2 for the
+      // last pairs of a revisit however clear their partner (the corridor's whole revisit right, its confidences
+      // 0.45-1: expected calibration error 0.13).
+      align::PosteriorConfig wide = pc;
+      wide.tolerance = pc.band;
+      const std::vector<double> covered = align::pair_posteriors(result.alignments[k], scores, wide);
+      for (std::size_t t = 0; t < covered.size(); ++t) {
+        if (covered[t] > 0) result.posteriors[k][t] = std::min(1.0, result.posteriors[k][t] / covered[t]);
+      }
+    }
+    if (needed[k] && !masked.empty()) {
+      detail::posteriors_through_masked(result.alignments[k], masked, pc.tolerance, result.posteriors[k]);
+    }
   }
   // A skipped image listed with the pairs (consistent_labels.hpp, Gaps): where the chains put its row.
   std::map<std::size_t, std::vector<align::RowPosterior>> rows;
@@ -374,11 +415,24 @@ void add_confidences(const align::ScoreSource& scores, const align::AlignConfig&
                                  ? result.posteriors[p.alignment][static_cast<std::size_t>(at - pairs.begin())]
                                  : row_posterior(p);
     const double e = p.alignment < result.e_values.size() ? result.e_values[p.alignment] : std::nan("");
-    p.confidence = (std::isfinite(e) ? std::exp(-e) : 1.0) * posterior;
+    p.confidence =
+        (std::isfinite(e) && c.max_e_value ? significance::revisit_probability(e, *c.max_e_value) : 1.0) * posterior;
   }
 }
 
 }  // namespace
+
+TopologyConfig topology_settings(const MapConfig& c) {
+  TopologyConfig topology = c.topology;
+  if (c.clean_graph) {
+    topology.reduce_transitive = true;
+    // Branch points closer than the shortest revisit cannot be told apart by an alignment between them.
+    if (topology.junction_region == 0) {
+      topology.junction_region = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(c.min_revisit_places)));
+    }
+  }
+  return topology;
+}
 
 TableFit fit_table_statistics(const align::ScoreSource& scores, const MapConfig& config, double frames_per_place) {
   FitRun fit = fit_looking_further(scores, config, frames_per_place);
@@ -428,7 +482,8 @@ namespace {
 // histogram alone finds nothing, but scores the panorama signature's pairs 0.63 above its chance cells, t = 11,
 // and the fusion maps better than either).
 std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& similarities, const MapConfig& c,
-                                           std::size_t contrast_window, std::span<const Pose2> odometry) {
+                                           std::size_t contrast_window, std::span<const Pose2> odometry,
+                                           const std::vector<bool>& masked) {
   const std::size_t n = similarities.front().rows;
   if (!c.drop_blind_descriptors || similarities.size() < 2 || !c.max_e_value || contrast_window == 0 ||
       n > c.max_blind_check_frames) {
@@ -439,7 +494,8 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
   std::vector<std::pair<std::size_t, std::size_t>> seen;  // the pairs of the maps that see at `strict`
   for (std::size_t k = 0; k < similarities.size(); ++k) {
     const SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
-    const MapResult alone = build_map_from_enhanced(align::ScoreSource::dense(e.values, e.rows, e.cols), c, odometry);
+    const MapResult alone =
+        build_map_from_enhanced(align::ScoreSource::dense(e.values, e.rows, e.cols), c, odometry, {}, flagged(masked));
     if (alone.pruning.pairs.empty()) unseeing.push_back(k);
     bool sees = false;
     for (const auto& p : alone.pruning.pairs) sees |= alone.e_values[p.alignment] <= strict;
@@ -451,7 +507,8 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
   std::vector<std::size_t> blind;
   for (std::size_t k : unseeing) {
     // Enhanced again rather than kept from the loop above: one N x N table at a time.
-    const SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
+    SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
+    detail::soft_mask(e, masked, c.contrast_offset);  // as the map's alignment sees them
     double chance = 0;
     std::size_t cells = 0;
     for (std::size_t i = c.min_separation; i < n; ++i) {
@@ -473,8 +530,11 @@ MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config,
   return build_map(std::vector<SimilarityMatrix>{similarity}, config, odometry);
 }
 
-MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
-                    std::span<const Pose2> odometry) {
+namespace {
+
+// The steps of build_map, with the frames flagged in `masked` (empty: none) soft-masked.
+MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
+                           std::span<const Pose2> odometry, const std::vector<bool>& masked) {
   const auto start = std::chrono::steady_clock::now();
   if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
   check_map_config(config);
@@ -488,15 +548,27 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
     c.frames_per_place = scale->frames_per_place;
   }
   const MapConfig framed = settings_in_frames(c, c.frames_per_place.value_or(1.0));
-  const std::vector<std::size_t> blind = blind_descriptors(similarities, c, framed.contrast_window, odometry);
-  std::vector<SimilarityMatrix> seeing;  // a copy only when some are left out
-  for (std::size_t k = 0; k < similarities.size() && !blind.empty(); ++k) {
-    if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(similarities[k]);
+  const std::size_t hub_k =
+      framed.contrast_window > 0 && c.hubness_neighbours > 0
+          ? in_frames(c.hubness_neighbours, c.place_units ? c.frames_per_place.value_or(1.0) : 1.0)
+          : 0;
+  std::vector<SimilarityMatrix> corrected;
+  if (hub_k > 0) {
+    corrected = similarities;
+    for (auto& s : corrected) similarity::correct_hubness(s, hub_k, framed.min_separation);
   }
-  SimilarityMatrix enhanced = enhanced_scores(blind.empty() ? similarities : seeing, framed.contrast_window);
+  const std::vector<SimilarityMatrix>& source = hub_k > 0 ? corrected : similarities;
+  const std::vector<std::size_t> blind = blind_descriptors(source, c, framed.contrast_window, odometry, masked);
+  std::vector<SimilarityMatrix> seeing;  // a copy only when some are left out
+  for (std::size_t k = 0; k < source.size() && !blind.empty(); ++k) {
+    if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(source[k]);
+  }
+  SimilarityMatrix enhanced = enhanced_scores(blind.empty() ? source : seeing, framed.contrast_window);
   const double seconds_scores = seconds_since(start);
-  MapResult result =
-      build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols), c, odometry);
+  const std::vector<std::size_t> low_information =
+      framed.contrast_window > 0 ? flagged(masked) : std::vector<std::size_t>{};
+  MapResult result = build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols),
+                                             c, odometry, {}, low_information);
   result.decisions.blind_descriptors = blind;
   for (auto k = blind.rbegin(); k != blind.rend(); ++k) {  // first in the notes, in the descriptors' order
     result.decisions.notes.insert(result.decisions.notes.begin(), blind_descriptor_note(*k, similarities.size()));
@@ -508,14 +580,30 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
   // What was aligned: the enhanced scores minus the offset the run chose (or S itself without enhancement).
   if (framed.contrast_window > 0) {
     for (auto& v : enhanced.values) v -= result.decisions.contrast_offset;
+    detail::soft_mask(enhanced, masked, 0.0F);
   }
   result.scores = std::move(enhanced);
   result.seconds_align += seconds_scores;
   return result;
 }
 
+}  // namespace
+
+MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
+                    std::span<const Pose2> odometry) {
+  return build_map_masked(similarities, config, odometry, {});
+}
+
+MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
+                    std::span<const Pose2> odometry, std::span<const std::size_t> low_information) {
+  if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
+  const std::vector<bool> masked = frame_flags(similarities.front().rows, low_information);
+  return build_map_masked(similarities, config, odometry, config.mask_low_information ? masked : std::vector<bool>{});
+}
+
 MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config,
-                                  std::span<const Pose2> odometry, const AlignmentRun& run_alignment) {
+                                  std::span<const Pose2> odometry, const AlignmentRun& run_alignment,
+                                  std::span<const std::size_t> low_information) {
   const std::size_t n = enhanced.rows();
   if (n == 0 || enhanced.cols() != n) {
     throw std::invalid_argument("score source must be square and non-empty, got " + std::to_string(n) + " x " +
@@ -538,12 +626,14 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   float offset = c.contrast_window > 0 ? c.contrast_offset : 0.0F;
   align::AlignConfig engine = align_config(c);
 
+  // Frames of little information carry no evidence of a revisit, in the statistics' fit as in the alignment.
+  const std::vector<bool> masked = low_information.empty() ? std::vector<bool>{} : frame_flags(n, low_information);
   if (c.max_e_value) {
     const double area_places =
         significance::search_area(n, n, true, c.min_separation, c.reverse) / (d.frames_per_place * d.frames_per_place);
     FitRun fit;
     while (true) {
-      fit = fit_looking_further(minus(enhanced, offset), c, d.frames_per_place);
+      fit = fit_looking_further(detail::soft_masked(minus(enhanced, offset), masked), c, d.frames_per_place);
       const auto [short_chance, logarithmic] = phase_checks(fit, c, area_places);
       if (logarithmic || !fit.statistics.valid() || !c.adapt_offset || c.contrast_window == 0 ||
           offset + c.contrast_offset_step > c.max_contrast_offset + 1e-6F) {
@@ -583,7 +673,18 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       const auto grid = [](double v) { return static_cast<float>(std::ceil(std::max(v, 1.0 / 64) * 64.0) / 64.0); };
       engine.threshold = grid(d.statistics.score_at(*c.max_e_value / d.odometry_chance_agreement));
       // The cap from the score's own significance: the odometry does not change how far chance extends a path.
-      if (c.cap_from_statistics) engine.cap = grid(c.cap_factor * grid(d.statistics.score_at(*c.max_e_value)));
+      if (c.cap_from_statistics) {
+        engine.cap = grid(c.cap_factor * grid(d.statistics.score_at(*c.max_e_value)));
+        // Masking takes the look-alike chance alignments of dark frames out of the fit, so its tail is lighter
+        // and the cap lower than the sequence as recorded gives: never lower than that, so a revisit that runs
+        // through a weak stretch beside a tunnel stays one (Nordland's frames 127-182, winter against summer).
+        if (!masked.empty()) {
+          const FitRun recorded = fit_looking_further(minus(enhanced, offset), c, d.frames_per_place);
+          if (recorded.statistics.valid()) {
+            engine.cap = std::max(*engine.cap, grid(c.cap_factor * grid(recorded.statistics.score_at(*c.max_e_value))));
+          }
+        }
+      }
       // What the filter removed: chance alignments of the statistics' run above the raw threshold.
       for (std::size_t k = 0; k < fit.alignments.size(); ++k) {
         const double e = d.statistics.e_value(fit.path_scores[k]);
@@ -606,7 +707,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   d.cap = engine.cap;
   d.score_threshold = engine.threshold;
 
-  const align::ScoreSource scores = minus(enhanced, offset);
+  const align::ScoreSource scores = detail::soft_masked(minus(enhanced, offset), masked);
   auto found = run_alignment ? run_alignment(engine, offset)
                : c.alignment_set == align::AlignmentSet::locally_optimal
                    ? (c.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
@@ -640,6 +741,11 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   if (c.max_e_value && engine.cap) {
     select_alignments(result, realign_in_bands(result.alignments, scores, engine, c.gap,
                                                in_frames(significance::kShadowReach, d.frames_per_place)));
+  }
+  if (!low_information.empty()) {
+    select_alignments(result, detail::through_masked_frames(result.alignments, masked));
+    d.low_information_frames.assign(low_information.begin(), low_information.end());
+    d.notes.insert(d.notes.begin(), detail::low_information_note(masked));
   }
   // Most significant first: capped scores tie at the cap, their paths' scores do not. Pruning and labels
   // then prefer the strongest of overlapping alignments (parallel shadows of one revisit, crossing chances).
@@ -702,7 +808,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     for (const auto& p : result.pruning.pairs) same_place.emplace_back(p.i, p.j);
     labels = label_places(n, same_place);
   }
-  TopologyConfig topology = c.topology;
+  const TopologyConfig topology = topology_settings(c);
   if (c.clean_graph) {
     GraphCleanupConfig cleanup;
     cleanup.min_separation = c.min_separation;
@@ -712,17 +818,12 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     cleanup.max_bubble_frames = shortest;
     cleanup.session_starts = c.topology.session_starts;
     labels = clean_graph(labels, result.alignments, result.pruning, cleanup).labels;
-    topology.reduce_transitive = true;
-    // Branch points closer than the shortest revisit cannot be told apart by an alignment between them.
-    if (topology.junction_region == 0) {
-      topology.junction_region = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(c.min_revisit_places)));
-    }
   }
   result.map = build_topology(labels, result.alignments, result.pruning, topology);
   result.seconds_prune_label = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  add_confidences(scores, engine, c, d, result);
+  add_confidences(scores, engine, c, d, masked, result);
   describe_junctions(result.map, result.alignments, result.pruning, topology);  // with the pairs' confidences
   result.seconds_confidence = seconds_since(start);
   return result;

@@ -21,6 +21,7 @@
 #include "seqtopo/scale/sparse_alignment.hpp"
 #include "seqtopo/scale/sparse_candidates.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
+#include "seqtopo/significance/low_information.hpp"
 #include "seqtopo/similarity/memory.hpp"
 #include "seqtopo/trajectory/ekf_map.hpp"
 #include "seqtopo/trajectory/pose_graph.hpp"
@@ -133,7 +134,11 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
 
   clock.begin();
   check_odometry(odometry, n, request.odometry.string());
-  run.result = mapping::build_map(run.matrices, map_config_of(settings, run), odometry);
+  // Dark or near-uniform images carry no evidence of a revisit (significance/low_information.hpp).
+  const std::vector<double>& entropy = run.similarities.front().frame_entropy;
+  const std::vector<std::size_t> low_information =
+      entropy.size() == n ? significance::low_information_frames(entropy) : std::vector<std::size_t>{};
+  run.result = mapping::build_map(run.matrices, map_config_of(settings, run), odometry, low_information);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 }

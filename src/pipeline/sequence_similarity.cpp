@@ -15,6 +15,7 @@
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/significance/low_information.hpp"
 #include "seqtopo/similarity/distance_matrix.hpp"
 #include "seqtopo/similarity/memory.hpp"
 #ifdef SEQTOPO_HAVE_RECORDING
@@ -240,6 +241,7 @@ struct Described {
   std::vector<similarity::DescriptorSet> sets;  // one per descriptor, in the order asked
   std::vector<std::string> names;
   std::vector<std::size_t> session_rows;
+  std::vector<double> entropy;  // grey-level entropy of each image [bits]; empty for descriptors
 };
 
 // Descriptor of one image into slot i of `out`.
@@ -335,12 +337,14 @@ Described describe_images(const Source& s, Descriptors ds, const SimilarityConfi
   for (const auto& p : s.images) out.names.push_back(image_name(s.input.path, p, s.input.recursive));
   warn_skipped(s, c);
   std::vector<std::pair<int, int>> sizes(n);
+  out.entropy.resize(n);
   std::atomic<std::size_t> done{0};
   std::mutex report;
   parallel_items(n, thread_count(c.threads), [&](std::size_t i) {
     const fs::path& path = s.images[i];
     const RgbImage image = load_image(path);
     sizes[i] = {image.width, image.height};
+    out.entropy[i] = significance::grey_entropy(image);
     if (c.on_image) c.on_image(i, image);
     try {
       describe_image(image, ds, c, i, out);
@@ -417,7 +421,9 @@ Described describe_stream(const Source& s, Descriptors ds, const SimilarityConfi
         rows[k].resize(described + batch.size());
       }
     }
+    out.entropy.resize(described + batch.size());
     parallel_items(batch.size(), threads, [&](std::size_t b) {
+      out.entropy[described + b] = significance::grey_entropy(batch[b]);
       try {
         for (std::size_t k = 0; k < ds.size(); ++k) {
           if (ds[k] == Descriptor::joint_histogram) {
@@ -577,6 +583,7 @@ Described describe_all(const std::vector<Source>& sources, Descriptors ds, const
   for (const auto& s : sources) {
     Described one = describe(s, ds, c);
     all.session_rows.push_back(one.names.size());
+    all.entropy.insert(all.entropy.end(), one.entropy.begin(), one.entropy.end());
     const std::string prefix = s.input.path.filename().string() + "/";
     for (auto& name : one.names) all.names.push_back(prefix + name);
     for (std::size_t k = 0; k < ds.size(); ++k) {
@@ -692,6 +699,8 @@ std::vector<SimilarityResult> run(std::span<const SequenceInput> inputs_a, std::
     r.frame_names = da.names;
     r.column_names = db ? db->names : r.frame_names;
     r.session_rows = da.session_rows;
+    // Every session's images, or none: a descriptors.npy session has no picture to measure.
+    if (da.entropy.size() == r.frame_names.size()) r.frame_entropy = da.entropy;
     results.push_back(std::move(r));
   }
   return results;

@@ -154,4 +154,10 @@ bool shadows_earlier(const std::vector<align::LocalAlignment>& alignments, std::
   return false;
 }
 
+double revisit_probability(double e, double even_odds) {
+  if (!(even_odds > 0)) throw std::invalid_argument("revisit_probability: even_odds must be positive");
+  if (!(e >= 0)) return 1.0;
+  return 1.0 / (1.0 + e / even_odds);
+}
+
 }  // namespace seqtopo::significance

@@ -29,6 +29,13 @@ struct MapConfig {
   std::size_t contrast_window = 10;  // [places] (frames when place_units is false)
   float contrast_offset = 0.5F;      // [standard deviations]; the smallest tried, see adapt_offset
   float gap = 1.5F;                  // penalty per skipped image, both sequences [score units]
+  // Hubness correction of every similarity before its contrast enhancement (similarity/hubness.hpp): a pair
+  // counts by how much more alike its frames are than each frame is to its hubness_neighbours most similar frames
+  // elsewhere in the sequence, so frames that resemble much of it (dark tunnels, bare walls) stop standing out of
+  // the ordinary frames around them. [places] (frames when place_units is false); 0: off. With contrast
+  // enhancement only. Off by default: with low-information masking it adds little and costs Nordland summer +
+  // winter 26 of its 1,780 loop closures at 10 places (docs/significance.md, "Trust").
+  double hubness_neighbours = 0;
   // Cap on the cumulative score (paper IV-B). With significance (max_e_value set) and cap_from_statistics,
   // the cap is cap_factor times the score a significant alignment must reach, so the stretch of non-matching
   // images that separates two revisits follows the sequence's own statistics; else this fixed value.
@@ -100,6 +107,10 @@ struct MapConfig {
   std::size_t fit_alignments = 300;
   // Half-width of the band the pairs' posteriors sum over [frames]; at least one place.
   std::size_t confidence_band = 8;
+  // A pair's confidence is the probability that its image lies within this many frames of the partner the map
+  // gives it (or one place, when a place spans more): the tolerance place recognition is evaluated with
+  // (seqtopo localize --tolerance, the same default).
+  std::size_t confidence_tolerance = 2;
   // With the significance statistics: alignments' ends cut back where their pairs are more likely chance than
   // revisit (significance/alignment_ends.hpp).
   bool trim_chance_ends = true;
@@ -112,6 +123,13 @@ struct MapConfig {
   // map alone that still scores the revisit stays (decisions.blind_descriptors, a note).
   bool drop_blind_descriptors = true;
   std::size_t max_blind_check_frames = 8000;
+  // Frames of little information given to build_map (dark or near-uniform images: significance/low_information.hpp)
+  // carry no evidence of a revisit, as a sequence search soft-masks low-complexity regions: with contrast
+  // enhancement their enhanced scores are capped at the contrast offset (aligned, at most 0), so an alignment
+  // cannot be made of them but runs through them between two real matches (a revisit on either side of a tunnel
+  // stays one revisit); inside the stretch its pairs lie on the straight line between the evidence on either side,
+  // and a masked end is cut off. false: every frame is aligned as it scores.
+  bool mask_low_information = true;
 };
 
 // What a map run decided from the sequence itself (the settings in frames, the statistics), for the report.
@@ -131,6 +149,8 @@ struct MapDecisions {
   double odometry_chance_agreement = 1;
   // drop_blind_descriptors: the similarities (indices into build_map's list) left out of the fusion.
   std::vector<std::size_t> blind_descriptors;
+  // mask_low_information: the frames taken out as carrying no evidence (sorted).
+  std::vector<std::size_t> low_information_frames;
   std::vector<std::string> notes;  // what was adapted and why, one line each
 };
 
@@ -179,6 +199,11 @@ MapResult build_map(const SimilarityMatrix& similarity, const MapConfig& config 
                     std::span<const Pose2> odometry = {});
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config = {},
                     std::span<const Pose2> odometry = {});
+// The same with the frames of little information (sorted indices; significance/low_information.hpp) masked as
+// MapConfig::mask_low_information says (decisions.low_information_frames lists them). Throws
+// std::invalid_argument for an index out of range.
+MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
+                    std::span<const Pose2> odometry, std::span<const std::size_t> low_information);
 
 // Steps 3-5 on contrast-enhanced scores without the offset (0.5 (E + E^T), or S itself when contrast_window is
 // 0), from any score source: a dense matrix, or scores streamed from descriptors (scale/streaming_similarity.hpp,
@@ -189,8 +214,11 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
 // `enhanced`): it gets the engine settings and the offset the scores it must align are `enhanced` minus, and
 // returns their alignments best first. The sparse mode aligns its candidate cells this way (pipeline).
 using AlignmentRun = std::function<std::vector<align::LocalAlignment>(const align::AlignConfig& engine, float offset)>;
+// `low_information` (sorted frame indices, build_map's) are the frames whose scores the caller soft-masked: their
+// pairs are placed between the evidence on either side and cut at the alignments' ends.
 MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config = {},
-                                  std::span<const Pose2> odometry = {}, const AlignmentRun& run_alignment = {});
+                                  std::span<const Pose2> odometry = {}, const AlignmentRun& run_alignment = {},
+                                  std::span<const std::size_t> low_information = {});
 
 // Steps 3-5 on scores aligned as they are (no offset, no place units): the engine's own view.
 MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config = {},
@@ -219,6 +247,9 @@ TableFit fit_table_statistics(const align::ScoreSource& scores, const MapConfig&
 // The note build_map adds for similarity k (0-based) of `count` left out as blind (MapConfig::drop_blind_descriptors);
 // with the descriptor's name when the caller knows it.
 std::string blind_descriptor_note(std::size_t k, std::size_t count, std::string_view name = {});
+
+// The topology settings of step 5 for a config in frames (the clean-up's transitive reduction and junction regions).
+TopologyConfig topology_settings(const MapConfig& config);
 
 // The config with its windows and separations converted from places to frames (unchanged without place_units).
 MapConfig settings_in_frames(const MapConfig& config, double frames_per_place);

@@ -63,6 +63,9 @@ struct SimilarityResult {
   std::vector<std::string> frame_names;   // file names / "frame 17" / "row 17", one per row
   std::vector<std::string> column_names;  // one per column
   std::vector<std::size_t> session_rows;  // rows of each session of the first side (one entry for one input)
+  // The grey-level entropy of each row's image [bits] (significance/low_information.hpp); empty unless every row
+  // is an image or a video or bag frame.
+  std::vector<double> frame_entropy;
   double seconds_descriptors = 0, seconds_matrix = 0;
 };
 

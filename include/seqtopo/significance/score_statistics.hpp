@@ -88,4 +88,12 @@ bool shadows_earlier(const std::vector<align::LocalAlignment>& alignments, std::
 // when the reverse pass runs too.
 double search_area(std::size_t rows, std::size_t cols, bool self, std::size_t min_separation, bool both_passes);
 
+// The probability that an alignment with E-value e is a revisit rather than chance, with the prior odds that make
+// one at e = even_odds (the map's cut, max_e_value) as likely one as the other: the Poisson density of chance
+// alignments at its score is proportional to e, that of revisits taken as flat over the scores near the cut, so
+// P = 1 / (1 + e / even_odds) (an empirical-Bayes local false discovery rate, Efron 2001). exp(-e), the probability
+// that no chance alignment scores as well, is near 1 at the cut and made a confident closure of every alignment
+// that just passed it. even_odds must be positive.
+double revisit_probability(double e, double even_odds);
+
 }  // namespace seqtopo::significance
