@@ -164,12 +164,13 @@ def main():
             row(name, pairs, m)
         # Low-information stretches, 60 dark frames in each lap: at the same place (a tunnel driven through twice,
         # its frames the same place as the frames of the other pass at the same depth, within 2 frames) or at two
-        # different places (the lights out in two corridors), with an unrelated outdoor walk between the laps.
+        # different places (the lights out in two corridors), with an unrelated outdoor walk spliced in.
         walk = [f.resize((512, 384)) for f in winter[600:660]]
         for variant, cut1, cut2 in (("the same place", 20, 60), ("two places", 10, 75)):
-            order = list(range(0, cut1)) + [("d1", k) for k in range(60)] + list(range(cut1, 40)) + \
-                [("w", k) for k in range(60)] + list(range(40, cut2)) + [("d2", k) for k in range(60)] + \
-                list(range(cut2, 84))
+            # The walk before the first lap: between the laps it would cut the revisit of images 81-84 (0-based
+            # 80-83) to 41-44, which follow image 40 without a break.
+            order = [("w", k) for k in range(60)] + list(range(0, cut1)) + [("d1", k) for k in range(60)] + \
+                list(range(cut1, cut2)) + [("d2", k) for k in range(60)] + list(range(cut2, 84))
             frames = []
             for o in order:
                 if isinstance(o, int):

@@ -158,7 +158,10 @@ void bind_map(py::module_& m) {
       "('non-intersecting' or 'locally-optimal', docs/alignment_sets.md), trim_chance_ends (alignments' ends\n"
       "cut back where their pairs are more likely chance than revisit, significance/alignment_ends.hpp),\n"
       "odometry_evidence (with odometry: an alignment's agreement with it lowers its E-value, map_builder.hpp),\n"
-      "drop_blind_descriptors (a fused descriptor that sees no revisit is left out, up to max_blind_check_frames).");
+      "drop_blind_descriptors (a fused descriptor that sees no revisit is left out, up to max_blind_check_frames),\n"
+      "mask_low_information (dark or near-uniform images carry no evidence of a revisit),\n"
+      "hubness_neighbours [places] (hubness correction of the similarities; 0: off), confidence_tolerance [frames]\n"
+      "(a pair's confidence is the probability its partner is within it).");
   c.def(py::init([labelling_value](
                      std::size_t contrast_window, float contrast_offset, float gap, std::optional<float> cap,
                      bool cap_from_statistics, float cap_factor, std::optional<double> max_e_value, float threshold,
@@ -168,7 +171,8 @@ void bind_map(py::module_& m) {
                      unsigned threads, float contrast_offset_step, float max_contrast_offset,
                      std::size_t fit_alignments, std::size_t confidence_band, const std::string& alignment_set,
                      bool trim_chance_ends, bool odometry_evidence, std::optional<float> max_global_rate,
-                     bool drop_blind_descriptors, std::size_t max_blind_check_frames) {
+                     bool drop_blind_descriptors, std::size_t max_blind_check_frames, bool mask_low_information,
+                     double hubness_neighbours, std::size_t confidence_tolerance) {
           MapConfig config;
           config.contrast_window = contrast_window;
           config.contrast_offset = contrast_offset;
@@ -200,6 +204,9 @@ void bind_map(py::module_& m) {
           config.max_global_rate = max_global_rate;
           config.drop_blind_descriptors = drop_blind_descriptors;
           config.max_blind_check_frames = max_blind_check_frames;
+          config.mask_low_information = mask_low_information;
+          config.hubness_neighbours = hubness_neighbours;
+          config.confidence_tolerance = confidence_tolerance;
           return config;
         }),
         py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
@@ -217,7 +224,9 @@ void bind_map(py::module_& m) {
         py::arg("alignment_set") = std::string(align::to_string(d.alignment_set)),
         py::arg("trim_chance_ends") = d.trim_chance_ends, py::arg("odometry_evidence") = d.odometry_evidence,
         py::arg("max_global_rate") = d.max_global_rate, py::arg("drop_blind_descriptors") = d.drop_blind_descriptors,
-        py::arg("max_blind_check_frames") = d.max_blind_check_frames)
+        py::arg("max_blind_check_frames") = d.max_blind_check_frames,
+        py::arg("mask_low_information") = d.mask_low_information, py::arg("hubness_neighbours") = d.hubness_neighbours,
+        py::arg("confidence_tolerance") = d.confidence_tolerance)
       .def_readwrite("contrast_window", &MapConfig::contrast_window)
       .def_readwrite("contrast_offset", &MapConfig::contrast_offset)
       .def_readwrite("gap", &MapConfig::gap)
@@ -249,6 +258,9 @@ void bind_map(py::module_& m) {
       .def_readwrite("odometry_evidence", &MapConfig::odometry_evidence)
       .def_readwrite("drop_blind_descriptors", &MapConfig::drop_blind_descriptors)
       .def_readwrite("max_blind_check_frames", &MapConfig::max_blind_check_frames)
+      .def_readwrite("mask_low_information", &MapConfig::mask_low_information)
+      .def_readwrite("hubness_neighbours", &MapConfig::hubness_neighbours)
+      .def_readwrite("confidence_tolerance", &MapConfig::confidence_tolerance)
       .def_property(
           "alignment_set", [](const MapConfig& x) { return std::string(align::to_string(x.alignment_set)); },
           [](MapConfig& x, const std::string& name) { x.alignment_set = align::parse_alignment_set(name); });
@@ -268,11 +280,12 @@ void bind_localize(py::module_& m) {
       "cap (None: none), threshold (alignments below it count as chance when there are too few for the\n"
       "significance statistics), reverse, max_alignments, score_window [query frames], candidates (kept per\n"
       "frame), posterior_band [frames], tolerance [map frames] (the confidence is the probability of a guess\n"
-      "within it of the truth), min_confidence (below: not in the map), threads.");
+      "within it of the truth), min_confidence (below: not in the map), threads, even_odds_e_value (the E-value at\n"
+      "which an alignment is as likely a revisit as chance).");
   c.def(py::init([](std::size_t contrast_window, bool enhance, float contrast_offset, float gap,
                     std::optional<float> cap, float threshold, bool reverse, std::size_t max_alignments,
                     std::size_t score_window, std::size_t candidates, std::size_t posterior_band, std::size_t tolerance,
-                    double min_confidence, unsigned threads) {
+                    double min_confidence, unsigned threads, double even_odds_e_value) {
           LocalizeConfig config;
           config.contrast_window = contrast_window;
           config.enhance = enhance;
@@ -288,6 +301,7 @@ void bind_localize(py::module_& m) {
           config.tolerance = tolerance;
           config.min_confidence = min_confidence;
           config.threads = threads;
+          config.even_odds_e_value = even_odds_e_value;
           return config;
         }),
         py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("enhance") = d.enhance,
@@ -296,7 +310,7 @@ void bind_localize(py::module_& m) {
         py::arg("max_alignments") = d.max_alignments, py::arg("score_window") = d.score_window,
         py::arg("candidates") = d.candidates, py::arg("posterior_band") = d.posterior_band,
         py::arg("tolerance") = d.tolerance, py::arg("min_confidence") = d.min_confidence,
-        py::arg("threads") = d.threads)
+        py::arg("threads") = d.threads, py::arg("even_odds_e_value") = d.even_odds_e_value)
       .def_readwrite("contrast_window", &LocalizeConfig::contrast_window)
       .def_readwrite("enhance", &LocalizeConfig::enhance)
       .def_readwrite("contrast_offset", &LocalizeConfig::contrast_offset)
@@ -310,7 +324,8 @@ void bind_localize(py::module_& m) {
       .def_readwrite("posterior_band", &LocalizeConfig::posterior_band)
       .def_readwrite("tolerance", &LocalizeConfig::tolerance)
       .def_readwrite("min_confidence", &LocalizeConfig::min_confidence)
-      .def_readwrite("threads", &LocalizeConfig::threads);
+      .def_readwrite("threads", &LocalizeConfig::threads)
+      .def_readwrite("even_odds_e_value", &LocalizeConfig::even_odds_e_value);
   add_repr(c, "LocalizeConfig",
            {"contrast_window", "enhance", "contrast_offset", "gap", "cap", "threshold", "reverse", "max_alignments",
             "score_window", "candidates", "posterior_band", "tolerance", "min_confidence", "threads"});

@@ -116,10 +116,22 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
     const auto& a = alignments[rank];
     if (a.pairs.empty()) continue;
     const double e = e_values[rank];
-    const double real = std::isfinite(e) ? std::exp(-e) : (a.score >= c.threshold ? 1.0 : 0.0);
+    const double real = std::isfinite(e) ? significance::revisit_probability(e, c.even_odds_e_value)
+                                         : (a.score >= c.threshold ? 1.0 : 0.0);
     const std::vector<double> path = path_prefix(a, scores, c.gap);
-    for (const auto& r : align::row_posteriors(a, source, pc)) {
-      per_frame[r.row].push_back({real * r.posterior,
+    // Between the alignment's first and last pair the row is on it: where along it, given that (as the map's
+    // pairs). Past its ends, whether a chain extending it reaches the row at all is part of the answer.
+    align::PosteriorConfig wide = pc;
+    wide.tolerance = pc.band;
+    const std::vector<align::RowPosterior> rows = align::row_posteriors(a, source, pc);
+    const std::vector<align::RowPosterior> covered = align::row_posteriors(a, source, wide);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const auto& r = rows[k];
+      const bool inside = r.row >= a.pairs.front().first && r.row <= a.pairs.back().first;
+      const double posterior = inside && k < covered.size() && covered[k].row == r.row && covered[k].posterior > 0
+                                   ? std::min(1.0, r.posterior / covered[k].posterior)
+                                   : r.posterior;
+      per_frame[r.row].push_back({real * posterior,
                                   static_cast<float>(local_score(a, path, scores, r.row, c.score_window)), r.col,
                                   a.direction, rank});
     }

@@ -240,6 +240,20 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
     }
     facts.emplace_back("alignments removed as chance or shorter than a revisit",
                        std::to_string(result.insignificant.size()));
+    if (!d.low_information_frames.empty()) {
+      // Stretches, as a person reads them: first-last images of each run of masked frames.
+      std::string stretches;
+      const auto& f = d.low_information_frames;
+      for (std::size_t k = 0; k < f.size();) {
+        std::size_t e = k;
+        while (e + 1 < f.size() && f[e + 1] == f[e] + 1) ++e;
+        stretches +=
+            (stretches.empty() ? "" : ", ") + (e == k ? std::to_string(f[k]) : fmt::format("{}-{}", f[k], f[e]));
+        k = e + 1;
+      }
+      facts.emplace_back("images of little information (masked: no evidence of a revisit)",
+                         fmt::format("{}: {}", f.size(), stretches));
+    }
     html.key_values(facts);
     for (const auto& note : d.notes) html.paragraph(note);
     if (!result.insignificant.empty()) {

@@ -202,5 +202,42 @@ TEST(Calibration, APlantedRevisitIsFoundAtEveryFrameRateWithTheSameDefaults) {
   }
 }
 
+// The map's confidences are probabilities: on planted revisits of every strength, from clear to barely above
+// chance, and on sequences with none, the pairs reported at confidence c are right about c of the time (a pair is
+// right within 2 frames of its true partner, the tolerance the confidence is for).
+TEST(Calibration, TheMapsConfidencesAreRightAsOftenAsTheySay) {
+  std::vector<double> confidence;
+  std::vector<bool> right;
+  std::size_t null_pairs = 0;
+  for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+    const bool revisit = seed % 4 != 0;
+    simulator::DescriptorSequenceConfig config{.frames = 400, .dim = 32, .seed = 100 + seed};
+    if (revisit) config.revisits = {{.source = 40, .target = 260, .length = 60, .noise = 1.0 + 0.5 * (seed % 8)}};
+    const auto sequence = simulator::make_descriptor_sequence(config);
+    const auto s = pipeline::similarity_of_descriptors(sequence.descriptors, nullptr).similarity;
+    const auto r = mapping::build_map(s, mapping::MapConfig{});
+    for (const auto& p : r.pruning.pairs) {
+      confidence.push_back(p.confidence);
+      right.push_back(std::abs(sequence.position[p.i] - sequence.position[p.j]) <= 2.0);
+      null_pairs += revisit ? 0 : 1;
+    }
+  }
+  ASSERT_GT(confidence.size(), 300U) << "the revisits must be found";
+  EXPECT_EQ(null_pairs, 0U);
+  // Ten equal-width bins: the share of detections times |accuracy - mean confidence|.
+  std::vector<double> sum(10, 0.0), hits(10, 0.0), count(10, 0.0);
+  for (std::size_t k = 0; k < confidence.size(); ++k) {
+    const auto b = std::min<std::size_t>(9, static_cast<std::size_t>(confidence[k] * 10));
+    sum[b] += confidence[k], hits[b] += right[k] ? 1 : 0, count[b] += 1;
+  }
+  double ece = 0;
+  for (std::size_t b = 0; b < 10; ++b) {
+    if (count[b] > 0) ece += std::abs(hits[b] - sum[b]) / static_cast<double>(confidence.size());
+  }
+  EXPECT_LE(ece, 0.05);
+  ASSERT_GT(count[9], 0);
+  EXPECT_GE(hits[9] / count[9], 0.9);
+}
+
 }  // namespace
 }  // namespace seqtopo

@@ -31,10 +31,11 @@
 // gives each of its rows the map frame of highest posterior and the posterior within +-tolerance map frames of
 // it; past the alignment's ends the band follows the revisit the alignment's maximum stopped short of. The
 // frame's confidence that this map frame is right is
-//   confidence = exp(-E) * posterior,
-// exp(-E) being the probability that no chance alignment scores this well (Poisson), so the alignment is
-// real, and the posterior the probability that the revisit passes there, with lambda from the fit. Without a
-// fit (a search too small for one, or one with too few chance alignments) exp(-E) is replaced by 1 for
+//   confidence = P(revisit | E) * posterior,
+// P(revisit | E) = 1 / (1 + E / even_odds_e_value) the probability that the alignment is real
+// (significance::revisit_probability), and the posterior the probability that the revisit passes there (given
+// that the row is on the alignment, between its first and last pair), with lambda from the fit. Without a
+// fit (a search too small for one, or one with too few chance alignments) P(revisit | E) is replaced by 1 for
 // alignments scoring at least `threshold`, 0 below, and lambda is Karlin & Altschul's of the cells
 // (significance::ungapped_lambda). Among the
 // alignments whose band reaches a frame the most confident wins (then the higher local score, then the
@@ -76,7 +77,11 @@ struct LocalizeConfig {
   // a guess within +-tolerance of the truth, what the evaluation counts as right (seqtopo localize --tolerance).
   std::size_t tolerance = 2;
   double min_confidence = 0.5;  // a frame's guess below this confidence is "not in the map"
-  unsigned threads = 1;         // forward and reverse passes in parallel when > 1; result does not depend on it
+  // The E-value at which an alignment is as likely a revisit as chance (significance::revisit_probability): the
+  // map's cut (mapping::MapConfig::max_e_value), so a localization is as sure as the map would be of the same
+  // alignment.
+  double even_odds_e_value = 0.01;
+  unsigned threads = 1;  // forward and reverse passes in parallel when > 1; result does not depend on it
 };
 
 struct FrameMatch {

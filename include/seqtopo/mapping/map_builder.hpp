@@ -34,7 +34,7 @@ struct MapConfig {
   // elsewhere in the sequence, so frames that resemble much of it (dark tunnels, bare walls) stop standing out of
   // the ordinary frames around them. [places] (frames when place_units is false); 0: off. With contrast
   // enhancement only. Off by default: with low-information masking it adds little and costs Nordland summer +
-  // winter 26 of its 1,780 loop closures at 10 places (docs/significance.md, "Trust").
+  // winter 91 of its 1,780 loop closures at 10 places (docs/significance.md, "Trust").
   double hubness_neighbours = 0;
   // Cap on the cumulative score (paper IV-B). With significance (max_e_value set) and cap_from_statistics,
   // the cap is cap_factor times the score a significant alignment must reach, so the stretch of non-matching

@@ -1,0 +1,152 @@
+// MapConfig::mask_low_information: frames of little information (a tunnel's dark frames: alike one another,
+// whatever the place) carry no evidence of a revisit. Synthetic sequences of known truth: a route of textured
+// frames (AR(1) descriptors), dark stretches of nearly one descriptor each with a faint drifting light, with and
+// without a revisit around them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "seqtopo/mapping/map_builder.hpp"
+
+namespace seqtopo::mapping {
+namespace {
+
+constexpr std::size_t kDim = 32;
+
+using Descriptors = std::vector<std::vector<float>>;
+
+// `length` places of a route: smooth random descriptors (each the last one drifted), from `seed`.
+Descriptors route(std::size_t length, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> g(0.0F, 1.0F);
+  Descriptors out;
+  std::vector<float> x(kDim);
+  for (auto& v : x) v = g(rng);
+  for (std::size_t k = 0; k < length; ++k) {
+    for (auto& v : x) v = 0.6F * v + 0.8F * g(rng);
+    out.push_back(x);
+  }
+  return out;
+}
+
+// The same places seen again: each descriptor with noise.
+Descriptors seen_again(const Descriptors& places, unsigned seed, float noise) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> g(0.0F, noise);
+  Descriptors out = places;
+  for (auto& d : out) {
+    for (auto& v : d) v += g(rng);
+  }
+  return out;
+}
+
+// A dark stretch: nearly the same descriptor everywhere, a faint light drifting across two of its components.
+Descriptors dark(std::size_t length, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> g(0.0F, 0.05F);
+  Descriptors out;
+  for (std::size_t k = 0; k < length; ++k) {
+    std::vector<float> d(kDim, 0.0F);
+    d[0] = 3.0F;
+    d[1] = 0.3F * std::sin(0.3F * static_cast<float>(k));
+    d[2] = 0.3F * std::cos(0.2F * static_cast<float>(k));
+    for (auto& v : d) v += g(rng);
+    out.push_back(d);
+  }
+  return out;
+}
+
+SimilarityMatrix similarity(const Descriptors& d) {
+  const std::size_t n = d.size();
+  SimilarityMatrix s(n, n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      double dist = 0;
+      for (std::size_t k = 0; k < kDim; ++k) dist += std::abs(d[i][k] - d[j][k]);
+      s(i, j) = static_cast<float>(1.0 - dist / kDim);
+    }
+  }
+  return s;
+}
+
+void append(Descriptors& to, const Descriptors& from) { to.insert(to.end(), from.begin(), from.end()); }
+
+std::vector<std::size_t> range(std::size_t begin, std::size_t end) {
+  std::vector<std::size_t> out;
+  for (std::size_t k = begin; k < end; ++k) out.push_back(k);
+  return out;
+}
+
+// One pass, no revisit, with two dark stretches far apart: dark matched with dark is not a revisit.
+TEST(LowInformationMap, DarkStretchesOfOnePassAreNoRevisit) {
+  std::size_t with_mask = 0, without_mask = 0;
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    const Descriptors places = route(300, seed);
+    Descriptors pass(places.begin(), places.begin() + 100);
+    append(pass, dark(40, seed + 10));
+    pass.insert(pass.end(), places.begin() + 100, places.begin() + 200);
+    append(pass, dark(40, seed + 20));
+    pass.insert(pass.end(), places.begin() + 200, places.end());
+    std::vector<std::size_t> masked = range(100, 140);
+    for (std::size_t k : range(240, 280)) masked.push_back(k);
+    const SimilarityMatrix s = similarity(pass);
+    without_mask += build_map(std::vector<SimilarityMatrix>{s}, MapConfig{}).pruning.pairs.size();
+    const MapResult r = build_map(std::vector<SimilarityMatrix>{s}, MapConfig{}, {}, masked);
+    with_mask += r.pruning.pairs.size();
+    EXPECT_EQ(r.decisions.low_information_frames, masked);
+  }
+  EXPECT_GT(without_mask, 20U) << "the dark stretches must look like a revisit without the mask";
+  EXPECT_EQ(with_mask, 0U);
+}
+
+// A route driven twice through the same tunnel: the revisit on either side of it is one revisit, the tunnel's
+// own pairs lie on the line between the evidence around it, and the map keeps (nearly) every closure the same
+// route without a tunnel has.
+TEST(LowInformationMap, ARevisitThroughATunnelStaysOneRevisit) {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const Descriptors places = route(150, seed);
+    const Descriptors again = seen_again(places, seed + 100, 0.5F);
+    // Sequence: pass 1 (places 0-149, the tunnel at 60-89), 40 places elsewhere, pass 2 (the same).
+    const Descriptors elsewhere = route(40, seed + 200);
+    Descriptors clean = places, tunnel;
+    append(clean, elsewhere);
+    append(clean, again);
+    const std::size_t second = 190;
+    tunnel = clean;
+    const Descriptors dark1 = dark(30, seed + 300), dark2 = dark(30, seed + 400);
+    for (std::size_t k = 0; k < 30; ++k) tunnel[60 + k] = dark1[k], tunnel[second + 60 + k] = dark2[k];
+    std::vector<std::size_t> masked = range(60, 90);
+    for (std::size_t k : range(second + 60, second + 90)) masked.push_back(k);
+
+    const MapResult base = build_map(std::vector<SimilarityMatrix>{similarity(clean)}, MapConfig{});
+    const MapResult r = build_map(std::vector<SimilarityMatrix>{similarity(tunnel)}, MapConfig{}, {}, masked);
+    std::set<std::size_t> closed_base, closed;
+    for (const auto& p : base.pruning.pairs) {
+      if (p.i < second + 60 || p.i >= second + 90) closed_base.insert(p.i);
+    }
+    ASSERT_GT(closed_base.size(), 100U) << "the clean route must be mapped";
+    std::size_t kept = 0;
+    for (const auto& p : r.pruning.pairs) {
+      EXPECT_EQ(p.i, p.j + second) << "every closure on the revisit, inside the tunnel too (seed " << seed << ")";
+      closed.insert(p.i);
+    }
+    for (std::size_t i : closed_base) kept += closed.count(i);
+    EXPECT_GE(kept * 10, closed_base.size() * 9) << "seed " << seed;
+    // One alignment through the tunnel, not two on either side of it.
+    std::size_t spanning = 0;
+    for (const auto& a : r.alignments) spanning += a.a_begin < second + 60 && a.a_end > second + 90 ? 1 : 0;
+    EXPECT_GE(spanning, 1U) << "seed " << seed;
+  }
+}
+
+TEST(LowInformationMap, MaskedFramesOutOfRangeAreRefused) {
+  const SimilarityMatrix s = similarity(route(50, 1));
+  const std::vector<std::size_t> bad = {3, 50};
+  EXPECT_THROW(build_map(std::vector<SimilarityMatrix>{s}, MapConfig{}, {}, bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace seqtopo::mapping
