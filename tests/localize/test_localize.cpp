@@ -149,8 +149,9 @@ TEST(Localize, BridgesAShortBadStretch) {
 }
 
 TEST(Localize, EveryFrameTakesItsMostConfidentAlignmentsPosteriorGuessWithItsWindowedScore) {
-  // Reference: per frame, the best over the alignments of exp(-E) x the row posterior (align::row_posteriors
-  // called directly), and the local score of that alignment by brute force over its path.
+  // Reference: per frame, the best over the alignments of P(revisit | E) x the row posterior (align::row_posteriors
+  // called directly; between the alignment's first and last pair, over the row's posterior anywhere in the band),
+  // and the local score of that alignment by brute force over its path.
   std::mt19937 rng(6);
   std::uniform_real_distribution<float> u(-1.0F, 1.0F);
   for (int round = 0; round < 15; ++round) {
@@ -175,10 +176,22 @@ TEST(Localize, EveryFrameTakesItsMostConfidentAlignmentsPosteriorGuessWithItsWin
     std::vector<double> best(s.rows, -1.0);
     for (std::size_t k = 0; k < r.alignments.size(); ++k) {
       const double e = r.e_values[k];
-      const double real = std::isfinite(e) ? std::exp(-e) : (r.alignments[k].score >= c.threshold ? 1.0 : 0.0);
-      for (const auto& row : align::row_posteriors(
-               r.alignments[k], align::ScoreSource::dense(scores.values, scores.rows, scores.cols), pc))
-        best[row.row] = std::max(best[row.row], real * row.posterior);
+      const double real =
+          std::isfinite(e) ? 1.0 / (1.0 + e / c.even_odds_e_value) : (r.alignments[k].score >= c.threshold ? 1.0 : 0.0);
+      const auto source = align::ScoreSource::dense(scores.values, scores.rows, scores.cols);
+      align::PosteriorConfig wide = pc;
+      wide.tolerance = pc.band;
+      const auto& a = r.alignments[k];
+      for (const auto& row : align::row_posteriors(a, source, pc)) {
+        double posterior = row.posterior;
+        if (row.row >= a.pairs.front().first && row.row <= a.pairs.back().first) {
+          // Anywhere in the band: the same row of the wide decoding.
+          for (const auto& w : align::row_posteriors(a, source, wide)) {
+            if (w.row == row.row && w.posterior > 0) posterior = std::min(1.0, row.posterior / w.posterior);
+          }
+        }
+        best[row.row] = std::max(best[row.row], real * posterior);
+      }
     }
     for (std::size_t q = 0; q < s.rows; ++q) {
       const auto& f = r.frames[q];

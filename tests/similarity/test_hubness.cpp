@@ -1,13 +1,13 @@
 // similarity/hubness.hpp against a direct computation: r(i) the mean of row i's k highest values at least
 // min_separation away, and S'(i, j) = S(i, j) - (r(i) + r(j)) / 2.
-#include "seqtopo/similarity/hubness.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <functional>
 #include <random>
 #include <stdexcept>
+
+#include "seqtopo/similarity/hubness.hpp"
 
 namespace seqtopo::similarity {
 namespace {
