@@ -417,8 +417,9 @@ pipeline::LocalizeRun localize_sequences(const std::filesystem::path& map, const
   request.settings.similarity.threads = threads;
   request.settings.localize = config;
   request.online = online;
-  std::optional<pipeline::LocalizationTruthSource> source;
-  if (!ground_truth.empty()) source = pipeline::read_localization_truth(ground_truth);
+  std::optional<pipeline::GroundTruthFile> source;
+  constexpr std::string_view keywords[] = {"same-index"};
+  if (!ground_truth.empty()) source = pipeline::read_ground_truth(ground_truth, keywords, std::nullopt);
   const py::gil_scoped_release release;
   pipeline::LocalizeRun run = pipeline::localize_sequences(request);
   if (source) {

@@ -35,8 +35,10 @@ struct LocalizeOptions {
   std::string map_path, query_path, out_dir = "seqtopo-out", input_kind = "auto", descriptor = "patch", metric;
   std::optional<float> kappa;
   bool kappa_auto = false;
-  std::string gt;
-  std::size_t tolerance = 2, every = 1, window = 10, score_window = 10;
+  std::string gt, gt_map_poses;
+  std::optional<double> gt_radius;
+  std::optional<std::size_t> tolerance;  // default by the ground truth's format (ground_truth.hpp)
+  std::size_t every = 1, window = 10, score_window = 10;
   float gap = 2.0F, threshold = 10.0F, offset = 0.75F;
   double min_confidence = localize::LocalizeConfig{}.min_confidence;
   std::optional<float> cap;
@@ -73,7 +75,7 @@ std::optional<fs::path> similarity_file(const LocalizeOptions& o, pipeline::Inpu
   return fs::path(map_s ? o.map_path : o.query_path);
 }
 
-localize::LocalizeConfig localize_config(const LocalizeOptions& o) {
+localize::LocalizeConfig localize_config(const LocalizeOptions& o, std::size_t tolerance) {
   localize::LocalizeConfig c;
   c.gap = o.gap;
   c.cap = o.cap;
@@ -81,7 +83,7 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o) {
   c.contrast_offset = o.offset;
   c.contrast_window = o.window;
   c.score_window = o.score_window;
-  c.tolerance = o.tolerance;  // the confidence is the probability of a match the evaluation counts as right
+  c.tolerance = tolerance;  // the confidence is the probability of a match the evaluation counts as right
   c.min_confidence = o.min_confidence;
   c.reverse = !o.no_reverse;
   c.threads = std::min(2U, resolve_threads(o.threads));
@@ -104,8 +106,28 @@ void run(LocalizeOptions o) {
   if (o.map_path.empty() && o.query_path.empty()) throw InputError("--map", "give --map and --query");
   const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
   if (o.every == 0) throw InputError("--every", "must be at least 1");
+  // Ground truth is read before the work, so a bad file fails fast.
+  std::optional<pipeline::GroundTruthFile> truth_source, map_poses;
+  constexpr std::string_view keywords[] = {"same-index"};
+  if (!o.gt.empty()) truth_source = pipeline::read_ground_truth(o.gt, keywords, o.gt_radius);
+  if (!o.gt_map_poses.empty()) {
+    map_poses = pipeline::read_ground_truth(o.gt_map_poses, {}, o.gt_radius, "--gt-map-poses");
+    if (!truth_source || truth_source->format != pipeline::GroundTruthFormat::poses) {
+      throw InputError("--gt-map-poses", "is the map frames' poses of a poses --ground-truth (the query frames')");
+    }
+    if (map_poses->format != pipeline::GroundTruthFormat::poses) {
+      throw InputError(o.gt_map_poses, "is not a poses file (index,x,y CSV, TUM or KITTI)");
+    }
+  }
+  if (truth_source && truth_source->format == pipeline::GroundTruthFormat::poses && !map_poses) {
+    throw InputError("--gt-map-poses",
+                     "needed with a poses ground truth: the map frames' poses (the "
+                     "--ground-truth file has the query frames')");
+  }
+  const std::size_t tolerance =
+      o.tolerance.value_or(truth_source ? pipeline::default_localization_tolerance(*truth_source) : 2);
   pipeline::LocalizeRequest request;
-  request.settings.localize = localize_config(o);
+  request.settings.localize = localize_config(o, tolerance);
   request.online = o.online;
   const bool have_matrix = [&] {
     for (const auto* p : {&o.map_path, &o.query_path}) {
@@ -135,11 +157,10 @@ void run(LocalizeOptions o) {
     }
   }
   if (!request.similarity_file || !o.online) request.settings.similarity = similarity_config(o);
-  // Ground truth is read before the work, so a bad file fails fast.
-  std::optional<pipeline::LocalizationTruthSource> truth_source;
-  if (!o.gt.empty()) truth_source = pipeline::read_localization_truth(o.gt);
   // Checked (and staged beside) before the work: an output folder that cannot be replaced costs no time.
-  io::OutputDirectory out(o.out_dir, {.inputs = {o.map_path, o.query_path, o.gt}, .command = "seqtopo localize"});
+  std::vector<fs::path> inputs{o.map_path, o.query_path, o.gt_map_poses};
+  if (truth_source && truth_source->format != pipeline::GroundTruthFormat::same_index) inputs.emplace_back(o.gt);
+  io::OutputDirectory out(o.out_dir, {.inputs = inputs, .command = "seqtopo localize"});
 
   Progress progress("seqtopo localize");
   progress.plan({"localization", "accuracy and baselines", "files and figures", "report"});
@@ -168,8 +189,11 @@ void run(LocalizeOptions o) {
   // The ground truth must fit the sizes before anything is written.
   progress.begin("accuracy and baselines");
   std::optional<evaluation::LocalizationTruth> truth;
-  if (truth_source) truth = pipeline::localization_truth(*truth_source, r.queries, r.maps);
-  if (truth) pipeline::evaluate_localization_run(r, *truth, o.tolerance, resolve_threads(o.threads));
+  if (truth_source) {
+    truth =
+        pipeline::localization_truth(*truth_source, r.queries, r.maps, map_poses ? &*map_poses : nullptr, o.gt_radius);
+  }
+  if (truth) pipeline::evaluate_localization_run(r, *truth, tolerance, resolve_threads(o.threads));
   const double accuracy_seconds = progress.end();
   // The report's timings: the command's setup, the localization's own parts and the rest of its stage.
   double parts = 0;
@@ -191,7 +215,7 @@ void run(LocalizeOptions o) {
                                  r.queries, r.maps, not_in_map, r.seconds);
   if (r.metrics) {
     line += fmt::format("; recall@1 {:.3f}, AUC {:.3f}, R@100P {:.3f} (+-{} frames)", r.metrics->recall_at_1,
-                        r.metrics->auc, r.metrics->recall_at_100_precision, o.tolerance);
+                        r.metrics->auc, r.metrics->recall_at_100_precision, tolerance);
   }
   if (o.online) {
     std::vector<double> waits = r.waits;
@@ -246,12 +270,18 @@ const RegisterCommand registered{
        add_number(app, "--score-window", o->score_window, kNonNegative,
                   "per-frame score: +-W query frames of the alignment");
        app.add_flag("--no-reverse", o->no_reverse, "do not search the map driven backwards");
-       app.add_option("--gt", o->gt,
-                      "ground truth: same-index (query k is map k) or a CSV file of query,map pairs; "
-                      "also scores the single-frame and SeqSLAM baselines on the same matrix");
+       app.add_option("--ground-truth,--gt", o->gt,
+                      "ground truth: same-index (query k is map k), a query x map image or .npy matrix, a pairs CSV "
+                      "(query,map), VPR-Bench's ground_truth_new.npy, or the query frames' poses (index,x,y CSV, "
+                      "TUM, KITTI) with --gt-map-poses and --gt-radius (INTERFACE.md); also scores the single-frame "
+                      "and SeqSLAM baselines on the same matrix");
+       app.add_option("--gt-map-poses", o->gt_map_poses, "the map frames' poses, with a poses --ground-truth");
+       add_number(app, "--gt-radius", o->gt_radius, kPositive,
+                  "same place when closer than this [m] (poses ground truth)");
        add_number(app, "--tolerance", o->tolerance, kNonNegative,
-                  "a match within +-T map frames of the truth is correct; the confidence is the probability of "
-                  "such a match");
+                  "a match within +-T map frames of a true one is correct (default 2 with same-index, 0 with a "
+                  "file, which lists the true frames themselves); the confidence is the probability of such a "
+                  "match");
        app.add_flag("--online", o->online, "take query frames one at a time; print the best map frame after each");
        add_number(app, "--threads", o->threads, kThreads,
                   "worker threads (0 = all cores; more than the cores are not used)");

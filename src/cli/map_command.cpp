@@ -2,6 +2,7 @@
 // pruning -> labels -> topological map -> metric picture -> figures, metrics and report.
 #include <fmt/format.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"
+#include "seqtopo/io/npy.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 #include "seqtopo/outputs/report_options.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
@@ -58,6 +60,8 @@ struct MapOptions {
   std::string config_file;
   bool online = false, no_offline_outputs = false, no_candidates = false;
   std::optional<double> candidate_e_value;
+  std::string save_matrices = "auto";
+  std::string images;  // the images of a descriptors.npy / similarity.npy input, for the report
 };
 
 using Settings = pipeline::MapSettings;
@@ -138,6 +142,21 @@ Settings resolve_settings(const MapOptions& o) {
   return s;
 }
 
+// An N x N ground truth: an image, or a numeric .npy (VPR-Bench's object arrays are lists).
+bool is_same_place_matrix(const std::string& file) {
+  std::string ext = fs::path(file).extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".npy") {
+    try {
+      io::read_npy_header(file);
+      return true;
+    } catch (const std::exception&) {
+      return false;  // not a numeric matrix (objects), or unreadable: the reader says which
+    }
+  }
+  return ext != ".csv" && ext != ".txt" && ext != ".tum" && ext != ".kitti" && !ext.empty();
+}
+
 // --streaming aligns contrast-enhanced cosine scores of one vector descriptor per image, computed on the
 // fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
 void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind kind) {
@@ -183,14 +202,10 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
                        "needs patch or panorama (compared by cosine)");
     }
   }
-  if (!o.ground_truth.empty()) {
-    if (fs::path(o.ground_truth).extension() != ".csv") {
-      throw InputError("--ground-truth",
-                       "an N x N image (N^2 bytes, 10 GB at 10^5 images) is refused with "
-                       "--streaming; give poses.csv with --gt-radius");
-    }
-    if (!o.gt_radius || !(*o.gt_radius > 0))
-      throw InputError("--gt-radius", "needed (> 0) with a poses.csv ground truth");
+  if (!o.ground_truth.empty() && is_same_place_matrix(o.ground_truth)) {
+    throw InputError("--ground-truth",
+                     "an N x N image or matrix (N^2 bytes, 10 GB at 10^5 images) is refused with --streaming; give "
+                     "pairs (query,map CSV), VPR-Bench .npy, or poses with --gt-radius");
   }
 }
 
@@ -225,6 +240,8 @@ std::vector<std::string> ignored_online(const MapOptions& o) {
   check(!o.sequence.image_topic.empty(), "--image-topic");
   check(o.sequence.recursive, "--recursive");
   check(o.sequence.skip_unreadable, "--skip-unreadable");
+  check(o.save_matrices != "auto", "--save-matrices");
+  check(!o.images.empty(), "--images");
   return given;
 }
 
@@ -243,6 +260,12 @@ void run(MapOptions o) {
                     o.e_value,         o.no_e_value, o.candidate_e_value,   o.no_candidates});
     return;
   }
+  const auto matrices = option_value("--save-matrices", [&]() -> std::optional<bool> {
+    if (o.save_matrices == "auto") return std::nullopt;
+    if (o.save_matrices == "yes") return true;
+    if (o.save_matrices == "no") return false;
+    throw std::invalid_argument("expected auto, yes or no, got '" + o.save_matrices + "'");
+  });
   Progress progress("seqtopo map");
   // Everything the user gave is checked before the long computation starts (and before any progress
   // output), so a mistake costs one line and no time.
@@ -293,6 +316,7 @@ void run(MapOptions o) {
     request.sessions.clear();
   }
   request.truth = {o.ground_truth, o.gt_radius, o.gt_places, o.gt_poses};
+  request.report_images = o.images;
   request.streaming = o.streaming;
   request.choose_engine = !o.engine && !o.streaming;
   request.sparse = o.sparse;
@@ -324,7 +348,14 @@ void run(MapOptions o) {
   // The pairs are known now: outputs that would not fit are refused before any is written.
   pipeline::check_outputs_memory(run, similarity::available_memory_bytes(), o.out);
   progress.begin("files and figures");
-  outputs::write_map_outputs(run, out);
+  const std::size_t images = run.result.map.labels.size();
+  if (!run.streaming && !matrices && !outputs::writes_matrices(images, matrices)) {
+    progress.line(fmt::format(
+        "similarity.npy and scores.npy not written: {} images, 2 x {:.0f} MB (written up to {} "
+        "images; --save-matrices yes writes them)",
+        images, 4e-6 * static_cast<double>(images) * static_cast<double>(images), outputs::kMaxAutoMatrixImages));
+  }
+  outputs::write_map_outputs(run, out, {.matrices = matrices});
   run.timings.emplace_back("files and figures", progress.end());
   progress.begin("report");
   // The report's timings add up to the wall time up to its own writing (the rest is the final rename).
@@ -453,9 +484,19 @@ const RegisterCommand registered{
                   "keep one frame per this many metres of odometry travelled (needs odometry) [m]");
        add_sequence_options(app, o->sequence);
        add_online_options(app, o->online, o->no_offline_outputs, o->candidate_e_value, o->no_candidates);
-       app.add_option("--ground-truth", o->ground_truth, "N x N same-place image, or poses.csv with --gt-radius");
+       app.add_option("--images", o->images,
+                      "with a descriptors.npy or similarity.npy INPUT: the folder of its images, one per row (thinned "
+                      "by --every alike), shown in the report");
+       app.add_option("--save-matrices", o->save_matrices,
+                      fmt::format("write similarity.npy and scores.npy (N x N float32 each): auto (up to {} images, "
+                                  "said on stderr when skipped), yes or no",
+                                  outputs::kMaxAutoMatrixImages))
+           ->capture_default_str();
+       app.add_option("--ground-truth,--gt", o->ground_truth,
+                      "same-place ground truth: an N x N image or .npy matrix, a pairs CSV (query,map), VPR-Bench's "
+                      "ground_truth_new.npy, or poses (index,x,y CSV, TUM, KITTI) with --gt-radius (INTERFACE.md)");
        add_number(app, "--gt-radius", o->gt_radius, kPositive,
-                  "same place when closer than this [m] (poses.csv ground truth)");
+                  "same place when closer than this [m] (poses ground truth)");
        app.add_option("--gt-places", o->gt_places, "places.csv (index,place) for topological scores");
        app.add_option("--gt-poses", o->gt_poses,
                       "poses.csv (index,x,y[,theta]) for the metric error (with --odometry)");

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <sys/ioctl.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -44,22 +45,32 @@ std::string rate_text(double per_second) {
   return fmt::format("{:.2g}/s", per_second);
 }
 
-// How long this process has run [s] (start-up and loading of its libraries included), from /proc; 0 where
-// that cannot be read.
-double process_age() {
-  std::ifstream stat("/proc/self/stat"), uptime("/proc/uptime");
-  std::string text;
-  double up = 0;
-  if (!std::getline(stat, text) || !(uptime >> up)) return 0;
-  // Field 22 (starttime, clock ticks after boot) counts from the one after the command name's closing ')'.
-  std::istringstream fields(text.substr(text.rfind(')') + 2));
-  std::string field;
-  for (int k = 3; k <= 22 && fields >> field; ++k) {
-  }
-  const long ticks = sysconf(_SC_CLK_TCK);
-  const double started = ticks > 0 ? std::atof(field.c_str()) / static_cast<double>(ticks) : up;
-  return std::max(0.0, up - started);
+// The run's clock starts at the launcher's main (src/launcher/main.cpp hands its CLOCK_BOOTTIME over in
+// SEQTOPO_STARTED_NS), else when this program is loaded: never at the process's start, which is the start of
+// whatever exec'd it (scripts/run.sh builds seqtopo, then execs it: that build is not seqtopo's start-up).
+double boottime_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_BOOTTIME, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
+
+double start_seconds() {
+  const double now = boottime_seconds();
+  double start = now;
+  if (const char* handed = std::getenv("SEQTOPO_STARTED_NS")) {
+    char* end = nullptr;
+    const unsigned long long ns = std::strtoull(handed, &end, 10);
+    const double at = 1e-9 * static_cast<double>(ns);
+    if (end != handed && *end == '\0' && at <= now) start = at;
+    ::unsetenv("SEQTOPO_STARTED_NS");  // not inherited by the programs seqtopo starts
+  }
+  return start;
+}
+
+const double kStartSeconds = start_seconds();  // at load, before main
+
+// How long this run has taken [s], from its start above.
+double process_age() { return std::max(0.0, boottime_seconds() - kStartSeconds); }
 
 }  // namespace
 
@@ -228,27 +239,54 @@ void Progress::clear_bar_locked() {
 void Progress::draw_bar_locked() {
   if (paused_ || !running_) return;
   const int columns = terminal_columns();
-  std::string text = command_ + ": " + stage_label_locked() + " ";
+  const double seconds = std::chrono::duration<double>(Clock::now() - stage_start_).count();
+  std::string text;
   if (total_ > 0 && done_ > 0) {
-    constexpr int kWidth = 24;
     const double fraction = std::min(1.0, static_cast<double>(done_) / static_cast<double>(total_));
-    const int filled = static_cast<int>(fraction * kWidth);
-    std::string bar(static_cast<std::size_t>(kWidth), ' ');
-    for (int k = 0; k < filled; ++k) bar[static_cast<std::size_t>(k)] = '=';
-    if (filled < kWidth) bar[static_cast<std::size_t>(filled)] = '>';
-    text += "[" + bar + "] ";
+    const double rate = seconds > 0 ? static_cast<double>(done_) / seconds : 0;
+    const double eta = rate > 0 ? static_cast<double>(total_ - std::min(done_, total_)) / rate : 0;
+    text = fit_bar(
+        {command_, stage_label_locked(), fraction, done_, total_, unit_, rate_text(rate), duration_text(eta), seconds},
+        columns);
   } else {
     // no counts: a spinner shows that the stage is alive
     static constexpr char kSpin[] = {'|', '/', '-', '\\'};
     const auto ticks = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - stage_start_).count() /
                        kBarInterval.count();
-    text += std::string(1, kSpin[ticks % 4]) + " ";
+    text = command_ + ": " + stage_label_locked() + " " + std::string(1, kSpin[ticks % 4]) + " " + status_locked(true);
+    if (static_cast<int>(text.size()) >= columns) text.resize(static_cast<std::size_t>(std::max(1, columns - 1)));
   }
-  text += status_locked(true);
-  if (static_cast<int>(text.size()) >= columns) text.resize(static_cast<std::size_t>(columns - 1));
   out_ << "\r\x1b[2K" << text << std::flush;
   bar_shown_ = true;
   last_output_ = Clock::now();
+}
+
+std::string fit_bar(const BarParts& p, int columns) {
+  const auto bar = [&](int width) {
+    const int filled = static_cast<int>(p.fraction * width);
+    std::string b(static_cast<std::size_t>(width), ' ');
+    for (int k = 0; k < filled; ++k) b[static_cast<std::size_t>(k)] = '=';
+    if (filled < width) b[static_cast<std::size_t>(filled)] = '>';
+    return "[" + b + "] ";
+  };
+  const std::string head = p.command + ": " + p.label + " ";
+  const std::string percent = fmt::format("{:.0f}%", 100 * p.fraction), eta = "ETA " + p.eta;
+  const std::string counts = fmt::format("{}/{}", p.done, p.total);
+  // From the fullest to the barest; the first that fits is drawn. The percentage and the ETA stay to the last.
+  const std::string candidates[] = {
+      head + bar(24) + fmt::format("{:>4}  {} {}  {}  {}  ({:.0f} s)", percent, counts, p.unit, p.rate, eta, p.seconds),
+      head + bar(24) + fmt::format("{:>4}  {}  {}  {}", percent, counts, p.rate, eta),
+      head + bar(16) + fmt::format("{:>4}  {}  {}", percent, p.rate, eta),
+      head + bar(10) + fmt::format("{:>4}  {}", percent, eta),
+      head + percent + "  " + eta,
+      p.command + ": " + percent + "  " + eta,
+  };
+  for (const auto& c : candidates) {
+    if (static_cast<int>(c.size()) < columns) return c;
+  }
+  std::string last = candidates[std::size(candidates) - 1];
+  last.resize(static_cast<std::size_t>(std::max(1, columns - 1)));
+  return last;
 }
 
 void Progress::print_locked(const std::string& text) {

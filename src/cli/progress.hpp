@@ -25,6 +25,18 @@ namespace seqtopo::cli {
 
 enum class ProgressStyle { bar, lines, none };
 
+// The bar of a stage that counts its work, fitted to `columns` (the terminal's width, 80 on most): the fullest
+// form that fits (bar, percentage, counts and unit, rate, ETA, seconds so far), then shorter ones that drop the
+// counts, the rate and the bar's width, so that the percentage and the ETA are always shown.
+struct BarParts {
+  std::string command, label;
+  double fraction = 0;
+  std::size_t done = 0, total = 0;
+  std::string unit, rate, eta;
+  double seconds = 0;
+};
+std::string fit_bar(const BarParts& parts, int columns);
+
 // SEQTOPO_PROGRESS when set, else bar when stderr is a terminal, else lines.
 ProgressStyle progress_style();
 
@@ -54,7 +66,7 @@ class Progress {
   void on_event(const pipeline::StageEvent& event);
   pipeline::StageObserver observer();
 
-  // Seconds since the process started (its start-up included, where /proc tells it).
+  // Seconds since the run started: the launcher's main (its start-up included), else this program's loading.
   double elapsed() const;
   ProgressStyle style() const { return style_; }
   // Stops drawing the bar until pause_bar(false) (while another output shares the terminal); lines still print.

@@ -141,4 +141,32 @@ LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, 
   return m;
 }
 
+LoopClosureErrors loop_closure_errors(const std::vector<ScoredPair>& pairs, const std::vector<bool>& has_partner,
+                                      const SamePlace& same_place, std::size_t min_separation,
+                                      std::size_t max_partners) {
+  LoopClosureErrors e;
+  std::vector<bool> true_positive(has_partner.size(), false);
+  for (const auto& d : best_pair_per_image(pairs)) {
+    if (same_place(d.i, d.j)) {
+      if (d.i < true_positive.size()) true_positive[d.i] = true;
+    } else {
+      e.false_positives.push_back(d);
+    }
+  }
+  for (std::size_t i = 0; i < has_partner.size(); ++i) {
+    if (!has_partner[i] || true_positive[i]) continue;
+    MissedRevisit m{i, i};
+    if (e.missed.size() < max_partners) {
+      for (std::size_t j = i - std::min(i, min_separation) + 1; j-- > 0;) {
+        if (i - j >= min_separation && same_place(i, j)) {
+          m.partner = j;
+          break;
+        }
+      }
+    }
+    e.missed.push_back(m);
+  }
+  return e;
+}
+
 }  // namespace seqtopo::evaluation

@@ -1,8 +1,11 @@
 #include "seqtopo/formats/pose_files.hpp"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
@@ -224,6 +227,27 @@ PoseFile read_pose_file(const fs::path& path) {
                          std::to_string(fields.size()) + " fields");
   }
   return file;
+}
+
+std::string tum_text(std::span<const Pose2> poses, std::span<const double> times) {
+  if (times.size() != poses.size()) throw std::invalid_argument("tum_text: one time per pose expected");
+  std::string text = "# timestamp tx ty tz qx qy qz qw\n";
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const auto& p = poses[k];
+    text += fmt::format("{:.9g} {:.9g} {:.9g} 0 0 0 {:.9g} {:.9g}\n", times[k], p.x, p.y, std::sin(p.theta / 2),
+                        std::cos(p.theta / 2));
+  }
+  return text;
+}
+
+std::string kitti_text(std::span<const Pose2> poses) {
+  // Planar (x, y, theta) is the camera's (tz, -tx) and a turn of -theta about its y axis (down).
+  std::string text;
+  for (const auto& p : poses) {
+    const double c = std::cos(p.theta), s = std::sin(p.theta);
+    text += fmt::format("{:.9g} 0 {:.9g} {:.9g} 0 1 0 0 {:.9g} 0 {:.9g} {:.9g}\n", c, 0.0 - s, 0.0 - p.y, s, c, p.x);
+  }
+  return text;
 }
 
 }  // namespace seqtopo::formats

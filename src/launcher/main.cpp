@@ -9,6 +9,7 @@
 // pages 36,000 and 2.7 s (BENCHMARK.md). A GLIBC_TUNABLES that already names glibc.malloc.hugetlb (=0 turns this off)
 // is left as it is, and so is the environment of `--online`, whose frames should not wait for the kernel to compact
 // memory into huge pages.
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -54,6 +55,13 @@ fs::path own_folder(const char* argv0) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The run's clock starts here (cli/progress.cpp), not at the process's start: a script that builds seqtopo and
+  // then execs it started this process long before.
+  timespec now{};
+  clock_gettime(CLOCK_BOOTTIME, &now);
+  const std::string started = std::to_string(static_cast<unsigned long long>(now.tv_sec) * 1000000000ULL +
+                                             static_cast<unsigned long long>(now.tv_nsec));
+  ::setenv("SEQTOPO_STARTED_NS", started.c_str(), 1);
   const fs::path folder = own_folder(argc > 0 ? argv[0] : nullptr);
   fs::path program;
   for (const fs::path& candidate : {folder / "seqtopo-main", folder / ".." / "libexec" / "seqtopo" / "seqtopo-main"}) {

@@ -35,6 +35,12 @@ plot::MatrixFigureConfig map_similarity_figure(const pipeline::MapRun& run, std:
   }
   c.legend = {{"alignment, pruned", {40, 110, 255}, plot::LegendEntry::Mark::line},
               {"retained loop closures", {255, 30, 30}, plot::LegendEntry::Mark::line}};
+  if (run.errors) {
+    c.legend.push_back({fmt::format("false positive ({})", run.errors->false_positives.size()), kFalsePositiveColour,
+                        plot::LegendEntry::Mark::hollow_square});
+    c.legend.push_back({fmt::format("missed revisit ({})", run.errors->missed.size()), kMissedColour,
+                        plot::LegendEntry::Mark::hollow_square});
+  }
   return c;
 }
 

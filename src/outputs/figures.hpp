@@ -26,6 +26,9 @@ class DrawnMatrix {
   std::size_t block_ = 1;
 };
 
+// The marks of the map's errors against the ground truth, in similarity.png and the report.
+inline constexpr std::array<std::uint8_t, 3> kFalsePositiveColour{255, 0, 255}, kMissedColour{255, 200, 0};
+
 // similarity.png of `seqtopo map` drawn from cells of `block` x `block` scores: what was aligned, its axes, the
 // colour bar's meaning, the overlays' legend.
 plot::MatrixFigureConfig map_similarity_figure(const pipeline::MapRun& run, std::size_t block);

@@ -13,6 +13,7 @@
 #include "report_data.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/map_json.hpp"
+#include "seqtopo/formats/pose_files.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
@@ -163,6 +164,32 @@ std::vector<plot::Polyline> alignment_overlays(const pipeline::MapRun& run, std:
   return lines;
 }
 
+// With ground truth, where the map is wrong, over the alignments: a hollow square around each false positive
+// (magenta) and each missed revisit at its nearest true pair (yellow), a few cells wide so that one stands out on a
+// large matrix.
+std::vector<plot::Polyline> error_overlays(const pipeline::MapRun& run, std::size_t block) {
+  std::vector<plot::Polyline> marks;
+  if (!run.errors) return marks;
+  const double n = static_cast<double>(run.result.map.labels.size());
+  const double half = std::max(1.5, n / 120.0);
+  const auto square = [&](std::size_t i, std::size_t j, std::array<std::uint8_t, 3> rgb) {
+    plot::Polyline line;
+    line.rgb = rgb;
+    line.thickness = 2;
+    const double r = static_cast<double>(i) + 0.5, c = static_cast<double>(j) + 0.5;
+    for (auto [dr, dc] : {std::pair{-1, -1}, std::pair{-1, 1}, std::pair{1, 1}, std::pair{1, -1}, std::pair{-1, -1}}) {
+      line.points.emplace_back(plot::overview_coordinate(r + dr * half, block),
+                               plot::overview_coordinate(c + dc * half, block));
+    }
+    marks.push_back(std::move(line));
+  };
+  for (const auto& m : run.errors->missed) {
+    if (m.partner != m.i) square(m.i, m.partner, kMissedColour);
+  }
+  for (const auto& p : run.errors->false_positives) square(p.i, p.j, kFalsePositiveColour);
+  return marks;
+}
+
 // The PNG figures of a run: pure computation on the run, so they may be encoded beside the file writes.
 struct MapFigures {
   std::string similarity, metric_map, pr_curve;  // empty: not drawn
@@ -174,8 +201,11 @@ MapFigures encode_map_figures(const pipeline::MapRun& run) {
   {
     // The picture shows what was aligned: S itself, or its contrast-enhanced form (see the report).
     const DrawnMatrix drawn(run);
-    f.similarity = plot::encode_png(plot::matrix_figure(drawn.cells(), alignment_overlays(run, drawn.block()),
-                                                        map_similarity_figure(run, drawn.block())));
+    auto overlays = alignment_overlays(run, drawn.block());
+    const auto errors = error_overlays(run, drawn.block());
+    overlays.insert(overlays.end(), errors.begin(), errors.end());
+    f.similarity =
+        plot::encode_png(plot::matrix_figure(drawn.cells(), overlays, map_similarity_figure(run, drawn.block())));
   }
   if (!run.odometry.empty()) {
     std::vector<std::pair<std::size_t, std::size_t>> loops;
@@ -205,7 +235,11 @@ MapFigures encode_map_figures(const pipeline::MapRun& run) {
 
 }  // namespace
 
-void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
+bool writes_matrices(std::size_t images, std::optional<bool> asked) {
+  return asked.value_or(images <= kMaxAutoMatrixImages);
+}
+
+void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out, const MapOutputOptions& options) {
   const auto& result = run.result;
   const auto& map = result.map;
   // The figures (PNG encoding of a large matrix is a good part of this stage) are drawn on a second thread while
@@ -216,7 +250,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
   out.write("map.json", formats::map_json(result, run.sessions));
   out.write("alignments.json", formats::alignments_json(result));
   out.write("loop_closures.csv", formats::loop_closures_csv(result));
-  if (!run.streaming) {
+  if (!run.streaming && writes_matrices(map.labels.size(), options.matrices)) {
     out.write_pieces("similarity.npy", {io::npy_header(run.matrices.front()), io::npy_body(run.matrices.front())});
     out.write_pieces("scores.npy", {io::npy_header(result.scores), io::npy_body(result.scores)});
   }
@@ -227,6 +261,16 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out) {
     render_svg(out.staged("topology.dot"), out.staged("topology.svg"), topology.nodes);
   } else {
     out.write("topology.svg", unlaid_topology_svg(map, topology.nodes));
+  }
+
+  // The corrected trajectory for a SLAM back end or evo: the pose graph's (the EKF's with the paper preset), one
+  // pose per image; TUM's time is the image index.
+  if (!run.odometry.empty()) {
+    const auto& corrected = run.paper_trajectory ? run.ekf : run.pose_graph;
+    std::vector<double> times(corrected.size());
+    for (std::size_t k = 0; k < times.size(); ++k) times[k] = static_cast<double>(k);
+    out.write("trajectory_tum.txt", formats::tum_text(corrected, times));
+    out.write("trajectory_kitti.txt", formats::kitti_text(corrected));
   }
 
   const MapFigures f = figures.get();

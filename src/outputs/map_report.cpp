@@ -159,6 +159,94 @@ nlohmann::json topology_json(const mapping::TopologicalMap& map) {
           {"junctions", std::move(junctions)}};
 }
 
+// The thumbnails of several sessions, one after the other in the run's image order.
+nlohmann::json sessions_json(const pipeline::MapRun& run, const std::vector<std::size_t>& wanted) {
+  nlohmann::json names = nlohmann::json::array(), thumbs = nlohmann::json::array();
+  std::string note;
+  int side = 0;
+  for (std::size_t k = 0; k < run.sessions.size(); ++k) {
+    const auto& session = run.sessions[k];
+    std::vector<std::size_t> local;
+    for (auto w : wanted) {
+      if (w >= session.begin && w < session.end) local.push_back(w - session.begin);
+    }
+    const auto part = detail::sequence_json(run.session_inputs[k], session.end - session.begin, local, "image");
+    for (const auto& name : part["names"])
+      names.push_back(fmt::format("session {}: {}", k + 1, name.get<std::string>()));
+    for (const auto& t : part["thumbnails"]) thumbs.push_back(t);
+    if (!part["note"].get<std::string>().empty())
+      note += (note.empty() ? "" : "; ") + fmt::format("session {}: {}", k + 1, part["note"].get<std::string>());
+    side = part["thumbnail_side"].get<int>();
+  }
+  return {{"count", names.size()},           {"noun", "image"}, {"names", std::move(names)},
+          {"thumbnails", std::move(thumbs)}, {"note", note},    {"thumbnail_side", side}};
+}
+
+// {"false_positives": [[i, j, score]], "missed": [[i, partner]]}: the matrix view marks them.
+nlohmann::json errors_json(const evaluation::LoopClosureErrors& e) {
+  nlohmann::json fp = nlohmann::json::array(), missed = nlohmann::json::array();
+  for (const auto& p : e.false_positives) fp.push_back({p.i, p.j, p.score});
+  for (const auto& m : e.missed) {
+    if (m.partner != m.i) missed.push_back({m.i, m.partner});
+  }
+  return {{"false_positives", std::move(fp)}, {"missed", std::move(missed)}};
+}
+
+// The errors listed with the two images of each (when the sequence has images): what the user looks at first.
+void errors_section(report::HtmlReport& html, const evaluation::LoopClosureErrors& e, const nlohmann::json& sequence) {
+  constexpr std::size_t kListed = 50;
+  const auto image = [&](std::size_t k) {
+    const auto& thumbs = sequence["thumbnails"];
+    if (k < thumbs.size() && thumbs[k].is_string()) {
+      return "<img class=\"error-thumb\" alt=\"image " + std::to_string(k) + "\" src=\"" +
+             thumbs[k].get<std::string>() + "\">";
+    }
+    return std::string();
+  };
+  const auto name = [&](std::size_t k) {
+    const auto& names = sequence["names"];
+    std::string text = std::to_string(k);
+    if (k < names.size() && names[k].is_string() && !names[k].get<std::string>().empty())
+      text += " (" + report::escape_html(names[k].get<std::string>()) + ")";
+    return text;
+  };
+  html.heading("Where the map is wrong");
+  std::string body =
+      "<p class=\"note\">Counted as in the accuracy table: a false positive is an image's best retained pair "
+      "whose two images the ground truth calls different places; a missed revisit is an image the ground truth "
+      "says was seen before (at least the minimum separation earlier) with no true detection, shown beside its "
+      "nearest true partner. The first " +
+      std::to_string(kListed) + " of each are listed.</p>\n";
+  const auto table = [&](const std::string& caption, const std::vector<std::array<std::string, 3>>& rows,
+                         std::size_t total) {
+    body += "<h3>" + caption + fmt::format(" ({})", total) + "</h3>\n";
+    if (rows.empty()) {
+      body += "<p>None.</p>\n";
+      return;
+    }
+    body += "<table class=\"errors\"><tr><th>image i</th><th>image j</th><th>what</th></tr>\n";
+    for (const auto& [a, b, what] : rows)
+      body += "<tr><td>" + a + "</td><td>" + b + "</td><td>" + what + "</td></tr>\n";
+    body += "</table>\n";
+  };
+  std::vector<std::array<std::string, 3>> rows;
+  for (std::size_t k = 0; k < e.false_positives.size() && k < kListed; ++k) {
+    const auto& p = e.false_positives[k];
+    rows.push_back({image(p.i) + "<br>" + name(p.i), image(p.j) + "<br>" + name(p.j),
+                    fmt::format("detected with confidence {:.3f}; not the same place", p.score)});
+  }
+  table("False positives", rows, e.false_positives.size());
+  rows.clear();
+  for (std::size_t k = 0; k < e.missed.size() && k < kListed; ++k) {
+    const auto& m = e.missed[k];
+    rows.push_back({image(m.i) + "<br>" + name(m.i),
+                    m.partner != m.i ? image(m.partner) + "<br>" + name(m.partner) : std::string("(not looked up)"),
+                    "the same place; no true detection for image i"});
+  }
+  table("Missed revisits", rows, e.missed.size());
+  html.raw(body);
+}
+
 detail::CurvePoints curve_points(const std::string& label, const std::string& colour,
                                  const evaluation::LoopClosureMetrics& m) {
   detail::CurvePoints c{label, colour, {}};
@@ -203,6 +291,14 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
         "<p class=\"note\">Precision-recall, sweeping the pairs' confidence threshold; hover for the values "
         "(the static figure is pr_curve.png).</p><div id=\"pr-view\"></div>"
         "<div class=\"readout\" id=\"pr-readout\"></div>\n");
+    if (run.errors) {
+      html.paragraph(
+          fmt::format("{} false positive{} and {} missed revisit{}: marked on the similarity matrix below "
+                      "(magenta and yellow squares) and listed with their images under \"Where the map "
+                      "is wrong\".",
+                      run.errors->false_positives.size(), run.errors->false_positives.size() == 1 ? "" : "s",
+                      run.errors->missed.size(), run.errors->missed.size() == 1 ? "" : "s"));
+    }
     std::vector<detail::CurvePoints> curves{curve_points("seqtopo alignment", "#dc1e1e", *run.metrics)};
     if (run.baseline_metrics) curves.push_back(curve_points(run.baseline_name, "#285adc", *run.baseline_metrics));
     data["pr"] = detail::pr_json(curves);
@@ -298,12 +394,20 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   data["alignments"] = std::move(alignments);
   data["pairs"] = pairs_json(run);
   std::vector<std::size_t> wanted;
+  if (run.errors) {  // the errors' images first: the report lists them
+    for (const auto& p : run.errors->false_positives) wanted.push_back(p.i), wanted.push_back(p.j);
+    for (const auto& m : run.errors->missed) wanted.push_back(m.i), wanted.push_back(m.partner);
+    data["errors"] = errors_json(*run.errors);
+  }
   for (const auto& p : result.pruning.pairs) wanted.push_back(p.i), wanted.push_back(p.j);
-  data["sequences"] = {{"rows", detail::sequence_json(run.sequence, n, wanted, "image", &run.thumbnails)},
+  data["sequences"] = {{"rows", run.session_inputs.size() > 1 && run.session_inputs.size() == run.sessions.size()
+                                    ? sessions_json(run, wanted)
+                                    : detail::sequence_json(run.sequence, n, wanted, "image", &run.thumbnails)},
                        {"cols", "rows"}};
   if (data["sequences"]["rows"]["note"] != "") {
     html.paragraph("Images: " + data["sequences"]["rows"]["note"].get<std::string>() + ".");
   }
+  if (run.errors) errors_section(html, *run.errors, data["sequences"]["rows"]);
 
   html.heading("Confidence of the loop closures");
   html.raw("<p class=\"note\">Histogram of the retained pairs' " + report::escape_html(kConfidenceLabel) +
@@ -360,14 +464,17 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
                                           : std::string(" (cosine)"));
   }
   parameters.emplace_back("descriptors", names);
+  // The values the run used (the map's decisions: fitted cap and threshold, frames per place applied), not the
+  // configured starting points, which the significance statistics and the place scale replace.
+  const std::string origin = d.statistics.valid() ? " (fitted)" : "";
   parameters.insert(parameters.end(),
-                    {{"contrast enhancement", c.contrast_window > 0 ? fmt::format("window {} frames, offset {} sd",
-                                                                                  c.contrast_window, c.contrast_offset)
+                    {{"contrast enhancement", d.contrast_window > 0 ? fmt::format("window {} frames, offset {:.2f} sd",
+                                                                                  d.contrast_window, d.contrast_offset)
                                                                     : "off"},
                      {"gap", fmt::format("{}", c.gap)},
-                     {"cap", c.cap ? fmt::format("{}", *c.cap) : "none"},
-                     {"threshold", fmt::format("{}", c.threshold)},
-                     {"min separation [frames]", std::to_string(c.min_separation)},
+                     {"cap", d.cap ? fmt::format("{:.1f}{}", *d.cap, origin) : "none"},
+                     {"score a revisit needs", fmt::format("{:.1f}{}", d.score_threshold, origin)},
+                     {"min separation [frames]", std::to_string(d.min_separation)},
                      {"reverse pass", c.reverse ? "yes" : "no"},
                      {"pruning: min retained fraction", fmt::format("{}", c.pruning.min_retained_fraction)}});
   html.key_values(parameters);

@@ -312,6 +312,7 @@ void trajectory_and_accuracy(const MapSettings& settings, const std::function<Ma
     }
     run.calibration = evaluation::calibration(confidence, correct);
     run.metrics = evaluation::evaluate_loop_closures(pairs, has_partner, truth.same_place);
+    run.errors = evaluation::loop_closure_errors(pairs, has_partner, truth.same_place, min_separation);
   }
   if (!truth.places.empty()) {
     if (truth.places.size() != n) throw std::invalid_argument("true places: one per image expected");
@@ -375,10 +376,22 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
       if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
     }
   }
-  for (const auto* path : {&request_.truth.same_place, &request_.truth.poses, &request_.truth.places}) {
+  if (!request_.report_images.empty() && !std::filesystem::is_directory(request_.report_images)) {
+    throw InputError(request_.report_images.string(), "is not a folder of images");
+  }
+  for (const auto* path : {&request_.truth.poses, &request_.truth.places}) {
     if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
   }
+  // The same-place truth is read (its format recognized and parsed) before any work; its size is checked below.
+  if (!request_.truth.same_place.empty())
+    same_place_ = read_ground_truth(request_.truth.same_place.string(), {}, request_.truth.radius);
   kind_ = resolve_input_kind(sources.front().input);
+  if (!request_.report_images.empty() &&
+      (sources.size() > 1 || (kind_ != InputKind::descriptors && kind_ != InputKind::similarity))) {
+    throw InputError("--images",
+                     "is for one descriptors.npy or similarity.npy input (images, videos and bags show "
+                     "their own images)");
+  }
   for (const auto& source : sources) {
     const InputKind kind = resolve_input_kind(source.input);
     if (kind == InputKind::similarity) {
@@ -436,6 +449,7 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     }
     *expected += *s.frames;
   }
+  if (expected && same_place_) check_same_place_size(*same_place_, *expected, truth_every());
   if (expected && request_.choose_engine) {
     MapRequest sized = request_;
     sized.input = inputs_.front();
@@ -461,6 +475,11 @@ MapRun MapJob::run(const MapObserver& observer) const {
   }
   MapRun run = new_run(request_.settings, names, request_.preset);
   if (inputs_.size() == 1) run.sequence = inputs_.front();
+  if (inputs_.size() > 1) run.session_inputs = inputs_;
+  if (!request_.report_images.empty() && inputs_.size() == 1 &&
+      (kind_ == InputKind::descriptors || kind_ == InputKind::similarity)) {
+    run.sequence = SequenceInput(request_.report_images, InputKind::images, inputs_.front().every);
+  }
   for (const auto& s : sessions_) {
     for (const auto& note : s.notes) say(observer, "      " + note);
   }
@@ -484,12 +503,11 @@ MapRun MapJob::run(const MapObserver& observer) const {
   if (any_truth) {
     // A ground truth of the whole recording is thinned as --every thinned it (one input; --every-metres's frames
     // are listed as kept).
-    const std::size_t every =
-        inputs_.size() == 1 && inputs_.front().frames.empty() ? inputs_.front().every : std::size_t{1};
-    load_truth = [&files, n, poses, every] {
+    const std::size_t every = truth_every();
+    load_truth = [this, &files, n, poses, every] {
       MapTruth truth;
-      if (!files.same_place.empty()) {
-        auto same_place = load_same_place(files.same_place, files.radius, n, every);
+      if (same_place_) {
+        auto same_place = same_place_truth(*same_place_, files.radius, n, every);
         truth.same_place = std::move(same_place.same_place);
         truth.earlier_partners = std::move(same_place.earlier_partners);
       }
@@ -504,6 +522,10 @@ MapRun MapJob::run(const MapObserver& observer) const {
   }
   trajectory_and_accuracy(request_.settings, load_truth, clock, run);
   return run;
+}
+
+std::size_t MapJob::truth_every() const {
+  return inputs_.size() == 1 && inputs_.front().frames.empty() ? inputs_.front().every : std::size_t{1};
 }
 
 MapRun map_sequence(const MapRequest& request, const MapObserver& observer) { return MapJob(request).run(observer); }

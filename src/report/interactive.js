@@ -118,6 +118,22 @@
       .attr("class", "pair " + (data.pairs ? data.pairs.css : ""))
       .attr("cx", function (p) { return cx(p.j); }).attr("cy", function (p) { return cy(p.i); }).attr("r", 3)
       .attr("data-i", function (p) { return p.i; }).attr("data-j", function (p) { return p.j; });
+    // With ground truth: false positives and missed revisits as hollow squares (map.json's errors).
+    var errors = [];
+    if (data.errors) {
+      data.errors.false_positives.forEach(function (e) { errors.push({i: e[0], j: e[1], kind: "fp", score: e[2]}); });
+      data.errors.missed.forEach(function (e) { errors.push({i: e[0], j: e[1], kind: "miss"}); });
+    }
+    var errorSide = Math.max(3, 2 * Math.max(m.rows, m.cols) / 120);
+    var errorMarks = layer.selectAll("rect.error").data(errors).enter().append("rect")
+      .attr("class", function (e) { return "error " + e.kind; })
+      .attr("x", function (e) { return cx(e.j) - errorSide * W / m.cols / 2; })
+      .attr("y", function (e) { return cy(e.i) - errorSide * H / m.rows / 2; })
+      .attr("width", errorSide * W / m.cols).attr("height", errorSide * H / m.rows)
+      .attr("data-i", function (e) { return e.i; }).attr("data-j", function (e) { return e.j; });
+    errorMarks.append("title").text(function (e) {
+      return (e.kind === "fp" ? "false positive: " : "missed revisit: ") + "image " + e.i + " and image " + e.j;
+    });
     var crosshair = plot.append("rect").attr("class", "cell-cursor").attr("width", 0).attr("height", 0);
 
     var xAxis = d3.svg.axis().scale(x).orient("bottom").ticks(7).tickFormat(d3.format("d"));

@@ -22,10 +22,10 @@ CLI = os.environ.get("SEQTOPO_CLI", "")
 DATA = os.environ.get("SEQTOPO_DATA_DIR", "")
 
 
-def run_on_pty(args, cwd):
+def run_on_pty(args, cwd, columns=120):
     """Runs seqtopo with stderr on a pseudo-terminal (stdout a pipe); returns (status, what the terminal got)."""
     master, slave = pty.openpty()
-    env = dict(os.environ, COLUMNS="120")
+    env = dict(os.environ, COLUMNS=str(columns))
     env.pop("SEQTOPO_PROGRESS", None)
     p = subprocess.Popen([CLI] + args, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=slave,
                          env=env)
@@ -90,6 +90,18 @@ class Progress(unittest.TestCase):
         for k, name in enumerate(["similarity", "alignments, pruning, labels, topology", "accuracy",
                                   "SeqSLAM-style baseline", "files and figures", "report"], start=1):
             self.assertRegex(screen, r"\x1b\[2Kseqtopo map: \[%d/6\] %s done in [\d.]+ s \(peak memory \d+ MB\)\r?\n" % (k, re.escape(name)))
+
+    def test_a_terminal_of_80_columns_sees_the_percentage_and_eta(self):
+        # The full bar (counts, unit, rate, seconds) needs about 115 columns; at 80 it drops parts, never the ETA.
+        status, screen = run_on_pty(["map", "--out", os.path.join(self.dir, "out")], self.dir, columns=80)
+        self.assertEqual(status, 0, screen[-2000:])
+        drawn = [d for d in re.split(r"\r\x1b\[2K", screen)[1:] if "\n" not in d]
+        counted = [d for d in drawn if re.search(r"\d+%", d)]
+        self.assertTrue(counted, "no bar with a percentage:\n" + screen[:3000])
+        for d in drawn:
+            self.assertLess(len(d), 80, repr(d))
+        for d in counted:
+            self.assertRegex(d, r"\d+%.*ETA [\d:]+ [a-z]+", repr(d))
 
     def test_a_pipe_sees_plain_lines_and_no_long_silence(self):
         # Long enough that one stage (the streamed alignment of 10,000 images) runs past the 2 s of a periodic line

@@ -32,6 +32,28 @@ TEST(LoopClosureMetrics, HandCountedExample) {
   EXPECT_DOUBLE_EQ(m.recall_at_100_precision, 0.25);
 }
 
+// The same example's errors, which the report marks: FP (9,3) and (6,0); misses 9 (partner 1) and 11 (partner 3).
+TEST(LoopClosureMetrics, ErrorsAreTheFalsePositivesAndMissesCounted) {
+  const std::vector<ScoredPair> pairs = {{8, 0, 5}, {8, 1, 1}, {9, 3, 4}, {10, 2, 3}, {6, 0, 2}};
+  const auto has_partner = images_with_earlier_partner(12, revisit, 5);
+  const auto e = loop_closure_errors(pairs, has_partner, revisit, 5);
+  ASSERT_EQ(e.false_positives.size(), 2U);
+  EXPECT_EQ(e.false_positives[0].i, 6U);
+  EXPECT_EQ(e.false_positives[0].j, 0U);
+  EXPECT_EQ(e.false_positives[1].i, 9U);
+  EXPECT_EQ(e.false_positives[1].j, 3U);
+  ASSERT_EQ(e.missed.size(), 2U);
+  EXPECT_EQ(e.missed[0].i, 9U);
+  EXPECT_EQ(e.missed[0].partner, 1U);
+  EXPECT_EQ(e.missed[1].i, 11U);
+  EXPECT_EQ(e.missed[1].partner, 3U);
+  const auto m = evaluate_loop_closures(pairs, has_partner, revisit);
+  EXPECT_EQ(e.false_positives.size(), m.fp);
+  EXPECT_EQ(e.missed.size(), m.fn);
+  // Partners are looked up for the first misses only.
+  EXPECT_EQ(loop_closure_errors(pairs, has_partner, revisit, 5, 1).missed[1].partner, 11U);
+}
+
 TEST(LoopClosureMetrics, MinSeparationHidesNearbyPartners) {
   // Every image is the same place as its neighbour: with min_separation 2 nobody has a partner.
   auto near = [](std::size_t i, std::size_t j) { return (i > j ? i - j : j - i) <= 1; };

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "common/input_error_text.hpp"
 #include "common/temp_dir.hpp"
@@ -95,6 +96,27 @@ TEST(PoseFiles, TimesTxtAndDetectionErrors) {
 }
 
 // Issue #18 (b): finite increments whose sum is not finite are refused, naming the file and the line.
+// The corrected trajectory is written for other tools as TUM and KITTI: read back, the same planar poses.
+TEST(PoseFiles, TumAndKittiWrittenReadBackAsTheSamePoses) {
+  TempDir dir;
+  const std::vector<Pose2> poses{{0, 0, 0}, {1.5, -2.25, 0.5}, {-3, 4, -2.5}, {10, 0.125, 3.0}};
+  const std::vector<double> times{0, 1, 2, 3};
+  const auto tum = read_tum(dir.write("t.txt", tum_text(poses, times)));
+  const auto kitti = read_kitti_poses(dir.write("k.txt", kitti_text(poses)));
+  ASSERT_EQ(tum.size(), poses.size());
+  ASSERT_EQ(kitti.size(), poses.size());
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    EXPECT_EQ(tum[k].time, times[k]);
+    for (const Pose2& p : {tum[k].pose, kitti[k]}) {
+      EXPECT_NEAR(p.x, poses[k].x, 1e-8) << k;
+      EXPECT_NEAR(p.y, poses[k].y, 1e-8) << k;
+      EXPECT_NEAR(std::remainder(p.theta - poses[k].theta, 2 * std::numbers::pi), 0.0, 1e-8) << k;
+    }
+  }
+  EXPECT_EQ(read_pose_file(dir.write("auto_k.txt", kitti_text(poses))).kind, PoseFileKind::kitti);
+  EXPECT_EQ(read_pose_file(dir.write("auto_t.txt", tum_text(poses, times))).kind, PoseFileKind::tum);
+}
+
 TEST(OdometryCsv, NonFiniteIntegratedPositionIsRefused) {
   TempDir dir;
   const auto path = dir.write("odo.csv", "index,dx,dy,dtheta\n0,1e308,0,0\n1,1e308,0,0\n");

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "common/input_error_text.hpp"
 #include "common/temp_dir.hpp"
@@ -91,6 +93,66 @@ TEST(GroundTruth, PosesAndPlacesOfTheRecordingAreThinnedToo) {
             poses_file.string() +
                 ": has 7 poses, the sequence has 2 images (a ground truth lists the 2 images kept, or the 4 to 6 "
                 "frames of the recording --every 3 kept them from)");
+}
+
+// A pairs CSV and VPR-Bench's lists: the pairs either way round, and the images with an earlier partner found
+// from the list agree with those found by testing every pair of the relation.
+TEST(GroundTruth, PairsListsGiveASymmetricRelationAndItsEarlierPartners) {
+  TempDir dir;
+  const auto file = dir.write("pairs.csv", "\xEF\xBB\xBFquery,map\n5,1\n2,6\n7,7\n9,8\n");
+  const auto truth = read_ground_truth(file.string(), {}, std::nullopt);
+  EXPECT_EQ(truth.format, GroundTruthFormat::pairs);
+  const auto same = same_place_truth(truth, std::nullopt, 10);
+  EXPECT_TRUE(same.same_place(5, 1));
+  EXPECT_TRUE(same.same_place(1, 5));
+  EXPECT_TRUE(same.same_place(6, 2));
+  EXPECT_FALSE(same.same_place(5, 2));
+  for (std::size_t separation : {0U, 1U, 2U, 4U, 5U}) {
+    EXPECT_EQ(same.earlier_partners(separation),
+              evaluation::images_with_earlier_partner(10, same.same_place, separation))
+        << separation;
+  }
+  EXPECT_EQ(error_of([&] { same_place_truth(truth, std::nullopt, 8); }),
+            file.string() +
+                ": lists image 9, the sequence has 8 images (0 to 7; pairs and VPR-Bench rows name the images kept)");
+}
+
+TEST(GroundTruth, KeywordsTyposAndFilesAreToldApart) {
+  TempDir dir;
+  constexpr std::string_view keywords[] = {"same-index"};
+  EXPECT_EQ(read_ground_truth("same-index", keywords, std::nullopt).format, GroundTruthFormat::same_index);
+  EXPECT_EQ(error_of([&] { read_ground_truth("same_index", keywords, std::nullopt); }),
+            "--ground-truth: unknown ground-truth keyword 'same_index', expected one of same-index (or a file)");
+  const auto missing = (dir.path / "truth.csv").string();
+  EXPECT_EQ(error_of([&] { read_ground_truth(missing, keywords, std::nullopt); }), missing + ": no such file");
+  const auto poses = dir.write("poses.txt", "0 1 2 0 0 0 0 1\n");  // TUM
+  EXPECT_EQ(error_of([&] { read_ground_truth(poses.string(), {}, std::nullopt); }),
+            "--gt-radius: needed (> 0) with a poses ground truth (" + poses.string() +
+                "): images within the radius [m] of each other are the same place");
+  EXPECT_EQ(read_ground_truth(poses.string(), {}, 1.0).poses.size(), 1U);
+}
+
+// localize: a pairs file is taken as listed; an image is queries x map frames.
+TEST(GroundTruth, LocalizationTruthFromEachFormat) {
+  TempDir dir;
+  const auto pairs = read_ground_truth(dir.write("p.csv", "0,3\n2,1\n2,4\n").string(), {}, std::nullopt);
+  const auto t = localization_truth(pairs, 3, 5);
+  EXPECT_EQ(t.truth[0], (std::vector<std::size_t>{3}));
+  EXPECT_TRUE(t.truth[1].empty());
+  EXPECT_EQ(t.truth[2], (std::vector<std::size_t>{1, 4}));
+  EXPECT_EQ(default_localization_tolerance(pairs), 0U);
+  constexpr std::string_view keywords[] = {"same-index"};
+  EXPECT_EQ(default_localization_tolerance(read_ground_truth("same-index", keywords, std::nullopt)), 2U);
+  RgbImage m(5, 3);  // 3 query rows x 5 map columns
+  std::fill_n(m.at(3, 0), 3, std::uint8_t{255});
+  std::fill_n(m.at(1, 2), 3, std::uint8_t{255});
+  const auto image = dir.path / "q.png";
+  plot::write_png(image, m);
+  const auto from_image = localization_truth(read_ground_truth(image.string(), {}, std::nullopt), 3, 5);
+  EXPECT_EQ(from_image.truth[0], (std::vector<std::size_t>{3}));
+  EXPECT_EQ(from_image.truth[2], (std::vector<std::size_t>{1}));
+  EXPECT_EQ(error_of([&] { localization_truth(read_ground_truth(image.string(), {}, std::nullopt), 5, 3); }),
+            image.string() + ": is 3 x 5, expected 5 query rows x 3 map columns");
 }
 
 }  // namespace

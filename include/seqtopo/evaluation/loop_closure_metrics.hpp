@@ -69,4 +69,19 @@ LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs, 
 LoopClosureMetrics evaluate_loop_closures(const std::vector<ScoredPair>& pairs,
                                           const std::vector<bool>& has_earlier_partner, const SamePlace& same_place);
 
+// Where the detections are wrong, counted as evaluate_loop_closures counts them: each false positive (an image's
+// best pair that is not the same place) and each missed revisit (an image with an earlier partner but no true
+// positive), by increasing image. A missed image is shown with its nearest true partner at least min_separation
+// frames earlier (`partner`), looked up for the first `max_partners` misses only (the others: partner = i).
+struct MissedRevisit {
+  std::size_t i = 0, partner = 0;
+};
+struct LoopClosureErrors {
+  std::vector<ScoredPair> false_positives;
+  std::vector<MissedRevisit> missed;
+};
+LoopClosureErrors loop_closure_errors(const std::vector<ScoredPair>& pairs,
+                                      const std::vector<bool>& has_earlier_partner, const SamePlace& same_place,
+                                      std::size_t min_separation, std::size_t max_partners = 1000);
+
 }  // namespace seqtopo::evaluation

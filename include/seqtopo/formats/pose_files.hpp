@@ -14,6 +14,7 @@
 // holds nothing.
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,6 +44,12 @@ std::vector<Pose2> read_kitti_poses(const std::filesystem::path& path);
 
 // One time per line [s], increasing; blank lines and `#` comments skipped.
 std::vector<double> read_times_txt(const std::filesystem::path& path);
+
+// Planar poses written for other tools (a SLAM back end, evo): TUM lines `time x y 0 0 0 sin(theta/2) cos(theta/2)`
+// (`times`: one per pose [s]), and KITTI lines, the 3 x 4 matrix [R | t] of the camera frame row by row, so that
+// read_tum and read_kitti_poses give the poses back. 9 significant digits.
+std::string tum_text(std::span<const Pose2> poses, std::span<const double> times);
+std::string kitti_text(std::span<const Pose2> poses);
 
 // The planar heading [rad] of a unit quaternion (yaw about z); nullopt when it is not (close to) unit length.
 std::optional<double> yaw_of_quaternion(double qx, double qy, double qz, double qw);

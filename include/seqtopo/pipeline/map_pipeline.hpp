@@ -30,6 +30,7 @@
 #include "seqtopo/evaluation/topology_metrics.hpp"
 #include "seqtopo/formats/map_json.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
+#include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/pipeline/presets.hpp"
 #include "seqtopo/pipeline/progress.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
@@ -50,7 +51,7 @@ struct MapTruth {
 
 // The same, as the files users give (ground_truth.hpp reads them).
 struct MapTruthFiles {
-  std::filesystem::path same_place;  // N x N image, or poses.csv with `radius`
+  std::filesystem::path same_place;  // any format of ground_truth.hpp but same-index (poses with `radius`)
   std::optional<double> radius;      // [m]
   std::filesystem::path places;      // places.csv (junctions.csv beside it)
   std::filesystem::path poses;       // poses.csv
@@ -86,6 +87,9 @@ struct MapRequest {
   // `odometry_topic` and `every_metres`. Their frames are mapped as one sequence, session after session,
   // with no transition between one session's last image and the next one's first.
   std::vector<SessionSource> sessions;
+  // The images of a descriptors.npy or similarity.npy input, one per row (thinned by the input's --every alike),
+  // shown by the report; empty: the report has no images for them.
+  std::filesystem::path report_images;
 };
 
 struct TrajectoryErrors {
@@ -96,6 +100,8 @@ struct TrajectoryErrors {
 struct MapRun {
   std::string input, preset;
   SequenceInput sequence;  // what was mapped (the report's thumbnails); empty path in memory
+  // Several sessions: each one's input (the report's thumbnails, session by session); `sequence` is then empty.
+  std::vector<SequenceInput> session_inputs;
   // The session of every image: [begin, end) of each input, in order (one for a single input).
   std::vector<formats::MapSession> sessions;
   mapping::MapConfig map_config;
@@ -106,6 +112,8 @@ struct MapRun {
   mapping::MapResult result;
   std::vector<Pose2> odometry, ekf, pose_graph;
   std::optional<evaluation::LoopClosureMetrics> metrics, baseline_metrics;
+  // With a same-place ground truth: the false positives and missed revisits behind `metrics` (the report marks them).
+  std::optional<evaluation::LoopClosureErrors> errors;
   // The retained pairs' confidence against the ground truth (every pair, not only each image's best).
   std::optional<evaluation::Calibration> calibration;
   std::string baseline_name;
@@ -155,11 +163,14 @@ class MapJob {
   MapRequest request_;
   InputKind kind_;
   std::vector<PreparedSession> sessions_;
-  std::vector<SequenceInput> inputs_;  // the sessions' inputs, with their kept frames
-  std::vector<Pose2> odometry_;        // all sessions', concatenated
-  std::string memory_note_;            // the whole run's memory estimate (memory_estimate.hpp)
-  std::string panorama_note_;          // the descriptors chosen for 360-degree panoramas (presets.hpp)
-  std::string engine_note_;            // the engine chosen, or the settings adapted to streaming
+  std::vector<SequenceInput> inputs_;          // the sessions' inputs, with their kept frames
+  std::vector<Pose2> odometry_;                // all sessions', concatenated
+  std::string memory_note_;                    // the whole run's memory estimate (memory_estimate.hpp)
+  std::string panorama_note_;                  // the descriptors chosen for 360-degree panoramas (presets.hpp)
+  std::string engine_note_;                    // the engine chosen, or the settings adapted to streaming
+  std::optional<GroundTruthFile> same_place_;  // request.truth.same_place, read and checked before the work
+  // The step a ground truth of the whole recording is thinned by (one input thinned by --every alone).
+  std::size_t truth_every() const;
 };
 
 // MapJob(request).run(observer).
