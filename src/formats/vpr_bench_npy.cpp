@@ -498,6 +498,29 @@ void collect(const Ptr& v, std::vector<std::size_t>& out) {
   throw std::invalid_argument("an entry that is not an index nor a list of indices");
 }
 
+// The header's 'shape': (a, b, ...).
+std::vector<std::size_t> header_shape(std::string_view dict) {
+  std::vector<std::size_t> shape;
+  const auto at = dict.find("'shape'");
+  if (at == std::string_view::npos) return shape;
+  const auto open = dict.find('(', at), close = dict.find(')', at);
+  if (open == std::string_view::npos || close == std::string_view::npos || close < open) return shape;
+  std::size_t value = 0;
+  bool digits = false;
+  for (char c : dict.substr(open + 1, close - open - 1)) {
+    if (c >= '0' && c <= '9') {
+      value = value * 10 + static_cast<std::size_t>(c - '0');
+      digits = true;
+    } else if (c == ',' && digits) {
+      shape.push_back(value);
+      value = 0;
+      digits = false;
+    }
+  }
+  if (digits) shape.push_back(value);
+  return shape;
+}
+
 }  // namespace
 
 bool npy_holds_objects(std::string_view bytes) {
@@ -521,6 +544,7 @@ std::vector<QueryMatches> parse_vpr_bench_npy(std::string_view bytes) {
     for (auto d : a.shape) shape += (shape.empty() ? "" : ", ") + std::to_string(d);
     throw std::invalid_argument("expected an object array of shape (queries, 2), got shape (" + shape + ")");
   }
+  if (header_shape(header.dict) != a.shape) throw std::invalid_argument("the header's shape is not the array's");
   if (a.data->kind != Value::Kind::list || a.data->items.size() != a.shape[0] * 2)
     throw std::invalid_argument("the array's objects do not match its shape");
   const std::size_t rows = a.shape[0];

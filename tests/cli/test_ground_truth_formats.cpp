@@ -70,7 +70,7 @@ class GroundTruthFormats : public ::testing::Test {
  protected:
   // metrics.json of mapping `input` against `truth` (extra options appended).
   nlohmann::json metrics(const fs::path& input, const std::string& truth, const std::string& name) {
-    const fs::path out = dir_.path / name;
+    const fs::path out = dir_.path / ("out-" + name);
     const auto r = run_cli("map " + input.string() + " --ground-truth " + truth + " --out " + out.string());
     EXPECT_EQ(r.status, 0) << name << ": " << r.err;
     return nlohmann::json::parse(read_file(out / "metrics.json"));

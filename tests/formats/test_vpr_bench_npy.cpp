@@ -118,8 +118,8 @@ TEST(VprBenchNpy, RefusesWhatIsNotAGroundTruthAndRunsNoCode) {
   std::string negative = python2_pickle({{0, {5}}});
   negative.replace(negative.rfind("K\x05"), 2, std::string("J\xfe\xff\xff\xff", 5));
   EXPECT_EQ(error_of(object_npy(1, negative)), "row 0: a negative index -2");
-  // Three rows declared, one given.
-  EXPECT_EQ(error_of(object_npy(3, python2_pickle({{0, {0}}}))), "the array's objects do not match its shape");
+  // Three rows declared by the header, one pickled.
+  EXPECT_EQ(error_of(object_npy(3, python2_pickle({{0, {0}}}))), "the header's shape is not the array's");
   // A numeric .npy is not VPR-Bench's form.
   std::string numeric = "\x93NUMPY\x01";
   numeric += std::string("\0F\0", 3) + "{'descr': '<f4', 'fortran_order': False, 'shape': (1, 1), }";
