@@ -382,7 +382,11 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
       what +
       " of every pair of images (bright = similar): kept alignments red, pruned ones dashed blue, each "
       "retained loop-closure pair a yellow marker. Scroll or use the buttons to zoom, drag to pan; hover a "
-      "marker to see its two images, click a cell for any pair."));
+      "marker to see its two images, click a cell for any pair." +
+      (run.errors
+           ? std::string(" Against the ground truth: each false positive a magenta square, each missed revisit a "
+                         "yellow square at its nearest true pair (listed under \"Where the map is wrong\").")
+           : std::string())));
   html.raw("<div id=\"alignment-table\"></div>\n");
   data["matrix"] = detail::matrix_json(drawn.cells(), n, n, "image i", "image j",
                                        run.streaming || run.map_config.contrast_window > 0 ? "score [sd]" : "S");
