@@ -157,6 +157,15 @@ bool is_same_place_matrix(const std::string& file) {
   return ext != ".csv" && ext != ".txt" && ext != ".tum" && ext != ".kitti" && !ext.empty();
 }
 
+// --streaming never reads an N x N ground truth (checked before the ground truth is read).
+void check_streaming_truth(const MapOptions& o) {
+  if (o.streaming && !o.ground_truth.empty() && is_same_place_matrix(o.ground_truth)) {
+    throw InputError("--ground-truth",
+                     "an N x N image or matrix (N^2 bytes, 10 GB at 10^5 images) is refused with --streaming; give "
+                     "pairs (query,map CSV), VPR-Bench .npy, or poses with --gt-radius");
+  }
+}
+
 // --streaming aligns contrast-enhanced cosine scores of one vector descriptor per image, computed on the
 // fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
 void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind kind) {
@@ -201,11 +210,6 @@ void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind
                        "joint-histogram is a sparse histogram without a vector form; --streaming "
                        "needs patch or panorama (compared by cosine)");
     }
-  }
-  if (!o.ground_truth.empty() && is_same_place_matrix(o.ground_truth)) {
-    throw InputError("--ground-truth",
-                     "an N x N image or matrix (N^2 bytes, 10 GB at 10^5 images) is refused with --streaming; give "
-                     "pairs (query,map CSV), VPR-Bench .npy, or poses with --gt-radius");
   }
 }
 
@@ -322,6 +326,7 @@ void run(MapOptions o) {
   request.sparse = o.sparse;
   if (o.neighbours) request.sparse_neighbours = *o.neighbours;
   if (o.diagonal_reach) request.sparse_diagonal_reach = *o.diagonal_reach;
+  check_streaming_truth(o);
   const pipeline::MapJob job(request);
   if (o.streaming) check_streaming(o, request.settings, job.input_kind());
   std::vector<std::filesystem::path> inputs(o.inputs.begin(), o.inputs.end());
