@@ -143,9 +143,20 @@ void remove_stale(const fs::path& folder, const std::vector<std::string>& prefix
   for (const auto& p : dead) remove_tree(p);
 }
 
-std::string staging_prefix(const std::string& base) { return "." + base + ".seqtopo-staging-"; }
-std::string old_prefix(const std::string& base) { return "." + base + ".seqtopo-old-"; }
-std::string temporary_prefix(const std::string& base) { return "." + base + ".tmp."; }
+// The name a folder's or file's hidden siblings start with: the name itself up to kShortName bytes; a longer one
+// (a valid name is up to 255 bytes, the siblings add up to 50) is cut at a character boundary and ends with 8 hex
+// digits of its SHA-256, so that every sibling's name stays well under the file system's limit.
+constexpr std::size_t kShortName = 128;
+std::string short_base(const std::string& base) {
+  if (base.size() <= kShortName) return base;
+  std::size_t cut = kShortName - 9;
+  while (cut > 0 && (static_cast<unsigned char>(base[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+  return base.substr(0, cut) + "~" + sha256_hex(base).substr(0, 8);
+}
+
+std::string staging_prefix(const std::string& base) { return "." + short_base(base) + ".seqtopo-staging-"; }
+std::string old_prefix(const std::string& base) { return "." + short_base(base) + ".seqtopo-old-"; }
+std::string temporary_prefix(const std::string& base) { return "." + short_base(base) + ".tmp."; }
 
 // `p` made absolute and normal, without a trailing separator.
 fs::path normal_absolute(const fs::path& p) {

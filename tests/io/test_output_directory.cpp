@@ -310,6 +310,35 @@ TEST_F(OutputDirectoryTest, AnEmptySetHasAnEmptyManifest) {
   EXPECT_EQ(verify_manifest(out_), "");
 }
 
+// Issue 47, defect 14: a valid folder name of 225 to 255 bytes was refused ("File name too long") because the
+// staging sibling's name added 30 bytes and more. The hidden siblings' names are bounded whatever the name.
+TEST_F(OutputDirectoryTest, NamesUpTo255BytesAreOutputFoldersAndFiles) {
+  for (const std::size_t length : {225U, 240U, 255U}) {
+    SCOPED_TRACE(length);
+    // ASCII, and a name of two-byte characters (never cut inside one)
+    for (const std::string& name : {std::string(length, 'n'), std::string(length % 2, 'x') + [&] {
+                                      std::string s;
+                                      while (s.size() + 2 <= length) s += "\xc3\xa9";
+                                      return s;
+                                    }()}) {
+      const fs::path folder = dir_.path / name;
+      for (const char* text : {"first", "second"}) {  // a new folder, then a replaced one
+        OutputDirectory out(folder);
+        EXPECT_LE(out.staging().filename().string().size(), 200U);
+        out.write("a.txt", text);
+        out.commit();
+        EXPECT_EQ(read_file(folder / "a.txt"), text);
+      }
+      EXPECT_EQ(verify_manifest(folder), "");
+      write_file_atomic(dir_.path / (name.substr(0, length - 1) + "f"), "{}");
+      EXPECT_EQ(read_file(dir_.path / (name.substr(0, length - 1) + "f")), "{}");
+      fs::remove_all(folder);
+      fs::remove(dir_.path / (name.substr(0, length - 1) + "f"));
+      EXPECT_EQ(entries(dir_.path), 0U) << "nothing left beside them";
+    }
+  }
+}
+
 TEST(Manifest, RoundTripAndRejections) {
   Manifest m{"seqtopo map", {{"b.txt", 3, sha256_hex("b")}, {"a \"quoted\" \\ name\t.txt", 0, sha256_hex("")}}};
   const std::string text = manifest_json(m);
