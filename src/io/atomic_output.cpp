@@ -143,6 +143,36 @@ void remove_stale(const fs::path& folder, const std::vector<std::string>& prefix
   for (const auto& p : dead) remove_tree(p);
 }
 
+// ".<folder>.seqtopo-staging-<pid>-<k>" or ".<folder>.seqtopo-old-<pid>-<k>", of any folder: the owner's pid.
+std::optional<pid_t> sibling_owner(const std::string& name) {
+  const auto digits = [](std::string_view t) {
+    return !t.empty() && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  if (name.size() < 2 || name[0] != '.') return std::nullopt;
+  for (const std::string_view marker : {".seqtopo-staging-", ".seqtopo-old-"}) {
+    const auto at = name.rfind(marker);
+    if (at == std::string::npos || at == 0) continue;
+    const std::string_view rest = std::string_view(name).substr(at + marker.size());
+    const auto dash = rest.find('-');
+    if (dash == std::string_view::npos || !digits(rest.substr(0, dash)) || !digits(rest.substr(dash + 1))) continue;
+    return owner_pid(std::string(rest), "");
+  }
+  return std::nullopt;
+}
+
+// Removes the staging folders and old sets of every output folder in `folder` whose process no longer runs (killed):
+// a run cleans what killed runs left beside it, whichever folder they were writing.
+void remove_stale_siblings(const fs::path& folder) {
+  std::error_code ec;
+  std::vector<fs::path> dead;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    if (!it->is_directory(ec) || it->is_symlink(ec)) continue;
+    const auto pid = sibling_owner(it->path().filename().string());
+    if (pid && stale(it->path(), *pid, true)) dead.push_back(it->path());
+  }
+  for (const auto& p : dead) remove_tree(p);
+}
+
 // The name a folder's or file's hidden siblings start with: the name itself up to kShortName bytes; a longer one
 // (a valid name is up to 255 bytes, the siblings add up to 50) is cut at a character boundary and ends with 8 hex
 // digits of its SHA-256, so that every sibling's name stays well under the file system's limit.
@@ -554,7 +584,7 @@ OutputDirectory::OutputDirectory(fs::path dir, OutputOptions options)
   if (ec || !fs::is_directory(parent)) {
     throw InputError(dir_.string(), "cannot create its parent folder: " + (ec ? ec.message() : "not a folder"));
   }
-  remove_stale(parent, {staging_prefix(base), old_prefix(base)});
+  remove_stale_siblings(parent);
   try {
     check_replaceable(target_, dir_);
     Registry& r = registry();

@@ -218,7 +218,10 @@ TEST_F(OutputDirectoryTest, StaleStagingFoldersOfDeadProcessesAreRemoved) {
   const fs::path stale_old = dir_.path / (".out.seqtopo-old-" + std::to_string(dead) + "-3");
   const fs::path live = dir_.path / (".out.seqtopo-staging-" + std::to_string(::getppid()) + "-0");
   const fs::path other = dir_.path / (".other.seqtopo-staging-" + std::to_string(dead) + "-0");
-  for (const auto& p : {stale, stale_old, live, other}) {
+  const fs::path other_old = dir_.path / (".x.y.seqtopo-old-" + std::to_string(dead) + "-12");
+  const fs::path other_live = dir_.path / (".other.seqtopo-staging-" + std::to_string(::getppid()) + "-1");
+  const fs::path not_staging = dir_.path / (".other.seqtopo-staging-" + std::to_string(dead) + "-0x");
+  for (const auto& p : {stale, stale_old, live, other, other_old, other_live, not_staging}) {
     fs::create_directories(p / "sub");
     write_to(p / "sub" / "scores.npy", std::string(1000, 'x'));
   }
@@ -226,7 +229,11 @@ TEST_F(OutputDirectoryTest, StaleStagingFoldersOfDeadProcessesAreRemoved) {
   EXPECT_FALSE(fs::exists(stale));
   EXPECT_FALSE(fs::exists(stale_old));
   EXPECT_TRUE(fs::exists(live)) << "a running process's staging folder";
-  EXPECT_TRUE(fs::exists(other)) << "another folder's staging is its own runs' business";
+  // Issue 47, defect 12: a killed run's staging folder stayed until a later run wrote the same folder.
+  EXPECT_FALSE(fs::exists(other)) << "a killed run's staging folder beside any run is removed";
+  EXPECT_FALSE(fs::exists(other_old));
+  EXPECT_TRUE(fs::exists(other_live)) << "a running process's, of another folder";
+  EXPECT_TRUE(fs::exists(not_staging)) << "a name that only looks like one";
   // single files: .<name>.tmp.<pid>.<k>
   const fs::path tmp = dir_.path / (".f.json.tmp." + std::to_string(dead) + ".0");
   write_to(tmp, "partial");
