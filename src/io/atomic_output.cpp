@@ -143,6 +143,50 @@ void remove_stale(const fs::path& folder, const std::vector<std::string>& prefix
   for (const auto& p : dead) remove_tree(p);
 }
 
+// The lock of an output folder: a file beside it, `.<name>.seqtopo-lock`, held with flock(2) by the one run that
+// writes the folder, from its checks to the end of its swap (the kernel releases it when the run dies). Its holder
+// removes it while it holds it; whoever locked a file that was removed meanwhile takes the new one.
+bool same_file(int fd, const fs::path& path) {
+  struct stat held {}, now {};
+  return ::fstat(fd, &held) == 0 && ::stat(path.c_str(), &now) == 0 && held.st_dev == now.st_dev &&
+         held.st_ino == now.st_ino;
+}
+
+int take_folder_lock(const fs::path& lock, const fs::path& shown) {
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd < 0) {
+      throw InputError(shown.string(), "cannot make its lock file " + lock.filename().string() + ": " + error_text(errno));
+    }
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      std::array<char, 32> text{};
+      const ssize_t n = ::pread(fd, text.data(), text.size() - 1, 0);
+      ::close(fd);
+      if (error != EWOULDBLOCK) throw InputError(shown.string(), "cannot lock: " + error_text(error));
+      const std::string holder = n > 0 ? " (process " + std::string(text.data(), static_cast<std::size_t>(n)) + ")" : "";
+      throw InputError(shown.string(), "is being written by another seqtopo run" + holder +
+                                           "; two runs never write one folder at once: wait for it to finish, or "
+                                           "choose another folder");
+    }
+    if (same_file(fd, lock)) {
+      const std::string pid = std::to_string(::getpid());
+      if (::ftruncate(fd, 0) == 0) (void)::pwrite(fd, pid.data(), pid.size(), 0);  // for the message above
+      return fd;
+    }
+    ::close(fd);  // its holder removed it meanwhile: take the new one
+  }
+  throw InputError(shown.string(), "cannot lock: its lock file " + lock.filename().string() + " keeps changing");
+}
+
+// Removes the lock file (while it is held, so that nobody else holds this one) and releases it.
+void release_folder_lock(const fs::path& lock, int& fd) {
+  if (fd < 0) return;
+  if (same_file(fd, lock)) ::unlink(lock.c_str());
+  ::close(fd);
+  fd = -1;
+}
+
 // ".<folder>.seqtopo-staging-<pid>-<k>" or ".<folder>.seqtopo-old-<pid>-<k>", of any folder: the owner's pid.
 std::optional<pid_t> sibling_owner(const std::string& name) {
   const auto digits = [](std::string_view t) {
@@ -165,12 +209,29 @@ std::optional<pid_t> sibling_owner(const std::string& name) {
 void remove_stale_siblings(const fs::path& folder) {
   std::error_code ec;
   std::vector<fs::path> dead;
+  std::vector<fs::path> locks;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    if (!it->is_directory(ec) || it->is_symlink(ec)) continue;
-    const auto pid = sibling_owner(it->path().filename().string());
+    const std::string name = it->path().filename().string();
+    if (it->is_symlink(ec)) continue;
+    if (it->is_regular_file(ec) && name.size() > 14 && name[0] == '.' && name.ends_with(".seqtopo-lock")) {
+      locks.push_back(it->path());
+      continue;
+    }
+    if (!it->is_directory(ec)) continue;
+    const auto pid = sibling_owner(name);
     if (pid && stale(it->path(), *pid, true)) dead.push_back(it->path());
   }
   for (const auto& p : dead) remove_tree(p);
+  // A lock file nobody holds was left by a killed run: removed as its holder would (locked, then unlinked).
+  for (const auto& p : locks) {
+    int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    if (fd < 0) continue;
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) {
+      release_folder_lock(p, fd);
+    } else {
+      ::close(fd);
+    }
+  }
 }
 
 // The name a folder's or file's hidden siblings start with: the name itself up to kShortName bytes; a longer one
@@ -187,6 +248,7 @@ std::string short_base(const std::string& base) {
 std::string staging_prefix(const std::string& base) { return "." + short_base(base) + ".seqtopo-staging-"; }
 std::string old_prefix(const std::string& base) { return "." + short_base(base) + ".seqtopo-old-"; }
 std::string temporary_prefix(const std::string& base) { return "." + short_base(base) + ".tmp."; }
+std::string lock_name(const std::string& base) { return "." + short_base(base) + ".seqtopo-lock"; }
 
 // `p` made absolute and normal, without a trailing separator.
 fs::path normal_absolute(const fs::path& p) {
@@ -586,6 +648,14 @@ OutputDirectory::OutputDirectory(fs::path dir, OutputOptions options)
   }
   remove_stale_siblings(parent);
   try {
+    {
+      // The folder's lock first: a second run writing the same folder is refused before any work.
+      Registry& r = registry();
+      const std::lock_guard lock(r.mutex);
+      lock_file_ = parent / lock_name(base);
+      folder_lock_fd_ = take_folder_lock(lock_file_, dir_);
+      track_locked(r, lock_file_);  // a stopped run removes it with its staging folder
+    }
     check_replaceable(target_, dir_);
     Registry& r = registry();
     const std::lock_guard lock(r.mutex);
@@ -596,6 +666,10 @@ OutputDirectory::OutputDirectory(fs::path dir, OutputOptions options)
     }
     track_locked(r, staging_);
   } catch (...) {
+    if (folder_lock_fd_ >= 0) {
+      release_folder_lock(lock_file_, folder_lock_fd_);
+      untrack(lock_file_);
+    }
     for (const auto& p : made_parents_) fs::remove(p, ec);  // only what is still empty
     throw;
   }
@@ -613,6 +687,10 @@ OutputDirectory::~OutputDirectory() {
     for (const auto& p : made_parents_) fs::remove(p, ec);
   }
   if (lock_fd_ >= 0) ::close(lock_fd_);
+  if (folder_lock_fd_ >= 0) {
+    release_folder_lock(lock_file_, folder_lock_fd_);
+    untrack(lock_file_);
+  }
 }
 
 fs::path OutputDirectory::staged(const std::string& name) {
@@ -723,6 +801,8 @@ std::vector<fs::path> OutputDirectory::commit() {
     ::close(lock_fd_);
     lock_fd_ = -1;
   }
+  release_folder_lock(lock_file_, folder_lock_fd_);
+  untrack(lock_file_);
   std::vector<fs::path> written;
   for (const auto& name : names_) written.push_back(dir_ / name);
   return written;

@@ -40,7 +40,7 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
   return files;
 }
 
-// Hidden leftovers beside (and inside) `out`: staging folders, old sets, temporary files.
+// Hidden leftovers beside (and inside) `out`: staging folders, old sets, lock and temporary files.
 std::vector<std::string> leftovers(const fs::path& out) {
   std::vector<std::string> found;
   for (const auto& folder : {out.parent_path(), out}) {
@@ -48,6 +48,7 @@ std::vector<std::string> leftovers(const fs::path& out) {
     for (const auto& e : fs::directory_iterator(folder)) {
       const std::string name = e.path().filename().string();
       if (name.find("seqtopo-staging") != std::string::npos || name.find("seqtopo-old") != std::string::npos ||
+          name.find("seqtopo-lock") != std::string::npos ||
           name.find(".tmp.") != std::string::npos || name.find(".staging") != std::string::npos) {
         found.push_back(e.path().string());
       }
@@ -295,6 +296,28 @@ TEST_F(OutputFolder, InterruptedDuringTheSwapTheSwapFinishes) {
   EXPECT_EQ(run.finish(), 130);
   EXPECT_EQ(seqtopo::io::verify_manifest(out_), "");
   EXPECT_EQ(seqtopo::io::read_manifest(out_).files.size(), 9U) << "the long map's set";
+  EXPECT_EQ(leftovers(out_), std::vector<std::string>{});
+}
+
+// Issue 47, defect 10: two runs writing one --out at once both exited 0 and both said "wrote 9 files"; only one
+// set remained. The second is refused (exit 1, naming the folder and the first's process) before any work; the
+// first finishes and its set is the folder's.
+TEST_F(OutputFolder, TwoRunsWritingOneFolderAtOnce) {
+  make_old_set();
+  Background first(long_map(), dir_.path / "err.txt");
+  ASSERT_TRUE(first.wait_for([&] { return staging_exists(); })) << read_file(dir_.path / "err.txt");
+  const auto second = run_cli("map " + small_ + " --out " + out_.string());
+  EXPECT_EQ(second.status, 1) << second.err;
+  EXPECT_EQ(second.err_last_line().rfind("seqtopo: error: " + out_.string() +
+                                             ": is being written by another seqtopo run (process " +
+                                             std::to_string(first.pid) + ")",
+                                         0),
+            0U)
+      << second.err;
+  EXPECT_EQ(second.err.find("[1/"), std::string::npos) << "no work before the refusal: " << second.err;
+  EXPECT_EQ(first.finish(), 0) << read_file(dir_.path / "err.txt");
+  EXPECT_EQ(seqtopo::io::verify_manifest(out_), "");
+  EXPECT_EQ(seqtopo::io::read_manifest(out_).files.size(), 9U) << "the first (long) run's set";
   EXPECT_EQ(leftovers(out_), std::vector<std::string>{});
 }
 

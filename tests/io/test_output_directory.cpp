@@ -317,6 +317,32 @@ TEST_F(OutputDirectoryTest, AnEmptySetHasAnEmptyManifest) {
   EXPECT_EQ(verify_manifest(out_), "");
 }
 
+// Issue 47, defect 10: two runs writing one folder at once both finished and both said they wrote their files;
+// one set was lost. The folder's lock refuses the second while the first holds it, naming the first's process;
+// once the first has committed (or failed), the folder may be written again, and no lock file stays.
+TEST_F(OutputDirectoryTest, TwoRunsNeverWriteOneFolderAtOnce) {
+  commit_set({{"a.txt", "old a"}});
+  {
+    OutputDirectory first(out_);
+    first.write("a.txt", "first");
+    expect_refused(out_, "is being written by another seqtopo run (process " + std::to_string(::getpid()) + ")");
+    OutputDirectory elsewhere(dir_.path / "other");  // another folder beside it is not locked
+    elsewhere.write("b.txt", "b");
+    elsewhere.commit();
+    first.commit();
+  }
+  EXPECT_EQ(read_file(out_ / "a.txt"), "first");
+  { OutputDirectory again(out_); }  // refused or not, the failed run released the lock
+  commit_set({{"a.txt", "third"}});
+  EXPECT_EQ(read_file(out_ / "a.txt"), "third");
+  EXPECT_EQ(entries(dir_.path), 2U) << "out and other, no lock file or staging folder beside them";
+  // A lock file a killed run left (nobody holds it) is taken, and removed by the next run beside it.
+  write_to(dir_.path / ".out.seqtopo-lock", "12345");
+  write_to(dir_.path / ".gone.seqtopo-lock", "12345");
+  commit_set({{"a.txt", "fourth"}});
+  EXPECT_EQ(entries(dir_.path), 2U);
+}
+
 // Issue 47, defect 14: a valid folder name of 225 to 255 bytes was refused ("File name too long") because the
 // staging sibling's name added 30 bytes and more. The hidden siblings' names are bounded whatever the name.
 TEST_F(OutputDirectoryTest, NamesUpTo255BytesAreOutputFoldersAndFiles) {

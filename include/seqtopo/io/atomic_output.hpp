@@ -14,8 +14,12 @@
 //   - exists and is not a folder, or is not empty and has no manifest.json (no seqtopo run wrote it),
 //   - holds anything its manifest does not list (a file a user put there would be lost),
 //   - is, holds, or lies inside one of the run's inputs, or holds the current working folder.
-// Staging folders and temporary files of processes that no longer run (killed) are removed by the next run
-// that writes beside them; remove_staged_outputs_and_exit() removes this process's own (signal handlers).
+// One run writes a folder at a time: it holds the lock file `.<name>.seqtopo-lock` beside it (flock(2)) from its
+// checks to the end of its swap, and a second run is refused (InputError naming the folder) while it does.
+// Staging folders and old sets of processes that no longer run (killed) are removed by the next run that writes
+// beside them, whichever folder they were for (temporary files: by the next write of the same file);
+// remove_staged_outputs_and_exit() removes this process's own (signal handlers). The hidden siblings' names are
+// bounded: a name over 128 bytes is cut and ends with 8 hex digits of its SHA-256.
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
@@ -89,7 +93,9 @@ class OutputDirectory {
   std::vector<std::string> names_;
   std::map<std::string, std::pair<std::uint64_t, std::string>> hashes_;  // name -> size, SHA-256 write() wrote
   std::vector<std::filesystem::path> made_parents_;  // folders the constructor created (removed if no commit)
-  int lock_fd_ = -1;
+  int lock_fd_ = -1;                  // the staging folder, locked while this run writes it
+  std::filesystem::path lock_file_;  // `.<name>.seqtopo-lock` beside the folder
+  int folder_lock_fd_ = -1;          // held from the checks to the end of the swap
   bool committed_ = false;
 };
 
