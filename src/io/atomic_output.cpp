@@ -485,8 +485,10 @@ Tree list_tree(const fs::path& dir) {
 }
 
 // Throws unless `target` may be replaced whole: absent, an empty folder, or a folder whose manifest lists every
-// file in it. `shown` is the folder as the user gave it.
-void check_replaceable(const fs::path& target, const fs::path& shown) {
+// file in it, each as the manifest has it (size and SHA-256: a file the user edited would be lost). `shown` is the
+// folder as the user gave it. `seen` keeps what matched (the manifest, and each file's size, time and inode), so
+// that the check before the swap hashes again only the files that changed since.
+void check_replaceable(const fs::path& target, const fs::path& shown, OldSetSeen& seen) {
   std::error_code ec;
   const auto status = fs::symlink_status(target, ec);
   if (!fs::exists(status)) return;
@@ -498,7 +500,12 @@ void check_replaceable(const fs::path& target, const fs::path& shown) {
                      "is not empty and has no manifest.json of an earlier seqtopo run; an output folder is replaced "
                      "whole, so give a new or empty folder (or remove this one)");
   }
-  const Manifest m = parse_manifest(read_whole(manifest), manifest.string());
+  const std::string manifest_text = read_whole(manifest);
+  const Manifest m = parse_manifest(manifest_text, manifest.string());
+  if (manifest_text != seen.manifest) {
+    seen.manifest = manifest_text;
+    seen.files.clear();
+  }
   std::set<std::string> listed{kManifestName}, folders;
   for (const auto& f : m.files) {
     listed.insert(f.name);
@@ -518,6 +525,23 @@ void check_replaceable(const fs::path& target, const fs::path& shown) {
     if (!folders.count(f)) foreign(f + "/");
   }
   if (!tree.other.empty()) foreign(tree.other.front());
+  for (const auto& f : m.files) {
+    const fs::path p = target / f.name;
+    struct stat st {};
+    if (::lstat(p.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;  // missing: nothing to lose
+    const std::string key = std::to_string(st.st_size) + " " + std::to_string(st.st_mtim.tv_sec) + "." +
+                            std::to_string(st.st_mtim.tv_nsec) + " " + std::to_string(st.st_ino);
+    const auto known = seen.files.find(f.name);
+    if (known != seen.files.end() && known->second == key) continue;
+    const bool size = static_cast<std::uint64_t>(st.st_size) != f.bytes;
+    if (size || hash_file(p) != f.sha256) {
+      throw InputError(shown.string(), "holds '" + f.name + "', changed since the seqtopo run that wrote it (its " +
+                                           (size ? "size" : "SHA-256") +
+                                           " is not the one in manifest.json); an output folder is replaced whole, "
+                                           "so move the file away (or remove the folder) to replace it");
+    }
+    seen.files[f.name] = key;
+  }
 }
 
 }  // namespace
@@ -656,7 +680,7 @@ OutputDirectory::OutputDirectory(fs::path dir, OutputOptions options)
       folder_lock_fd_ = take_folder_lock(lock_file_, dir_);
       track_locked(r, lock_file_);  // a stopped run removes it with its staging folder
     }
-    check_replaceable(target_, dir_);
+    check_replaceable(target_, dir_, old_set_);
     Registry& r = registry();
     const std::lock_guard lock(r.mutex);
     for (;;) {
@@ -752,7 +776,7 @@ std::vector<fs::path> OutputDirectory::commit() {
   {
     Registry& r = registry();
     const std::lock_guard lock(r.mutex);  // a stopping process waits for the swap, then removes what is left
-    check_replaceable(target_, dir_);     // again: the folder may have changed during the run
+    check_replaceable(target_, dir_, old_set_);  // again: the folder may have changed during the run
     std::error_code ec;
     bool exists = fs::exists(fs::symlink_status(target_, ec));
     if (!exists) {

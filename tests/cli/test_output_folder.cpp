@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
 #include <set>
@@ -318,6 +319,25 @@ TEST_F(OutputFolder, TwoRunsWritingOneFolderAtOnce) {
   EXPECT_EQ(first.finish(), 0) << read_file(dir_.path / "err.txt");
   EXPECT_EQ(seqtopo::io::verify_manifest(out_), "");
   EXPECT_EQ(seqtopo::io::read_manifest(out_).files.size(), 9U) << "the first (long) run's set";
+  EXPECT_EQ(leftovers(out_), std::vector<std::string>{});
+}
+
+// Issue 47, defect 13: map.json edited by the user was replaced without a word. Refused before any work, naming
+// the folder and the file; the folder stays as it is.
+TEST_F(OutputFolder, AnEditedFileOfTheOldSetIsRefused) {
+  make_old_set();
+  std::string map = read_file(out_ / "map.json");
+  map[map.size() / 2] = map[map.size() / 2] == ' ' ? '\t' : ' ';
+  std::ofstream(out_ / "map.json", std::ios::binary) << map;
+  const auto before = snapshot(out_);
+  const auto r = run_cli("map " + small_ + " --out " + out_.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err.rfind("seqtopo: error: " + out_.string() +
+                            ": holds 'map.json', changed since the seqtopo run that wrote it (its SHA-256",
+                        0),
+            0U)
+      << r.err;
+  EXPECT_EQ(snapshot(out_), before);
   EXPECT_EQ(leftovers(out_), std::vector<std::string>{});
 }
 

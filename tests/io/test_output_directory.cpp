@@ -343,6 +343,27 @@ TEST_F(OutputDirectoryTest, TwoRunsNeverWriteOneFolderAtOnce) {
   EXPECT_EQ(entries(dir_.path), 2U);
 }
 
+// Issue 47, defect 13: a file of the old set that the user edited (its SHA-256 no longer the manifest's) was
+// replaced without a word. It is refused before the run and again before the swap; the folder stays as it is.
+TEST_F(OutputDirectoryTest, AnEditedFileOfTheOldSetIsNeverReplaced) {
+  commit_set({{"a.txt", "old a"}, {"sub/b.txt", "old b"}});
+  write_to(out_ / "sub" / "b.txt", "new b");  // the same size
+  expect_refused(out_, "holds 'sub/b.txt', changed since the seqtopo run that wrote it (its SHA-256");
+  write_to(out_ / "sub" / "b.txt", "longer b");
+  expect_refused(out_, "holds 'sub/b.txt', changed since the seqtopo run that wrote it (its size");
+  fs::remove(out_ / "sub" / "b.txt");  // moved away: the rest may be replaced
+  {
+    OutputDirectory out(out_);
+    out.write("a.txt", "new a");
+    write_to(out_ / "a.txt", "mine!");  // edited while the run lasts
+    EXPECT_THROW(out.commit(), InputError);
+  }
+  EXPECT_EQ(read_file(out_ / "a.txt"), "mine!");
+  fs::remove(out_ / "a.txt");
+  commit_set({{"c.txt", "c"}});
+  EXPECT_EQ(verify_manifest(out_), "");
+}
+
 // Issue 47, defect 14: a valid folder name of 225 to 255 bytes was refused ("File name too long") because the
 // staging sibling's name added 30 bytes and more. The hidden siblings' names are bounded whatever the name.
 TEST_F(OutputDirectoryTest, NamesUpTo255BytesAreOutputFoldersAndFiles) {

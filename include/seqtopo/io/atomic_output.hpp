@@ -12,7 +12,8 @@
 //
 // Because the folder is replaced whole, it is refused (InputError naming it, before any work) when it
 //   - exists and is not a folder, or is not empty and has no manifest.json (no seqtopo run wrote it),
-//   - holds anything its manifest does not list (a file a user put there would be lost),
+//   - holds anything its manifest does not list (a file a user put there would be lost), or a file whose size or
+//     SHA-256 is not its manifest's (a file a user edited would be lost),
 //   - is, holds, or lies inside one of the run's inputs, or holds the current working folder.
 // One run writes a folder at a time: it holds the lock file `.<name>.seqtopo-lock` beside it (flock(2)) from its
 // checks to the end of its swap, and a second run is refused (InputError naming the folder) while it does.
@@ -62,6 +63,13 @@ struct OutputOptions {
   std::string command;  // written to the manifest ("seqtopo map")
 };
 
+// What the checks of an output folder saw of its old set (the manifest's text; per file its size, time and inode
+// when it matched the manifest).
+struct OldSetSeen {
+  std::string manifest;
+  std::map<std::string, std::string> files;
+};
+
 class OutputDirectory {
  public:
   // Checks that `dir` may be replaced (see above), removes stale staging folders beside it and makes this run's.
@@ -96,6 +104,7 @@ class OutputDirectory {
   int lock_fd_ = -1;                  // the staging folder, locked while this run writes it
   std::filesystem::path lock_file_;  // `.<name>.seqtopo-lock` beside the folder
   int folder_lock_fd_ = -1;          // held from the checks to the end of the swap
+  OldSetSeen old_set_;
   bool committed_ = false;
 };
 
