@@ -33,7 +33,10 @@ namespace {
 struct Registry {
   std::mutex mutex;
   std::vector<fs::path> paths;
+  bool committed = false;  // a commit has put its set in place
 };
+
+std::atomic<bool> stop_holds_lock{false};  // begin_stop() holds the registry's mutex (for good)
 
 Registry& registry() {
   static auto* r = new Registry;  // never destroyed: a signal may come during static destruction
@@ -815,6 +818,7 @@ std::vector<fs::path> OutputDirectory::commit() {
       }
     }
     committed_ = true;
+    r.committed = true;
   }
   sync_path(parent, true);
   if (!old.empty()) {
@@ -832,9 +836,20 @@ std::vector<fs::path> OutputDirectory::commit() {
   return written;
 }
 
+bool begin_stop() {
+  Registry& r = registry();
+  r.mutex.lock();  // a swap in progress finishes first
+  if (r.committed) {
+    r.mutex.unlock();
+    return false;
+  }
+  stop_holds_lock = true;  // never unlocked: no output folder changes after this point
+  return true;
+}
+
 void remove_staged_outputs_and_exit(int status) {
   Registry& r = registry();
-  r.mutex.lock();  // never unlocked: no output folder changes after this point
+  if (!stop_holds_lock) r.mutex.lock();  // never unlocked: no output folder changes after this point
   for (const auto& p : r.paths) remove_tree(p);
   ::_exit(status);
 }

@@ -108,6 +108,12 @@ class OutputDirectory {
   bool committed_ = false;
 };
 
+// The start of a stop (a signal): false once a commit of this process has put its set in place (a swap in progress
+// finishes first), since the run's outputs are then whole and in place and the stop comes too late to undo them:
+// the process carries on to its own end and status. True otherwise: no output folder changes after this point, and
+// the caller ends the process with remove_staged_outputs_and_exit(128 + signal).
+[[nodiscard]] bool begin_stop();
+
 // Removes every staging folder and temporary file of this process that was not committed, and the old set of a
 // commit that has not finished removing it, then ends the process with `status` (_exit: nothing else runs). A
 // commit in progress on another thread finishes its swap first, so the folder is the old set or the new one.
