@@ -122,8 +122,7 @@ struct PyOnlineMapper {
       // Only uint8: a cast of floats (0..1, or 0..255 with fractions) would map other pictures than the same ones
       // read from files.
       if (array.dtype().kind() != 'u' || array.dtype().itemsize() != 1) {
-        throw py::value_error("add: an image must be of uint8 (0..255), got " +
-                              std::string(py::str(array.dtype())) +
+        throw py::value_error("add: an image must be of uint8 (0..255), got " + std::string(py::str(array.dtype())) +
                               "; convert it first, e.g. (image * 255).round().astype(numpy.uint8) for values in 0..1");
       }
       const auto pixels = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(frame);

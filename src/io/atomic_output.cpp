@@ -150,7 +150,8 @@ void remove_stale(const fs::path& folder, const std::vector<std::string>& prefix
 // writes the folder, from its checks to the end of its swap (the kernel releases it when the run dies). Its holder
 // removes it while it holds it; whoever locked a file that was removed meanwhile takes the new one.
 bool same_file(int fd, const fs::path& path) {
-  struct stat held {}, now {};
+  struct stat held {
+  }, now{};
   return ::fstat(fd, &held) == 0 && ::stat(path.c_str(), &now) == 0 && held.st_dev == now.st_dev &&
          held.st_ino == now.st_ino;
 }
@@ -159,7 +160,8 @@ int take_folder_lock(const fs::path& lock, const fs::path& shown) {
   for (int attempt = 0; attempt < 1000; ++attempt) {
     const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd < 0) {
-      throw InputError(shown.string(), "cannot make its lock file " + lock.filename().string() + ": " + error_text(errno));
+      throw InputError(shown.string(),
+                       "cannot make its lock file " + lock.filename().string() + ": " + error_text(errno));
     }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int error = errno;
@@ -167,7 +169,8 @@ int take_folder_lock(const fs::path& lock, const fs::path& shown) {
       const ssize_t n = ::pread(fd, text.data(), text.size() - 1, 0);
       ::close(fd);
       if (error != EWOULDBLOCK) throw InputError(shown.string(), "cannot lock: " + error_text(error));
-      const std::string holder = n > 0 ? " (process " + std::string(text.data(), static_cast<std::size_t>(n)) + ")" : "";
+      const std::string holder =
+          n > 0 ? " (process " + std::string(text.data(), static_cast<std::size_t>(n)) + ")" : "";
       throw InputError(shown.string(), "is being written by another seqtopo run" + holder +
                                            "; two runs never write one folder at once: wait for it to finish, or "
                                            "choose another folder");
@@ -778,7 +781,7 @@ std::vector<fs::path> OutputDirectory::commit() {
   fs::path old;  // where the old set is after the swap (to be removed)
   {
     Registry& r = registry();
-    const std::lock_guard lock(r.mutex);  // a stopping process waits for the swap, then removes what is left
+    const std::lock_guard lock(r.mutex);         // a stopping process waits for the swap, then removes what is left
     check_replaceable(target_, dir_, old_set_);  // again: the folder may have changed during the run
     std::error_code ec;
     bool exists = fs::exists(fs::symlink_status(target_, ec));

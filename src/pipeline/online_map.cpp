@@ -184,9 +184,8 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
       add_image(image_name(input.path, file, input.recursive), image, file.string());
     }
   } else if (run.kind == InputKind::video) {
-    const auto read = image::for_each_video_frame(
-        input.path, input.every,
-        [&](std::size_t index, const RgbImage& image) {
+    const auto read =
+        image::for_each_video_frame(input.path, input.every, [&](std::size_t index, const RgbImage& image) {
           add_image(fmt::format("frame {}", index), image, fmt::format("{}: frame {}", subject, index));
         });
     if (std::string warning = image::video_ended_early(input.path, read); !warning.empty()) {

@@ -49,8 +49,8 @@ std::vector<std::string> leftovers(const fs::path& out) {
     for (const auto& e : fs::directory_iterator(folder)) {
       const std::string name = e.path().filename().string();
       if (name.find("seqtopo-staging") != std::string::npos || name.find("seqtopo-old") != std::string::npos ||
-          name.find("seqtopo-lock") != std::string::npos ||
-          name.find(".tmp.") != std::string::npos || name.find(".staging") != std::string::npos) {
+          name.find("seqtopo-lock") != std::string::npos || name.find(".tmp.") != std::string::npos ||
+          name.find(".staging") != std::string::npos) {
         found.push_back(e.path().string());
       }
     }

@@ -332,7 +332,7 @@ TEST_F(OutputDirectoryTest, TwoRunsNeverWriteOneFolderAtOnce) {
     first.commit();
   }
   EXPECT_EQ(read_file(out_ / "a.txt"), "first");
-  { OutputDirectory again(out_); }  // refused or not, the failed run released the lock
+  { OutputDirectory again(out_); }  // the first released the lock at its commit (this one at its end)
   commit_set({{"a.txt", "third"}});
   EXPECT_EQ(read_file(out_ / "a.txt"), "third");
   EXPECT_EQ(entries(dir_.path), 2U) << "out and other, no lock file or staging folder beside them";

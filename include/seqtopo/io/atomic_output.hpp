@@ -101,9 +101,9 @@ class OutputDirectory {
   std::vector<std::string> names_;
   std::map<std::string, std::pair<std::uint64_t, std::string>> hashes_;  // name -> size, SHA-256 write() wrote
   std::vector<std::filesystem::path> made_parents_;  // folders the constructor created (removed if no commit)
-  int lock_fd_ = -1;                  // the staging folder, locked while this run writes it
-  std::filesystem::path lock_file_;  // `.<name>.seqtopo-lock` beside the folder
-  int folder_lock_fd_ = -1;          // held from the checks to the end of the swap
+  int lock_fd_ = -1;                                 // the staging folder, locked while this run writes it
+  std::filesystem::path lock_file_;                  // `.<name>.seqtopo-lock` beside the folder
+  int folder_lock_fd_ = -1;                          // held from the checks to the end of the swap
   OldSetSeen old_set_;
   bool committed_ = false;
 };
