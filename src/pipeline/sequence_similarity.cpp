@@ -283,7 +283,6 @@ void prepare_slots(Described& out, Descriptors ds, std::size_t n, const Similari
   }
 }
 
-
 // The names of the descriptors that resize every image, for the warning about images of different sizes.
 std::string resizing_names(Descriptors ds) {
   std::string names;
