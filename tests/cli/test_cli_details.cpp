@@ -195,6 +195,47 @@ sys.exit(p.wait())
   EXPECT_EQ(csv.rfind("query,latency_ms,wait_ms\n", 0), 0U) << csv;
 }
 
+// Issue 47, defect 5: joint histograms of a map and a query (or of sessions) of different image sizes were compared
+// without a word: every query frame "not in the map". Inside one folder the same mix was already an error; now it
+// is one everywhere, naming the input and both sizes (offline, --online, sessions, and map --online's folder).
+TEST(CliDetails, JointHistogramsOfDifferentImageSizesAreRefusedEverywhere) {
+  TempDir dir;
+  std::mt19937 rng(3);
+  for (const auto& [folder, width] : {std::pair{"small", 32}, std::pair{"large", 40}}) {
+    fs::create_directories(dir.path / folder);
+    for (int k = 0; k < 6; ++k) {
+      seqtopo::RgbImage image(width, 24);
+      for (auto& v : image.pixels) v = static_cast<std::uint8_t>(rng() % 256);
+      seqtopo::plot::write_png(dir.path / folder / (std::to_string(k) + ".png"), image);
+    }
+  }
+  const std::string small = (dir.path / "small").string(), large = (dir.path / "large").string();
+  // The second input described is named: the query online and in a map of sessions, the map offline (the query's
+  // frames are described first).
+  const std::string large_named = large + ": its images are 40 x 24 pixels, those of " + small + " 32 x 24: the joint";
+  const std::string small_named = small + ": its images are 32 x 24 pixels, those of " + large + " 40 x 24: the joint";
+  for (const auto& [args, error] :
+       {std::pair{"localize --map " + small + " --query " + large + " --descriptor joint-histogram", small_named},
+        std::pair{"localize --map " + small + " --query " + large + " --descriptor joint-histogram --online",
+                  large_named},
+        std::pair{"map " + small + " " + large + " --descriptor joint-histogram", large_named}}) {
+    SCOPED_TRACE(args);
+    const auto r = run_cli(args + " --out " + (dir.path / "out").string());
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(r.err_last_line().rfind("seqtopo: error: " + error, 0), 0U) << r.err;
+    EXPECT_FALSE(fs::exists(dir.path / "out"));
+  }
+  // map --online of a folder whose images change size (the offline map refuses it too)
+  fs::copy_file(dir.path / "large" / "0.png", dir.path / "small" / "9.png");
+  const auto r = run_cli("map " + small + " --online --out " + (dir.path / "out").string());
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err_last_line().rfind("seqtopo: error: " + (dir.path / "small" / "9.png").string() +
+                                        ": the image is 40 x 24 pixels, the first one 32 x 24",
+                                    0),
+            0U)
+      << r.err;
+}
+
 // --every K was read for videos and bags only: an image folder and a descriptors.npy were mapped whole without a
 // word. It keeps every K-th image (and odometry row) of a folder and every K-th row of an array: the same map as the
 // thinned folder or array given whole. A similarity matrix is refused, not thinned.
