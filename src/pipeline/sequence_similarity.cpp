@@ -244,7 +244,7 @@ struct Described {
   std::vector<similarity::DescriptorSet> sets;  // one per descriptor, in the order asked
   std::vector<std::string> names;
   std::vector<std::size_t> session_rows;
-  std::vector<double> entropy;  // grey-level entropy of each image [bits]; empty for descriptors
+  std::vector<double> entropy;              // grey-level entropy of each image [bits]; empty for descriptors
   std::optional<std::pair<int, int>> size;  // of the images or frames (one size when a joint histogram was made)
 };
 
