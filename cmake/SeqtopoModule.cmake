@@ -7,9 +7,16 @@
 # OPTIONAL targets are linked when they exist, and the module's own sources then see SEQTOPO_HAVE_<NAME>
 # (e.g. seqtopo::recording -> SEQTOPO_HAVE_RECORDING).
 include(GNUInstallDirs)
+set(SEQTOPO_MODULES "" CACHE STRING "The modules to build (a ;-list, with what they need; empty: every module)")
 
 function(seqtopo_add_module name)
   cmake_parse_arguments(M "" "" "DEPS;OPTIONAL" ${ARGN})
+  # SEQTOPO_MODULES (a list; empty: all) builds only the modules named and the vocabulary (core): a project that
+  # needs one module does not compile the others.
+  if(SEQTOPO_MODULES AND NOT name STREQUAL "core" AND NOT name IN_LIST SEQTOPO_MODULES)
+    message(STATUS "seqtopo: module ${name} not built (not in SEQTOPO_MODULES)")
+    return()
+  endif()
   set(missing)
   foreach(dep IN LISTS M_DEPS)
     if(NOT TARGET ${dep})

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -98,8 +99,17 @@ struct PyOnlineMapper {
   OnlineMapper mapper;
   pipeline::OnlineImageRows image_rows;
   std::optional<bool> images;  // the kind of the first frame: images and descriptors do not mix
+  bool finished = false;       // finish() was called: the sequence has ended
+
+  void check_open(const char* call) const {
+    if (finished) {
+      throw std::runtime_error(std::string(call) +
+                               ": a frame after finish() (the sequence has ended; make a new OnlineMapper)");
+    }
+  }
 
   py::list add(const py::handle& frame) {
+    check_open("add");
     const auto array = py::array::ensure(frame);
     if (!array) throw py::value_error("add: expected an image (H x W or H x W x 3 uint8) or a 1-D descriptor");
     const bool image = array.ndim() == 2 || array.ndim() == 3;
@@ -109,6 +119,12 @@ struct PyOnlineMapper {
     }
     if (!images) images = image;
     if (image) {
+      // Only uint8: a cast of floats (0..1, or 0..255 with fractions) would map other pictures than the same ones
+      // read from files.
+      if (array.dtype().kind() != 'u' || array.dtype().itemsize() != 1) {
+        throw py::value_error("add: an image must be of uint8 (0..255), got " + std::string(py::str(array.dtype())) +
+                              "; convert it first, e.g. (image * 255).round().astype(numpy.uint8) for values in 0..1");
+      }
       const auto pixels = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(frame);
       if (!pixels || (pixels.ndim() == 3 && pixels.shape(2) != 3)) {
         throw py::value_error("add: an image must be H x W (grey) or H x W x 3 (RGB) of uint8");
@@ -120,9 +136,11 @@ struct PyOnlineMapper {
         for (std::size_t c = 0; c < 3; ++c) rgb.pixels[3 * k + c] = pixels.ndim() == 3 ? p[3 * k + c] : p[k];
       }
       std::vector<OnlineEvent> events;
-      {
+      try {
         const py::gil_scoped_release release;
         events = mapper.add_similarities(image_rows.add(rgb));
+      } catch (const std::invalid_argument& e) {
+        throw py::value_error(std::string("add: frame ") + std::to_string(mapper.frames()) + ": " + e.what());
       }
       return event_list(events);
     }
@@ -207,13 +225,14 @@ void bind_online(py::module_& m) {
       "default) or a 1-D descriptor (cosine), and returns the events it caused as dicts (the events.jsonl fields).")
       .def(py::init([](std::optional<OnlineMapConfig> config) {
              return PyOnlineMapper{OnlineMapper(config.value_or(OnlineMapConfig{})), pipeline::OnlineImageRows{},
-                                   std::nullopt};
+                                   std::nullopt, false};
            }),
            py::arg("config") = py::none())
       .def("add", &PyOnlineMapper::add, py::arg("frame"))
       .def(
           "add_similarity",
           [](PyOnlineMapper& self, const py::handle& row) {
+            self.check_open("add_similarity");
             const std::vector<float> values = float_vector(row, "similarity row");
             std::vector<OnlineEvent> events;
             {
@@ -226,6 +245,7 @@ void bind_online(py::module_& m) {
       .def(
           "add_similarities",
           [](PyOnlineMapper& self, const py::list& rows) {
+            self.check_open("add_similarities");
             std::vector<std::vector<float>> values;
             for (const auto& row : rows) values.push_back(float_vector(row, "similarity row"));
             std::vector<OnlineEvent> events;
@@ -240,12 +260,17 @@ void bind_online(py::module_& m) {
       .def(
           "add_scores",
           [](PyOnlineMapper& self, const py::handle& row) {
+            self.check_open("add_scores");
             const std::vector<float> values = float_vector(row, "score row");
             return event_list(self.mapper.add_scores(values));
           },
           py::arg("scores"),
           "The next frame as its alignment scores to frames 0 .. t - min_separation, aligned as they are.")
-      .def("finish", [](PyOnlineMapper& self) { return event_list(self.mapper.finish()); })
+      .def("finish",
+           [](PyOnlineMapper& self) {
+             self.finished = true;
+             return event_list(self.mapper.finish());
+           })
       .def_property_readonly("frames", [](const PyOnlineMapper& self) { return self.mapper.frames(); })
       .def_property_readonly("config", [](const PyOnlineMapper& self) { return self.mapper.config(); })
       .def(

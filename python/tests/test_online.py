@@ -108,3 +108,36 @@ def test_a_short_run_is_fitted_on_its_table_until_the_islands_suffice():
     feed(late, frames)
     assert late.statistics is None
     assert late.threshold == 20
+
+
+def test_images_of_another_size_float_images_and_frames_after_finish_are_refused():
+    """Issue 47, defect 6: add() accepted images of changing sizes, float images (cast to other pictures than the
+    same ones as uint8) and frames after finish()."""
+    rng = np.random.default_rng(2)
+    image = rng.integers(0, 255, (48, 64, 3), dtype=np.uint8)
+    mapper = seqtopo.OnlineMapper()
+    mapper.add(image)
+    mapper.add(image[:, :, 0])  # grey of the same size
+    with pytest.raises(ValueError, match=r"add: frame 2: the image is 60 x 48 pixels, the first one 64 x 48"):
+        mapper.add(rng.integers(0, 255, (48, 60, 3), dtype=np.uint8))
+    assert mapper.frames == 2
+    for dtype in (np.float32, np.float64, np.uint16, np.int64, bool):
+        with pytest.raises(ValueError, match="an image must be of uint8"):
+            mapper.add((image / 255.0).astype(dtype))
+    assert mapper.frames == 2
+    mapper.add(image)
+    mapper.finish()
+    with pytest.raises(RuntimeError, match=r"add: a frame after finish\(\)"):
+        mapper.add(image)
+    with pytest.raises(RuntimeError, match="after finish"):
+        mapper.add_similarity(np.zeros(3, np.float32))
+    with pytest.raises(RuntimeError, match="after finish"):
+        mapper.add_similarities([np.zeros(3, np.float32)])
+    with pytest.raises(RuntimeError, match="after finish"):
+        mapper.add_scores(np.zeros(3, np.float32))
+    assert mapper.frames == 3
+    descriptors = seqtopo.OnlineMapper()
+    descriptors.add(np.ones(4, np.float64))  # a descriptor may be of any numbers
+    descriptors.finish()
+    with pytest.raises(RuntimeError, match="after finish"):
+        descriptors.add(np.ones(4, np.float32))

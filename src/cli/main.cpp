@@ -131,7 +131,8 @@ std::vector<std::string> expand_config(CLI::App& app, const std::vector<std::str
 
 // SIGINT, SIGTERM and SIGHUP stop a run cleanly: the handler only writes the signal's number to a pipe; a thread
 // waiting on the pipe removes this process's staging folders and temporary files (after a folder swap in
-// progress has finished) and ends the process with 128 + the signal (130, 143, 129). A signal that was ignored
+// progress has finished) and ends the process with 128 + the signal (130, 143, 129) -- unless the run's output
+// folder has already been swapped in: then the run goes on to its own end and status. A signal that was ignored
 // when seqtopo started (nohup, a background job of a script) stays ignored.
 std::atomic<bool> stopping{false};
 int signal_pipe[2] = {-1, -1};
@@ -144,14 +145,19 @@ extern "C" void on_stop_signal(int signal) {
 }
 
 void watch_stop_signals() {
-  unsigned char byte = 0;
-  while (::read(signal_pipe[0], &byte, 1) != 1) {
-    if (errno != EINTR) return;
+  for (;;) {
+    unsigned char byte = 0;
+    while (::read(signal_pipe[0], &byte, 1) != 1) {
+      if (errno != EINTR) return;
+    }
+    // Once the new output set is in place the run has done its work: a stop then would only make a caller that
+    // checks the status believe the old set is still there. The run ends as it would have.
+    if (!seqtopo::io::begin_stop()) continue;
+    stopping = true;
+    // A second signal while cleaning up ends the process at once (the next run removes what is left).
+    for (const int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, SIG_DFL);
+    seqtopo::io::remove_staged_outputs_and_exit(128 + byte);
   }
-  stopping = true;
-  // A second signal while cleaning up ends the process at once (the next run removes what is left).
-  for (const int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, SIG_DFL);
-  seqtopo::io::remove_staged_outputs_and_exit(128 + byte);
 }
 
 void install_stop_signals() {

@@ -33,7 +33,10 @@ namespace {
 struct Registry {
   std::mutex mutex;
   std::vector<fs::path> paths;
+  bool committed = false;  // a commit has put its set in place
 };
+
+std::atomic<bool> stop_holds_lock{false};  // begin_stop() holds the registry's mutex (for good)
 
 Registry& registry() {
   static auto* r = new Registry;  // never destroyed: a signal may come during static destruction
@@ -143,9 +146,115 @@ void remove_stale(const fs::path& folder, const std::vector<std::string>& prefix
   for (const auto& p : dead) remove_tree(p);
 }
 
-std::string staging_prefix(const std::string& base) { return "." + base + ".seqtopo-staging-"; }
-std::string old_prefix(const std::string& base) { return "." + base + ".seqtopo-old-"; }
-std::string temporary_prefix(const std::string& base) { return "." + base + ".tmp."; }
+// The lock of an output folder: a file beside it, `.<name>.seqtopo-lock`, held with flock(2) by the one run that
+// writes the folder, from its checks to the end of its swap (the kernel releases it when the run dies). Its holder
+// removes it while it holds it; whoever locked a file that was removed meanwhile takes the new one.
+bool same_file(int fd, const fs::path& path) {
+  struct stat held {
+  }, now{};
+  return ::fstat(fd, &held) == 0 && ::stat(path.c_str(), &now) == 0 && held.st_dev == now.st_dev &&
+         held.st_ino == now.st_ino;
+}
+
+int take_folder_lock(const fs::path& lock, const fs::path& shown) {
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd < 0) {
+      throw InputError(shown.string(),
+                       "cannot make its lock file " + lock.filename().string() + ": " + error_text(errno));
+    }
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      std::array<char, 32> text{};
+      const ssize_t n = ::pread(fd, text.data(), text.size() - 1, 0);
+      ::close(fd);
+      if (error != EWOULDBLOCK) throw InputError(shown.string(), "cannot lock: " + error_text(error));
+      const std::string holder =
+          n > 0 ? " (process " + std::string(text.data(), static_cast<std::size_t>(n)) + ")" : "";
+      throw InputError(shown.string(), "is being written by another seqtopo run" + holder +
+                                           "; two runs never write one folder at once: wait for it to finish, or "
+                                           "choose another folder");
+    }
+    if (same_file(fd, lock)) {
+      const std::string pid = std::to_string(::getpid());
+      if (::ftruncate(fd, 0) == 0) (void)::pwrite(fd, pid.data(), pid.size(), 0);  // for the message above
+      return fd;
+    }
+    ::close(fd);  // its holder removed it meanwhile: take the new one
+  }
+  throw InputError(shown.string(), "cannot lock: its lock file " + lock.filename().string() + " keeps changing");
+}
+
+// Removes the lock file (while it is held, so that nobody else holds this one) and releases it.
+void release_folder_lock(const fs::path& lock, int& fd) {
+  if (fd < 0) return;
+  if (same_file(fd, lock)) ::unlink(lock.c_str());
+  ::close(fd);
+  fd = -1;
+}
+
+// ".<folder>.seqtopo-staging-<pid>-<k>" or ".<folder>.seqtopo-old-<pid>-<k>", of any folder: the owner's pid.
+std::optional<pid_t> sibling_owner(const std::string& name) {
+  const auto digits = [](std::string_view t) {
+    return !t.empty() && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  if (name.size() < 2 || name[0] != '.') return std::nullopt;
+  for (const std::string_view marker : {".seqtopo-staging-", ".seqtopo-old-"}) {
+    const auto at = name.rfind(marker);
+    if (at == std::string::npos || at == 0) continue;
+    const std::string_view rest = std::string_view(name).substr(at + marker.size());
+    const auto dash = rest.find('-');
+    if (dash == std::string_view::npos || !digits(rest.substr(0, dash)) || !digits(rest.substr(dash + 1))) continue;
+    return owner_pid(std::string(rest), "");
+  }
+  return std::nullopt;
+}
+
+// Removes the staging folders and old sets of every output folder in `folder` whose process no longer runs (killed):
+// a run cleans what killed runs left beside it, whichever folder they were writing.
+void remove_stale_siblings(const fs::path& folder) {
+  std::error_code ec;
+  std::vector<fs::path> dead;
+  std::vector<fs::path> locks;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (it->is_symlink(ec)) continue;
+    if (it->is_regular_file(ec) && name.size() > 14 && name[0] == '.' && name.ends_with(".seqtopo-lock")) {
+      locks.push_back(it->path());
+      continue;
+    }
+    if (!it->is_directory(ec)) continue;
+    const auto pid = sibling_owner(name);
+    if (pid && stale(it->path(), *pid, true)) dead.push_back(it->path());
+  }
+  for (const auto& p : dead) remove_tree(p);
+  // A lock file nobody holds was left by a killed run: removed as its holder would (locked, then unlinked).
+  for (const auto& p : locks) {
+    int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    if (fd < 0) continue;
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) {
+      release_folder_lock(p, fd);
+    } else {
+      ::close(fd);
+    }
+  }
+}
+
+// The name a folder's or file's hidden siblings start with: the name itself up to kShortName bytes; a longer one
+// (a valid name is up to 255 bytes, the siblings add up to 50) is cut at a character boundary and ends with 8 hex
+// digits of its SHA-256, so that every sibling's name stays well under the file system's limit.
+constexpr std::size_t kShortName = 128;
+std::string short_base(const std::string& base) {
+  if (base.size() <= kShortName) return base;
+  std::size_t cut = kShortName - 9;
+  while (cut > 0 && (static_cast<unsigned char>(base[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+  return base.substr(0, cut) + "~" + sha256_hex(base).substr(0, 8);
+}
+
+std::string staging_prefix(const std::string& base) { return "." + short_base(base) + ".seqtopo-staging-"; }
+std::string old_prefix(const std::string& base) { return "." + short_base(base) + ".seqtopo-old-"; }
+std::string temporary_prefix(const std::string& base) { return "." + short_base(base) + ".tmp."; }
+std::string lock_name(const std::string& base) { return "." + short_base(base) + ".seqtopo-lock"; }
 
 // `p` made absolute and normal, without a trailing separator.
 fs::path normal_absolute(const fs::path& p) {
@@ -382,8 +491,10 @@ Tree list_tree(const fs::path& dir) {
 }
 
 // Throws unless `target` may be replaced whole: absent, an empty folder, or a folder whose manifest lists every
-// file in it. `shown` is the folder as the user gave it.
-void check_replaceable(const fs::path& target, const fs::path& shown) {
+// file in it, each as the manifest has it (size and SHA-256: a file the user edited would be lost). `shown` is the
+// folder as the user gave it. `seen` keeps what matched (the manifest, and each file's size, time and inode), so
+// that the check before the swap hashes again only the files that changed since.
+void check_replaceable(const fs::path& target, const fs::path& shown, OldSetSeen& seen) {
   std::error_code ec;
   const auto status = fs::symlink_status(target, ec);
   if (!fs::exists(status)) return;
@@ -395,7 +506,12 @@ void check_replaceable(const fs::path& target, const fs::path& shown) {
                      "is not empty and has no manifest.json of an earlier seqtopo run; an output folder is replaced "
                      "whole, so give a new or empty folder (or remove this one)");
   }
-  const Manifest m = parse_manifest(read_whole(manifest), manifest.string());
+  const std::string manifest_text = read_whole(manifest);
+  const Manifest m = parse_manifest(manifest_text, manifest.string());
+  if (manifest_text != seen.manifest) {
+    seen.manifest = manifest_text;
+    seen.files.clear();
+  }
   std::set<std::string> listed{kManifestName}, folders;
   for (const auto& f : m.files) {
     listed.insert(f.name);
@@ -415,6 +531,23 @@ void check_replaceable(const fs::path& target, const fs::path& shown) {
     if (!folders.count(f)) foreign(f + "/");
   }
   if (!tree.other.empty()) foreign(tree.other.front());
+  for (const auto& f : m.files) {
+    const fs::path p = target / f.name;
+    struct stat st {};
+    if (::lstat(p.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;  // missing: nothing to lose
+    const std::string key = std::to_string(st.st_size) + " " + std::to_string(st.st_mtim.tv_sec) + "." +
+                            std::to_string(st.st_mtim.tv_nsec) + " " + std::to_string(st.st_ino);
+    const auto known = seen.files.find(f.name);
+    if (known != seen.files.end() && known->second == key) continue;
+    const bool size = static_cast<std::uint64_t>(st.st_size) != f.bytes;
+    if (size || hash_file(p) != f.sha256) {
+      throw InputError(shown.string(), "holds '" + f.name + "', changed since the seqtopo run that wrote it (its " +
+                                           (size ? "size" : "SHA-256") +
+                                           " is not the one in manifest.json); an output folder is replaced whole, "
+                                           "so move the file away (or remove the folder) to replace it");
+    }
+    seen.files[f.name] = key;
+  }
 }
 
 }  // namespace
@@ -543,9 +676,17 @@ OutputDirectory::OutputDirectory(fs::path dir, OutputOptions options)
   if (ec || !fs::is_directory(parent)) {
     throw InputError(dir_.string(), "cannot create its parent folder: " + (ec ? ec.message() : "not a folder"));
   }
-  remove_stale(parent, {staging_prefix(base), old_prefix(base)});
+  remove_stale_siblings(parent);
   try {
-    check_replaceable(target_, dir_);
+    {
+      // The folder's lock first: a second run writing the same folder is refused before any work.
+      Registry& r = registry();
+      const std::lock_guard lock(r.mutex);
+      lock_file_ = parent / lock_name(base);
+      folder_lock_fd_ = take_folder_lock(lock_file_, dir_);
+      track_locked(r, lock_file_);  // a stopped run removes it with its staging folder
+    }
+    check_replaceable(target_, dir_, old_set_);
     Registry& r = registry();
     const std::lock_guard lock(r.mutex);
     for (;;) {
@@ -555,6 +696,10 @@ OutputDirectory::OutputDirectory(fs::path dir, OutputOptions options)
     }
     track_locked(r, staging_);
   } catch (...) {
+    if (folder_lock_fd_ >= 0) {
+      release_folder_lock(lock_file_, folder_lock_fd_);
+      untrack(lock_file_);
+    }
     for (const auto& p : made_parents_) fs::remove(p, ec);  // only what is still empty
     throw;
   }
@@ -572,6 +717,10 @@ OutputDirectory::~OutputDirectory() {
     for (const auto& p : made_parents_) fs::remove(p, ec);
   }
   if (lock_fd_ >= 0) ::close(lock_fd_);
+  if (folder_lock_fd_ >= 0) {
+    release_folder_lock(lock_file_, folder_lock_fd_);
+    untrack(lock_file_);
+  }
 }
 
 fs::path OutputDirectory::staged(const std::string& name) {
@@ -632,8 +781,8 @@ std::vector<fs::path> OutputDirectory::commit() {
   fs::path old;  // where the old set is after the swap (to be removed)
   {
     Registry& r = registry();
-    const std::lock_guard lock(r.mutex);  // a stopping process waits for the swap, then removes what is left
-    check_replaceable(target_, dir_);     // again: the folder may have changed during the run
+    const std::lock_guard lock(r.mutex);         // a stopping process waits for the swap, then removes what is left
+    check_replaceable(target_, dir_, old_set_);  // again: the folder may have changed during the run
     std::error_code ec;
     bool exists = fs::exists(fs::symlink_status(target_, ec));
     if (!exists) {
@@ -672,6 +821,7 @@ std::vector<fs::path> OutputDirectory::commit() {
       }
     }
     committed_ = true;
+    r.committed = true;
   }
   sync_path(parent, true);
   if (!old.empty()) {
@@ -682,14 +832,27 @@ std::vector<fs::path> OutputDirectory::commit() {
     ::close(lock_fd_);
     lock_fd_ = -1;
   }
+  release_folder_lock(lock_file_, folder_lock_fd_);
+  untrack(lock_file_);
   std::vector<fs::path> written;
   for (const auto& name : names_) written.push_back(dir_ / name);
   return written;
 }
 
+bool begin_stop() {
+  Registry& r = registry();
+  r.mutex.lock();  // a swap in progress finishes first
+  if (r.committed) {
+    r.mutex.unlock();
+    return false;
+  }
+  stop_holds_lock = true;  // never unlocked: no output folder changes after this point
+  return true;
+}
+
 void remove_staged_outputs_and_exit(int status) {
   Registry& r = registry();
-  r.mutex.lock();  // never unlocked: no output folder changes after this point
+  if (!stop_holds_lock) r.mutex.lock();  // never unlocked: no output folder changes after this point
   for (const auto& p : r.paths) remove_tree(p);
   ::_exit(status);
 }

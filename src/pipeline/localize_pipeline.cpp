@@ -4,7 +4,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <variant>
 
 #include "seqtopo/core/input_error.hpp"
@@ -96,8 +99,30 @@ using FrameDescriptor = std::variant<std::vector<float>, similarity::SparseHisto
 struct Describer {
   Descriptor descriptor;
   SimilarityConfig config;
-  FrameDescriptor operator()(const RgbImage& image) const {
-    if (descriptor == Descriptor::joint_histogram) return image::joint_histogram(image, config.joint_histogram);
+  std::string input;  // the input being read (named by an error of the image size)
+  // The joint histogram does not resize: every image of the map and the query has the first one's size.
+  std::optional<std::pair<int, int>> first_size;
+  std::string first_input;
+
+  FrameDescriptor operator()(const RgbImage& image) {
+    if (descriptor == Descriptor::joint_histogram) {
+      const std::pair size{image.width, image.height};
+      if (!first_size) {
+        first_size = size;
+        first_input = input;
+      } else if (size != *first_size) {
+        const auto text = [](std::pair<int, int> p) {
+          return std::to_string(p.first) + " x " + std::to_string(p.second);
+        };
+        throw InputError(input, (input == first_input ? "has images of " + text(size) + " and " + text(*first_size)
+                                                      : "its images are " + text(size) + " pixels, those of " +
+                                                            first_input + " " + text(*first_size)) +
+                                    " pixels: the joint-histogram descriptor does not resize (its 3x3 and 5x5 windows "
+                                    "would see a different scale in each); give images of one size, or --descriptor "
+                                    "patch");
+      }
+      return image::joint_histogram(image, config.joint_histogram);
+    }
     return dense_descriptor(image, descriptor, config);
   }
 };
@@ -113,7 +138,7 @@ double frame_distance(similarity::Distance metric, const FrameDescriptor& a, con
 // Calls visit(descriptor) for every frame of a sequence, in order, reading it lazily (a query folder is
 // listed first; a query of "-" takes one image path at a time from next_path as the frames arrive).
 // `arrival` (when given) is set to the time each frame arrives: its path read, before it is decoded.
-void for_each_frame(const SequenceInput& input, const Describer& describe, const NextPath& next_path,
+void for_each_frame(const SequenceInput& input, Describer& describe, const NextPath& next_path,
                     const std::function<void(FrameDescriptor)>& visit, Clock::time_point* arrival = nullptr) {
   const auto arrived = [arrival] {
     if (arrival) *arrival = Clock::now();
@@ -207,10 +232,11 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
     throw InputError("--descriptor", "npy needs descriptors .npy files as input");
   }
   const similarity::Distance metric = sc.distance.value_or(default_distance(d));
-  const Describer describe{d, sc};
+  Describer describe{d, sc, {}, std::nullopt, {}};
   const auto t0 = Clock::now();
   std::vector<FrameDescriptor> map;
   for (const auto& session : map_inputs(request)) {
+    describe.input = session.path.string();
     const std::size_t before = map.size();
     for_each_frame(session, describe, next_path, [&](FrameDescriptor f) { map.push_back(std::move(f)); });
     run.map_session_frames.push_back(map.size() - before);
@@ -223,6 +249,7 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
   // A frame's latency is its processing, from its arrival (its path read) to its answer: decoding, describing,
   // aligning. The time spent waiting for it since the previous answer is reported apart.
   auto arrival = Clock::now(), answered = arrival;
+  describe.input = request.query.path == "-" ? std::string("stdin") : request.query.path.string();
   for_each_frame(
       request.query, describe, next_path,
       [&](FrameDescriptor q) {
@@ -236,7 +263,9 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
         kept.insert(kept.end(), row.begin(), row.end());
         report(e, std::chrono::duration<double>(now - arrival).count(),
                std::chrono::duration<double>(arrival - answered).count());
-        answered = Clock::now();
+        // The wait for the next frame starts at this answer (before it is reported: whoever waits for the answer
+        // to send the next frame never sees a wait shorter than its own pause).
+        answered = now;
       },
       &arrival);
   run.queries = run.answers.size();

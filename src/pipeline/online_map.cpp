@@ -83,6 +83,16 @@ class Feeder {
 }  // namespace
 
 std::vector<std::vector<float>> OnlineImageRows::add(const RgbImage& image) {
+  // The joint histogram does not resize: an image of another size would be compared at another scale (as offline,
+  // sequence_similarity.cpp check_sizes).
+  if (!histograms_.empty() && (image.width != width_ || image.height != height_)) {
+    throw std::invalid_argument(fmt::format(
+        "the image is {} x {} pixels, the first one {} x {}: the joint-histogram descriptor does not resize (its 3x3 "
+        "and 5x5 windows would see a different scale in each); give images of one size",
+        image.width, image.height, width_, height_));
+  }
+  width_ = image.width;
+  height_ = image.height;
   histograms_.push_back(image::joint_histogram(image, config_.joint_histogram));
   patches_.push_back(image::patch_thumbnail(image, config_.patch));
   const std::size_t t = histograms_.size() - 1;
@@ -141,9 +151,18 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
   }
   Feeder feeder(config, run, on_frame);
   OnlineImageRows image_rows(request.similarity);
-  auto add_image = [&](std::string name, const RgbImage& image) {
+  // `where`: the file, or the video and the frame, named by an error of the image's size.
+  auto add_image = [&](std::string name, const RgbImage& image, const std::string& where) {
     // The descriptors are the frame's own work too: they are timed with it.
-    feeder.frame(std::move(name), [&](mapping::OnlineMapper& m) { return m.add_similarities(image_rows.add(image)); });
+    feeder.frame(std::move(name), [&](mapping::OnlineMapper& m) {
+      std::vector<std::vector<float>> rows;
+      try {
+        rows = image_rows.add(image);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(where, e.what());
+      }
+      return m.add_similarities(rows);
+    });
   };
   if (from_stream) {
     if (request.paths == nullptr) throw std::invalid_argument("run_online_map: input '-' needs a stream of paths");
@@ -154,7 +173,7 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
       const fs::path file(line);
       const RgbImage image = image::load_image(file);  // InputError naming the file
       run.image_files.push_back(file);
-      add_image(file.filename().string(), image);
+      add_image(file.filename().string(), image, file.string());
     }
     if (run.frame_names.empty()) throw InputError("stdin", "no image path was given (one path per line)");
   } else if (run.kind == InputKind::images) {
@@ -162,12 +181,13 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
     for (const auto& file : listing.files) {
       const RgbImage image = image::load_image(file);
       run.image_files.push_back(file);
-      add_image(image_name(input.path, file, input.recursive), image);
+      add_image(image_name(input.path, file, input.recursive), image, file.string());
     }
   } else if (run.kind == InputKind::video) {
-    const auto read = image::for_each_video_frame(
-        input.path, input.every,
-        [&](std::size_t index, const RgbImage& image) { add_image(fmt::format("frame {}", index), image); });
+    const auto read =
+        image::for_each_video_frame(input.path, input.every, [&](std::size_t index, const RgbImage& image) {
+          add_image(fmt::format("frame {}", index), image, fmt::format("{}: frame {}", subject, index));
+        });
     if (std::string warning = image::video_ended_early(input.path, read); !warning.empty()) {
       run.warnings.push_back(std::move(warning));
     }

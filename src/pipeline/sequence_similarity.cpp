@@ -9,6 +9,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -237,12 +238,27 @@ void check_memory(const Source& a, const Source* b, Descriptor d, const Similari
 // Every descriptor asked for, from one pass over the images (each image is read and decoded once).
 using Descriptors = std::span<const Descriptor>;
 
+bool has_joint_histogram(Descriptors ds) { return std::ranges::find(ds, Descriptor::joint_histogram) != ds.end(); }
+
 struct Described {
   std::vector<similarity::DescriptorSet> sets;  // one per descriptor, in the order asked
   std::vector<std::string> names;
   std::vector<std::size_t> session_rows;
-  std::vector<double> entropy;  // grey-level entropy of each image [bits]; empty for descriptors
+  std::vector<double> entropy;              // grey-level entropy of each image [bits]; empty for descriptors
+  std::optional<std::pair<int, int>> size;  // of the images or frames (one size when a joint histogram was made)
 };
+
+// Sessions (or the two sides of a comparison) whose images differ in size: an error for the joint histogram, as
+// inside one folder (check_sizes): its fixed windows would see another scale in each, and no frame would match.
+void check_same_size(const Described& first, const std::string& first_input, const Described& other,
+                     const std::string& other_input, Descriptors ds) {
+  if (!has_joint_histogram(ds) || !first.size || !other.size || *first.size == *other.size) return;
+  throw InputError(other_input, "its images are " + std::to_string(other.size->first) + " x " +
+                                    std::to_string(other.size->second) + " pixels, those of " + first_input + " " +
+                                    std::to_string(first.size->first) + " x " + std::to_string(first.size->second) +
+                                    ": the joint-histogram descriptor does not resize (its 3x3 and 5x5 windows would "
+                                    "see a different scale in each); give images of one size, or --descriptor patch");
+}
 
 // Descriptor of one image into slot i of `out`.
 void describe_image(const RgbImage& image, Descriptors ds, const SimilarityConfig& c, std::size_t i, Described& out) {
@@ -266,8 +282,6 @@ void prepare_slots(Described& out, Descriptors ds, std::size_t n, const Similari
     }
   }
 }
-
-bool has_joint_histogram(Descriptors ds) { return std::ranges::find(ds, Descriptor::joint_histogram) != ds.end(); }
 
 // The names of the descriptors that resize every image, for the warning about images of different sizes.
 std::string resizing_names(Descriptors ds) {
@@ -358,6 +372,7 @@ Described describe_images(const Source& s, Descriptors ds, const SimilarityConfi
     }
   });
   check_sizes(sizes, out.names, s.images, ds, c);
+  if (!sizes.empty()) out.size = sizes.front();
   return out;
 }
 
@@ -465,6 +480,7 @@ Described describe_stream(const Source& s, Descriptors ds, const SimilarityConfi
     if (batch.size() >= batch_size) flush();
   });
   if (!batch.empty()) flush();
+  out.size = first_size;
   out.sets.resize(ds.size());
   for (std::size_t k = 0; k < ds.size(); ++k) {
     if (ds[k] == Descriptor::joint_histogram) {
@@ -580,8 +596,15 @@ Described describe_all(const std::vector<Source>& sources, Descriptors ds, const
   }
   Described all;
   all.sets.resize(ds.size());
+  std::string first_input;
   for (const auto& s : sources) {
     Described one = describe(s, ds, c);
+    if (!all.size) {
+      all.size = one.size;
+      first_input = s.input.path.string();
+    } else {
+      check_same_size(all, first_input, one, s.input.path.string(), ds);
+    }
     all.session_rows.push_back(one.names.size());
     all.entropy.insert(all.entropy.end(), one.entropy.begin(), one.entropy.end());
     const std::string prefix = s.input.path.filename().string() + "/";
@@ -668,7 +691,10 @@ std::vector<SimilarityResult> run(std::span<const SequenceInput> inputs_a, std::
   const auto t0 = Clock::now();
   Described da = describe_all(a, ds, c);
   std::optional<Described> db;
-  if (two) db = describe_all(b, ds, c);
+  if (two) {
+    db = describe_all(b, ds, c);
+    check_same_size(da, a.front().input.path.string(), *db, b.front().input.path.string(), ds);
+  }
   const double seconds_descriptors = seconds_since(t0);
 
   similarity::MatrixConfig mc;

@@ -218,7 +218,10 @@ TEST_F(OutputDirectoryTest, StaleStagingFoldersOfDeadProcessesAreRemoved) {
   const fs::path stale_old = dir_.path / (".out.seqtopo-old-" + std::to_string(dead) + "-3");
   const fs::path live = dir_.path / (".out.seqtopo-staging-" + std::to_string(::getppid()) + "-0");
   const fs::path other = dir_.path / (".other.seqtopo-staging-" + std::to_string(dead) + "-0");
-  for (const auto& p : {stale, stale_old, live, other}) {
+  const fs::path other_old = dir_.path / (".x.y.seqtopo-old-" + std::to_string(dead) + "-12");
+  const fs::path other_live = dir_.path / (".other.seqtopo-staging-" + std::to_string(::getppid()) + "-1");
+  const fs::path not_staging = dir_.path / (".other.seqtopo-staging-" + std::to_string(dead) + "-0x");
+  for (const auto& p : {stale, stale_old, live, other, other_old, other_live, not_staging}) {
     fs::create_directories(p / "sub");
     write_to(p / "sub" / "scores.npy", std::string(1000, 'x'));
   }
@@ -226,7 +229,11 @@ TEST_F(OutputDirectoryTest, StaleStagingFoldersOfDeadProcessesAreRemoved) {
   EXPECT_FALSE(fs::exists(stale));
   EXPECT_FALSE(fs::exists(stale_old));
   EXPECT_TRUE(fs::exists(live)) << "a running process's staging folder";
-  EXPECT_TRUE(fs::exists(other)) << "another folder's staging is its own runs' business";
+  // Issue 47, defect 12: a killed run's staging folder stayed until a later run wrote the same folder.
+  EXPECT_FALSE(fs::exists(other)) << "a killed run's staging folder beside any run is removed";
+  EXPECT_FALSE(fs::exists(other_old));
+  EXPECT_TRUE(fs::exists(other_live)) << "a running process's, of another folder";
+  EXPECT_TRUE(fs::exists(not_staging)) << "a name that only looks like one";
   // single files: .<name>.tmp.<pid>.<k>
   const fs::path tmp = dir_.path / (".f.json.tmp." + std::to_string(dead) + ".0");
   write_to(tmp, "partial");
@@ -308,6 +315,82 @@ TEST_F(OutputDirectoryTest, AnEmptySetHasAnEmptyManifest) {
   commit_set({{"a.txt", "a"}});
   ASSERT_EQ(read_manifest(out_).files.size(), 1U);
   EXPECT_EQ(verify_manifest(out_), "");
+}
+
+// Issue 47, defect 10: two runs writing one folder at once both finished and both said they wrote their files;
+// one set was lost. The folder's lock refuses the second while the first holds it, naming the first's process;
+// once the first has committed (or failed), the folder may be written again, and no lock file stays.
+TEST_F(OutputDirectoryTest, TwoRunsNeverWriteOneFolderAtOnce) {
+  commit_set({{"a.txt", "old a"}});
+  {
+    OutputDirectory first(out_);
+    first.write("a.txt", "first");
+    expect_refused(out_, "is being written by another seqtopo run (process " + std::to_string(::getpid()) + ")");
+    OutputDirectory elsewhere(dir_.path / "other");  // another folder beside it is not locked
+    elsewhere.write("b.txt", "b");
+    elsewhere.commit();
+    first.commit();
+  }
+  EXPECT_EQ(read_file(out_ / "a.txt"), "first");
+  { OutputDirectory again(out_); }  // the first released the lock at its commit (this one at its end)
+  commit_set({{"a.txt", "third"}});
+  EXPECT_EQ(read_file(out_ / "a.txt"), "third");
+  EXPECT_EQ(entries(dir_.path), 2U) << "out and other, no lock file or staging folder beside them";
+  // A lock file a killed run left (nobody holds it) is taken, and removed by the next run beside it.
+  write_to(dir_.path / ".out.seqtopo-lock", "12345");
+  write_to(dir_.path / ".gone.seqtopo-lock", "12345");
+  commit_set({{"a.txt", "fourth"}});
+  EXPECT_EQ(entries(dir_.path), 2U);
+}
+
+// Issue 47, defect 13: a file of the old set that the user edited (its SHA-256 no longer the manifest's) was
+// replaced without a word. It is refused before the run and again before the swap; the folder stays as it is.
+TEST_F(OutputDirectoryTest, AnEditedFileOfTheOldSetIsNeverReplaced) {
+  commit_set({{"a.txt", "old a"}, {"sub/b.txt", "old b"}});
+  write_to(out_ / "sub" / "b.txt", "new b");  // the same size
+  expect_refused(out_, "holds 'sub/b.txt', changed since the seqtopo run that wrote it (its SHA-256");
+  write_to(out_ / "sub" / "b.txt", "longer b");
+  expect_refused(out_, "holds 'sub/b.txt', changed since the seqtopo run that wrote it (its size");
+  fs::remove(out_ / "sub" / "b.txt");  // moved away: the rest may be replaced
+  {
+    OutputDirectory out(out_);
+    out.write("a.txt", "new a");
+    write_to(out_ / "a.txt", "mine!");  // edited while the run lasts
+    EXPECT_THROW(out.commit(), InputError);
+  }
+  EXPECT_EQ(read_file(out_ / "a.txt"), "mine!");
+  fs::remove(out_ / "a.txt");
+  commit_set({{"c.txt", "c"}});
+  EXPECT_EQ(verify_manifest(out_), "");
+}
+
+// Issue 47, defect 14: a valid folder name of 225 to 255 bytes was refused ("File name too long") because the
+// staging sibling's name added 30 bytes and more. The hidden siblings' names are bounded whatever the name.
+TEST_F(OutputDirectoryTest, NamesUpTo255BytesAreOutputFoldersAndFiles) {
+  for (const std::size_t length : {225U, 240U, 255U}) {
+    SCOPED_TRACE(length);
+    // ASCII, and a name of two-byte characters (never cut inside one)
+    for (const std::string& name : {std::string(length, 'n'), std::string(length % 2, 'x') + [&] {
+                                      std::string s;
+                                      while (s.size() + 2 <= length) s += "\xc3\xa9";
+                                      return s;
+                                    }()}) {
+      const fs::path folder = dir_.path / name;
+      for (const char* text : {"first", "second"}) {  // a new folder, then a replaced one
+        OutputDirectory out(folder);
+        EXPECT_LE(out.staging().filename().string().size(), 200U);
+        out.write("a.txt", text);
+        out.commit();
+        EXPECT_EQ(read_file(folder / "a.txt"), text);
+      }
+      EXPECT_EQ(verify_manifest(folder), "");
+      write_file_atomic(dir_.path / (name.substr(0, length - 1) + "f"), "{}");
+      EXPECT_EQ(read_file(dir_.path / (name.substr(0, length - 1) + "f")), "{}");
+      fs::remove_all(folder);
+      fs::remove(dir_.path / (name.substr(0, length - 1) + "f"));
+      EXPECT_EQ(entries(dir_.path), 0U) << "nothing left beside them";
+    }
+  }
 }
 
 TEST(Manifest, RoundTripAndRejections) {

@@ -146,6 +146,41 @@ TEST(ImageSizes, DifferentSizesRefusedOrWarned) {
   EXPECT_NE(notes[0].find("patch descriptor resizes every image"), std::string::npos) << notes[0];
 }
 
+// Issue 47, defect 5: sessions (or the two sides of a comparison: map and query) of different image sizes were
+// compared without a word (every query frame "not in the map"), while the same mix inside one folder is an error.
+// The same error across sessions and sides for the joint histogram; the patch descriptor resizes and goes on.
+TEST(ImageSizes, SessionsAndSidesOfDifferentSizes) {
+  TempDir dir;
+  for (const auto& [folder, width] : {std::pair{"small", 16}, std::pair{"large", 20}}) {
+    fs::create_directories(dir.path / folder);
+    for (int k = 0; k < 3; ++k) {
+      plot::write_png(dir.path / folder / (std::to_string(k) + ".png"), RgbImage(width, 12, 60 * k + 10));
+    }
+  }
+  const SequenceInput small(dir.path / "small"), large(dir.path / "large");
+  SimilarityConfig config;
+  config.descriptor = Descriptor::joint_histogram;
+  const auto expect_refused = [&](const auto& call) {
+    try {
+      call();
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.subject(), (dir.path / "large").string());
+      EXPECT_NE(std::string(e.what()).find("its images are 20 x 12 pixels, those of " + (dir.path / "small").string() +
+                                           " 16 x 12: the joint-histogram descriptor does not resize"),
+                std::string::npos)
+          << e.what();
+    }
+  };
+  const std::vector<SequenceInput> sessions{small, large};
+  expect_refused([&] { compute_similarity(sessions, config); });
+  expect_refused([&] { compute_similarity(small, large, config); });
+  EXPECT_EQ(compute_similarity(small, small, config).similarity.rows, 3U);
+  config.descriptor = Descriptor::patch;
+  EXPECT_EQ(compute_similarity(sessions, config).similarity.rows, 6U);
+  EXPECT_EQ(compute_similarity(small, large, config).similarity.cols, 3U);
+}
+
 TEST(SequenceInput, SelectedFramesOnly) {
   TempDir dir;
   for (int k = 0; k < 5; ++k) plot::write_png(dir.path / (std::to_string(k) + ".png"), RgbImage(8, 8, 40 * k));

@@ -12,10 +12,15 @@
 //
 // Because the folder is replaced whole, it is refused (InputError naming it, before any work) when it
 //   - exists and is not a folder, or is not empty and has no manifest.json (no seqtopo run wrote it),
-//   - holds anything its manifest does not list (a file a user put there would be lost),
+//   - holds anything its manifest does not list (a file a user put there would be lost), or a file whose size or
+//     SHA-256 is not its manifest's (a file a user edited would be lost),
 //   - is, holds, or lies inside one of the run's inputs, or holds the current working folder.
-// Staging folders and temporary files of processes that no longer run (killed) are removed by the next run
-// that writes beside them; remove_staged_outputs_and_exit() removes this process's own (signal handlers).
+// One run writes a folder at a time: it holds the lock file `.<name>.seqtopo-lock` beside it (flock(2)) from its
+// checks to the end of its swap, and a second run is refused (InputError naming the folder) while it does.
+// Staging folders and old sets of processes that no longer run (killed) are removed by the next run that writes
+// beside them, whichever folder they were for (temporary files: by the next write of the same file);
+// remove_staged_outputs_and_exit() removes this process's own (signal handlers). The hidden siblings' names are
+// bounded: a name over 128 bytes is cut and ends with 8 hex digits of its SHA-256.
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
@@ -58,6 +63,13 @@ struct OutputOptions {
   std::string command;  // written to the manifest ("seqtopo map")
 };
 
+// What the checks of an output folder saw of its old set (the manifest's text; per file its size, time and inode
+// when it matched the manifest).
+struct OldSetSeen {
+  std::string manifest;
+  std::map<std::string, std::string> files;
+};
+
 class OutputDirectory {
  public:
   // Checks that `dir` may be replaced (see above), removes stale staging folders beside it and makes this run's.
@@ -89,9 +101,18 @@ class OutputDirectory {
   std::vector<std::string> names_;
   std::map<std::string, std::pair<std::uint64_t, std::string>> hashes_;  // name -> size, SHA-256 write() wrote
   std::vector<std::filesystem::path> made_parents_;  // folders the constructor created (removed if no commit)
-  int lock_fd_ = -1;
+  int lock_fd_ = -1;                                 // the staging folder, locked while this run writes it
+  std::filesystem::path lock_file_;                  // `.<name>.seqtopo-lock` beside the folder
+  int folder_lock_fd_ = -1;                          // held from the checks to the end of the swap
+  OldSetSeen old_set_;
   bool committed_ = false;
 };
+
+// The start of a stop (a signal): false once a commit of this process has put its set in place (a swap in progress
+// finishes first), since the run's outputs are then whole and in place and the stop comes too late to undo them:
+// the process carries on to its own end and status. True otherwise: no output folder changes after this point, and
+// the caller ends the process with remove_staged_outputs_and_exit(128 + signal).
+[[nodiscard]] bool begin_stop();
 
 // Removes every staging folder and temporary file of this process that was not committed, and the old set of a
 // commit that has not finished removing it, then ends the process with `status` (_exit: nothing else runs). A

@@ -24,7 +24,8 @@ namespace seqtopo::pipeline {
 
 // The similarity rows of each new image to the images before it, for OnlineMapper::add_similarities: -chi2 of the
 // joint histograms and -SAD of the patch thumbnails (S = 1 - kappa D up to kappa, which the contrast enhancement
-// removes). Keeps every image's two descriptors.
+// removes). Keeps every image's two descriptors. Every image has the first one's size (the joint histogram does not
+// resize): another size is an std::invalid_argument.
 class OnlineImageRows {
  public:
   explicit OnlineImageRows(const SimilarityConfig& config = {}) : config_(config) {}
@@ -32,6 +33,7 @@ class OnlineImageRows {
 
  private:
   SimilarityConfig config_;
+  int width_ = 0, height_ = 0;  // the first image's
   std::vector<similarity::SparseHistogram> histograms_;
   std::vector<std::vector<float>> patches_;
 };
