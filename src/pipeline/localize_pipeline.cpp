@@ -114,12 +114,13 @@ struct Describer {
         const auto text = [](std::pair<int, int> p) {
           return std::to_string(p.first) + " x " + std::to_string(p.second);
         };
-        throw InputError(input, (input == first_input ? "has images of " + text(size) + " and " + text(*first_size)
-                                                      : "its images are " + text(size) + " pixels, those of " +
-                                                            first_input + " " + text(*first_size)) +
-                                    " pixels: the joint-histogram descriptor does not resize (its 3x3 and 5x5 windows "
-                                    "would see a different scale in each); give images of one size, or --descriptor "
-                                    "patch");
+        throw InputError(
+            input, (input == first_input ? "has images of " + text(size) + " and " + text(*first_size) + " pixels"
+                                         : "its images are " + text(size) + " pixels, those of " + first_input + " " +
+                                               text(*first_size)) +
+                       ": the joint-histogram descriptor does not resize (its 3x3 and 5x5 windows "
+                       "would see a different scale in each); give images of one size, or --descriptor "
+                       "patch");
       }
       return image::joint_histogram(image, config.joint_histogram);
     }
