@@ -18,6 +18,7 @@
 #include "number_options.hpp"
 #include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/localize_outputs.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
@@ -177,11 +178,7 @@ void run(LocalizeOptions o) {
     progress.advance(done, total, what == "matrix" ? "cells of the matrix" : "images described");
   };
   request.settings.similarity.note = [&progress](std::string_view text) { progress.line(text); };
-  const auto next_path = []() -> std::optional<std::string> {
-    std::string line;
-    if (!std::getline(std::cin, line)) return std::nullopt;
-    return line;
-  };
+  const auto next_path = []() -> std::optional<std::string> { return read_bounded_line(std::cin, "stdin"); };
   progress.begin("localization");
   pipeline::LocalizeRun r = pipeline::localize_sequences(request, on_frame, next_path);
   const double localization_seconds = progress.end();

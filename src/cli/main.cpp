@@ -17,6 +17,7 @@
 #include "config_file.hpp"
 #include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 
 namespace seqtopo::cli {
@@ -60,12 +61,7 @@ std::string command_path(const CLI::App* command) {
 // long options (without the dashes), a flag takes true or false, a number is checked as on the command line.
 // Errors name the file and line (the file as a whole when it is a folder, unreadable, or JSON).
 std::vector<std::string> read_config(const std::string& path, CLI::App& command) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw seqtopo::InputError(path, "is a folder, not a config file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw seqtopo::InputError(path, "cannot open config file");
-  const std::string text((std::istreambuf_iterator<char>(in)), {});
-  if (in.bad()) throw seqtopo::InputError(path, "cannot read config file");
+  const std::string text = seqtopo::read_text_file(path, "config file");
   const std::string help = " (see " + command_path(&command) + " --help)";
   std::vector<std::string> options;
   for (const auto& entry : parse_config(text, path)) {

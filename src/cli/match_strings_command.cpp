@@ -10,6 +10,7 @@
 #include "command_registry.hpp"
 #include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/csv.hpp"
 #include "seqtopo/strings/localization.hpp"
@@ -27,17 +28,9 @@ struct MatchStringsOptions {
   std::size_t window = 1;
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::vector<strings::StringRecord> read_strings(const std::string& path) {
   try {
-    auto records = strings::parse_strings_tsv(read_text(path));
+    auto records = strings::parse_strings_tsv(read_text_file(path, "strings file"));
     if (records.empty()) throw InputError(path, "no string record");
     return records;
   } catch (const strings::StringsFileError& e) {

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/io/csv.hpp"
 
 namespace seqtopo::formats {
@@ -37,8 +38,7 @@ struct PoseTable {
 };
 
 PoseTable read_table(const std::filesystem::path& path, const std::vector<std::vector<std::string>>& headers) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "cannot open file");
+  std::istringstream in(read_text_file(path, "pose file"));
   io::skip_byte_order_mark(in);
   auto where = [&](std::size_t line_no) { return path.string() + ":" + std::to_string(line_no); };
   auto expected = [&] {

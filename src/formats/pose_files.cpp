@@ -5,9 +5,11 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
 #include "seqtopo/io/csv.hpp"
 
@@ -65,8 +67,7 @@ double number(const fs::path& path, std::size_t line, std::string_view field, co
 // Calls row(line_no, fields) for every line that is not blank nor a comment.
 template <typename F>
 void for_each_line(const fs::path& path, char separator, F&& row) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "cannot open file");
+  std::istringstream in(read_text_file(path, "pose file"));
   io::skip_byte_order_mark(in);
   std::string line;
   std::size_t line_no = 0;
@@ -186,8 +187,7 @@ std::vector<double> read_times_txt(const fs::path& path) {
 }
 
 PoseFile read_pose_file(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "cannot open file");
+  std::istringstream in(read_text_file(path, "pose file"));
   io::skip_byte_order_mark(in);
   std::string line;
   std::size_t line_no = 0;
@@ -196,7 +196,6 @@ PoseFile read_pose_file(const fs::path& path) {
     if (!skipped(line)) break;
   }
   if (skipped(line)) throw InputError(path.string(), "empty file");
-  in.close();
   PoseFile file;
   if (line.find(',') != std::string::npos) {
     const auto fields = split_on(line, ',');

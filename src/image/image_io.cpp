@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/image/codecs.hpp"
 
 namespace seqtopo::image {
@@ -86,9 +87,7 @@ RgbImage decode_image(std::span<const std::uint8_t> bytes, const std::string& su
 }
 
 RgbImage load_image(const fs::path& path) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(path.string(), "a folder, not an image");
-  if (!fs::exists(path, ec)) throw InputError(path.string(), "no such image file");
+  require_regular_file(path, "image");  // /dev/zero or a FIFO would be read forever
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "cannot open image");
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -100,8 +99,7 @@ namespace {
 
 codecs::Video open_video(const fs::path& path) {
   quiet_opencv();
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(path.string(), "no such video file");
+  require_regular_file(path, "video file");  // /dev/zero or a FIFO would be read forever
   codecs::Video capture(path);
   if (!capture.opened()) throw InputError(path.string(), "cannot open as a video (corrupt or unsupported format)");
   return capture;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 
 namespace seqtopo::io {
 
@@ -17,8 +18,7 @@ void skip_byte_order_mark(std::istream& in) {
 std::vector<CsvRow> read_csv(const std::filesystem::path& path, const std::vector<std::string>& header) {
   std::string header_text;
   for (std::size_t k = 0; k < header.size(); ++k) header_text += (k ? "," : "") + header[k];
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "cannot open file");
+  std::istringstream in(read_text_file(path, "CSV file"));
   skip_byte_order_mark(in);
   std::vector<CsvRow> rows;
   bool header_seen = false;

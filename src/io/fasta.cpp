@@ -1,15 +1,15 @@
 #include "seqtopo/io/fasta.hpp"
 
 #include <cctype>
-#include <fstream>
+#include <sstream>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 
 namespace seqtopo::io {
 
 std::vector<FastaRecord> read_fasta(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "cannot open file");
+  std::istringstream in(read_text_file(path, "FASTA file"));
   std::vector<FastaRecord> records;
   std::string line;
   std::size_t line_no = 0;

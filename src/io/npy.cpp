@@ -10,8 +10,10 @@
 #include <limits>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 
 static_assert(std::endian::native == std::endian::little, "the .npy reader assumes a little-endian machine");
@@ -55,6 +57,7 @@ std::string dict_value(const std::string& header, const std::string& key, const 
 }  // namespace
 
 NpyHeader read_npy_header(const std::filesystem::path& path) {
+  require_regular_file(path, ".npy file");  // /dev/zero or a FIFO would be read forever
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open file");
   char magic[6];

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/image/joint_histogram.hpp"
 #include "seqtopo/image/patch_thumbnail.hpp"
@@ -166,11 +167,10 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCa
   };
   if (from_stream) {
     if (request.paths == nullptr) throw std::invalid_argument("run_online_map: input '-' needs a stream of paths");
-    std::string line;
-    while (std::getline(*request.paths, line)) {
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      if (line.empty()) continue;
-      const fs::path file(line);
+    // Bounded lines: binary data on stdin (/dev/zero) is an error, not a line that grows without end.
+    while (const auto line = read_bounded_line(*request.paths, "stdin")) {
+      if (line->empty()) continue;
+      const fs::path file(*line);
       const RgbImage image = image::load_image(file);  // InputError naming the file
       run.image_files.push_back(file);
       add_image(file.filename().string(), image, file.string());

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
 
@@ -99,6 +100,10 @@ InputKind resolve_input_kind(const SequenceInput& input) {
   std::error_code ec;
   const auto status = fs::status(input.path, ec);
   if (ec || !fs::exists(status)) throw InputError(input.path.string(), "no such file or directory");
+  // A device or FIFO would be read forever (/dev/zero) or waited for: refused before any work.
+  if (!fs::is_directory(status) && !fs::is_regular_file(status)) {
+    throw InputError(input.path.string(), special_file_reason(input.path) + ", not an input file");
+  }
   const std::string ext = lower(input.path.extension().string());
   if (fs::is_directory(status)) {
     // A ROS 2 bag folder: metadata.yaml beside its .db3 or .mcap storage files.
@@ -120,23 +125,9 @@ InputKind resolve_input_kind(const SequenceInput& input) {
 
 namespace {
 
-// Why an entry with an image extension cannot be read as a file, or "" when it is a regular file.
-std::string unreadable_reason(const fs::directory_entry& entry) {
-  std::error_code ec;
-  const auto own = entry.symlink_status(ec);
-  const auto target = fs::status(entry.path(), ec);
-  if (ec) {
-    if (fs::is_symlink(own)) {
-      return ec == std::errc::too_many_symbolic_link_levels ? "a looping symbolic link" : "a dangling symbolic link";
-    }
-    return "cannot be read: " + ec.message();
-  }
-  if (fs::is_regular_file(target)) return {};
-  if (fs::is_directory(target)) return "a folder";
-  if (fs::is_fifo(target)) return "a FIFO";
-  if (fs::is_socket(target)) return "a socket";
-  return "not a regular file";
-}
+// Why an entry with an image extension cannot be read as a file, or "" when it is a regular file (the check
+// every file named by the user goes through, core/text_file.hpp).
+std::string unreadable_reason(const fs::directory_entry& entry) { return special_file_reason(entry.path()); }
 
 bool hidden_or_truth(const std::string& name) {
   return name.empty() || name[0] == '.' || lower(name).rfind("ground_truth", 0) == 0;

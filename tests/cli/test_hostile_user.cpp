@@ -89,7 +89,7 @@ TEST_F(HostileUser, NpyWhoseSizeWrapsNamesTheFile) {
 TEST_F(HostileUser, ConfigFileErrorsNameTheFileAndLine) {
   const std::string s = small_similarity();
   const auto map = [&](const std::string& config) { return run_cli("map " + s + " --config " + config + out_arg()); };
-  expect_error(map(dir_.path.string()), dir_.path.string(), 1, "is a folder");
+  expect_error(map(dir_.path.string()), dir_.path.string(), 1, "a folder, not a config file");
   const auto unknown = dir_.write("unknown.yaml", "gap: 1\n# a comment\nnope: 3\n").string();
   expect_error(map(unknown), unknown + ":3", 1, "unknown option 'nope' for seqtopo map");
   const auto json = dir_.write("config.json", "{\n  \"gap\": 1.5\n}\n").string();
