@@ -27,31 +27,119 @@ constexpr char kMagic[] = "\x93NUMPY";
   throw InputError(path.string(), message);
 }
 
-// The value of `key` in the header's Python dict literal: a quoted string, a tuple, or a bare word.
-std::string dict_value(const std::string& header, const std::string& key, const std::filesystem::path& path) {
-  std::size_t pos = header.find("'" + key + "'");
-  if (pos == std::string::npos) pos = header.find("\"" + key + "\"");
-  if (pos == std::string::npos) fail(path, "not a valid .npy header (no '" + key + "')");
-  pos = header.find(':', pos + key.size() + 2);
-  if (pos == std::string::npos) fail(path, "not a valid .npy header ('" + key + "')");
-  ++pos;
-  while (pos < header.size() && std::isspace(static_cast<unsigned char>(header[pos]))) ++pos;
-  if (pos >= header.size()) fail(path, "not a valid .npy header ('" + key + "')");
-  const char open = header[pos];
-  std::size_t end;
-  if (open == '(') {
-    end = header.find(')', pos);
-    if (end != std::string::npos) ++end;
-  } else if (open == '\'' || open == '"') {
-    end = header.find(open, pos + 1);
-    if (end != std::string::npos) ++end;
-  } else {
-    end = header.find_first_of(",}", pos);
+// A value of the header's Python literal: a quoted string, a bare word (True, 12, -1), or a tuple / list / dict
+// of values (dicts keep their keys in `keys`).
+struct Literal {
+  enum Kind { string, word, tuple, list, dict } kind = word;
+  std::string text;  // the string's contents, the word, or the source text of a tuple / list / dict
+  std::vector<Literal> items;
+  std::vector<std::string> keys;
+};
+
+// The header dict parsed as Python's ast.literal_eval reads it (numpy's own reader): keys are those of the top
+// level only, so a 'shape' inside another key's string or a nested dict is not the shape.
+class HeaderParser {
+ public:
+  HeaderParser(const std::string& text, const std::filesystem::path& path) : t_(text), path_(path) {}
+
+  Literal parse() {
+    Literal v = value();
+    skip_space();
+    if (at_ != t_.size()) bad("text after the dict");
+    if (v.kind != Literal::dict) bad("not a dict");
+    return v;
   }
-  if (end == std::string::npos) fail(path, "not a valid .npy header ('" + key + "')");
-  std::string v = header.substr(pos, end - pos);
-  while (!v.empty() && std::isspace(static_cast<unsigned char>(v.back()))) v.pop_back();
-  return v;
+
+ private:
+  [[noreturn]] void bad(const std::string& why) const {
+    fail(path_, "not a valid .npy header (" + why + " at byte " + std::to_string(at_) + ")");
+  }
+  void skip_space() {
+    while (at_ < t_.size() && std::isspace(static_cast<unsigned char>(t_[at_]))) ++at_;
+  }
+  Literal value() {
+    if (++depth_ > 32) bad("nested too deep");
+    skip_space();
+    if (at_ >= t_.size()) bad("a value is missing");
+    Literal v;
+    const std::size_t start = at_;
+    const char c = t_[at_];
+    if (c == '\'' || c == '"') {
+      v.kind = Literal::string;
+      for (++at_;; ++at_) {
+        if (at_ >= t_.size() || t_[at_] == '\n') bad("a string is not closed");
+        if (t_[at_] == '\\') {
+          if (++at_ >= t_.size()) bad("a string is not closed");
+          v.text += t_[at_];
+        } else if (t_[at_] == c) {
+          ++at_;
+          break;
+        } else {
+          v.text += t_[at_];
+        }
+      }
+    } else if (c == '(' || c == '[' || c == '{') {
+      const char close = c == '(' ? ')' : c == '[' ? ']' : '}';
+      v.kind = c == '(' ? Literal::tuple : c == '[' ? Literal::list : Literal::dict;
+      ++at_;
+      bool comma = false;  // "(12)" is the number 12, "(12,)" a tuple
+      for (;;) {
+        skip_space();
+        if (at_ < t_.size() && t_[at_] == close) {
+          ++at_;
+          break;
+        }
+        if (v.kind == Literal::dict) {
+          const Literal key = value();
+          if (key.kind != Literal::string) bad("a key is not a string");
+          skip_space();
+          if (at_ >= t_.size() || t_[at_] != ':') bad("':' expected after '" + key.text + "'");
+          ++at_;
+          v.keys.push_back(key.text);
+        }
+        v.items.push_back(value());
+        skip_space();
+        if (at_ < t_.size() && t_[at_] == ',') {
+          ++at_;
+          comma = true;
+        } else if (at_ >= t_.size() || t_[at_] != close) {
+          bad(std::string("',' or '") + close + "' expected");
+        }
+      }
+      if (v.kind == Literal::tuple && v.items.size() == 1 && !comma) {
+        Literal inner = std::move(v.items.front());
+        --depth_;
+        return inner;
+      }
+      v.text = t_.substr(start, at_ - start);
+    } else {
+      while (at_ < t_.size() && (std::isalnum(static_cast<unsigned char>(t_[at_])) || t_[at_] == '_' ||
+                                 t_[at_] == '-' || t_[at_] == '+' || t_[at_] == '.')) {
+        ++at_;
+      }
+      if (at_ == start) bad(std::string("unexpected '") + c + "'");
+      v.text = t_.substr(start, at_ - start);
+    }
+    --depth_;
+    return v;
+  }
+
+  const std::string& t_;
+  const std::filesystem::path& path_;
+  std::size_t at_ = 0;
+  int depth_ = 0;
+};
+
+// The value of `key` in the header dict: numpy's keys are exactly descr, fortran_order and shape.
+const Literal& dict_value(const Literal& dict, const std::string& key, const std::filesystem::path& path) {
+  const Literal* found = nullptr;
+  for (std::size_t k = 0; k < dict.keys.size(); ++k) {
+    if (dict.keys[k] != key) continue;
+    if (found) fail(path, "not a valid .npy header ('" + key + "' twice)");
+    found = &dict.items[k];
+  }
+  if (!found) fail(path, "not a valid .npy header (no '" + key + "')");
+  return *found;
 }
 
 }  // namespace
@@ -85,14 +173,23 @@ NpyHeader read_npy_header(const std::filesystem::path& path) {
 
   NpyHeader h;
   h.data_offset = prefix + header_len;
-  std::string descr = dict_value(header, "descr", path);
-  if (descr.size() >= 2 && (descr.front() == '\'' || descr.front() == '"')) descr = descr.substr(1, descr.size() - 2);
+  const Literal dict = HeaderParser(header, path).parse();
+  for (const std::string& key : dict.keys) {
+    if (key != "descr" && key != "fortran_order" && key != "shape") {
+      fail(path, "not a valid .npy header (unknown key '" + key + "'; numpy writes descr, fortran_order and shape)");
+    }
+  }
+  const Literal& descr_value = dict_value(dict, "descr", path);
+  const std::string descr = descr_value.text;
   // descr: byte order ('<' little, '>' big, '=' native, '|' not applicable), kind, bytes per value.
   const auto unsupported = [&] {
     fail(path, "unsupported dtype '" + descr +
                    "' (need floats of 2, 4 or 8 bytes, integers of 1 to 8 bytes or booleans, as numpy saves them)");
   };
-  if (descr.size() < 3 || std::string_view("<>=|").find(descr[0]) == std::string_view::npos) unsupported();
+  if (descr_value.kind != Literal::string || descr.size() < 3 ||
+      std::string_view("<>=|").find(descr[0]) == std::string_view::npos) {
+    unsupported();
+  }
   h.dtype = descr;
   h.big_endian = descr[0] == '>';
   h.kind = descr[1];
@@ -101,23 +198,30 @@ NpyHeader read_npy_header(const std::filesystem::path& path) {
   const bool known = (h.kind == 'f' && h.item >= 2) || ((h.kind == 'i' || h.kind == 'u') && h.item >= 1) ||
                      (h.kind == 'b' && h.item == 1);
   if (!known) unsupported();
-  const std::string fortran = dict_value(header, "fortran_order", path);
-  if (fortran == "True") {
+  const Literal& fortran = dict_value(dict, "fortran_order", path);
+  if (fortran.kind == Literal::word && fortran.text == "True") {
     h.fortran_order = true;
-  } else if (fortran != "False") {
-    fail(path, "not a valid .npy header (fortran_order)");
+  } else if (fortran.kind != Literal::word || fortran.text != "False") {
+    fail(path, "not a valid .npy header (fortran_order is " + fortran.text + ", not True or False)");
   }
-  const std::string shape = dict_value(header, "shape", path);
-  if (shape.empty() || shape.front() != '(') fail(path, "not a valid .npy header (shape)");
-  for (std::size_t k = 0; k < shape.size();) {
-    if (!std::isdigit(static_cast<unsigned char>(shape[k]))) {
-      ++k;
-      continue;
+  const Literal& shape_value = dict_value(dict, "shape", path);
+  const std::string shape = shape_value.text;
+  if (shape_value.kind != Literal::tuple) fail(path, "not a valid .npy header (shape " + shape + " is not a tuple)");
+  for (const Literal& d : shape_value.items) {
+    const std::string& v = d.text;
+    const std::size_t sign = !v.empty() && (v[0] == '-' || v[0] == '+') ? 1 : 0;
+    const bool integer = d.kind == Literal::word && v.size() > sign &&
+                         std::all_of(v.begin() + static_cast<std::ptrdiff_t>(sign), v.end(),
+                                     [](char c) { return c >= '0' && c <= '9'; });
+    if (!integer) fail(path, "not a valid .npy header (shape " + shape + " holds " + v + ", not an integer)");
+    if (v[0] == '-' && v.find_first_not_of('0', 1) != std::string::npos) {
+      fail(path, "shape " + shape + " has a negative dimension (numpy: negative dimensions are not allowed)");
     }
     std::size_t value = 0;
-    for (; k < shape.size() && std::isdigit(static_cast<unsigned char>(shape[k])); ++k) {
-      if (value > std::numeric_limits<std::size_t>::max() / 10) fail(path, "implausible shape");
-      value = value * 10 + static_cast<std::size_t>(shape[k] - '0');
+    for (std::size_t k = sign; k < v.size(); ++k) {
+      const auto digit = static_cast<std::size_t>(v[k] - '0');
+      if (value > (std::numeric_limits<std::size_t>::max() - digit) / 10) fail(path, "implausible shape " + shape);
+      value = value * 10 + digit;
     }
     h.shape.push_back(value);
   }

@@ -22,6 +22,13 @@ def npy(descr, shape, values, version=1, fortran=False):
     return b"\x93NUMPY" + bytes([version, 0]) + length + header + data
 
 
+def npy_header(header, data=b"\0" * 96):
+    """A .npy whose header dict is `header` as given (near misses of numpy's own)."""
+    total = (10 + len(header) + 1 + 63) // 64 * 64
+    text = (header + " " * (total - 10 - len(header) - 1) + "\n").encode()
+    return b"\x93NUMPY\x01\x00" + struct.pack("<H", len(text)) + text + data
+
+
 def seeds():
     floats = [0.5 * k for k in range(6)]
     yield "npy", {
@@ -35,6 +42,12 @@ def seeds():
         "truncated": npy("<f8", (4, 4), floats),
         "huge_shape": npy("<f8", (2305843009213693951, 1), floats[:1]),
         "empty": npy("<f4", (0, 3), []),
+        # Headers numpy refuses: a negative dimension, 'shape' only inside another value, a key twice.
+        "negative_rows": npy_header("{'descr': '<f4', 'fortran_order': False, 'shape': (-1, 8), }"),
+        "negative_cols": npy_header("{'descr': '<f4', 'fortran_order': False, 'shape': (12, -8), }"),
+        "shape_in_string": npy_header("{'descr': '<f4', 'fortran_order': False, 'x': \"'shape': (2, 3)\"}"),
+        "nested_shape": npy_header("{'descr': '<f4', 'fortran_order': False, 'm': {'shape': (2, 3)}}"),
+        "shape_twice": npy_header("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), 'shape': (4, 4)}"),
     }
     # csv: the first byte chooses the header (index,place / place / a,b,c / i,j,score / x,y)
     yield "csv", {

@@ -179,7 +179,42 @@ TEST_F(Npy, Rejections) {
                   "non-finite");
   std::ofstream(dir_.path / "text.npy") << "not numpy at all";
   expect_rejected(dir_.path / "text.npy", "magic");
-  expect_rejected(dir_.path / "missing.npy", "cannot open");
+  expect_rejected(dir_.path / "missing.npy", "no such .npy file");
+}
+
+// The header is a Python dict literal as numpy reads it (ast.literal_eval): a negative dimension is refused with
+// its sign, not read as its digits; only the dict's own keys count, so 'shape' inside another key's string or a
+// nested dict is not the shape; keys other than numpy's three, a key twice, and "(12)" (a number, not a tuple)
+// are refused as numpy refuses them.
+TEST_F(Npy, HeaderIsParsedAsThePythonDictNumpyReads) {
+  const std::string data = raw(std::vector<float>(96, 1.0F));
+  const auto header = [&](const std::string& name, const std::string& dict) { return handmade(name, dict, data); };
+  expect_rejected(header("neg0.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (-1, 8), }"),
+                  "shape (-1, 8) has a negative dimension");
+  expect_rejected(header("neg1.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (12, -8), }"),
+                  "shape (12, -8) has a negative dimension");
+  expect_rejected(header("word.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (12, x8), }"),
+                  "not an integer");
+  expect_rejected(header("nottuple.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (12), }"),
+                  "is not a tuple");
+  // The only 'shape' is inside the descr string: there is no shape key.
+  expect_rejected(header("instring.npy", "{'descr': '<f4', 'fortran_order': False, 'x': \"'shape': (2, 3)\"}"),
+                  "unknown key 'x'");
+  expect_rejected(header("nested.npy", "{'descr': '<f4', 'fortran_order': False, 'meta': {'shape': (2, 3)}}"),
+                  "unknown key 'meta'");
+  expect_rejected(header("twice.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), 'shape': (4, 4)}"),
+                  "'shape' twice");
+  expect_rejected(header("unclosed.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), "),
+                  "not a valid .npy header");
+  expect_rejected(header("trailing.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3)} junk"),
+                  "text after the dict");
+  expect_rejected(header("fortran.npy", "{'descr': '<f4', 'fortran_order': 'False', 'shape': (2, 3)}"),
+                  "fortran_order");
+  // What numpy accepts: keys in any order, double quotes, no trailing comma, spaces anywhere.
+  const auto m =
+      read_npy_matrix<float>(header("ok.npy", "{ \"shape\" : ( 8 , 12 ) , 'fortran_order':False,'descr':\"<f4\" }"));
+  EXPECT_EQ(m.rows, 8U);
+  EXPECT_EQ(m.cols, 12U);
 }
 
 // Shapes whose byte count wraps around 2^64 (issue #18, finding 8): (2^61 - 1) x 1 of 8 bytes is 2^64 - 8 bytes,
