@@ -62,9 +62,14 @@ struct BandTables {
   // Posterior that row `first + r` is aligned to a path column within +-t of u; with `skipped`, also that the
   // chain passes the row there skipping it (state X: the row between two matched ones, at the column of the
   // one before).
-  double posterior(std::size_t r, std::ptrdiff_t u, std::ptrdiff_t t, bool skipped = false) const {
+  double posterior(std::size_t r, std::ptrdiff_t u, std::size_t t, bool skipped = false) const {
+    // Only the band's columns of the row hold probability: the window is clipped to them, so the cost is the
+    // band's width whatever the tolerance (--tolerance 4294967295 is as fast as 2).
+    const auto width = static_cast<std::ptrdiff_t>(f.width());
+    const std::ptrdiff_t reach = static_cast<std::ptrdiff_t>(std::min<std::size_t>(t, f.width() + cols));
+    const std::ptrdiff_t lo = std::max(u - reach, f.low(r)), hi = std::min(u + reach, f.low(r) + width - 1);
     double sum = 0;
-    for (std::ptrdiff_t v = u - t; v <= u + t; ++v) {
+    for (std::ptrdiff_t v = lo; v <= hi; ++v) {
       for (int state : {M, X}) {
         if (state == X && !skipped) break;
         const double fw = f.get(r, v, state), bw = b.get(r, v, state);
@@ -181,8 +186,7 @@ std::vector<double> pair_posteriors(const LocalAlignment& a, const ScoreSource& 
   const BandTables t = band_tables(a, scores, c);
   std::vector<double> posterior;
   posterior.reserve(a.pairs.size());
-  for (auto [i, j] : a.pairs)
-    posterior.push_back(t.posterior(i - t.first, t.to_u(j), static_cast<std::ptrdiff_t>(c.tolerance)));
+  for (auto [i, j] : a.pairs) posterior.push_back(t.posterior(i - t.first, t.to_u(j), c.tolerance));
   return posterior;
 }
 
@@ -192,7 +196,6 @@ std::vector<RowPosterior> row_posteriors(const LocalAlignment& a, const ScoreSou
     return {};
   }
   const BandTables t = band_tables(a, scores, c);
-  const auto tol = static_cast<std::ptrdiff_t>(c.tolerance);
   std::vector<RowPosterior> out;
   out.reserve(t.f.rows());
   for (std::size_t r = 0; r < t.f.rows(); ++r) {
@@ -206,7 +209,7 @@ std::vector<RowPosterior> row_posteriors(const LocalAlignment& a, const ScoreSou
       const double p = t.posterior(r, u, 0, true);
       if (p > best_cell) best_cell = p, best = u;
     }
-    if (best_cell >= 0) out.push_back({t.first + r, t.to_j(best), t.posterior(r, best, tol, true)});
+    if (best_cell >= 0) out.push_back({t.first + r, t.to_j(best), t.posterior(r, best, c.tolerance, true)});
   }
   return out;
 }

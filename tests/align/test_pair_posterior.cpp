@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
 
 #include "seqtopo/align/pair_posterior.hpp"
@@ -142,6 +143,40 @@ TEST(RowPosterior, BeyondAnAlignmentsEndTheRowsFollowTheRevisitItStoppedShortOf)
       EXPECT_NEAR(static_cast<double>(r.col), static_cast<double>(r.row + 5), 1.0) << r.row;
       EXPECT_LT(r.posterior, rows[20].posterior) << "less sure past the end";
     }
+  }
+}
+
+// A tolerance wider than the matrix covers every column: 2^32 - 1 and 2^64 - 1 give what the matrix's width gives
+// (the window is clipped to the band, so the cost does not grow with the value either; 2^64 - 1 once wrapped to
+// a window of no column and a posterior of 0).
+TEST(RowPosterior, AToleranceBeyondTheMatrixIsTheWholeRow) {
+  const std::size_t n = 60;
+  std::mt19937 rng(4);
+  std::normal_distribution<float> noise(-1.0F, 0.7F);
+  std::vector<float> s(n * n);
+  for (auto& v : s) v = noise(rng);
+  LocalAlignment a;
+  for (std::size_t i = 0; i < 30; ++i) {
+    s[i * n + i + 5] = 2.5F;
+    a.pairs.emplace_back(i, i + 5);
+  }
+  PosteriorConfig c;
+  c.band = 8;
+  c.tolerance = n;
+  const auto whole = row_posteriors(a, ScoreSource::dense(s, n, n), c);
+  const auto pairs = pair_posteriors(a, ScoreSource::dense(s, n, n), c);
+  for (const std::size_t tolerance : {std::size_t{4294967295U}, std::numeric_limits<std::size_t>::max()}) {
+    c.tolerance = tolerance;
+    const auto rows = row_posteriors(a, ScoreSource::dense(s, n, n), c);
+    ASSERT_EQ(rows.size(), whole.size());
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      EXPECT_EQ(rows[k].col, whole[k].col);
+      EXPECT_EQ(rows[k].posterior, whole[k].posterior) << tolerance << " row " << rows[k].row;
+      if (rows[k].row < 30) {
+        EXPECT_GT(rows[k].posterior, 0.5) << rows[k].row;
+      }
+    }
+    EXPECT_EQ(pair_posteriors(a, ScoreSource::dense(s, n, n), c), pairs) << tolerance;
   }
 }
 
