@@ -16,8 +16,8 @@ packages=(
   clang libclang-rt-14-dev
   libjs-d3
   # Bags (the recording module): ROS 1 through librosbag and the message libraries, ROS 2 .db3 through SQLite,
-  # MCAP chunks through zstd and lz4.
-  librosbag-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libsqlite3-dev libzstd-dev liblz4-dev
+  # MCAP chunks through zstd and lz4, a bag folder's metadata.yaml through libyaml.
+  librosbag-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libsqlite3-dev libzstd-dev liblz4-dev libyaml-dev
   # Test-only: ROS 1 test bags written by Debian's python3-rosbag (tests/recording).
   python3-rosbag python3-sensor-msgs python3-nav-msgs python3-geometry-msgs
 )

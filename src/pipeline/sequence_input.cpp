@@ -1,5 +1,7 @@
 #include "seqtopo/pipeline/sequence_input.hpp"
 
+#include <string.h>  // strverscmp (glibc)
+
 #include <algorithm>
 #include <cctype>
 #include <stdexcept>
@@ -50,37 +52,6 @@ std::string lower(std::string s) {
   return s;
 }
 
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
-
-// <0, 0, >0 under the natural order without the final byte-order tie-break.
-int natural_compare(std::string_view a, std::string_view b) {
-  std::size_t i = 0, j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (is_digit(a[i]) && is_digit(b[j])) {
-      std::size_t ie = i, je = j;
-      while (ie < a.size() && is_digit(a[ie])) ++ie;
-      while (je < b.size() && is_digit(b[je])) ++je;
-      std::size_t iz = i, jz = j;  // skip leading zeros: "007" == "7" by value
-      while (iz + 1 < ie && a[iz] == '0') ++iz;
-      while (jz + 1 < je && b[jz] == '0') ++jz;
-      const std::string_view da = a.substr(iz, ie - iz), db = b.substr(jz, je - jz);
-      if (da.size() != db.size()) return da.size() < db.size() ? -1 : 1;
-      if (const int c = da.compare(db); c != 0) return c;
-      i = ie;
-      j = je;
-    } else {
-      const int ca = std::tolower(static_cast<unsigned char>(a[i]));
-      const int cb = std::tolower(static_cast<unsigned char>(b[j]));
-      if (ca != cb) return ca < cb ? -1 : 1;
-      ++i;
-      ++j;
-    }
-  }
-  if (i < a.size()) return 1;
-  if (j < b.size()) return -1;
-  return 0;
-}
-
 bool is_image_extension(const fs::path& p) {
   static const char* const known[] = {".png",  ".jpg", ".jpeg", ".bmp", ".tif", ".tiff",
                                       ".webp", ".pgm", ".ppm",  ".pnm", ".jp2"};
@@ -91,8 +62,8 @@ bool is_image_extension(const fs::path& p) {
 }  // namespace
 
 bool natural_less(std::string_view a, std::string_view b) {
-  const int c = natural_compare(a, b);
-  return c != 0 ? c < 0 : a < b;
+  // strverscmp needs NUL-terminated strings; names hold no NUL.
+  return ::strverscmp(std::string(a).c_str(), std::string(b).c_str()) < 0;
 }
 
 InputKind resolve_input_kind(const SequenceInput& input) {

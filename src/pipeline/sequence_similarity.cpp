@@ -114,6 +114,7 @@ struct Source {
   std::optional<std::size_t> count;                       // items, when known in advance
   std::optional<std::size_t> dimension;                   // descriptor length, when known in advance
   std::string image_topic;                                // kind bag
+  std::vector<fs::path> unlisted;                         // kind bag: storage files metadata.yaml does not list
 };
 
 // Only the frames of input.frames (when given), checked against the number of frames.
@@ -155,6 +156,7 @@ Source resolve(const SequenceInput& input) {
 #ifdef SEQTOPO_HAVE_RECORDING
       const recording::Recording bag(input.path);
       s.image_topic = bag.image_topic(input.image_topic);
+      s.unlisted = bag.unlisted_files();
       s.count =
           input.frames.empty() ? every_kth_count(bag.message_count(s.image_topic), input.every) : input.frames.size();
 #else
@@ -405,6 +407,11 @@ Described describe_video(const Source& s, Descriptors ds, const SimilarityConfig
 Described describe_bag(const Source& s, Descriptors ds, const SimilarityConfig& c) {
 #ifdef SEQTOPO_HAVE_RECORDING
   const recording::Recording bag(s.input.path);
+  if (!s.unlisted.empty() && c.note) {
+    std::string list;
+    for (const auto& f : s.unlisted) list += (list.empty() ? "" : ", ") + f.filename().string();
+    c.note("note: " + s.input.path.string() + ": not read, as its metadata.yaml does not list them: " + list);
+  }
   return describe_stream(s, ds, c, [&](const std::function<void(std::string, const RgbImage&)>& visit) {
     bag.for_each_image(s.image_topic, s.input.every, s.input.frames,
                        [&](std::size_t index, double, const RgbImage& image) {

@@ -128,13 +128,43 @@ std::vector<std::uint8_t> decompress(const std::string& compression, std::span<c
   throw std::invalid_argument(where + ": unknown chunk compression '" + compression + "' (zstd, lz4 or none)");
 }
 
+constexpr std::size_t kNotInChunk = static_cast<std::size_t>(-1);
+
+// The records of a Chunk record's content, decompressed and checked against the chunk's CRC-32.
+std::vector<std::uint8_t> unpack_chunk(std::span<const std::uint8_t> content, const std::string& where) {
+  Fields f(content, where);
+  (void)f.num<std::uint64_t>();  // message_start_time
+  (void)f.num<std::uint64_t>();  // message_end_time
+  const auto size = f.num<std::uint64_t>();
+  const auto crc = f.num<std::uint32_t>();
+  const std::string compression = f.str();
+  const auto packed = f.bytes64();
+  std::vector<std::uint8_t> inner = decompress(compression, packed, size, where);
+  if (crc != 0 && crc32(inner) != crc) {
+    throw std::invalid_argument(where + ": CRC-32 of the decompressed records does not match (corrupt chunk)");
+  }
+  return inner;
+}
+
+McapMessage parse_message(std::span<const std::uint8_t> content, const std::string& where) {
+  Fields f(content, where);
+  McapMessage m;
+  m.channel_id = f.num<std::uint16_t>();
+  m.sequence = f.num<std::uint32_t>();
+  m.log_time = f.num<std::uint64_t>();
+  m.publish_time = f.num<std::uint64_t>();
+  m.data = f.rest();
+  return m;
+}
+
 }  // namespace
 
 struct McapReader::Visitor {
   std::function<void(const McapSchema&)> on_schema;
   std::function<void(const McapChannel&)> on_channel;
-  std::function<void(const McapMessage&, std::size_t)> on_message;  // message, its record's offset
-  std::function<bool(std::uint16_t)> wants;                         // whether a channel's messages are parsed
+  // message, the offset of its record (or of its chunk), its offset inside the chunk (or kNotInChunk)
+  std::function<void(const McapMessage&, std::size_t, std::size_t)> on_message;
+  std::function<bool(std::uint16_t)> wants;  // whether a channel's messages are parsed
   std::function<void(const std::string&)> on_header;
   bool stop_after_header = false;
 };
@@ -162,9 +192,10 @@ void McapReader::scan(Visitor& v) const {
                                          "writer stopped before closing it)");
   }
   in.seekg(8);
-  auto records = [&](std::span<const std::uint8_t> content, std::uint8_t op, std::size_t offset, bool in_chunk) {
+  // inner: the record's offset in its decompressed chunk, kNotInChunk for a record of the data section.
+  auto records = [&](std::span<const std::uint8_t> content, std::uint8_t op, std::size_t offset, std::size_t inner) {
     const std::string where =
-        (in_chunk ? "record in the chunk at offset " : "record at offset ") + std::to_string(offset);
+        (inner != kNotInChunk ? "record in the chunk at offset " : "record at offset ") + std::to_string(offset);
     Fields f(content, where);
     switch (op) {
       case Opcode::header:
@@ -197,7 +228,7 @@ void McapReader::scan(Visitor& v) const {
         m.log_time = f.num<std::uint64_t>();
         m.publish_time = f.num<std::uint64_t>();
         m.data = f.rest();
-        if (v.on_message) v.on_message(m, offset);
+        if (v.on_message) v.on_message(m, offset, inner);
         break;
       }
       default:
@@ -242,22 +273,12 @@ void McapReader::scan(Visitor& v) const {
     if (!in) throw InputError(path_.string(), "cannot read the record at offset " + std::to_string(offset));
     try {
       if (op != Opcode::chunk) {
-        records(content, op, offset, false);
+        records(content, op, offset, kNotInChunk);
         if (op == Opcode::header && v.stop_after_header) return;
         continue;
       }
       const std::string where = "chunk at offset " + std::to_string(offset);
-      Fields f(content, where);
-      (void)f.num<std::uint64_t>();  // message_start_time
-      (void)f.num<std::uint64_t>();  // message_end_time
-      const auto size = f.num<std::uint64_t>();
-      const auto crc = f.num<std::uint32_t>();
-      const std::string compression = f.str();
-      const auto packed = f.bytes64();
-      const std::vector<std::uint8_t> inner = decompress(compression, packed, size, where);
-      if (crc != 0 && crc32(inner) != crc) {
-        throw std::invalid_argument(where + ": CRC-32 of the decompressed records does not match (corrupt chunk)");
-      }
+      const std::vector<std::uint8_t> inner = unpack_chunk(content, where);
       std::size_t k = 0;
       while (k < inner.size()) {
         if (inner.size() - k < 9) throw std::invalid_argument(where + ": a record header runs past the chunk's end");
@@ -265,7 +286,7 @@ void McapReader::scan(Visitor& v) const {
         std::memcpy(&len, inner.data() + k + 1, 8);
         if (len > inner.size() - k - 9) throw std::invalid_argument(where + ": a record runs past the chunk's end");
         records(std::span<const std::uint8_t>(inner).subspan(k + 9, static_cast<std::size_t>(len)), inner[k], offset,
-                true);
+                k);
         k += 9 + static_cast<std::size_t>(len);
       }
     } catch (const std::invalid_argument& e) {
@@ -298,6 +319,7 @@ bool McapReader::read_summary() {
   std::map<std::uint16_t, McapChannel> channels;
   std::map<std::uint16_t, std::uint64_t> counts;
   bool have_statistics = false;
+  std::uint64_t total = 0;
   try {
     std::size_t k = 0;
     while (k < summary.size()) {
@@ -327,7 +349,7 @@ bool McapReader::read_summary() {
           break;
         }
         case Opcode::statistics: {
-          (void)f.num<std::uint64_t>();                              // message_count
+          total = f.num<std::uint64_t>();                            // message_count
           (void)f.num<std::uint16_t>();                              // schema_count
           for (int n = 0; n < 4; ++n) (void)f.num<std::uint32_t>();  // channel, attachment, metadata, chunk counts
           (void)f.num<std::uint64_t>();                              // message_start_time
@@ -353,6 +375,11 @@ bool McapReader::read_summary() {
     return false;  // a summary that does not parse: read the data section instead
   }
   if (!have_statistics || channels.empty()) return false;
+  // The channel counts are optional in the Statistics record: without them (or when they do not add up to its
+  // message count) the data section is read for the counts.
+  std::uint64_t sum = 0;
+  for (const auto& [id, n] : counts) sum += n;
+  if (sum != total) return false;
   for (const auto& [id, c] : channels) counts.try_emplace(id, 0);
   schemas_ = std::move(schemas);
   channels_ = std::move(channels);
@@ -368,7 +395,7 @@ McapReader::McapReader(fs::path path) : path_(std::move(path)) {
     channels_[c.id] = c;
     counts_.try_emplace(c.id, 0);
   };
-  v.on_message = [&](const McapMessage& m, std::size_t offset) {
+  v.on_message = [&](const McapMessage& m, std::size_t offset, std::size_t) {
     if (!channels_.count(m.channel_id)) {
       throw std::invalid_argument("message at offset " + std::to_string(offset) + " is on channel " +
                                   std::to_string(m.channel_id) + ", which no Channel record defines");
@@ -389,13 +416,87 @@ McapReader::McapReader(fs::path path) : path_(std::move(path)) {
 
 void McapReader::for_each_message(const std::function<void(const McapChannel&, const McapMessage&)>& visit,
                                   const std::vector<std::uint16_t>& only) const {
+  const auto wanted = [&](std::uint16_t id) {
+    return only.empty() || std::find(only.begin(), only.end(), id) != only.end();
+  };
+  // First where each message is and when it was logged (no data kept), and the count of each channel checked
+  // against the summary's (whose counts size the sequence before it is read).
+  struct Place {
+    std::uint64_t log_time;
+    std::size_t offset, inner;
+  };
+  std::vector<Place> places;
+  std::map<std::uint16_t, std::uint64_t> seen;
+  {
+    Visitor v;
+    v.wants = wanted;
+    v.on_message = [&](const McapMessage& m, std::size_t offset, std::size_t inner) {
+      places.push_back({m.log_time, offset, inner});
+      ++seen[m.channel_id];
+    };
+    scan(v);
+  }
+  for (const auto& [id, c] : channels_) {
+    if (!wanted(id)) continue;
+    const auto it = counts_.find(id);
+    const std::uint64_t expected = it == counts_.end() ? 0 : it->second;
+    const std::uint64_t got = seen.count(id) ? seen.at(id) : 0;
+    if (got != expected) {
+      throw InputError(path_.string(), "topic " + c.topic + ": the summary's Statistics record counts " +
+                                           std::to_string(expected) + " messages, the data section holds " +
+                                           std::to_string(got) + " (a damaged or rewritten MCAP file)");
+    }
+  }
+  const auto by_time = [](const Place& a, const Place& b) { return a.log_time < b.log_time; };
   Visitor v;
-  v.wants = [&](std::uint16_t id) { return only.empty() || std::find(only.begin(), only.end(), id) != only.end(); };
-  v.on_message = [&](const McapMessage& m, std::size_t) {
+  v.wants = wanted;
+  v.on_message = [&](const McapMessage& m, std::size_t, std::size_t) {
     const auto it = channels_.find(m.channel_id);
     if (it != channels_.end()) visit(it->second, m);
   };
-  scan(v);
+  if (std::is_sorted(places.begin(), places.end(), by_time)) {
+    scan(v);  // the usual case: messages written in log-time order are streamed in one more pass
+    return;
+  }
+  // Messages stored out of log-time order are visited in log-time order (ties in file order), each read where
+  // it is; the last chunk decompressed is kept, so messages shuffled within chunks cost one decompression each.
+  std::stable_sort(places.begin(), places.end(), by_time);
+  std::ifstream in(path_, std::ios::binary);
+  if (!in) throw InputError(path_.string(), "cannot open file");
+  std::vector<std::uint8_t> record, chunk;
+  std::size_t chunk_offset = kNotInChunk;
+  const auto read_record = [&](std::size_t offset) {
+    std::uint8_t head[9];
+    in.seekg(static_cast<std::streamoff>(offset));
+    in.read(reinterpret_cast<char*>(head), 9);
+    std::uint64_t length = 0;
+    std::memcpy(&length, head + 1, 8);
+    record.resize(static_cast<std::size_t>(length));
+    in.read(reinterpret_cast<char*>(record.data()), static_cast<std::streamsize>(length));
+    if (!in) throw InputError(path_.string(), "cannot read the record at offset " + std::to_string(offset));
+  };
+  try {
+    for (const Place& p : places) {
+      std::span<const std::uint8_t> content;
+      const std::string where = "record at offset " + std::to_string(p.offset);
+      if (p.inner == kNotInChunk) {
+        read_record(p.offset);
+        content = record;
+      } else {
+        if (chunk_offset != p.offset) {
+          read_record(p.offset);
+          chunk = unpack_chunk(record, "chunk at offset " + std::to_string(p.offset));
+          chunk_offset = p.offset;
+        }
+        std::uint64_t len = 0;
+        std::memcpy(&len, chunk.data() + p.inner + 1, 8);
+        content = std::span<const std::uint8_t>(chunk).subspan(p.inner + 9, static_cast<std::size_t>(len));
+      }
+      v.on_message(parse_message(content, where), p.offset, p.inner);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path_.string(), e.what());
+  }
 }
 
 }  // namespace seqtopo::recording

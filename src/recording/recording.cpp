@@ -1,12 +1,19 @@
 #include "seqtopo/recording/recording.hpp"
 
+#include <string.h>  // strverscmp (glibc)
+#include <yaml.h>
+
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
+#include <new>
+#include <set>
 #include <system_error>
 
 #include "backend.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/image/image_io.hpp"
 
 namespace seqtopo::recording {
@@ -34,15 +41,130 @@ std::string lower(std::string s) {
 
 std::string extension(const fs::path& p) { return lower(p.extension().string()); }
 
-// The storage files of a ROS 2 bag folder, in name order (split bags: name_0.db3, name_1.db3, ...).
+// The storage files of a ROS 2 bag folder with extension `ext`, in natural order (glibc's strverscmp:
+// run_2.db3 before run_10.db3), for a folder without metadata.yaml.
 std::vector<std::string> storage_files(const fs::path& folder, const std::string& ext) {
   std::vector<std::string> files;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(folder, ec)) {
     if (extension(entry.path()) == ext) files.push_back(entry.path().string());
   }
-  std::sort(files.begin(), files.end());
+  std::sort(files.begin(), files.end(),
+            [](const std::string& a, const std::string& b) { return ::strverscmp(a.c_str(), b.c_str()) < 0; });
   return files;
+}
+
+// A YAML document loaded by libyaml; node() is nullptr for a missing node.
+class YamlDocument {
+ public:
+  YamlDocument(const std::string& text, const std::string& subject) {
+    yaml_parser_t parser;
+    if (!yaml_parser_initialize(&parser)) throw std::bad_alloc();
+    yaml_parser_set_input_string(&parser, reinterpret_cast<const unsigned char*>(text.data()), text.size());
+    const bool ok = yaml_parser_load(&parser, &document_) != 0;
+    std::string why;
+    if (!ok) {
+      why = std::string("not YAML: ") + (parser.problem ? parser.problem : "parse error") + " at line " +
+            std::to_string(parser.problem_mark.line + 1);
+    }
+    yaml_parser_delete(&parser);
+    if (!ok) throw InputError(subject, why);
+    loaded_ = true;
+  }
+  ~YamlDocument() {
+    if (loaded_) yaml_document_delete(&document_);
+  }
+  YamlDocument(const YamlDocument&) = delete;
+  YamlDocument& operator=(const YamlDocument&) = delete;
+
+  yaml_node_t* root() { return yaml_document_get_root_node(&document_); }
+  // The value of `key` in the mapping `map`, or nullptr.
+  yaml_node_t* get(yaml_node_t* map, std::string_view key) {
+    if (map == nullptr || map->type != YAML_MAPPING_NODE) return nullptr;
+    for (auto* pair = map->data.mapping.pairs.start; pair < map->data.mapping.pairs.top; ++pair) {
+      const yaml_node_t* k = yaml_document_get_node(&document_, pair->key);
+      if (k && k->type == YAML_SCALAR_NODE && scalar(k) == key) return yaml_document_get_node(&document_, pair->value);
+    }
+    return nullptr;
+  }
+  std::vector<yaml_node_t*> items(yaml_node_t* sequence) {
+    std::vector<yaml_node_t*> out;
+    for (auto* item = sequence->data.sequence.items.start; item < sequence->data.sequence.items.top; ++item) {
+      out.push_back(yaml_document_get_node(&document_, *item));
+    }
+    return out;
+  }
+  static std::string scalar(const yaml_node_t* n) {
+    return {reinterpret_cast<const char*>(n->data.scalar.value), n->data.scalar.length};
+  }
+
+ private:
+  yaml_document_t document_{};
+  bool loaded_ = false;
+};
+
+struct BagFolder {
+  std::vector<std::string> files;  // the storage files to read, in order
+  std::string ext;                 // ".db3" or ".mcap"
+  std::vector<fs::path> unlisted;  // storage files beside them that metadata.yaml does not list
+};
+
+// The storage files metadata.yaml lists under rosbag2_bagfile_information.relative_file_paths, in its order
+// (as rosbag2 plays them); a metadata file that does not parse or lists no file is refused, as ros2 bag does.
+BagFolder listed_storage_files(const fs::path& folder) {
+  const fs::path metadata = folder / "metadata.yaml";
+  const std::string subject = metadata.string();
+  YamlDocument doc(read_text_file(metadata, "rosbag2 metadata file", std::size_t{16} << 20U), subject);
+  yaml_node_t* info = doc.get(doc.root(), "rosbag2_bagfile_information");
+  if (info == nullptr || info->type != YAML_MAPPING_NODE) {
+    throw InputError(subject, "not a rosbag2 metadata file (no rosbag2_bagfile_information mapping)");
+  }
+  // rosbag2 before metadata version 4 wrote the paths relative to the bag folder's parent.
+  int version = 5;
+  if (yaml_node_t* v = doc.get(info, "version"); v && v->type == YAML_SCALAR_NODE) {
+    const std::string text = YamlDocument::scalar(v);
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), version);
+    if (error != std::errc{} || end != text.data() + text.size() || version < 1) {
+      throw InputError(subject, "rosbag2_bagfile_information.version is '" + text + "', not a version number");
+    }
+  }
+  const fs::path base = version < 4 ? folder.parent_path() : folder;
+  yaml_node_t* paths = doc.get(info, "relative_file_paths");
+  if (paths == nullptr || paths->type != YAML_SEQUENCE_NODE || doc.items(paths).empty()) {
+    throw InputError(subject, "rosbag2_bagfile_information.relative_file_paths does not list the bag's files");
+  }
+  BagFolder out;
+  std::set<fs::path> read;
+  for (yaml_node_t* item : doc.items(paths)) {
+    if (item == nullptr || item->type != YAML_SCALAR_NODE || YamlDocument::scalar(item).empty()) {
+      throw InputError(subject, "relative_file_paths holds an entry that is not a file name");
+    }
+    const std::string name = YamlDocument::scalar(item);
+    const fs::path file = fs::path(name).is_absolute() ? fs::path(name) : base / name;
+    const std::string ext = extension(file);
+    if (ext != ".db3" && ext != ".mcap") {
+      throw InputError(subject, "lists " + name +
+                                    ", not a .db3 or .mcap storage file (file-compressed bags are "
+                                    "not read: decompress them with ros2 bag convert)");
+    }
+    if (!out.ext.empty() && ext != out.ext) throw InputError(subject, "lists both .db3 and .mcap files");
+    out.ext = ext;
+    if (const std::string why = special_file_reason(file); !why.empty()) {
+      throw InputError(subject, "lists " + name + ", which is " + (why == "no such file" ? "missing" : why));
+    }
+    if (!read.insert(fs::weakly_canonical(file)).second) throw InputError(subject, "lists " + name + " twice");
+    out.files.push_back(file.string());
+  }
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    const std::string ext = extension(entry.path());
+    if ((ext == ".db3" || ext == ".mcap") && !read.count(fs::weakly_canonical(entry.path(), ec))) {
+      out.unlisted.push_back(entry.path());
+    }
+  }
+  std::sort(out.unlisted.begin(), out.unlisted.end(),
+            [](const fs::path& a, const fs::path& b) { return ::strverscmp(a.c_str(), b.c_str()) < 0; });
+  return out;
 }
 
 std::string listed(const std::vector<TopicInfo>& topics, bool (*keep)(MessageType)) {
@@ -64,8 +186,22 @@ const TopicInfo* find_topic(const std::vector<TopicInfo>& topics, std::string_vi
   return nullptr;
 }
 
+// A log time [ns] as a stamp: whole seconds and nanoseconds, so that the same instant gives the same double
+// whether it comes from a header stamp or the bag's log time (1e-9 * ns differs from sec + 1e-9 * nsec by an ulp).
+RosTime stamp_of_ns(std::int64_t ns) {
+  RosTime t;
+  t.sec = ns / 1000000000;
+  std::int64_t rest = ns % 1000000000;
+  if (rest < 0) {
+    rest += 1000000000;
+    --t.sec;
+  }
+  t.nanosec = static_cast<std::uint32_t>(rest);
+  return t;
+}
+
 double time_of(const RosTime& stamp, std::int64_t log_time_ns) {
-  return stamp.zero() ? 1e-9 * static_cast<double>(log_time_ns) : stamp.seconds();
+  return stamp.zero() ? stamp_of_ns(log_time_ns).seconds() : stamp.seconds();
 }
 
 }  // namespace
@@ -86,13 +222,22 @@ Recording::Recording(const fs::path& path) : path_(path) {
   std::string ext = extension(path);
   std::vector<std::string> files{path.string()};
   if (fs::is_directory(path, ec)) {
-    files = storage_files(path, ".db3");
-    ext = ".db3";
-    if (files.empty()) {
-      files = storage_files(path, ".mcap");
-      ext = ".mcap";
+    if (fs::exists(path / "metadata.yaml", ec)) {
+      BagFolder folder = listed_storage_files(path);
+      files = std::move(folder.files);
+      ext = folder.ext;
+      unlisted_ = std::move(folder.unlisted);
+    } else {
+      files = storage_files(path, ".db3");
+      ext = ".db3";
+      if (files.empty()) {
+        files = storage_files(path, ".mcap");
+        ext = ".mcap";
+      }
     }
     if (files.empty()) throw InputError(path.string(), "a ROS 2 bag folder holds .db3 or .mcap files; found none");
+  } else if (const std::string why = special_file_reason(path); !why.empty()) {
+    throw InputError(path.string(), why + ", not a bag");
   }
   if (ext == ".bag") {
     format_ = BagFormat::ros1;

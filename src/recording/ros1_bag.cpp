@@ -10,6 +10,7 @@
 
 #include <exception>
 #include <map>
+#include <string>
 
 #include "backend.hpp"
 #include "seqtopo/core/input_error.hpp"
@@ -22,6 +23,21 @@ RosTime stamp_of(const ros::Time& t) {
   r.sec = t.sec;
   r.nanosec = t.nsec;
   return r;
+}
+
+// rosbag's texts can name its decompressors' internals ("BZ_OUTBUFF_FULL: size of the compressed data exceeds
+// *destLen"): a chunk that does not decompress is said in the user's terms; other texts are kept, on one line.
+std::string reason(const std::exception& e) {
+  std::string what = e.what();
+  for (const char* internal : {"destLen", "BZ_", "BZ2", "bzip", "roslz4", "LZ4", "lz4"}) {
+    if (what.find(internal) != std::string::npos) {
+      return "a compressed chunk does not decompress (the bag is corrupt or was cut short)";
+    }
+  }
+  for (char& c : what) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return what;
 }
 
 std::int64_t nanoseconds(const ros::Time& t) { return static_cast<std::int64_t>(t.toNSec()); }
@@ -46,7 +62,7 @@ class Ros1Bag final : public Backend {
     try {
       bag_.open(path_, rosbag::bagmode::Read);
     } catch (const std::exception& e) {
-      throw InputError(path_, std::string("cannot read as a ROS 1 bag: ") + e.what());
+      throw InputError(path_, std::string("cannot read as a ROS 1 bag: ") + reason(e));
     }
   }
 
@@ -64,7 +80,7 @@ class Ros1Bag final : public Backend {
         t.messages = one.size();
       }
     } catch (const std::exception& e) {
-      throw InputError(path_, std::string("cannot read the bag's index: ") + e.what());
+      throw InputError(path_, std::string("cannot read the bag's index: ") + reason(e));
     }
     std::vector<Topic> out;
     for (auto& [name, t] : by_name) out.push_back(t);
@@ -121,7 +137,7 @@ class Ros1Bag final : public Backend {
     } catch (const InputError&) {
       throw;
     } catch (const std::exception& e) {
-      throw InputError(path_, "topic " + topic + ": cannot read a message: " + e.what());
+      throw InputError(path_, "topic " + topic + ": cannot read a message: " + reason(e));
     }
   }
 

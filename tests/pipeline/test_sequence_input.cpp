@@ -23,8 +23,11 @@ using seqtopo::test_support::TempDir;
 TEST(NaturalSort, NumbersByValue) {
   std::vector<std::string> names{"10.jpg", "2.jpg", "1.jpg", "img-010.png", "img-9.png", "B.png", "a.png", "1.jpg.bak"};
   std::sort(names.begin(), names.end(), [](const auto& a, const auto& b) { return natural_less(a, b); });
-  EXPECT_EQ(names, (std::vector<std::string>{"1.jpg", "1.jpg.bak", "2.jpg", "10.jpg", "a.png", "B.png", "img-9.png",
-                                             "img-010.png"}));
+  // glibc's strverscmp: bytes in byte order ("B" < "a"), a run with leading zeros before the others.
+  EXPECT_EQ(names, (std::vector<std::string>{"1.jpg", "1.jpg.bak", "2.jpg", "10.jpg", "B.png", "a.png", "img-010.png",
+                                             "img-9.png"}));
+  EXPECT_TRUE(natural_less("run_9.db3", "run_10.db3"));
+  EXPECT_TRUE(natural_less("run_2.mcap", "run_11.mcap"));
   EXPECT_TRUE(natural_less("images-00010.png", "images-00020.png"));
   EXPECT_TRUE(natural_less("frame2", "frame10"));
   EXPECT_FALSE(natural_less("frame10", "frame2"));

@@ -77,6 +77,9 @@ inline void write_ppm(const std::filesystem::path& path, const RgbImage& image) 
 // A recipe: {"topics": [{"name", "type", "messages": [...]}]} (tests/recording/write_ros2_bag.mjs).
 struct Recipe {
   nlohmann::json topics = nlohmann::json::array();
+  // Writer options beside the topics: "chunk_size" (MCAP bytes per chunk), "keep_order" (true: the messages are
+  // stored in the recipe's order, not sorted by time, as a recorder with late messages stores them).
+  nlohmann::json options = nlohmann::json::object();
   nlohmann::json& topic(const std::string& name, const std::string& type) {
     for (auto& t : topics) {
       if (t["name"] == name) return t;
@@ -127,7 +130,9 @@ inline std::string shell_quoted(const std::filesystem::path& p) { return "'" + p
 // Writes `recipe` as a bag of `kind` at `out` (its extension added by the caller); fails the test on error.
 inline void write_bag(const Recipe& recipe, BagKind kind, const std::filesystem::path& out) {
   const std::filesystem::path recipe_path = out.string() + ".json";
-  std::ofstream(recipe_path) << nlohmann::json{{"topics", recipe.topics}}.dump();
+  nlohmann::json document = recipe.options;
+  document["topics"] = recipe.topics;
+  std::ofstream(recipe_path) << document.dump();
   const std::string source = std::string(SEQTOPO_SOURCE_DIR) + "/tests/recording/";
   const std::string node = std::string(SEQTOPO_NODE) + " " + SEQTOPO_RECORDING_TOOLS + "/write_ros2_bag.mjs ";
   std::string command;

@@ -3,7 +3,9 @@
 // bad bags (truncated, corrupt chunk, unknown encoding, wrong topic).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -58,6 +60,31 @@ struct SmallBag {
     recipe.pose("/pose", "geometry_msgs/msg/PoseStamped", 100.0, 1, 2, 0.5);
   }
 };
+
+// metadata.yaml as rosbag2 (metadata version 5) writes it, listing `files` (names without the extension).
+void write_metadata(const fs::path& folder, BagKind kind, const std::vector<std::string>& files) {
+  std::ofstream out(folder / "metadata.yaml");
+  out << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: "
+      << (kind == BagKind::db3 ? "sqlite3" : "mcap") << "\n  relative_file_paths:\n";
+  for (const auto& f : files) out << "    - " << f << bag_extension(kind) << "\n";
+  out << "  duration:\n    nanoseconds: 0\n  message_count: 0\n  topics_with_message_count: []\n";
+}
+
+// A bag split into `parts` files run_0 ... run_<parts - 1>, one 5 x 4 image each at time 100 + k [s].
+std::vector<double> write_split_bag(const TempDir& dir, const fs::path& folder, BagKind kind, int parts) {
+  fs::create_directories(folder);
+  std::vector<double> times;
+  for (int k = 0; k < parts; ++k) {
+    Recipe recipe;
+    const RgbImage image = pattern(5, 4, k);
+    const fs::path ppm = dir.path / ("part" + std::to_string(k) + ".ppm");
+    test_support::write_ppm(ppm, image);
+    recipe.raw_image("/camera", 100.0 + k, ppm, image);
+    test_support::write_bag(recipe, kind, folder / ("run_" + std::to_string(k) + bag_extension(kind)));
+    times.push_back(100.0 + k);
+  }
+  return times;
+}
 
 class Readers : public ::testing::TestWithParam<BagKind> {};
 
@@ -195,6 +222,42 @@ TEST_P(Readers, TruncatedBagIsAnErrorNamingTheFile) {
   }
 }
 
+// A ROS 1 bag whose compressed chunk is damaged or cut: the error says so in the user's terms, not with the
+// decompressor's internals ("BZ_OUTBUFF_FULL: size of the compressed data exceeds *destLen").
+TEST(Ros1Bag, DamagedCompressedChunkIsSaidWithoutDecompressorInternals) {
+  TempDir dir;
+  SmallBag small(dir);
+  for (const BagKind kind : {BagKind::ros1_bz2, BagKind::ros1_lz4}) {
+    const fs::path path = dir.path / (std::string(bag_kind_name(kind)) + ".bag");
+    test_support::write_bag(small.recipe, kind, path);
+    const std::string bytes = test_support::read_file(path);
+    for (const double cut : {0.3, 0.5, 0.7}) {
+      for (const bool flip : {false, true}) {
+        std::string damaged = bytes;
+        const auto at = static_cast<std::size_t>(cut * static_cast<double>(bytes.size()));
+        if (flip) {
+          for (std::size_t k = at; k < at + 24 && k < damaged.size(); ++k) damaged[k] = static_cast<char>(~damaged[k]);
+        } else {
+          damaged.resize(at);
+        }
+        const fs::path bad = dir.path / "damaged.bag";
+        std::ofstream(bad, std::ios::binary | std::ios::trunc) << damaged;
+        const std::string e = error_of([&] {
+          const Recording bag(bad);
+          bag.for_each_image(bag.image_topic(), 1, {}, [](std::size_t, double, const RgbImage&) {});
+          (void)bag.poses("/odom");
+        });
+        if (e == "no error") continue;  // a flip in a part nothing reads
+        EXPECT_EQ(e.rfind(bad.string() + ": ", 0), 0U) << e;
+        for (const char* internal : {"destLen", "BZ_", "LZ4", "roslz4"}) {
+          EXPECT_EQ(e.find(internal), std::string::npos) << bag_kind_name(kind) << " " << cut << ": " << e;
+        }
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+      }
+    }
+  }
+}
+
 // A ROS 2 bag as ros2 bag record writes it: a folder with metadata.yaml and the storage file(s).
 TEST(Ros2BagFolder, ReadAsTheBag) {
   TempDir dir;
@@ -202,7 +265,7 @@ TEST(Ros2BagFolder, ReadAsTheBag) {
   for (const BagKind kind : {BagKind::db3, BagKind::mcap_zstd}) {
     const fs::path folder = dir.path / bag_kind_name(kind);
     fs::create_directory(folder);
-    std::ofstream(folder / "metadata.yaml") << "rosbag2_bagfile_information:\n  version: 5\n";
+    write_metadata(folder, kind, {"run_0"});
     test_support::write_bag(small.recipe, kind, folder / ("run_0" + bag_extension(kind)));
     const Recording bag(folder);
     EXPECT_EQ(bag.format(), kind == BagKind::db3 ? BagFormat::ros2_sqlite : BagFormat::ros2_mcap);
@@ -210,6 +273,192 @@ TEST(Ros2BagFolder, ReadAsTheBag) {
     EXPECT_EQ(bag.image_times("/camera").size(), 3U);
     EXPECT_TRUE(looks_like_recording(folder));
   }
+}
+
+// A bag split into 12 files (issue #47, finding 1): run_10 and run_11 come after run_9, as metadata.yaml lists
+// them, not after run_1 as the names sort; without metadata.yaml the names' natural order (strverscmp) gives
+// the same.
+TEST(Ros2BagFolder, SplitBagIsReadInTheOrderOfItsFiles) {
+  TempDir dir;
+  for (const BagKind kind : {BagKind::db3, BagKind::mcap_zstd}) {
+    const fs::path folder = dir.path / (std::string("split_") + bag_kind_name(kind));
+    const std::vector<double> times = write_split_bag(dir, folder, kind, 12);
+    std::vector<std::string> names;
+    for (int k = 0; k < 12; ++k) names.push_back("run_" + std::to_string(k));
+    write_metadata(folder, kind, names);
+    EXPECT_EQ(Recording(folder).image_times("/camera"), times) << bag_kind_name(kind);
+    std::vector<std::uint8_t> seeds;
+    Recording(folder).for_each_image(
+        "/camera", 1, {}, [&](std::size_t, double, const RgbImage& image) { seeds.push_back(image.at(0, 0)[0]); });
+    ASSERT_EQ(seeds.size(), 12U);
+    for (int k = 0; k < 12; ++k) EXPECT_EQ(seeds[static_cast<std::size_t>(k)], pattern(5, 4, k).at(0, 0)[0]) << k;
+    // The order metadata.yaml gives is the order read, whatever the names.
+    std::vector<std::string> reversed(names.rbegin(), names.rend());
+    write_metadata(folder, kind, reversed);
+    EXPECT_EQ(Recording(folder).image_times("/camera"), std::vector<double>(times.rbegin(), times.rend()));
+    fs::remove(folder / "metadata.yaml");
+    EXPECT_EQ(Recording(folder).image_times("/camera"), times) << bag_kind_name(kind) << " without metadata.yaml";
+  }
+}
+
+// Storage files beside the bag that metadata.yaml does not list (a backup copy) are not read, as ros2 bag play
+// does not read them; Recording names them (the map command says so in a note).
+TEST(Ros2BagFolder, FilesMetadataDoesNotListAreNotRead) {
+  TempDir dir;
+  for (const BagKind kind : {BagKind::db3, BagKind::mcap_zstd}) {
+    const fs::path folder = dir.path / (std::string("stray_") + bag_kind_name(kind));
+    const std::vector<double> times = write_split_bag(dir, folder, kind, 3);
+    write_metadata(folder, kind, {"run_0", "run_1"});
+    const fs::path copy = folder / ("run_1 copy" + bag_extension(kind));
+    fs::copy_file(folder / ("run_1" + bag_extension(kind)), copy);
+    const Recording bag(folder);
+    EXPECT_EQ(bag.image_times("/camera"), (std::vector<double>{times[0], times[1]})) << bag_kind_name(kind);
+    EXPECT_EQ(bag.message_count("/camera"), 2U);
+    std::vector<fs::path> unlisted = bag.unlisted_files();
+    EXPECT_EQ(unlisted, (std::vector<fs::path>{copy, folder / ("run_2" + bag_extension(kind))}));
+  }
+}
+
+// A metadata.yaml that is not rosbag2's is refused with one line naming it, never read around.
+TEST(Ros2BagFolder, BadMetadataIsAnErrorNamingIt) {
+  TempDir dir;
+  const fs::path folder = dir.path / "bag";
+  write_split_bag(dir, folder, BagKind::db3, 2);
+  const std::string yaml = (folder / "metadata.yaml").string();
+  const auto error_with = [&](const std::string& text) {
+    std::ofstream(folder / "metadata.yaml", std::ios::trunc) << text;
+    const std::string e = error_of([&] { (void)Recording(folder); });
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    return e;
+  };
+  EXPECT_EQ(error_with("rosbag2_bagfile_information: [unclosed\n").rfind(yaml + ": not YAML", 0), 0U);
+  EXPECT_EQ(error_with(std::string("\x89PNG\r\n\x1a\n\0\0garbage{{{", 16)).rfind(yaml + ": ", 0), 0U);
+  EXPECT_EQ(error_with("just some text\n"),
+            yaml + ": not a rosbag2 metadata file (no rosbag2_bagfile_information mapping)");
+  EXPECT_EQ(error_with("rosbag2_bagfile_information:\n  version: 5\n"),
+            yaml + ": rosbag2_bagfile_information.relative_file_paths does not list the bag's files");
+  EXPECT_EQ(error_with("rosbag2_bagfile_information:\n  version: 5\n  relative_file_paths: [run_0.db3, run_7.db3]\n"),
+            yaml + ": lists run_7.db3, which is missing");
+  EXPECT_EQ(error_with("rosbag2_bagfile_information:\n  version: 5\n  relative_file_paths: [run_0.db3, run_0.db3]\n"),
+            yaml + ": lists run_0.db3 twice");
+  EXPECT_EQ(error_with("rosbag2_bagfile_information:\n  version: x\n  relative_file_paths: [run_0.db3]\n"),
+            yaml + ": rosbag2_bagfile_information.version is 'x', not a version number");
+  // rosbag2 before version 4 wrote the paths with the bag folder's name.
+  std::ofstream(folder / "metadata.yaml", std::ios::trunc)
+      << "rosbag2_bagfile_information:\n  version: 3\n  relative_file_paths:\n    - bag/run_1.db3\n    - "
+         "bag/run_0.db3\n";
+  EXPECT_EQ(Recording(folder).image_times("/camera"), (std::vector<double>{101.0, 100.0}));
+}
+
+// MCAP messages stored out of log-time order (issue #47, finding 3) are read in log-time order, as .db3 ones are:
+// the same bag in both storages gives the same times and images. Small chunks put the late ones in other chunks.
+TEST(Mcap, MessagesAreReadInLogTimeOrder) {
+  TempDir dir;
+  Recipe recipe;
+  const std::vector<double> stored{100.5, 100.0, 103.0, 101.0, 102.5, 102.0, 101.5, 103.0};
+  for (std::size_t k = 0; k < stored.size(); ++k) {
+    const RgbImage image = pattern(5, 4, static_cast<int>(k));
+    const fs::path ppm = dir.path / ("u" + std::to_string(k) + ".ppm");
+    test_support::write_ppm(ppm, image);
+    recipe.raw_image("/camera", stored[k], ppm, image);
+  }
+  recipe.options = {{"keep_order", true}, {"chunk_size", 200}};
+  std::vector<std::size_t> order(stored.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return stored[a] < stored[b]; });
+  for (const BagKind kind : {BagKind::mcap_zstd, BagKind::mcap_lz4, BagKind::mcap_none, BagKind::db3}) {
+    const fs::path path = dir.path / (std::string("unsorted_") + bag_kind_name(kind) + bag_extension(kind));
+    test_support::write_bag(recipe, kind, path);
+    const Recording bag(path);
+    std::vector<double> times;
+    std::vector<std::uint8_t> seeds;
+    bag.for_each_image("/camera", 1, {}, [&](std::size_t, double t, const RgbImage& image) {
+      times.push_back(t);
+      seeds.push_back(image.at(0, 0)[0]);
+    });
+    ASSERT_EQ(times.size(), stored.size()) << bag_kind_name(kind);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      EXPECT_EQ(times[k], stored[order[k]]) << bag_kind_name(kind) << " " << k;
+      // Ties (two at 103.0) in the order stored.
+      EXPECT_EQ(seeds[k], pattern(5, 4, static_cast<int>(order[k])).at(0, 0)[0]) << bag_kind_name(kind) << " " << k;
+    }
+    EXPECT_EQ(bag.image_times("/camera"), times);
+  }
+}
+
+// The same instant from a header stamp and from the bag's log time (the stamp 0) is the same double, not
+// 1e-9 * ns against sec + 1e-9 * nsec, an ulp apart at 1700140891.611178002 s.
+TEST(Ros2Bag, StampAndLogTimeOfOneInstantAreEqual) {
+  TempDir dir;
+  Recipe recipe;
+  const RgbImage image = pattern(5, 4, 1);
+  const fs::path ppm = dir.path / "i.ppm";
+  test_support::write_ppm(ppm, image);
+  recipe.raw_image("/camera", 0.0, ppm, image);
+  recipe.topics[0]["messages"][0]["sec"] = 1700140891;
+  recipe.topics[0]["messages"][0]["nanosec"] = 611178002;
+  recipe.raw_image("/camera", 0.0, ppm, image);  // stamp 0: the log time stands for it
+  recipe.topics[0]["messages"][1]["log_time"] = "1700140891612178002";
+  recipe.raw_image("/camera", 0.0, ppm, image);
+  recipe.topics[0]["messages"][2]["log_time"] = "1700140891611178002";
+  for (const BagKind kind : {BagKind::db3, BagKind::mcap_zstd}) {
+    const fs::path path = dir.path / (std::string("instant_") + bag_kind_name(kind) + bag_extension(kind));
+    test_support::write_bag(recipe, kind, path);
+    const auto times = Recording(path).image_times("/camera");
+    ASSERT_EQ(times.size(), 3U);
+    // In log-time order: the stamped one (its log time is its stamp), then the zero stamps by log time.
+    EXPECT_EQ(times[0], times[1]) << bag_kind_name(kind);
+    EXPECT_EQ(times[0], 1700140891.0 + 1e-9 * 611178002.0) << bag_kind_name(kind);
+    EXPECT_GT(times[2], times[1]);
+  }
+}
+
+// An MCAP whose summary counts more messages than its data holds: the error names the file, the topic and the
+// summary, not the odometry that later disagrees with the frame count.
+TEST(Mcap, SummaryThatDisagreesWithTheDataIsAnError) {
+  TempDir dir;
+  SmallBag small(dir);
+  const fs::path path = dir.path / "summary.mcap";
+  test_support::write_bag(small.recipe, BagKind::mcap_zstd, path);
+  std::string bytes = test_support::read_file(path);
+  // Footer: opcode 0x02, length 20, summary_start, summary_offset_start, summary_crc; then the closing magic.
+  const std::size_t footer = bytes.size() - 8 - 29;
+  ASSERT_EQ(static_cast<std::uint8_t>(bytes[footer]), 0x02);
+  std::uint64_t at = 0;
+  std::memcpy(&at, bytes.data() + footer + 9, 8);
+  bool patched = false;
+  while (at + 9 <= footer && !patched) {
+    std::uint64_t length = 0;
+    std::memcpy(&length, bytes.data() + at + 1, 8);
+    if (static_cast<std::uint8_t>(bytes[at]) == 0x0B) {
+      // message_count (u64), counts (u16 + 4 x u32), start and end times (2 x u64), then the channel counts.
+      char* stats = bytes.data() + at + 9;
+      std::uint64_t total = 0;
+      std::memcpy(&total, stats, 8);
+      char* map = stats + 8 + 2 + 16 + 16;
+      std::uint32_t map_bytes = 0;
+      std::memcpy(&map_bytes, map, 4);
+      for (std::uint32_t k = 0; k < map_bytes; k += 10) {
+        std::uint64_t n = 0;
+        std::memcpy(&n, map + 4 + k + 2, 8);
+        n += 2;
+        total += 2;
+        std::memcpy(map + 4 + k + 2, &n, 8);
+      }
+      std::memcpy(stats, &total, 8);
+      patched = true;
+    }
+    at += 9 + length;
+  }
+  ASSERT_TRUE(patched);
+  std::memset(bytes.data() + footer + 9 + 16, 0, 4);  // no summary CRC
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  const Recording bag(path);
+  EXPECT_EQ(bag.message_count("/camera"), 5U);  // the summary's word
+  EXPECT_EQ(error_of([&] { (void)bag.image_times("/camera"); }),
+            path.string() +
+                ": topic /camera: the summary's Statistics record counts 5 messages, the data section "
+                "holds 3 (a damaged or rewritten MCAP file)");
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFormats, Readers, ::testing::ValuesIn(all_bag_kinds()),

@@ -71,16 +71,19 @@ function message(type, m) {
 
 const [recipePath, mode, out, compression = "zstd", stats = "stats"] = process.argv.slice(2);
 const recipe = JSON.parse(readFileSync(recipePath, "utf8"));
-// Every message, serialized, in time order.
+// Every message, serialized, in time order (unless the recipe says keep_order).
 const all = [];
 for (const topic of recipe.topics) {
   const writer = new MessageWriter(parse(SCHEMAS[topic.type], { ros2: true }));
   for (const m of topic.messages) {
-    all.push({ topic: topic.name, type: topic.type, time: BigInt(m.sec) * 1000000000n + BigInt(m.nanosec),
+    // log_time [ns, a decimal string]: the bag's receive time when it is not the stamp (a stamp of 0).
+    const time = m.log_time !== undefined ? BigInt(m.log_time) : BigInt(m.sec) * 1000000000n + BigInt(m.nanosec);
+    all.push({ topic: topic.name, type: topic.type, time,
       data: writer.writeMessage(message(topic.type, m)) });
   }
 }
-all.sort((a, b) => (a.time < b.time ? -1 : a.time > b.time ? 1 : 0));
+// keep_order: stored as the recipe lists them (messages out of time order, as a recorder with late ones writes).
+if (!recipe.keep_order) all.sort((a, b) => (a.time < b.time ? -1 : a.time > b.time ? 1 : 0));
 
 if (mode === "cdr") {
   // topics as JSON on the first line, then per message: topic index, time, length (uint32, uint64, uint32 LE), bytes.

@@ -55,8 +55,9 @@ struct SequenceInput {
 // Throws InputError naming the path when it does not exist.
 InputKind resolve_input_kind(const SequenceInput& input);
 
-// Natural order of file names: runs of digits compare by value ("2.jpg" < "10.jpg"), other characters
-// case-insensitively; names equal under that rule fall back to plain byte order so the order is total.
+// Natural order of file names, glibc's strverscmp (as `ls -v` sorts): runs of digits compare by value
+// ("2.jpg" < "10.jpg", "run_9" < "run_10"), other bytes in byte order ("B.png" < "a.png"); a run with leading
+// zeros sorts before one without ("07" < "7"). A total order: only equal names compare equal.
 bool natural_less(std::string_view a, std::string_view b);
 
 // The image files of a folder (by extension: png, jpg, jpeg, bmp, tif, tiff, webp, pgm, ppm, pnm, jp2),

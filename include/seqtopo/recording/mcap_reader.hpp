@@ -55,8 +55,10 @@ class McapReader {
   const std::map<std::uint16_t, std::uint64_t>& message_counts() const { return counts_; }
   std::string profile() const { return profile_; }
 
-  // visit(channel, message) for every message, in file order (the data span lives until visit returns).
-  // Messages of the channels in `only` (empty = all) are passed; the others are skipped without copying.
+  // visit(channel, message) for every message, in log-time order (messages of the same log time in file order,
+  // whatever order the file stores them in; the data span lives until visit returns). Messages of the channels
+  // in `only` (empty = all) are passed; the others are skipped without copying. Throws InputError when the
+  // number of messages of such a channel is not the count of the summary's Statistics record.
   void for_each_message(const std::function<void(const McapChannel&, const McapMessage&)>& visit,
                         const std::vector<std::uint16_t>& only = {}) const;
 

@@ -49,6 +49,9 @@ class Recording {
   const std::filesystem::path& path() const { return path_; }
   BagFormat format() const { return format_; }
   const std::vector<TopicInfo>& topics() const { return topics_; }
+  // A ROS 2 bag folder's storage files that its metadata.yaml does not list (a copy beside the recording):
+  // not read, as ros2 bag play does not read them.
+  const std::vector<std::filesystem::path>& unlisted_files() const { return unlisted_; }
 
   // `requested` when given (it must be an image topic of the bag), else the bag's only image topic. Throws
   // InputError listing the image topics when there are none, several, or `requested` is not one of them.
@@ -78,6 +81,7 @@ class Recording {
   BagFormat format_ = BagFormat::ros1;
   std::unique_ptr<detail::Backend> backend_;
   std::vector<TopicInfo> topics_;
+  std::vector<std::filesystem::path> unlisted_;
 };
 
 // Whether `path` is a recording by its name: a .bag, .db3 or .mcap file, or a folder with metadata.yaml and a
