@@ -12,6 +12,24 @@ std::string trim(std::string_view t) {
   return std::string(t.substr(first, last - first + 1));
 }
 
+// Where a line's comment begins: the first '#' outside a quoted value (`out: "run#2"` is a value; a quote opens
+// one only right after the colon, so `note: it's` has none), or the line's end.
+std::size_t comment_start(std::string_view line) {
+  char quote = 0, last = 0;  // last: the previous character that is not a space
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const char c = line[k];
+    if (quote != 0) {
+      if (c == quote) quote = 0;
+    } else if ((c == '"' || c == '\'') && last == ':') {
+      quote = c;
+    } else if (c == '#') {
+      return k;
+    }
+    if (c != ' ' && c != '\t') last = c;
+  }
+  return line.size();
+}
+
 }  // namespace
 
 std::vector<ConfigEntry> parse_config(std::string_view text, const std::string& path) {
@@ -36,7 +54,7 @@ std::vector<ConfigEntry> parse_config(std::string_view text, const std::string& 
   std::vector<ConfigEntry> entries;
   for (std::size_t k = 0; k < lines.size(); ++k) {
     std::string_view raw = lines[k];
-    if (const auto hash = raw.find('#'); hash != std::string_view::npos) raw = raw.substr(0, hash);
+    raw = raw.substr(0, comment_start(raw));
     const std::string line = trim(raw);
     if (line.empty() || line == "---") continue;
     const auto colon = line.find(':');

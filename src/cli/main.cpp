@@ -202,6 +202,15 @@ int main(int argc, char** argv) {
 
   try {
     std::vector<std::string> args(argv, argv + argc);
+    // An unknown command is said as such (CLI11 would say "A subcommand is required").
+    const auto known = [&](const std::string& name) {
+      return std::any_of(commands.begin(), commands.end(), [&](const auto& c) { return c.name == name; });
+    };
+    if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' && !known(args[1])) {
+      std::string names;
+      for (const auto& command : commands) names += (names.empty() ? "" : ", ") + command.name;
+      return fail("unknown command '" + args[1] + "' (commands: " + names + "; see seqtopo --help)", 2);
+    }
     args = seqtopo::cli::expand_config(app, args);
     // CLI11 parses a reversed vector of the arguments after the program name.
     std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);

@@ -66,6 +66,30 @@ struct MapOptions {
 
 using Settings = pipeline::MapSettings;
 
+// --odometry-gate BASE,DRIFT[,WINDOW[,TURN]] or none; InputError naming the option otherwise.
+std::optional<mapping::OdometryGate> parse_odometry_gate(const std::string& text) {
+  if (text == "none") return std::nullopt;
+  std::vector<std::string> fields;
+  for (std::size_t from = 0;;) {
+    const auto comma = text.find(',', from);
+    fields.push_back(text.substr(from, comma - from));
+    if (comma == std::string::npos) break;
+    from = comma + 1;
+  }
+  if (fields.size() < 2 || fields.size() > 4) {
+    throw InputError("--odometry-gate",
+                     "expected BASE,DRIFT[,WINDOW[,TURN]] (metres, metres per metre travelled, metres, radians "
+                     "per metre travelled; all >= 0) or none, got '" +
+                         text + "'");
+  }
+  mapping::OdometryGate gate;
+  gate.base = parse_number<double>("--odometry-gate", fields[0], kNonNegative);
+  gate.drift = parse_number<double>("--odometry-gate", fields[1], kNonNegative);
+  if (fields.size() >= 3) gate.trim_window = parse_number<double>("--odometry-gate", fields[2], kNonNegative);
+  if (fields.size() == 4) gate.turn = parse_number<double>("--odometry-gate", fields[3], kNonNegative);
+  return gate;
+}
+
 // The preset fixes the defaults; every explicit option overrides them.
 Settings resolve_settings(const MapOptions& o) {
   Settings s = option_value("--preset", [&] { return pipeline::map_preset(o.preset); });
@@ -107,29 +131,11 @@ Settings resolve_settings(const MapOptions& o) {
     }
   }
   if (o.odometry_gate) {
-    if (*o.odometry_gate == "none") {
-      s.map.odometry_gate.reset();
-    } else {
-      // BASE,DRIFT[,WINDOW[,TURN]]
-      std::vector<std::string> fields;
-      for (std::size_t from = 0;;) {
-        const auto comma = o.odometry_gate->find(',', from);
-        fields.push_back(o.odometry_gate->substr(from, comma - from));
-        if (comma == std::string::npos) break;
-        from = comma + 1;
-      }
-      if (fields.size() < 2 || fields.size() > 4) {
-        throw InputError("--odometry-gate",
-                         "expected BASE,DRIFT[,WINDOW[,TURN]] (metres, metres per metre travelled, metres, radians "
-                         "per metre travelled; all >= 0) or none, got '" +
-                             *o.odometry_gate + "'");
-      }
-      mapping::OdometryGate gate;
-      gate.base = parse_number<double>("--odometry-gate", fields[0], kNonNegative);
-      gate.drift = parse_number<double>("--odometry-gate", fields[1], kNonNegative);
-      if (fields.size() >= 3) gate.trim_window = parse_number<double>("--odometry-gate", fields[2], kNonNegative);
-      if (fields.size() == 4) gate.turn = parse_number<double>("--odometry-gate", fields[3], kNonNegative);
-      s.map.odometry_gate = gate;
+    // A bad value is a bad command line (exit 2), as for every other number option.
+    try {
+      s.map.odometry_gate = parse_odometry_gate(*o.odometry_gate);
+    } catch (const InputError& e) {
+      throw CLI::ValidationError(e.subject(), e.what());
     }
   }
   if (o.min_separation) s.map.min_separation = *o.min_separation;
@@ -250,6 +256,10 @@ std::vector<std::string> ignored_online(const MapOptions& o) {
 }
 
 void run(MapOptions o) {
+  // An option that would be ignored without a word is refused.
+  if (o.gt_radius && o.ground_truth.empty()) {
+    throw InputError("--gt-radius", "is the same-place radius of a poses.csv ground truth: give --ground-truth too");
+  }
   if (o.online) {
     if (const auto ignored = ignored_online(o); !ignored.empty()) {
       throw InputError("--online", fmt::format("does not take {} (the offline map's option{}; map without --online "
@@ -454,7 +464,7 @@ const RegisterCommand registered{
        add_number(app, "--threshold", o->threshold, kPositive,
                   fmt::format("minimum alignment score of a revisit with --e-value none (default {})",
                               mapping::MapConfig{}.threshold));
-       add_number(app, "--min-separation", o->min_separation, kAtLeastOne,
+       add_number(app, "--min-separation", o->min_separation, kSeparation,
                   fmt::format("places (frames with the paper preset) around the diagonal that never count (default {})",
                               mapping::MapConfig{}.min_separation));
        add_number(

@@ -146,5 +146,8 @@ inline constexpr NumberLimits kAnyFinite{};
 inline constexpr NumberLimits kProbability{.min = 0, .max = 1};
 // Worker threads: 0 = every core; resolve_threads() never uses more than the cores.
 inline constexpr NumberLimits kThreads{.min = 0, .max = 4096};
+// A separation in places or frames: at most 10^9, far beyond any sequence, so that its value in frames (places
+// times frames per place) cannot wrap.
+inline constexpr NumberLimits kSeparation{.min = 1, .max = 1e9};
 
 }  // namespace seqtopo::cli

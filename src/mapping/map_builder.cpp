@@ -68,7 +68,9 @@ align::ScoreSource minus(const align::ScoreSource& source, float offset) {
 }
 
 std::size_t in_frames(double places, double frames_per_place) {
-  return static_cast<std::size_t>(std::max(1.0, std::round(places * frames_per_place)));
+  // Saturated: a count beyond 2^62 frames is beyond any sequence (and its conversion would be undefined).
+  const double frames = std::max(1.0, std::round(places * frames_per_place));
+  return frames < 0x1p62 ? static_cast<std::size_t>(frames) : std::size_t{1} << 62U;
 }
 
 }  // namespace

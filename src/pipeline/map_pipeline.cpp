@@ -97,6 +97,18 @@ mapping::MapConfig map_config_of(const MapSettings& settings, const MapRun& run)
   return config;
 }
 
+// A map needs two images; when --every or --every-metres thinned the sequence to fewer, the error says so.
+[[noreturn]] void too_few_images(const MapRequest& request, std::span<const SequenceInput> inputs, std::size_t n) {
+  const SequenceInput& input = inputs.front();
+  std::string why = fmt::format("needs at least 2 images, got {}", n);
+  if (inputs.size() == 1 && request.every_metres && !input.frames.empty()) {
+    why += fmt::format(" (--every-metres {} kept {}; give a shorter distance)", *request.every_metres, n);
+  } else if (inputs.size() == 1 && input.every > 1) {
+    why += fmt::format(" (--every {} kept {}; give a smaller step)", input.every, n);
+  }
+  throw InputError(input.path.string(), why);
+}
+
 // Stages 1 and 2 with the N x N matrices: one similarity matrix per descriptor, fused and aligned.
 void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs, InputKind kind,
                const std::vector<Pose2>& odometry, const MapObserver& observer, StageClock& clock, MapRun& run) {
@@ -130,7 +142,7 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   }
   clock.end();
   const std::size_t n = run.matrices.front().rows;
-  if (n < 2) throw InputError(inputs.front().path.string(), "needs at least 2 images");
+  if (n < 2) too_few_images(request, inputs, n);
 
   clock.begin();
   check_odometry(odometry, n, request.odometry.string());
@@ -184,7 +196,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   run.descriptor_names.emplace_back(
       described.descriptor == Descriptor::npy ? "descriptors.npy" : std::string(descriptor_name(described.descriptor)));
   say(observer, fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
-  if (n < 2) throw InputError(inputs.front().path.string(), "needs at least 2 images");
+  if (n < 2) too_few_images(request, inputs, n);
   check_odometry(odometry, n, request.odometry.string());
   // The place scale from the raw cosine near the diagonal (or the odometry), then the windows in frames.
   mapping::MapConfig config = map_config_of(settings, run);

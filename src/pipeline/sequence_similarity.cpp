@@ -714,6 +714,12 @@ std::vector<SimilarityResult> run(std::span<const SequenceInput> inputs_a, std::
     SimilarityResult r;
     r.seconds_descriptors = k == 0 ? seconds_descriptors : 0.0;  // the one pass is counted once
     const auto t1 = Clock::now();
+    // Descriptors of two lengths: the second sequence disagrees with the first, so it is the one named.
+    if (db && !da.sets[k].is_sparse() && !db->sets[k].is_sparse() && da.sets[k].dense.cols != db->sets[k].dense.cols) {
+      throw InputError(all_b->input.path.string(), "its descriptors have " + std::to_string(db->sets[k].dense.cols) +
+                                                       " values, those of " + all_a.input.path.string() + " have " +
+                                                       std::to_string(da.sets[k].dense.cols));
+    }
     DenseMatrix<float> distances;
     try {
       distances = db ? similarity::distance_matrix(da.sets[k], db->sets[k], metric, mc)

@@ -89,6 +89,7 @@ def seeds():
         "no_colon": b"gap 1.5\n",
         "no_name": b": 3\n",
         "crlf": b"threads: 2\r\nevery: 1\r\n",
+        "hash_in_quotes": b"out: \"run#2\"  # the second\nnote: it's # a comment\nname: 'a#b'\n",
     }
 
 
