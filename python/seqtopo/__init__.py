@@ -173,6 +173,14 @@ def _input_error(subject: str, message: str) -> InputError:
     return error
 
 
+def _whole(name: str, value, minimum: int = 0) -> int:
+    """A count argument as the native call takes it, or the ValueError the errors section documents (pybind11
+    would raise TypeError for -1, 2.5 or "3")."""
+    if not isinstance(value, int) or isinstance(value, bool) or value < minimum or value > 2**63 - 1:
+        raise ValueError(f"{name}: must be an integer >= {minimum}, got {value!r}")
+    return value
+
+
 def _is_path(x) -> bool:
     return isinstance(x, (str, _os.PathLike))
 
@@ -204,6 +212,7 @@ def similarity(
     ``kappa <= 0``), :class:`InputError` for an unreadable path, MemoryError when the matrix cannot fit.
     """
     rule = kappa_rule if kappa_rule is not None else KappaRule()
+    threads, every = _whole("threads", threads), _whole("every", every, 1)
     if _is_path(descriptors):
         if against is not None and not _is_path(against):
             raise ValueError("against: give a path when the first input is a path")
@@ -244,6 +253,7 @@ def align(
 
     Returns a list of :class:`Alignment`; an empty list when nothing scores above the threshold.
     """
+    threads = _whole("threads", threads)
     default = AlignConfig()
     config = AlignConfig(
         gap_a=gap_a if gap_a is not None else (gap if gap is not None else default.gap_a),
@@ -550,6 +560,7 @@ def map_sequence(
     if config is None:
         config = map_preset(preset)["config"]
     config = _config(config, MapConfig, overrides)
+    every, threads = _whole("every", every, 1), _whole("threads", threads)
     if _arrays(path):
         matrices = list(path) if isinstance(path, (list, tuple)) else [path]
         descriptor_rows = len(matrices) == 1 and matrices[0].ndim == 2 and matrices[0].shape[0] != matrices[0].shape[1]
@@ -675,6 +686,7 @@ def localize_sequences(
     pairs; the answers are then scored within +-``tolerance`` map frames beside the single-frame and SeqSLAM
     baselines. Returns a :class:`LocalizeRun`."""
     config = _config(config, LocalizeConfig, overrides)
+    every, threads, tolerance = _whole("every", every, 1), _whole("threads", threads), _whole("tolerance", tolerance)
     with _tempfile.TemporaryDirectory(prefix="seqtopo-") as scratch:
         written = {}  # files made here from arrays: an error names the argument, not the file
         if isinstance(map, _np.ndarray):
@@ -813,6 +825,7 @@ def match_strings(
     if preset is not None:
         overrides.setdefault("costs", preset_costs(preset))
     config = _config(config, MatchConfig, overrides)
+    window = _whole("window", window, 1)
     raw = _core.match_strings(list(db), list(queries), config, window)
     return [StringMatches(*fields) for fields in raw]
 

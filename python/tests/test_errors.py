@@ -151,3 +151,18 @@ def test_a_config_override_of_the_wrong_kind_names_itself(override, message):
     with pytest.raises(ValueError) as error:
         seqtopo.build_map(np.eye(40, dtype=np.float32), **override)
     assert str(error.value) == message
+
+
+@pytest.mark.parametrize("call", [
+    lambda: seqtopo.similarity(np.eye(4, dtype=np.float32), threads=-1),
+    lambda: seqtopo.similarity(np.eye(4, dtype=np.float32), threads=2.5),
+    lambda: seqtopo.align(np.eye(4, dtype=np.float32), threads=-1),
+    lambda: seqtopo.map_sequence(np.eye(40, dtype=np.float32), threads="2"),
+    lambda: seqtopo.localize_sequences(np.eye(8, dtype=np.float32), tolerance=-1),
+    lambda: seqtopo.localize_sequences(np.eye(8, dtype=np.float32), every=0),
+    lambda: seqtopo.match_strings(["vAv"], ["vAv"], window=-2),
+])
+def test_a_count_argument_out_of_range_is_a_value_error_naming_it(call):
+    # The errors section documents ValueError; pybind11 alone raises TypeError ("incompatible function arguments").
+    with pytest.raises(ValueError, match=r"^(threads|tolerance|every|window): must be an integer >= [01], got "):
+        call()
