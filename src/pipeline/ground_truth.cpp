@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/text_file.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
 #include "seqtopo/formats/places_csv.hpp"
 #include "seqtopo/formats/pose_files.hpp"
@@ -47,13 +48,8 @@ std::vector<T> thinned(std::vector<T> all, std::size_t step) {
   return every_kth(all, step);
 }
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "cannot open the ground-truth file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+// Through the bounded reader: /dev/zero or a FIFO as the ground truth is refused, not read forever.
+std::string read_bytes(const fs::path& path) { return read_text_file(path, "ground-truth file"); }
 
 std::string lower(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
