@@ -2,7 +2,7 @@
 
 CMake configures the project with SEQTOPO_BUILD_PYTHON=ON (tests and benchmarks off) for the interpreter running
 this script and builds only what the module needs: the target seqtopo_python (the library's modules it links) and
-the codecs plugin, about 108 compiled files; the command-line tool's own 24 are left out. While it builds, the
+the codecs plugin, 113 compiled files; the command-line tool's own 24 are left out. While it builds, the
 stages and the compile percentage are shown whether or not there is a terminal (python/build_progress.py), since
 pip shows a build's output only with -v. Environment:
   SEQTOPO_PIP_COMMAND=1    also build the seqtopo command and its bundled demo data into the package (the
