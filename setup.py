@@ -1,11 +1,13 @@
-"""pip install . : builds the Python module seqtopo._core and the seqtopo command with CMake and packages them
-with python/seqtopo (the command as seqtopo/bin/seqtopo and the program it starts, seqtopo/bin/seqtopo-main, run by
-the `seqtopo` console entry point).
+"""pip install . : builds the Python module seqtopo._core with CMake and packages it with python/seqtopo.
 
-CMake configures the whole project with SEQTOPO_BUILD_PYTHON=ON (tests and benchmarks off) for the
-interpreter running this script and builds the targets seqtopo_python and seqtopo. While it builds, the stages
-and the compile percentage go to the terminal (python/build_progress.py), since pip shows a build's output
-only with -v. Environment:
+CMake configures the project with SEQTOPO_BUILD_PYTHON=ON (tests and benchmarks off) for the interpreter running
+this script and builds only what the module needs: the target seqtopo_python (the library's modules it links) and
+the codecs plugin, 113 compiled files; the command-line tool's own 24 are left out. While it builds, the
+stages and the compile percentage are shown whether or not there is a terminal (python/build_progress.py), since
+pip shows a build's output only with -v. Environment:
+  SEQTOPO_PIP_COMMAND=1    also build the seqtopo command and its bundled demo data into the package (the
+                           `seqtopo` console entry point then runs it; without it that entry point says how to
+                           get the command);
   SEQTOPO_CMAKE_BUILD_DIR  CMake build folder (default: build/pip-<python version> in the source tree),
                            kept between installs so that a rebuild only recompiles what changed;
   SEQTOPO_BUILD_JOBS       parallel compile jobs (default: every core);
@@ -62,9 +64,11 @@ class CMakeBuild(build_ext):
         progress = BuildProgress()
         progress.run(configure, "configuring with CMake in " + os.path.relpath(build_dir, ROOT))
         jobs = os.environ.get("SEQTOPO_BUILD_JOBS") or str(os.cpu_count() or 1)
-        targets = ["seqtopo_python", "seqtopo", "seqtopo_codecs"]
+        command = os.environ.get("SEQTOPO_PIP_COMMAND") == "1"
+        targets = ["seqtopo_python", "seqtopo_codecs"] + (["seqtopo"] if command else [])
+        what = "the module and the command" if command else "the module"
         progress.run(["cmake", "--build", build_dir, "--target", *targets, "-j", jobs],
-                     "building the module and the command with %s jobs (a first build takes minutes)" % jobs)
+                     "building %s with %s jobs (a first build takes minutes)" % (what, jobs))
 
         suffix = sysconfig.get_config_var("EXT_SUFFIX")
         built = os.path.join(build_dir, "python", "seqtopo", "_core" + suffix)
@@ -74,14 +78,21 @@ class CMakeBuild(build_ext):
         # OpenCV's codecs, which the module and the command open on first use, beside each (image/codecs.hpp).
         codecs = os.path.join(build_dir, "src", "libseqtopo_codecs.so")
         shutil.copy2(codecs, os.path.dirname(target))
-        # The command-line tool, run by the `seqtopo` console entry point (seqtopo/_cli.py): the launcher and the
-        # program it starts, side by side.
-        tools = os.path.join(os.path.dirname(target), "bin")
-        os.makedirs(tools, exist_ok=True)
-        for name in ("seqtopo", "seqtopo-main"):
-            shutil.copy2(os.path.join(build_dir, "src", name), os.path.join(tools, name))
-        shutil.copy2(codecs, tools)
-        progress.done("seqtopo._core and the seqtopo command")
+        package = os.path.dirname(target)
+        for stale in ("bin", "data"):  # a command from an earlier SEQTOPO_PIP_COMMAND=1 build in the same tree
+            shutil.rmtree(os.path.join(package, stale), ignore_errors=True)
+        if command:
+            # The command-line tool, run by the `seqtopo` console entry point (seqtopo/_cli.py): the launcher and
+            # the program it starts, side by side, and the demo data `seqtopo map` maps when given no input
+            # (found from the program's place: seqtopo/bin/ -> seqtopo/data/).
+            tools = os.path.join(package, "bin")
+            os.makedirs(tools, exist_ok=True)
+            for name in ("seqtopo", "seqtopo-main"):
+                shutil.copy2(os.path.join(build_dir, "src", name), os.path.join(tools, name))
+            shutil.copy2(codecs, tools)
+            shutil.copytree(os.path.join(ROOT, "data", "rtabmap-corridor"),
+                            os.path.join(package, "data", "rtabmap-corridor"))
+        progress.done("seqtopo._core" + (" and the seqtopo command" if command else ""))
 
 
 class OutOfTreeEggInfo(egg_info):
@@ -98,6 +109,8 @@ setup(
     version=project_version(),
     description="Topological mapping and localization with the algorithms of DNA sequence alignment",
     long_description="Python bindings of the seqtopo C++ library; see docs/python.md.",
+    license="BSD-3-Clause",
+    license_files=["LICENSE"],
     python_requires=">=3.9",
     install_requires=["numpy"],
     packages=["seqtopo"],

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Installs the dependencies, builds seqtopo (Release, warnings as errors) and runs the whole test suite.
+# Installs the dependencies of building and testing (scripts/setup.sh --test), builds seqtopo (Release, warnings
+# as errors) and runs the whole test suite.
 # Usage: scripts/test.sh [release|sanitize]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-release}"
-scripts/setup.sh
+scripts/setup.sh --test
 cmake --workflow --preset "$preset"

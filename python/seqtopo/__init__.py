@@ -33,6 +33,7 @@ from __future__ import annotations
 import dataclasses as _dataclasses
 import os as _os
 import tempfile as _tempfile
+import typing as _typing
 
 import numpy as _np
 
@@ -75,10 +76,12 @@ __all__ = [
     "MatchConfig",
     "OnlineMapConfig",
     "OnlineMapper",
+    "ProgressEvent",
     "PruningConfig",
     "SimilarityResult",
     "StringMatches",
     "TopologyConfig",
+    "TqdmProgress",
     "align",
     "build_map",
     "build_map_from_images",
@@ -406,7 +409,7 @@ def _require_square(matrix) -> None:
 
 
 def build_map_from_images(
-    path: str | os.PathLike,
+    path: str | _os.PathLike[str],
     config: MapConfig | None = None,
     *,
     descriptors: list[str] | None = None,
@@ -515,6 +518,63 @@ def _same_place_from_poses(poses, radius: float):
     return d <= radius
 
 
+@_dataclasses.dataclass(frozen=True)
+class ProgressEvent:
+    """One event of a long job, for ``map_sequence(..., progress=callback)``: the job announces its stages once
+    (``kind == "plan"``), then sends per stage one ``"begin"``, any number of ``"advance"`` (``done`` units of
+    ``total``, what a unit is in ``unit``, ``total`` 0 when the stage cannot count) and one ``"end"`` (its wall
+    time in ``seconds``). Stages are numbered ``stage`` of ``stages``, from 1 (0 for the plan)."""
+
+    kind: str
+    stage: int
+    stages: int
+    name: str
+    done: int
+    total: int
+    unit: str
+    seconds: float
+
+
+def _progress_callback(progress: _typing.Callable[[ProgressEvent], object] | None) -> _typing.Callable[..., object] | None:
+    if progress is None:
+        return None
+    if not callable(progress):
+        raise TypeError(f"progress: must be a callable taking a seqtopo.ProgressEvent, got {type(progress).__name__}")
+    return lambda *fields: progress(ProgressEvent(*fields))
+
+
+class TqdmProgress:
+    """``progress=`` for :func:`map_sequence` that draws one tqdm bar per stage (``tqdm.auto``, so a notebook gets
+    its widget). Needs tqdm (Debian python3-tqdm, ``pip install tqdm``); without it the constructor raises
+    ImportError. Keyword arguments go to each bar (``leave=False``, ``file=...``)."""
+
+    def __init__(self, **tqdm_options: object) -> None:
+        try:
+            from tqdm.auto import tqdm
+        except ImportError as error:
+            raise ImportError("seqtopo.TqdmProgress needs tqdm (Debian: python3-tqdm; pip install tqdm)") from error
+        self._tqdm = tqdm
+        self._options = tqdm_options
+        self._bar = None
+
+    def __call__(self, event: ProgressEvent) -> None:
+        if event.kind == "begin":
+            self.close()
+            self._bar = self._tqdm(desc=f"[{event.stage}/{event.stages}] {event.name}", **self._options)
+        elif event.kind == "advance" and self._bar is not None:
+            if event.total and self._bar.total != event.total:
+                self._bar.total = event.total
+                self._bar.unit = " " + event.unit
+            self._bar.update(event.done - self._bar.n)
+        elif event.kind == "end":
+            self.close()
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None
+
+
 def map_sequence(
     path,
     config: MapConfig | None = None,
@@ -537,8 +597,9 @@ def map_sequence(
     neighbours: int = 10,
     diagonal_reach: int | None = None,
     names: list[str] | None = None,
+    progress: _typing.Callable[[ProgressEvent], object] | None = None,
     **overrides,
-) -> "MapRun":
+) -> MapRun:
     """``seqtopo map`` as one call, on the same library pipeline. Returns a :class:`MapRun`;
     :func:`write_report` writes its files.
 
@@ -556,7 +617,12 @@ def map_sequence(
     ``--sparse`` (``--neighbours``, ``--diagonal-reach``), for a path input. ``every``: as the command's
     ``--every``; with descriptors in memory it keeps rows 0, k, 2k, ..., thins ``odometry`` (every frame's) alike,
     and a ground truth of every frame too (one of the rows kept is used as it is). Options that only apply to a
-    path input, or ``metric``/``kappa`` with similarity matrices, are refused rather than ignored."""
+    path input, or ``metric``/``kappa`` with similarity matrices, are refused rather than ignored.
+
+    ``progress``: a callable that gets a :class:`ProgressEvent` as each stage begins, advances and ends (from the
+    calling thread or the job's, one at a time); :class:`TqdmProgress` draws them as tqdm bars. An exception it
+    raises stops the events and is raised when the job returns."""
+    callback = _progress_callback(progress)
     if config is None:
         config = map_preset(preset)["config"]
     config = _config(config, MapConfig, overrides)
@@ -601,7 +667,7 @@ def map_sequence(
             matrices, list(names or []), config, None if odometry is None else _np.asarray(odometry, _np.float32),
             same_place, [] if gt_places is None else [int(p) for p in gt_places],
             [] if gt_junctions is None else [int(j) for j in gt_junctions],
-            None if gt_poses is None else _np.asarray(gt_poses, _np.float32))
+            None if gt_poses is None else _np.asarray(gt_poses, _np.float32), callback)
         return MapRun(raw)
     if isinstance(descriptors, str):
         descriptors = descriptors.split(",")
@@ -618,7 +684,7 @@ def map_sequence(
         return "" if p is None else _os.fspath(p)
     raw = _core.map_sequence(_os.fspath(path), preset, config, list(descriptors or []), metric, kappa, input_kind,
                              every, threads, fs(odometry), fs(ground_truth), gt_radius, fs(gt_places), fs(gt_poses),
-                             streaming, sparse, neighbours, diagonal_reach)
+                             streaming, sparse, neighbours, diagonal_reach, callback)
     return MapRun(raw)
 
 
@@ -720,7 +786,7 @@ def localize_sequences(
     return LocalizeRun(raw)
 
 
-def write_report(run, folder: str | os.PathLike) -> None:
+def write_report(run: MapRun | LocalizeRun, folder: str | _os.PathLike[str]) -> None:
     """Writes a :class:`MapRun` as ``seqtopo map --out folder`` does (map.json, figures, report.html), or a
     :class:`LocalizeRun` as ``seqtopo localize --out folder`` does (matches.csv, figures, report.html),
     replacing the folder's previous outputs as a whole."""

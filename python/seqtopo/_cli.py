@@ -1,7 +1,8 @@
 """The ``seqtopo`` command of a pip-installed package: runs the C++ command-line tool built with it.
 
-``pip install .`` builds the tool beside the Python module and installs it as ``seqtopo/bin/seqtopo`` inside the
-package; this console entry point (and ``python -m seqtopo``) hands it the arguments. In a CMake build tree
+``SEQTOPO_PIP_COMMAND=1 pip install .`` builds the tool beside the Python module and installs it as
+``seqtopo/bin/seqtopo`` inside the package (a plain ``pip install .`` builds the module alone); this console entry
+point (and ``python -m seqtopo``) hands it the arguments. In a CMake build tree
 (``PYTHONPATH=build/release/python``) the tool is ``build/release/src/seqtopo``; ``SEQTOPO_CLI`` names another.
 """
 
@@ -16,8 +17,9 @@ def _tool() -> str:
     for path in candidates:
         if path and os.path.isfile(path) and os.access(path, os.X_OK):
             return path
-    raise SystemExit("seqtopo: error: the seqtopo command-line tool was not built with this package "
-                     "(pip install . builds it; in a CMake build it is <build>/src/seqtopo)")
+    raise SystemExit("seqtopo: error: this install holds the Python module only: reinstall with "
+                     "SEQTOPO_PIP_COMMAND=1 pip install . for the seqtopo command too (in a CMake build it is "
+                     "<build>/src/seqtopo; scripts/run.sh builds it)")
 
 
 def main() -> None:

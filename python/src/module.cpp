@@ -10,17 +10,20 @@
 
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <filesystem>
 #include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/version.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
@@ -246,6 +249,42 @@ py::dict similarity_of_path(const std::filesystem::path& path, const std::option
   return similarity_result(std::move(r));
 }
 
+// ---- progress: the pipeline's stage events handed to a Python callable ------------------------------------
+
+// The callable gets (kind, stage, stages, name, done, total, unit, seconds) for each event of
+// pipeline/progress.hpp (seqtopo.ProgressEvent is made of them on the Python side). The events come from the job's
+// threads with the GIL released, so each call takes the GIL. An exception raised by the callable (a
+// KeyboardInterrupt among them) cannot cross the C++ job: later events are dropped and it is raised when the job
+// returns. Constructed and destroyed with the GIL held.
+class PythonProgress {
+ public:
+  explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {}
+  pipeline::MapObserver observer() {
+    pipeline::MapObserver o;
+    if (!callback_.is_none()) o.stage = [this](const pipeline::StageEvent& e) { send(e); };
+    return o;
+  }
+  // After the job, with the GIL held.
+  void raise_if_failed() {
+    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+  }
+
+ private:
+  void send(const pipeline::StageEvent& e) {
+    static constexpr const char* kinds[] = {"plan", "begin", "advance", "end"};
+    const py::gil_scoped_acquire gil;
+    if (error_) return;
+    try {
+      callback_(kinds[static_cast<int>(e.kind)], e.stage, e.stages, std::string(e.name), e.done, e.total,
+                std::string(e.unit), e.seconds);
+    } catch (py::error_already_set&) {
+      error_ = std::current_exception();
+    }
+  }
+  py::object callback_;
+  std::exception_ptr error_;
+};
+
 // ---- map_sequence: the pipeline of `seqtopo map` -----------------------------------------------------
 
 py::dict loop_closure_metrics(const evaluation::LoopClosureMetrics& m) {
@@ -287,7 +326,8 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
                               const std::filesystem::path& odometry, const std::filesystem::path& ground_truth,
                               std::optional<double> gt_radius, const std::filesystem::path& gt_places,
                               const std::filesystem::path& gt_poses, bool streaming, bool sparse,
-                              std::size_t neighbours, std::optional<std::size_t> diagonal_reach) {
+                              std::size_t neighbours, std::optional<std::size_t> diagonal_reach,
+                              const py::object& progress) {
   pipeline::MapRequest request;
   request.preset = preset;
   request.settings = pipeline::map_preset(preset);
@@ -310,8 +350,14 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
   request.sparse = sparse;
   request.sparse_neighbours = neighbours;
   if (diagonal_reach) request.sparse_diagonal_reach = *diagonal_reach;
-  const py::gil_scoped_release release;
-  return pipeline::map_sequence(request);
+  PythonProgress reporter(progress);
+  std::optional<pipeline::MapRun> run;
+  {
+    const py::gil_scoped_release release;
+    run = pipeline::map_sequence(request, reporter.observer());
+  }
+  reporter.raise_if_failed();
+  return std::move(*run);
 }
 
 // The whole map from arrays in memory (one N x N similarity per descriptor or sensor), with the truth as arrays:
@@ -320,7 +366,8 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
 pipeline::MapRun map_similarities(const py::sequence& similarities, const std::vector<std::string>& names,
                                   const mapping::MapConfig& config, const py::object& odometry,
                                   const py::object& same_place, const std::vector<int>& true_places,
-                                  const std::vector<int>& true_junctions, const py::object& true_poses) {
+                                  const std::vector<int>& true_junctions, const py::object& true_poses,
+                                  const py::object& progress) {
   std::vector<MatrixView> views;
   for (std::size_t k = 0; k < similarities.size(); ++k) views.push_back(matrix_view(similarities[k], "similarity"));
   const std::size_t n = views.empty() ? 0 : views.front().rows;
@@ -362,13 +409,19 @@ pipeline::MapRun map_similarities(const py::sequence& similarities, const std::v
   }
   auto settings = pipeline::map_preset("default");
   settings.map = config;
-  const py::gil_scoped_release release;
-  std::vector<SimilarityMatrix> matrices;
-  for (const auto& view : views) {
-    require_finite(view, "similarity");
-    matrices.push_back(to_matrix(view));
+  PythonProgress reporter(progress);
+  std::optional<pipeline::MapRun> run;
+  {
+    const py::gil_scoped_release release;
+    std::vector<SimilarityMatrix> matrices;
+    for (const auto& view : views) {
+      require_finite(view, "similarity");
+      matrices.push_back(to_matrix(view));
+    }
+    run = pipeline::map_similarities(std::move(matrices), names, settings, odo, truth, reporter.observer());
   }
-  return pipeline::map_similarities(std::move(matrices), names, settings, odo, truth);
+  reporter.raise_if_failed();
+  return std::move(*run);
 }
 
 void write_map_outputs(const pipeline::MapRun& run, const std::filesystem::path& folder) {
@@ -618,7 +671,7 @@ PYBIND11_MODULE(_core, m) {
   namespace py = pybind11;
   using namespace seqtopo::python;
   m.doc() = "Compiled core of seqtopo; use the seqtopo package, which documents and wraps these functions.";
-  m.attr("__version__") = SEQTOPO_VERSION;
+  m.attr("__version__") = std::string(seqtopo::version());
   register_exceptions(m);
   bind_configs(m);
   bind_online(m);
@@ -630,11 +683,11 @@ PYBIND11_MODULE(_core, m) {
   m.def("map_sequence", &map_sequence, py::arg("path"), py::arg("preset"), py::arg("config"), py::arg("descriptors"),
         py::arg("metric"), py::arg("kappa"), py::arg("input_kind"), py::arg("every"), py::arg("threads"),
         py::arg("odometry"), py::arg("ground_truth"), py::arg("gt_radius"), py::arg("gt_places"), py::arg("gt_poses"),
-        py::arg("streaming"), py::arg("sparse"), py::arg("neighbours"), py::arg("diagonal_reach"));
+        py::arg("streaming"), py::arg("sparse"), py::arg("neighbours"), py::arg("diagonal_reach"), py::arg("progress"));
   m.def("write_map_outputs", &write_map_outputs, py::arg("run"), py::arg("folder"));
   m.def("map_similarities", &map_similarities, py::arg("similarities"), py::arg("names"), py::arg("config"),
         py::arg("odometry"), py::arg("same_place"), py::arg("true_places"), py::arg("true_junctions"),
-        py::arg("true_poses"));
+        py::arg("true_poses"), py::arg("progress"));
   bind_localize_run(m);
   m.def("localize_sequences", &localize_sequences, py::arg("map"), py::arg("query"), py::arg("descriptor"),
         py::arg("metric"), py::arg("kappa"), py::arg("input_kind"), py::arg("every"), py::arg("threads"),

@@ -45,4 +45,9 @@ auto option_value(const char* option, F&& parse) {
 // depend on the thread count, and more threads than cores only cost time).
 unsigned resolve_threads(unsigned requested);
 
+// The command line as the user typed it (`seqtopo map data --gap 2`), each argument quoted for a POSIX shell where
+// it needs it, so that the report's copy can be pasted back. Set once by main().
+const std::string& command_line();
+void record_command_line(int argc, char** argv);
+
 }  // namespace seqtopo::cli

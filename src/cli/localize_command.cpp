@@ -203,7 +203,8 @@ void run(LocalizeOptions o) {
   const std::size_t not_in_map = outputs::write_localize_outputs(r, out);
   r.timings.emplace_back("files and figures", progress.end());
   progress.begin("report");
-  const auto report = outputs::write_localize_report(r, out, {.seconds_before = progress.elapsed()});
+  const auto report =
+      outputs::write_localize_report(r, out, {.seconds_before = progress.elapsed(), .command_line = command_line()});
   progress.end();
   if (!report.warning.empty()) progress.line("warning: " + report.warning);
   out.commit();

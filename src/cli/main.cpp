@@ -5,12 +5,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 #include "command_registry.hpp"
@@ -18,6 +20,7 @@
 #include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/core/text_file.hpp"
+#include "seqtopo/core/version.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 
 namespace seqtopo::cli {
@@ -30,6 +33,34 @@ std::vector<CommandSpec>& command_registry() {
 unsigned resolve_threads(unsigned requested) {
   const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
   return requested > 0 ? std::min(requested, cores) : cores;
+}
+
+namespace {
+
+std::string& recorded_command_line() {
+  static std::string text;
+  return text;
+}
+
+// A POSIX shell word: as it is when it has no character the shell treats specially, else in single quotes.
+std::string shell_quoted(std::string_view word) {
+  const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](unsigned char c) {
+    return std::isalnum(c) != 0 || std::string_view("_-./=:,+@%").find(static_cast<char>(c)) != std::string_view::npos;
+  });
+  if (plain) return std::string(word);
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+}  // namespace
+
+const std::string& command_line() { return recorded_command_line(); }
+
+void record_command_line(int argc, char** argv) {
+  std::string text = "seqtopo";  // the program, whatever path started it (the launcher, a venv's entry point)
+  for (int k = 1; k < argc; ++k) text += " " + shell_quoted(argv[k]);
+  recorded_command_line() = std::move(text);
 }
 
 namespace {
@@ -184,6 +215,7 @@ int finish(int status) {
 
 int main(int argc, char** argv) {
   seqtopo::cli::install_stop_signals();
+  seqtopo::cli::record_command_line(argc, argv);
   // One line on stderr and the exit status (1: bad input or a failure, 2: a bad command line).
   const auto fail = [](const std::string& message, int status) {
     status = seqtopo::cli::finish(status);
@@ -194,7 +226,7 @@ int main(int argc, char** argv) {
   CLI::App app{"seqtopo: topological mapping and localization of a mobile robot with sequence alignment", "seqtopo"};
   app.require_subcommand(1);
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  app.set_version_flag("--version", "seqtopo 0.1.0");
+  app.set_version_flag("--version", "seqtopo " + std::string(seqtopo::version()));
   auto commands = seqtopo::cli::command_registry();
   std::sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
   for (const auto& command : commands) command.setup(*app.add_subcommand(command.name, command.description));

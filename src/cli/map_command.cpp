@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -29,7 +30,28 @@
 
 namespace seqtopo::cli {
 namespace {
+
 namespace fs = std::filesystem;
+
+// The bundled corridor, the default input: found from this program's own place first, so that an installed copy
+// uses its own data wherever it was installed or moved to (PREFIX/libexec/seqtopo/seqtopo-main ->
+// PREFIX/share/seqtopo; a Python wheel's seqtopo/bin/seqtopo-main -> seqtopo/data), then the source tree of a
+// build folder, then the prefix configured at build time; else the relative path, which names the missing folder.
+fs::path bundled_corridor() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  std::vector<fs::path> candidates;
+  if (!ec) {
+    candidates.push_back(self.parent_path() / ".." / ".." / "share" / "seqtopo" / "rtabmap-corridor");
+    candidates.push_back(self.parent_path() / ".." / "data" / "rtabmap-corridor");
+  }
+  candidates.push_back(fs::path(SEQTOPO_DATA_DIR) / "rtabmap-corridor");
+  candidates.push_back(fs::path(SEQTOPO_INSTALLED_DATA_DIR) / "rtabmap-corridor");
+  for (const auto& candidate : candidates) {
+    if (fs::is_directory(candidate, ec)) return candidate.lexically_normal();
+  }
+  return "data/rtabmap-corridor";
+}
 
 struct MapOptions {
   std::vector<std::string> inputs;  // one per session
@@ -291,8 +313,7 @@ void run(MapOptions o) {
   request.preset = o.preset;
   const bool bundled_default = o.inputs.empty();
   if (bundled_default) {
-    const fs::path bundled = fs::path(SEQTOPO_DATA_DIR) / "rtabmap-corridor";
-    o.inputs = {fs::exists(bundled) ? bundled.string() : "data/rtabmap-corridor"};
+    o.inputs = {bundled_corridor().string()};
     // Its ground truth is an N x N image, which --streaming refuses.
     if (o.ground_truth.empty() && !o.streaming) o.ground_truth = (fs::path(o.inputs[0]) / "ground_truth.bmp").string();
   }
@@ -374,7 +395,8 @@ void run(MapOptions o) {
   run.timings.emplace_back("files and figures", progress.end());
   progress.begin("report");
   // The report's timings add up to the wall time up to its own writing (the rest is the final rename).
-  const auto report = outputs::write_map_report(run, out, {.seconds_before = progress.elapsed()});
+  const auto report =
+      outputs::write_map_report(run, out, {.seconds_before = progress.elapsed(), .command_line = command_line()});
   progress.end();
   if (!report.warning.empty()) progress.line("warning: " + report.warning);
   const auto written = out.commit();

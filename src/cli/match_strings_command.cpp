@@ -11,6 +11,7 @@
 #include "number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/core/text_file.hpp"
+#include "seqtopo/core/version.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/csv.hpp"
 #include "seqtopo/strings/localization.hpp"
@@ -155,7 +156,8 @@ void run(const MatchStringsOptions& o) {
   }
   const auto metrics = strings::score_localization(matches, truth);
   if (metrics.topological || metrics.geometric) {
-    nlohmann::json j = {{"algorithm", o.algorithm},
+    nlohmann::json j = {{"seqtopo_version", std::string(version())},
+                        {"algorithm", o.algorithm},
                         {"cyclic", o.cyclic},
                         {"window", o.window},
                         {"queries", queries.size()},

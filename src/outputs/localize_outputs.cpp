@@ -11,6 +11,7 @@
 
 #include "figures.hpp"
 #include "report_data.hpp"
+#include "seqtopo/core/version.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
 #include "seqtopo/plot/pr_curve.hpp"
@@ -79,6 +80,7 @@ std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDir
   const char* method = r.online ? "seqtopo online" : "seqtopo alignment";
   if (r.metrics) {
     nlohmann::json j = metrics_json(*r.metrics);
+    j["seqtopo_version"] = std::string(version());
     j["tolerance"] = r.tolerance;
     j["mode"] = r.online ? "online" : "offline";
     j["ranked_by"] = r.online ? "score" : "confidence";

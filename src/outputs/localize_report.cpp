@@ -44,6 +44,7 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
   std::size_t not_in_map = 0;
   for (const auto& a : r.answers) not_in_map += a.in_map ? 0 : 1;
   report::HtmlReport html("seqtopo localize: " + r.inputs);
+  detail::provenance(html, options);
   nlohmann::json data = {{"kind", "localize"}, {"schema", 1}};
   html.heading("Summary");
   std::vector<std::pair<std::string, std::string>> summary{

@@ -12,6 +12,7 @@
 #include "figures.hpp"
 #include "report_data.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/version.hpp"
 #include "seqtopo/formats/map_json.hpp"
 #include "seqtopo/formats/pose_files.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -279,7 +280,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out, co
   if (!f.pr_curve.empty()) out.write("pr_curve.png", f.pr_curve);
 
   if (run.metrics || run.ate || run.topology) {
-    nlohmann::json metrics = nlohmann::json::object();
+    nlohmann::json metrics = {{"seqtopo_version", std::string(version())}};
     if (run.streaming) metrics["streaming"] = true;
     if (run.metrics) {
       metrics["loop_closure"] = metrics_json(*run.metrics);

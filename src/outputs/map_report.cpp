@@ -259,6 +259,7 @@ detail::CurvePoints curve_points(const std::string& label, const std::string& co
 ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& out, const ReportOptions& options) {
   const auto report_start = std::chrono::steady_clock::now();
   report::HtmlReport html("seqtopo map: " + run.input);
+  detail::provenance(html, options);
   const auto& result = run.result;
   const std::size_t n = result.map.labels.size();
   const auto kept = std::count(result.pruning.kept.begin(), result.pruning.kept.end(), true);

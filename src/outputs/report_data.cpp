@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 
+#include "seqtopo/core/version.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/plot/matrix_image.hpp"
 #include "seqtopo/plot/png.hpp"
@@ -174,6 +175,12 @@ nlohmann::json calibration_json(const evaluation::Calibration& c, const char* co
                     {"accuracy", b.accuracy}});
   }
   return {{"ece", c.ece}, {count_name, c.detections}, {"bins", bins}};
+}
+
+void provenance(report::HtmlReport& html, const ReportOptions& options) {
+  std::string text = "<p class=\"provenance\">seqtopo " + report::escape_html(std::string(version()));
+  if (!options.command_line.empty()) text += ", run as <code>" + report::escape_html(options.command_line) + "</code>";
+  html.raw(text + "</p>\n");
 }
 
 void reliability_section(report::HtmlReport& html, const evaluation::Calibration& c, const std::string& what) {

@@ -65,6 +65,9 @@ nlohmann::json timings_json(std::vector<std::pair<std::string, double>>& rows, c
 // or, when D3 is missing, says so in the page and returns the warning.
 ReportResult finish_interactive(report::HtmlReport& html, const nlohmann::json& data);
 
+// Under the report's title: seqtopo's version and the command line that made the run (when known).
+void provenance(report::HtmlReport& html, const ReportOptions& options);
+
 // The skeleton of the matrix view and its pair viewer.
 std::string matrix_view_markup(const std::string& help);
 

@@ -1,10 +1,10 @@
 #include "seqtopo/recording/mcap_reader.hpp"
 
 #include <lz4frame.h>
+#include <zlib.h>
 #include <zstd.h>
 
 #include <algorithm>
-#include <array>
 #include <cstring>
 #include <fstream>
 
@@ -13,21 +13,6 @@
 namespace seqtopo::recording {
 
 namespace fs = std::filesystem;
-
-std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) {
-  static const std::array<std::uint32_t, 256> table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t n = 0; n < 256; ++n) {
-      std::uint32_t c = n;
-      for (int k = 0; k < 8; ++k) c = (c & 1U) ? 0xEDB88320U ^ (c >> 1U) : c >> 1U;
-      t[n] = c;
-    }
-    return t;
-  }();
-  crc = ~crc;
-  for (std::uint8_t b : bytes) crc = table[(crc ^ b) & 0xFFU] ^ (crc >> 8U);
-  return ~crc;
-}
 
 namespace {
 
@@ -140,7 +125,8 @@ std::vector<std::uint8_t> unpack_chunk(std::span<const std::uint8_t> content, co
   const std::string compression = f.str();
   const auto packed = f.bytes64();
   std::vector<std::uint8_t> inner = decompress(compression, packed, size, where);
-  if (crc != 0 && crc32(inner) != crc) {
+  // zlib's crc32 is MCAP's CRC-32 (ISO-HDLC); 0 means the writer left the chunk unchecked.
+  if (crc != 0 && ::crc32(0L, inner.data(), static_cast<uInt>(inner.size())) != crc) {
     throw std::invalid_argument(where + ": CRC-32 of the decompressed records does not match (corrupt chunk)");
   }
   return inner;

@@ -14,6 +14,7 @@
 
 #include "common/cli_run.hpp"
 #include "common/temp_dir.hpp"
+#include "seqtopo/core/version.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/outputs/report_options.hpp"
@@ -30,6 +31,14 @@ class MapCommand : public ::testing::Test {
  protected:
   const seqtopo::test_support::TempDir dir_;
 };
+
+// The one version, CMake's project(VERSION), in --version.
+TEST_F(MapCommand, VersionIsTheProjectsOwn) {
+  const auto r = run_cli("--version");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "seqtopo " + std::string(seqtopo::version()) + "\n");
+  EXPECT_EQ(std::string(seqtopo::version()), SEQTOPO_PROJECT_VERSION);
+}
 
 // Band stated in the README: on the bundled corridor the default preset reaches F1 0.977, AUC 0.955
 // (precision 1.0). The test allows a small margin for deliberate tuning changes, not for regressions.
@@ -49,6 +58,12 @@ TEST_F(MapCommand, BundledCorridorGoldenRun) {
   EXPECT_GE(lc.at("recall_at_100_precision").get<double>(), 0.93);
   // and the alignment beats the SeqSLAM-style baseline on the same data
   EXPECT_GT(lc.at("auc").get<double>(), metrics.at("baseline").at("auc").get<double>());
+  // The version that made them, and in the report with the command line.
+  EXPECT_EQ(metrics.at("seqtopo_version").get<std::string>(), seqtopo::version());
+  const std::string report = read_file(out / "report.html");
+  const std::string provenance =
+      "seqtopo " + std::string(seqtopo::version()) + ", run as <code>seqtopo map --out " + out.string() + "</code>";
+  EXPECT_NE(report.find(provenance), std::string::npos) << provenance;
 
   const auto map = nlohmann::json::parse(read_file(out / "map.json"));
   ASSERT_EQ(map.at("images").get<int>(), 84);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # seqtopo as other C++ projects use it:
 #  1. `cmake --install` of this build into a fresh prefix; examples/cpp configured outside the tree with
-#     find_package(seqtopo CONFIG), built, and every example run (02 maps the installed corridor data);
+#     find_package(seqtopo CONFIG), built, and every example run (02 maps the installed corridor data); the
+#     installed command maps its installed demo data when given no input;
 #  2. the same source configured with every optional dependency disabled and only the alignment engine asked for
 #     (SEQTOPO_MODULES: the other modules are not compiled, which took most of this test's time): it still builds
 #     with the standard library alone, installs, and a consumer of seqtopo::align builds and runs.
@@ -23,10 +24,16 @@ cmake --build "$tmp/examples" >/dev/null
 corridor="$tmp/prefix/share/seqtopo/rtabmap-corridor"
 "$tmp/examples/02_images_to_map" "$corridor" "$corridor/ground_truth.bmp" "$tmp/corridor-map" 2>/dev/null
 for f in map.json alignments.json report.html; do test -s "$tmp/corridor-map/$f"; done
-# The installed command opens the installed codecs plugin: PREFIX/lib, found from PREFIX/libexec/seqtopo/.
-# (A few of the images suffice to open it; the example above mapped them all.)
-LD_DEBUG=files "$tmp/prefix/bin/seqtopo" map "$corridor" --every 6 --out "$tmp/cli-map" >/dev/null 2>"$tmp/ld.log"
+# The installed command opens the installed codecs plugin: PREFIX/lib, found from PREFIX/libexec/seqtopo/. Given
+# no input it maps the installed demo data, PREFIX/share/seqtopo/rtabmap-corridor, found the same way (not the
+# source tree's copy, which an installed copy may not have).
+LD_DEBUG=files "$tmp/prefix/bin/seqtopo" map --out "$tmp/cli-map" >/dev/null 2>"$tmp/ld.log"
 test -s "$tmp/cli-map/map.json"
+if ! grep -q "seqtopo map: $corridor<" "$tmp/cli-map/report.html"; then
+  echo "the installed seqtopo did not map its own $corridor:"
+  grep -o "<title>[^<]*" "$tmp/cli-map/report.html"
+  exit 1
+fi
 if ! grep -q "file=$tmp/prefix/lib/libseqtopo_codecs.so " "$tmp/ld.log"; then
   echo "the installed seqtopo did not open $tmp/prefix/lib/libseqtopo_codecs.so:"
   grep "libseqtopo_codecs" "$tmp/ld.log" | head -3

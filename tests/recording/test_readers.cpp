@@ -539,11 +539,5 @@ TEST(Cdr, AlignmentAndTruncation) {
   EXPECT_THROW(CdrReader(std::vector<std::uint8_t>{0, 9, 0, 0}), std::invalid_argument);  // not plain CDR
 }
 
-TEST(Mcap, Crc32) {
-  const std::string check = "123456789";
-  EXPECT_EQ(crc32(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(check.data()), check.size())),
-            0xCBF43926U);
-}
-
 }  // namespace
 }  // namespace seqtopo::recording

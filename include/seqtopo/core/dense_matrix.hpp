@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "seqtopo/core/huge_pages.hpp"
+
 namespace seqtopo {
 
 template <typename T>
@@ -15,7 +17,12 @@ struct DenseMatrix {
   std::vector<T> values;  // rows * cols, row-major
 
   DenseMatrix() = default;
-  DenseMatrix(std::size_t r, std::size_t c, T fill = T{}) : rows(r), cols(c), values(r * c, fill) {}
+  // A large matrix asks for huge pages before its values are first written (core/huge_pages.hpp).
+  DenseMatrix(std::size_t r, std::size_t c, T fill = T{}) : rows(r), cols(c) {
+    values.reserve(r * c);
+    advise_huge_pages(values.data(), r * c * sizeof(T));
+    values.assign(r * c, fill);
+  }
   DenseMatrix(std::size_t r, std::size_t c, std::vector<T> v) : rows(r), cols(c), values(std::move(v)) {
     if (values.size() != rows * cols) {
       throw std::invalid_argument("matrix data has " + std::to_string(values.size()) + " values, expected " +

@@ -11,6 +11,9 @@ struct ReportOptions {
   // add up to the wall time, the gap between the stages shown as its own row. Without it they add up to the
   // stages' sum.
   std::optional<double> seconds_before;
+  // The command that made the run, shown under the report's title with seqtopo's version (empty: the version
+  // alone, as for a run from the Python module).
+  std::string command_line;
 };
 
 // The side of the report's image thumbnails [pixels]: larger sequences get smaller ones, so that the page

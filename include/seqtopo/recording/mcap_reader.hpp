@@ -73,7 +73,4 @@ class McapReader {
   std::map<std::uint16_t, std::uint64_t> counts_;
 };
 
-// CRC-32 (ISO-HDLC, the polynomial of zlib and MCAP), for the chunk check.
-std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0);
-
 }  // namespace seqtopo::recording
