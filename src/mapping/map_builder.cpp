@@ -380,21 +380,20 @@ void add_confidences(const align::ScoreSource& scores, const align::AlignConfig&
   // Only the alignments that contributed pairs: the others are not in the outputs' pairs.
   std::vector<bool> needed(result.alignments.size(), false);
   for (const auto& p : result.pruning.pairs) needed[p.alignment] = true;
+  // Given that the row is on the revisit (the change point of alignment_ends.hpp kept it there): where along it,
+  // the posterior within the tolerance over the posterior anywhere in the band. Unconditioned, a pair near an end
+  // is only as sure as a chain is to reach it at all, about 1/2 for the last pairs of a revisit however clear their
+  // partner (the corridor's whole revisit right, its confidences 0.45-1: expected calibration error 0.13).
+  align::PosteriorConfig wide = pc;
+  wide.tolerance = pc.band;
   for (std::size_t k = 0; k < result.alignments.size(); ++k) {
-    if (needed[k]) result.posteriors[k] = align::pair_posteriors(result.alignments[k], scores, pc);
-    if (needed[k]) {
-      // Given that the row is on the revisit (the change point of alignment_ends.hpp kept it there): where along
-      // it. Unconditioned, a pair near an end is only as sure as a chain is to reach it at all, about 1/2 for the
-      // last pairs of a revisit however clear their partner (the corridor's whole revisit right, its confidences
-      // 0.45-1: expected calibration error 0.13).
-      align::PosteriorConfig wide = pc;
-      wide.tolerance = pc.band;
-      const std::vector<double> covered = align::pair_posteriors(result.alignments[k], scores, wide);
-      for (std::size_t t = 0; t < covered.size(); ++t) {
-        if (covered[t] > 0) result.posteriors[k][t] = std::min(1.0, result.posteriors[k][t] / covered[t]);
-      }
+    if (!needed[k]) continue;
+    result.posteriors[k] = align::pair_posteriors(result.alignments[k], scores, pc);
+    const std::vector<double> covered = align::pair_posteriors(result.alignments[k], scores, wide);
+    for (std::size_t t = 0; t < covered.size(); ++t) {
+      if (covered[t] > 0) result.posteriors[k][t] = std::min(1.0, result.posteriors[k][t] / covered[t]);
     }
-    if (needed[k] && !masked.empty()) {
+    if (!masked.empty()) {
       detail::posteriors_through_masked(result.alignments[k], masked, pc.tolerance, result.posteriors[k]);
     }
   }
@@ -485,7 +484,8 @@ namespace {
 // and the fusion maps better than either).
 std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& similarities, const MapConfig& c,
                                            std::size_t contrast_window, std::span<const Pose2> odometry,
-                                           const std::vector<bool>& masked) {
+                                           const std::vector<bool>& masked,
+                                           std::span<const std::size_t> low_information) {
   const std::size_t n = similarities.front().rows;
   if (!c.drop_blind_descriptors || similarities.size() < 2 || !c.max_e_value || contrast_window == 0 ||
       n > c.max_blind_check_frames) {
@@ -497,7 +497,7 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
   for (std::size_t k = 0; k < similarities.size(); ++k) {
     const SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
     const MapResult alone =
-        build_map_from_enhanced(align::ScoreSource::dense(e.values, e.rows, e.cols), c, odometry, {}, flagged(masked));
+        build_map_from_enhanced(align::ScoreSource::dense(e.values, e.rows, e.cols), c, odometry, {}, low_information);
     if (alone.pruning.pairs.empty()) unseeing.push_back(k);
     bool sees = false;
     for (const auto& p : alone.pruning.pairs) sees |= alone.e_values[p.alignment] <= strict;
@@ -560,15 +560,16 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
     for (auto& s : corrected) similarity::correct_hubness(s, hub_k, framed.min_separation);
   }
   const std::vector<SimilarityMatrix>& source = hub_k > 0 ? corrected : similarities;
-  const std::vector<std::size_t> blind = blind_descriptors(source, c, framed.contrast_window, odometry, masked);
+  const std::vector<std::size_t> low_information =
+      framed.contrast_window > 0 ? flagged(masked) : std::vector<std::size_t>{};
+  const std::vector<std::size_t> blind =
+      blind_descriptors(source, c, framed.contrast_window, odometry, masked, low_information);
   std::vector<SimilarityMatrix> seeing;  // a copy only when some are left out
   for (std::size_t k = 0; k < source.size() && !blind.empty(); ++k) {
     if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(source[k]);
   }
   SimilarityMatrix enhanced = enhanced_scores(blind.empty() ? source : seeing, framed.contrast_window);
   const double seconds_scores = seconds_since(start);
-  const std::vector<std::size_t> low_information =
-      framed.contrast_window > 0 ? flagged(masked) : std::vector<std::size_t>{};
   MapResult result = build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols),
                                              c, odometry, {}, low_information);
   result.decisions.blind_descriptors = blind;
