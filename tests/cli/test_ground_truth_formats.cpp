@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/cli_run.hpp"
+#include "common/npy_bytes.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/formats/pose_files.hpp"
 #include "seqtopo/image/grey_matrix_file.hpp"
@@ -25,18 +26,6 @@ using seqtopo::test_support::read_file;
 using seqtopo::test_support::run_cli;
 
 const fs::path kCorridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
-
-std::string npy_header(const std::string& descr, std::size_t rows, std::size_t cols) {
-  std::string header = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
-                       std::to_string(cols) + "), }";
-  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
-  header += '\n';
-  std::string bytes = "\x93NUMPY\x01";
-  bytes += '\0';
-  bytes += static_cast<char>(header.size());
-  bytes += '\0';
-  return bytes + header;
-}
 
 std::string int32(std::int32_t v) {
   std::string s = "J";
@@ -63,7 +52,7 @@ std::string vpr_bench_npy(const std::vector<std::vector<std::size_t>>& rows) {
     for (auto m : rows[q]) p += int32(static_cast<std::int32_t>(m));
     p += "e";
   }
-  return npy_header("|O", rows.size(), 2) + p + "etb.";
+  return seqtopo::test_support::npy_v1_header("|O", rows.size(), 2) + p + "etb.";
 }
 
 class GroundTruthFormats : public ::testing::Test {
@@ -94,7 +83,7 @@ class GroundTruthFormats : public ::testing::Test {
     for (std::size_t i = 0; i < rows.size(); ++i) {
       for (auto j : rows[i]) pairs += std::to_string(i) + "," + std::to_string(j) + "\n";
     }
-    std::string matrix = npy_header("|u1", m.rows, m.cols);
+    std::string matrix = seqtopo::test_support::npy_v1_header("|u1", m.rows, m.cols);
     for (std::size_t i = 0; i < m.rows; ++i) {
       for (std::size_t j = 0; j < m.cols; ++j) matrix += static_cast<char>(m(i, j) != 0 ? 1 : 0);
     }
@@ -192,7 +181,7 @@ TEST_F(GroundTruthFormats, LocalizeTakesThePairsAsListedUnlessAToleranceIsGiven)
   std::vector<float> v(40 * 60);
   for (auto& x : v) x = u(rng);
   for (std::size_t q = 0; q < 40; ++q) v[q * 60 + q + 10] = 1.0F;
-  std::string npy = npy_header("<f4", 40, 60);
+  std::string npy = seqtopo::test_support::npy_v1_header("<f4", 40, 60);
   npy.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(float));
   const auto s = dir_.write("similarity.npy", npy);
   // The truth lists one frame beside the one found.

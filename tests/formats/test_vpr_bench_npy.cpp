@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/npy_bytes.hpp"
 #include "seqtopo/formats/vpr_bench_npy.hpp"
 
 namespace seqtopo::formats {
@@ -13,14 +14,7 @@ namespace {
 
 // A .npy header of an object array of `rows` x 2 followed by `pickle`.
 std::string object_npy(std::size_t rows, const std::string& pickle) {
-  std::string header = "{'descr': '|O', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", 2), }";
-  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
-  header += '\n';
-  std::string bytes = "\x93NUMPY\x01";
-  bytes += '\0';
-  bytes += static_cast<char>(header.size());
-  bytes += '\0';
-  return bytes + header + pickle;
+  return test_support::npy_v1_header("|O", rows, 2) + pickle;
 }
 
 // The opcodes of VPR-Bench's own files (Python 2, protocol 2): integers and lists of integers.
