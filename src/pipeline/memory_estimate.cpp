@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <thread>
 
 #include "seqtopo/core/input_error.hpp"
@@ -132,6 +134,59 @@ std::size_t picture_bytes(std::size_t n) {
   return std::max(sum({mul(mul(n, n), 5), mul(pixels, 7)}), mul(pixels, 12));
 }
 
+// What describing one image holds besides its RgbImage (3 bytes a pixel) [bytes a pixel]: the joint histogram's
+// feature planes (intensity, squared gradient, edge count, texturedness, rank, bin: 10) and its padded and edge
+// planes (3) (image/joint_histogram.cpp); the patch thumbnail's float intensity (4) (image/patch_thumbnail.cpp); the
+// panorama signature works on a small copy. The descriptors of an image are made one after the other.
+std::size_t describe_bytes_per_pixel(const std::vector<Descriptor>& descriptors) {
+  std::size_t most = 0;
+  for (const Descriptor d : descriptors) {
+    most = std::max<std::size_t>(most, d == Descriptor::joint_histogram ? 13 : d == Descriptor::patch ? 4 : 0);
+  }
+  return 3 + most;
+}
+
+// Images whose headers are read for the estimate: all of a folder up to this many, else as many evenly spaced.
+constexpr std::size_t kHeaderSample = 512;
+
+struct ImageWork {
+  std::size_t per_image = 0;     // the most one image's decoding or describing holds [bytes]
+  std::size_t first_pixels = 0;  // of the first image (0: unknown)
+};
+
+// From the images' headers, without decoding (image::read_image_header); an image of a format whose header is not
+// read counts as the first one whose is, or (none) is decoded once to learn its size.
+ImageWork image_work(const std::vector<std::filesystem::path>& files, const std::vector<Descriptor>& descriptors) {
+  ImageWork w;
+  if (files.empty()) return w;
+  const std::size_t step = std::max<std::size_t>(1, (files.size() + kHeaderSample - 1) / kHeaderSample);
+  const std::size_t per_pixel = describe_bytes_per_pixel(descriptors);
+  std::optional<image::ImageHeader> known;
+  std::vector<std::size_t> sample;
+  for (std::size_t k = 0; k < files.size(); k += step) sample.push_back(k);
+  if (sample.back() + 1 != files.size()) sample.push_back(files.size() - 1);
+  for (const std::size_t k : sample) {
+    std::error_code ec;
+    const auto file_bytes = static_cast<std::size_t>(std::filesystem::file_size(files[k], ec));
+    std::optional<image::ImageHeader> h = image::read_image_header(files[k]);
+    if (!h && !known) {
+      try {
+        const RgbImage decoded = image::load_image(files[k]);
+        h = image::ImageHeader{decoded.width, decoded.height, 3, 1};
+      } catch (const std::exception&) {
+        // an unreadable image is reported by the run itself
+      }
+    }
+    if (!h) h = known;
+    if (!h) continue;
+    known = h;
+    const std::size_t pixels = mul(static_cast<std::size_t>(h->width), static_cast<std::size_t>(h->height));
+    if (k == 0) w.first_pixels = pixels;
+    w.per_image = std::max({w.per_image, image::decode_peak_bytes(*h, ec ? 0 : file_bytes), mul(pixels, per_pixel)});
+  }
+  return w;
+}
+
 }  // namespace
 
 std::size_t outputs_extra_bytes(std::size_t images, std::size_t pairs, bool streaming) {
@@ -188,8 +243,8 @@ MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
     // the frames per place are estimated from unless given
     const std::size_t described = add(descriptors, in.descriptor_bytes.empty() ? 0 : in.descriptor_bytes.front());
     stage("descriptors",
-          std::max(in.input_read_bytes,
-                   in.place_from_similarity ? sum({described, descriptors, place_scale_bytes(n)}) : described));
+          std::max({in.input_read_bytes, add(described, in.image_work_bytes),
+                    in.place_from_similarity ? sum({described, descriptors, place_scale_bytes(n)}) : described}));
     stage("alignment (streamed)", aligned);
     // what the alignment's threads freed mostly stays with the process (their heaps): counted on
     stage("similarity overview", add(aligned, overview));
@@ -198,7 +253,10 @@ MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
   } else {
     const std::size_t d = std::max<std::size_t>(1, in.descriptor_bytes.size());
     // 1. the matrices, one after another: the k-th is made while the others are held, beside its descriptors
-    std::size_t similarity = in.input_read_bytes;
+    // 0. the images decoded and described, on the description's threads at once, beside the descriptors made
+    std::size_t described = in.image_work_bytes;
+    for (const std::size_t bytes : in.descriptor_bytes) described = add(described, bytes);
+    std::size_t similarity = std::max(in.input_read_bytes, in.image_work_bytes == 0 ? 0 : described);
     if (in.similarity_input) {
       similarity = std::max(similarity, f);
     } else {
@@ -273,14 +331,12 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   std::size_t pixels = image::JointHistogramConfig::bins;
   if (kind == InputKind::images) {
     const auto files = list_input_images(request.input).files;
-    if (!files.empty()) {
-      try {
-        const RgbImage first = image::load_image(files.front());
-        pixels = static_cast<std::size_t>(first.width) * static_cast<std::size_t>(first.height);
-      } catch (const std::exception&) {
-        // an unreadable image is reported by the run itself
-      }
-    }
+    const ImageWork work = image_work(files, descriptors);
+    if (work.first_pixels) pixels = work.first_pixels;
+    const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
+    const std::size_t threads = std::min<std::size_t>(std::max<std::size_t>(1, images),
+                                                      s.similarity.threads == 0 ? cores : s.similarity.threads);
+    in.image_work_bytes = mul(work.per_image, threads);
   }
   in.descriptor_bytes.clear();
   for (const Descriptor d : descriptors) {

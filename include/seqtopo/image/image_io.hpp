@@ -20,6 +20,21 @@ RgbImage load_image(const std::filesystem::path& path);
 // a decodable image.
 RgbImage decode_image(std::span<const std::uint8_t> bytes, const std::string& subject);
 
+// An image's size as its file's header gives it, without decoding: what load_image will hold of it.
+struct ImageHeader {
+  int width = 0, height = 0;
+  int channels = 3;          // as the decoder gives them (alpha included, a palette expanded)
+  int bytes_per_sample = 1;  // 2 for 16-bit images
+};
+
+// Reads the header of a PNG, JPEG, BMP, PNM or WebP file (the dimensions lie at fixed places of each; OpenCV has no
+// call that reads them without decoding). std::nullopt for another format or a header it cannot read.
+std::optional<ImageHeader> read_image_header(const std::filesystem::path& path);
+
+// The bytes load_image holds at its peak for an image of this header and `file_bytes` encoded: the file read,
+// the decoded picture, its 8-bit copy (16-bit images), the RGB conversion and the RgbImage returned.
+std::size_t decode_peak_bytes(const ImageHeader& header, std::size_t file_bytes);
+
 // Frames the container announces (may be approximate or missing for some formats); throws InputError
 // naming the file when it cannot be opened as a video.
 std::optional<std::size_t> video_frame_count(const std::filesystem::path& path);

@@ -3,6 +3,8 @@
 // that a run that cannot fit is refused with the figure and an option that would fit instead of being killed
 // by the kernel half-way.
 //
+// Images are decoded and described first, one per thread of the description at once (image_work_bytes, from the
+// images' headers: a folder of a few huge images is refused before any is decoded).
 // The dense path (N images, D descriptors fused; F = 4 N^2 bytes, one float matrix):
 //   similarity   the D similarity matrices, made one after another (D F), with the descriptors of the one
 //                being made (or the .npy input read: its raw values and their float copy)
@@ -53,6 +55,10 @@ struct MapMemoryInput {
   // odometry)
   bool place_from_similarity = false;
   std::size_t base_bytes = 0;  // the process before the run: code, libraries, what it read so far
+  // Images: what decoding and describing them holds at once, each of the description's threads with one image (the
+  // largest of the folder, from the images' headers): the file read, the decoded picture and its RGB copies, or the
+  // RgbImage with the descriptors' temporaries.
+  std::size_t image_work_bytes = 0;
 };
 
 struct MemoryStage {
