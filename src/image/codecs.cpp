@@ -140,7 +140,21 @@ Video::~Video() {
 
 Video::Video(Video&& other) noexcept : handle_(std::exchange(other.handle_, nullptr)) {}
 
-double Video::frame_count() const { return handle_ != nullptr ? table().video_frame_count(handle_) : 0.0; }
+double Video::frame_count() const {
+  return handle_ != nullptr ? table().video_property(handle_, VideoProperty::frame_count) : 0.0;
+}
+
+namespace {
+int whole_pixels(double value) { return value >= 1 && value < 1e6 ? static_cast<int>(value) : 0; }
+}  // namespace
+
+int Video::frame_width() const {
+  return handle_ != nullptr ? whole_pixels(table().video_property(handle_, VideoProperty::frame_width)) : 0;
+}
+
+int Video::frame_height() const {
+  return handle_ != nullptr ? whole_pixels(table().video_property(handle_, VideoProperty::frame_height)) : 0;
+}
 
 bool Video::grab() { return handle_ != nullptr && table().video_grab(handle_); }
 

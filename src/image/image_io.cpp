@@ -249,6 +249,11 @@ std::optional<std::size_t> announced_frames(const codecs::Video& capture) {
 
 std::optional<std::size_t> video_frame_count(const fs::path& path) { return announced_frames(open_video(path)); }
 
+std::optional<ImageHeader> video_frame_header(const fs::path& path) {
+  const codecs::Video capture = open_video(path);
+  return valid(ImageHeader{capture.frame_width(), capture.frame_height(), 3, 1});
+}
+
 VideoFrames for_each_video_frame(const fs::path& path, std::size_t every,
                                  const std::function<void(std::size_t, const RgbImage&)>& visit) {
   if (every == 0) throw std::invalid_argument("--every must be at least 1");

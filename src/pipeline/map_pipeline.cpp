@@ -457,7 +457,6 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     }
   }
   // Every buffer of the run counted (memory_estimate.hpp); one that cannot fit is refused here, before any work.
-  // (A video's frames are counted only while it is read: the similarity step estimates its matrix then.)
   std::optional<std::size_t> expected = 0;
   for (const auto& s : sessions_) {
     if (!s.frames || !expected) {
@@ -475,11 +474,18 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
   } else if (request_.streaming) {
     engine_note_ = streaming_settings(request_.settings, kind_);
   }
-  if (expected) {
+  // A video's frames are known once it is read; the frames its container announces size the estimate.
+  std::optional<std::size_t> announced = expected;
+  if (!announced && kind_ == InputKind::video && inputs_.size() == 1 && inputs_.front().frames.empty()) {
+    if (const auto frames = image::video_frame_count(inputs_.front().path)) {
+      announced = every_kth_count(*frames, inputs_.front().every);
+    }
+  }
+  if (announced) {
     // Sized from the first session's input (its .npy header or first image); the image count is every session's.
     MapRequest sized = request_;
     sized.input = inputs_.front();
-    memory_note_ = check_map_memory(sized, kind_, *expected, similarity::available_memory_bytes());
+    memory_note_ = check_map_memory(sized, kind_, *announced, similarity::available_memory_bytes());
     request_.settings.similarity.note_memory_above = std::numeric_limits<std::size_t>::max();  // ours is printed
   }
 }

@@ -333,10 +333,18 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
     const auto files = list_input_images(request.input).files;
     const ImageWork work = image_work(files, descriptors);
     if (work.first_pixels) pixels = work.first_pixels;
-    const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
     const std::size_t threads = std::min<std::size_t>(std::max<std::size_t>(1, images),
                                                       s.similarity.threads == 0 ? cores : s.similarity.threads);
     in.image_work_bytes = mul(work.per_image, threads);
+  } else if (kind == InputKind::video) {
+    // Frames are decoded in order and described in batches of 8 a thread (sequence_similarity.cpp): the batch's
+    // RgbImages, the decoder's frame and its RGB conversion, and each thread's describing temporaries.
+    if (const auto header = image::video_frame_header(request.input.path)) {
+      const std::size_t frame = mul(static_cast<std::size_t>(header->width), static_cast<std::size_t>(header->height));
+      const std::size_t threads = s.similarity.threads == 0 ? cores : s.similarity.threads;
+      in.image_work_bytes = sum({mul(mul(8 * threads, 3), frame), mul(frame, 2 * 3),
+                                 mul(mul(threads, describe_bytes_per_pixel(descriptors) - 3), frame)});
+    }
   }
   in.descriptor_bytes.clear();
   for (const Descriptor d : descriptors) {

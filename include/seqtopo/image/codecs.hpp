@@ -44,7 +44,9 @@ class Video {
 
   bool opened() const { return handle_ != nullptr; }
   double frame_count() const;  // as the container announces it; 0 or less when it does not
-  bool grab();                 // the next frame; false at the end
+  int frame_width() const;     // as the stream announces it; 0 when it does not
+  int frame_height() const;
+  bool grab();  // the next frame; false at the end
   bool retrieve(cv::Mat& frame);
 
  private:

@@ -39,6 +39,10 @@ std::size_t decode_peak_bytes(const ImageHeader& header, std::size_t file_bytes)
 // naming the file when it cannot be opened as a video.
 std::optional<std::size_t> video_frame_count(const std::filesystem::path& path);
 
+// A video's frame size as its stream announces it (std::nullopt when it does not), without decoding a frame;
+// throws InputError naming the file when it cannot be opened as a video.
+std::optional<ImageHeader> video_frame_header(const std::filesystem::path& path);
+
 // The frames a pass over a video read, and those its container announced (when it did).
 struct VideoFrames {
   std::size_t read = 0;

@@ -9,7 +9,10 @@
 
 namespace seqtopo::image::codecs {
 
-inline constexpr int kCodecTableVersion = 1;
+inline constexpr int kCodecTableVersion = 2;
+
+// What a video's container or stream announces (this side does not include OpenCV's videoio).
+enum class VideoProperty { frame_count, frame_width, frame_height };
 
 struct CodecTable {
   int version;
@@ -17,8 +20,8 @@ struct CodecTable {
   bool (*read_grey)(const char* path, cv::Mat* out);
   // extension ".png" or ".jpg"; jpeg_quality 1-100 for ".jpg"
   bool (*encode)(const char* extension, const cv::Mat* image, int jpeg_quality, std::vector<std::uint8_t>* out);
-  void* (*video_open)(const char* path);  // nullptr when it cannot be opened
-  double (*video_frame_count)(void* video);
+  void* (*video_open)(const char* path);                          // nullptr when it cannot be opened
+  double (*video_property)(void* video, VideoProperty property);  // 0 when the video does not say
   bool (*video_grab)(void* video);
   bool (*video_retrieve)(void* video, cv::Mat* frame);
   void (*video_close)(void* video);

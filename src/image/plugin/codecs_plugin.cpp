@@ -12,6 +12,7 @@
 namespace {
 
 using seqtopo::image::codecs::CodecTable;
+using seqtopo::image::codecs::VideoProperty;
 
 bool decode(const std::uint8_t* data, std::size_t size, cv::Mat* out) {
   try {
@@ -57,9 +58,12 @@ void* video_open(const char* path) {
   return capture;
 }
 
-double video_frame_count(void* video) {
+double video_property(void* video, VideoProperty property) {
+  const int id = property == VideoProperty::frame_count   ? cv::CAP_PROP_FRAME_COUNT
+                 : property == VideoProperty::frame_width ? cv::CAP_PROP_FRAME_WIDTH
+                                                          : cv::CAP_PROP_FRAME_HEIGHT;
   try {
-    return static_cast<cv::VideoCapture*>(video)->get(cv::CAP_PROP_FRAME_COUNT);
+    return static_cast<cv::VideoCapture*>(video)->get(id);
   } catch (...) {
     return 0;
   }
@@ -118,7 +122,7 @@ extern "C" const CodecTable* seqtopo_codec_table() {
                                 read_grey,
                                 encode,
                                 video_open,
-                                video_frame_count,
+                                video_property,
                                 video_grab,
                                 video_retrieve,
                                 video_close};
