@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -181,6 +183,28 @@ std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scor
   std::stable_sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.score > y.score; });
   cell_mean = cells > 0 ? sum / static_cast<double>(cells) : 0.0;
   return all;
+}
+
+// The source, telling `progress` the cells its readers have read of the `total` the passes search, at most the total
+// less one until the alignment ends (a traceback re-reads a few), in steps of a thousandth.
+align::ScoreSource told_progress(align::ScoreSource source, std::size_t total,
+                                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (!progress || total < 2) return source;
+  const std::size_t step = std::max<std::size_t>(1, total / 1000);
+  auto cells = std::make_shared<std::atomic<std::size_t>>(0);
+  auto told = std::make_shared<std::atomic<std::size_t>>(0);
+  auto read = [source, cells, told, total, step, progress](std::size_t i, std::size_t j_begin, std::size_t j_end,
+                                                           align::Score* out) {
+    source.read_row(i, j_begin, j_end, out);
+    const std::size_t done = std::min(total - 1, cells->fetch_add(j_end - j_begin) + (j_end - j_begin));
+    std::size_t before = told->load(std::memory_order_relaxed);
+    while (done >= before + step && !told->compare_exchange_weak(before, done)) {
+    }
+    if (done >= before + step) progress(done, total);
+  };
+  const std::size_t rows = source.rows(), cols = source.cols();
+  const align::ScoreSource::CellReader cell = source.cell_reader();
+  return align::ScoreSource(rows, cols, std::move(read), cell);
 }
 
 FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, double frames_per_place,
@@ -710,7 +734,10 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   d.cap = engine.cap;
   d.score_threshold = engine.threshold;
 
-  const align::ScoreSource scores = detail::soft_masked(minus(enhanced, offset), masked);
+  const align::ScoreSource scores =
+      told_progress(detail::soft_masked(minus(enhanced, offset), masked),
+                    static_cast<std::size_t>(significance::search_area(n, n, true, c.min_separation, c.reverse)),
+                    c.alignment_progress);
   auto found = run_alignment ? run_alignment(engine, offset)
                : c.alignment_set == align::AlignmentSet::locally_optimal
                    ? (c.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)

@@ -150,7 +150,9 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   const std::vector<double>& entropy = run.similarities.front().frame_entropy;
   const std::vector<std::size_t> low_information =
       entropy.size() == n ? significance::low_information_frames(entropy) : std::vector<std::size_t>{};
-  run.result = mapping::build_map(run.matrices, map_config_of(settings, run), odometry, low_information);
+  mapping::MapConfig map_config = map_config_of(settings, run);
+  map_config.alignment_progress = clock.alignment_progress();
+  run.result = mapping::build_map(run.matrices, map_config, odometry, low_information);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 }
@@ -259,6 +261,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
     };
   }
   clock.begin(candidates ? " (sparse engine on the candidates)" : " (fast engine)");
+  config.alignment_progress = clock.alignment_progress();
   run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run);
   run.result.decisions.frames_per_place_estimated = place.has_value();
   if (place && !place->found) {
@@ -575,7 +578,9 @@ MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<
   StageClock clock(observer, run,
                    stage_names(false, true, !run.odometry.empty(), any_truth, static_cast<bool>(truth.same_place)));
   clock.begin();
-  run.result = mapping::build_map(run.matrices, settings.map, odometry);
+  mapping::MapConfig config = settings.map;
+  config.alignment_progress = clock.alignment_progress();
+  run.result = mapping::build_map(run.matrices, config, odometry);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
   std::function<MapTruth()> load_truth;

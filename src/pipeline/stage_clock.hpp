@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -69,6 +70,15 @@ class StageClock {
       advance(done, total, what == "matrix" ? "cells of the matrix" : "images described");
     };
   }
+  // For MapConfig::alignment_progress: the cells the alignment's passes have read (told from the forward and reverse
+  // passes' threads, passed on one at a time).
+  std::function<void(std::size_t, std::size_t)> alignment_progress() {
+    if (!observer_.stage) return {};
+    return [this](std::size_t done, std::size_t total) {
+      const std::lock_guard<std::mutex> lock(advance_mutex_);
+      advance(done, total, "cells aligned");
+    };
+  }
 
  private:
   void send(const StageEvent& event) const {
@@ -79,6 +89,7 @@ class StageClock {
   std::vector<std::string> names_;
   std::size_t stage_ = 0;
   std::chrono::steady_clock::time_point start_;
+  std::mutex advance_mutex_;
 };
 
 // The stages a run goes through, in order (the plan's names).

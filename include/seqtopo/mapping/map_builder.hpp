@@ -130,6 +130,9 @@ struct MapConfig {
   // stays one revisit); inside the stretch its pairs lie on the straight line between the evidence on either side,
   // and a masked end is cut off. false: every frame is aligned as it scores.
   bool mask_low_information = true;
+  // Not a setting: told the main alignment's progress, as the cells its passes have read of those they search
+  // (forward, and reverse when on), from the passes' threads. Empty: nobody is told.
+  std::function<void(std::size_t cells_done, std::size_t cells_total)> alignment_progress = {};
 };
 
 // What a map run decided from the sequence itself (the settings in frames, the statistics), for the report.
