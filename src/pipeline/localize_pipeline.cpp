@@ -191,7 +191,7 @@ void for_each_frame(const SequenceInput& input, Describer& describe, const NextP
   throw InputError(input.path.string(), "expected an image folder, a video or descriptors.npy");
 }
 
-void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_frame, const NextPath& next_path,
+void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_frame, const NextPath& next_path,
                 LocalizeRun& run) {
   const auto& config = request.settings.localize;
   auto report = [&](const localize::OnlineEstimate& e, double seconds, double wait) {
@@ -276,7 +276,7 @@ void run_online(const LocalizeRequest& request, const OnlineFrameCallback& on_fr
 
 }  // namespace
 
-LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineFrameCallback& on_frame,
+LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineQueryCallback& on_frame,
                                const NextPath& next_query_path) {
   localize::validate(request.settings.localize);
   LocalizeRun run;

@@ -44,9 +44,9 @@ std::string json_string(std::string_view s) {
 
 class Feeder {
  public:
-  Feeder(const OnlineMapRequest& request, OnlineMapRun& run, const OnlineFrameCallback& on_frame)
+  Feeder(const OnlineMapRequest& request, OnlineMapRun& run, const OnlineMapFrameCallback& on_frame)
       : run_(run), on_frame_(on_frame), mapper_(request.config) {}
-  Feeder(mapping::OnlineMapConfig config, OnlineMapRun& run, const OnlineFrameCallback& on_frame)
+  Feeder(mapping::OnlineMapConfig config, OnlineMapRun& run, const OnlineMapFrameCallback& on_frame)
       : run_(run), on_frame_(on_frame), mapper_(config) {}
 
   template <typename Add>
@@ -77,7 +77,7 @@ class Feeder {
   }
 
   OnlineMapRun& run_;
-  const OnlineFrameCallback& on_frame_;
+  const OnlineMapFrameCallback& on_frame_;
   mapping::OnlineMapper mapper_;
 };
 
@@ -105,7 +105,7 @@ std::vector<std::vector<float>> OnlineImageRows::add(const RgbImage& image) {
   return rows;
 }
 
-OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCallback& on_frame) {
+OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFrameCallback& on_frame) {
   OnlineMapRun run;
   const SequenceInput& input = request.input;
   const bool from_stream = input.path == "-";

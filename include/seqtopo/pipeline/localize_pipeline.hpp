@@ -95,13 +95,13 @@ struct LocalizeRun {
 };
 
 // Online: called after every query frame with its index, answer, latency (processing) and wait [s].
-using OnlineFrameCallback =
+using OnlineQueryCallback =
     std::function<void(std::size_t query, const FrameAnswer& answer, double latency, double wait)>;
 // The next image path of a query given as "-" (nullopt at the end).
 using NextPath = std::function<std::optional<std::string>()>;
 
 // Throws InputError on unreadable or inconsistent inputs, std::invalid_argument on misuse.
-LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineFrameCallback& on_frame = {},
+LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineQueryCallback& on_frame = {},
                                const NextPath& next_query_path = {});
 
 // Scores the answers against the truth (within +-tolerance map frames) and runs the single-frame and SeqSLAM

@@ -66,10 +66,10 @@ struct OnlineMapRun {
 };
 
 // Called after each frame with its events (possibly none), and once after the last frame with finish()'s.
-using OnlineFrameCallback = std::function<void(std::size_t frame, std::span<const mapping::OnlineEvent> events)>;
+using OnlineMapFrameCallback = std::function<void(std::size_t frame, std::span<const mapping::OnlineEvent> events)>;
 
 // Throws InputError naming the file for bad input (unreadable image, a bag, descriptors of another length).
-OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineFrameCallback& on_frame = {});
+OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFrameCallback& on_frame = {});
 
 // One event as one JSON object on one line (no newline), as in events.jsonl (INTERFACE.md).
 std::string online_event_json(const mapping::OnlineEvent& event);
