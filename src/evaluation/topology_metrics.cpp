@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "seqtopo/core/disjoint_sets.hpp"
+
 namespace seqtopo::evaluation {
 namespace {
 double choose2(double n) { return n * (n - 1) / 2; }
@@ -44,17 +46,9 @@ std::vector<int> coarsen_along_true_places(const std::vector<int>& map_labels, c
     if (i > j) std::swap(i, j);
     return j - i < pass_frames && boundaries[j] - boundaries[i] == 1;
   };
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), std::size_t{0});
-  auto find = [&](std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  auto unite = [&](std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  };
+  DisjointSets<std::size_t> sets(n);
+  const auto find = [&](std::size_t x) { return sets.find(x); };
+  const auto unite = [&](std::size_t a, std::size_t b) { sets.unite(a, b); };
   // Images of each map place, grouped by true place.
   std::map<int, std::map<int, std::vector<std::size_t>>> groups;
   for (std::size_t i = 0; i < n; ++i) {

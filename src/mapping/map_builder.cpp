@@ -20,6 +20,7 @@
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/align/pair_posterior.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/core/stopwatch.hpp"
 #include "seqtopo/mapping/graph_cleanup.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/significance/alignment_ends.hpp"
@@ -52,10 +53,6 @@ std::vector<std::size_t> flagged(const std::vector<bool>& flags) {
 }
 
 using detail::median;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // `source` minus a constant, read a row segment at a time.
 align::ScoreSource minus(const align::ScoreSource& source, float offset) {

@@ -429,13 +429,6 @@ float OnlineMapper::confidence(float score) const {
   return std::min(1.0F, score / full);
 }
 
-std::size_t OnlineMapper::find(std::size_t frame) {
-  std::size_t root = frame;
-  while (parent_[root] != root) root = parent_[root];
-  while (parent_[frame] != root) frame = std::exchange(parent_[frame], root);
-  return root;
-}
-
 void OnlineMapper::emit_closure(Track& track, std::size_t i, std::size_t j, float score,
                                 std::vector<OnlineEvent>& events) {
   OnlineEvent e;
@@ -462,9 +455,9 @@ void OnlineMapper::settle(Track& track, std::size_t up_to, std::vector<OnlineEve
       keep.push_back(index);
       continue;
     }
-    const std::size_t a = find(c.i), b = find(c.j);
+    const std::size_t a = places_.find(c.i), b = places_.find(c.j);
     if (a == b) continue;
-    if (size_[a] >= 2 && size_[b] >= 2) {
+    if (places_.set_size(a) >= 2 && places_.set_size(b) >= 2) {
       OnlineEvent e;
       e.kind = OnlineEventKind::place_merge;
       e.frame = frames_;
@@ -476,19 +469,16 @@ void OnlineMapper::settle(Track& track, std::size_t up_to, std::vector<OnlineEve
       e.last = std::max(a, b);
       events.push_back(e);
     }
-    // The smaller frame is the root: a place is named by its first frame.
-    const std::size_t root = std::min(a, b), child = std::max(a, b);
-    parent_[child] = root;
-    size_[root] += size_[child];
+    places_.unite(a, b);  // a place is named by its first frame
   }
   track.pending = std::move(keep);
 }
 
 void OnlineMapper::add_junction(const Track& track, std::size_t i, std::size_t j, bool joining,
                                 std::vector<OnlineEvent>& events) {
-  const std::size_t place = find(j);
+  const std::size_t place = places_.find(j);
   for (std::size_t known : junction_places_) {
-    if (find(known) == place || (known > j ? known - j : j - known) <= config_.reach) return;
+    if (places_.find(known) == place || (known > j ? known - j : j - known) <= config_.reach) return;
   }
   junction_places_.push_back(j);
   OnlineEvent e;
@@ -976,8 +966,7 @@ std::vector<OnlineEvent> OnlineMapper::step() {
   } else {
     std::vector<float>().swap(early_cells_);
   }
-  parent_.push_back(frames_);
-  size_.push_back(1);
+  places_.add();
   std::vector<OnlineEvent> events;
   update_tracks(align::Direction::forward, events);
   if (config_.reverse) update_tracks(align::Direction::reverse, events);
@@ -1024,7 +1013,7 @@ std::vector<OnlineLoopClosure> OnlineMapper::loop_closures() const {
 
 std::vector<std::size_t> OnlineMapper::places() {
   std::vector<std::size_t> out(frames_);
-  for (std::size_t f = 0; f < frames_; ++f) out[f] = find(f);
+  for (std::size_t f = 0; f < frames_; ++f) out[f] = places_.find(f);
   return out;
 }
 

@@ -4,38 +4,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "seqtopo/core/disjoint_sets.hpp"
+
 namespace seqtopo::mapping {
-namespace {
-
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n), rank_(n, 0) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];  // path halving
-      x = parent_[x];
-    }
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (rank_[a] < rank_[b]) std::swap(a, b);
-    parent_[b] = a;
-    if (rank_[a] == rank_[b]) ++rank_[a];
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-  std::vector<unsigned char> rank_;
-};
-
-}  // namespace
 
 std::vector<PlaceLabel> label_places(std::size_t images,
                                      const std::vector<std::pair<std::size_t, std::size_t>>& same_place) {
-  UnionFind sets(images);
+  DisjointSets<std::size_t> sets(images);
   for (auto [i, j] : same_place) {
     if (i >= images || j >= images) {
       throw std::invalid_argument("pair (" + std::to_string(i) + ", " + std::to_string(j) + ") outside " +

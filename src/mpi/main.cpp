@@ -25,6 +25,7 @@
 
 #include "cli/number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/stopwatch.hpp"
 #include "seqtopo/formats/alignment_json.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -38,8 +39,6 @@ namespace seqtopo::mpi {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Options {
   std::string descriptors;

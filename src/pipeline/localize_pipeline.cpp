@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/stopwatch.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/localize/online_localizer.hpp"
@@ -24,8 +25,6 @@ namespace seqtopo::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
 FrameAnswer answer_of(const localize::FrameMatch& f) {
   FrameAnswer a;
   a.map = f.map;

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/stopwatch.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/significance/low_information.hpp"
@@ -97,8 +98,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 unsigned thread_count(unsigned requested) {
   return requested > 0 ? requested : std::max(1U, std::thread::hardware_concurrency());

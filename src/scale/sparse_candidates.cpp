@@ -10,14 +10,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "seqtopo/core/stopwatch.hpp"
+
 namespace seqtopo::scale {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 std::vector<std::vector<std::uint32_t>> nearest_neighbours(std::span<const float> descriptors, std::size_t n,
                                                            std::size_t dim, const CandidateConfig& config,

@@ -9,6 +9,7 @@
 
 #include "both_passes.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/core/disjoint_sets.hpp"
 
 namespace seqtopo::scale {
 
@@ -33,33 +34,7 @@ namespace {
 struct Cell {
   std::uint32_t col;  // pass column (0-based)
   float h;
-  std::uint32_t label;  // a label of its component (UnionFind)
-};
-
-// Component labels: one per cell without a positive predecessor (the first cell of a component), joined
-// as the recurrence connects them; a set's root is its smallest label, the one of its first cell.
-class UnionFind {
- public:
-  std::uint32_t add() {
-    parent_.push_back(static_cast<std::uint32_t>(parent_.size()));
-    return parent_.back();
-  }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  // Joins the roots a != b under the smaller; returns (root, absorbed).
-  std::pair<std::uint32_t, std::uint32_t> join(std::uint32_t a, std::uint32_t b) {
-    const std::uint32_t root = std::min(a, b), absorbed = std::max(a, b);
-    parent_[absorbed] = root;
-    return {root, absorbed};
-  }
-
- private:
-  std::vector<std::uint32_t> parent_;
+  std::uint32_t label;  // a label of its component (uf_: a set's root is its smallest label, its first cell's)
 };
 
 const Cell* find_cell(const std::vector<Cell>& row, std::size_t col) {
@@ -219,7 +194,7 @@ class SparseFill {
   std::uint32_t unite(std::uint32_t root, std::uint32_t label) {
     const std::uint32_t other = uf_.find(label);
     if (other == root) return root;
-    const auto [kept, absorbed] = uf_.join(root, other);
+    const auto [kept, absorbed] = uf_.unite(root, other);
     Open& k = open_[slot_[kept]];
     Open& a = open_[slot_[absorbed]];
     if (k.runs.size() < a.runs.size()) std::swap(k.runs, a.runs);
@@ -313,7 +288,9 @@ class SparseFill {
   const AlignConfig& config_;
   std::size_t m_, n_;
   float floor_;
-  UnionFind uf_;
+  // Component labels: one per cell without a positive predecessor (the first cell of a component), joined as the
+  // recurrence connects them.
+  DisjointSets<std::uint32_t> uf_;
   std::vector<std::uint32_t> slot_;  // label -> slot in open_ (meaningful for open roots)
   std::vector<Open> open_;
   std::vector<std::uint32_t> free_;

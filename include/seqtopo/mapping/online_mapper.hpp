@@ -87,6 +87,7 @@
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/core/disjoint_sets.hpp"
 #include "seqtopo/significance/score_statistics.hpp"
 #include "seqtopo/similarity/distance.hpp"
 
@@ -263,7 +264,6 @@ class OnlineMapper {
   void settle(Track& track, std::size_t up_to, std::vector<OnlineEvent>& events);
   void end_track(Track& track, bool at_finish, std::vector<OnlineEvent>& events);
   void add_junction(const Track& track, std::size_t i, std::size_t j, bool joining, std::vector<OnlineEvent>& events);
-  std::size_t find(std::size_t frame);
   float confidence(float score) const;
   std::optional<double> e_value(float score) const;
   struct Island {
@@ -314,8 +314,8 @@ class OnlineMapper {
     float confidence;
     bool withdrawn;
   };
-  std::vector<Closure> closures_;           // standing, in emission order
-  std::vector<std::size_t> parent_, size_;  // union-find over frames (settled pairs)
+  std::vector<Closure> closures_;     // standing, in emission order
+  DisjointSets<std::size_t> places_;  // frames joined by settled pairs; a place is named by its first frame
   std::vector<std::size_t> junction_places_;
   std::map<std::uint64_t, std::size_t> ended_starts_;  // start cell of an ended track -> its last frame
   // Islands: the best value so far of each start cell in the newest row, per table; the sample of dead islands'
