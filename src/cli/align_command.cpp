@@ -10,7 +10,7 @@
 #include <random>
 
 #include "command_registry.hpp"
-#include "number_options.hpp"
+#include "options/number_options.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/formats/alignment_json.hpp"

@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "command_registry.hpp"
-#include "number_options.hpp"
+#include "options/number_options.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/align/letter_problem.hpp"
 #include "seqtopo/align/smith_waterman.hpp"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "command_registry.hpp"
-#include "number_options.hpp"
+#include "options/number_options.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
 #include "seqtopo/simulator/descriptor_sequences.hpp"
 

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "command_registry.hpp"
-#include "number_options.hpp"
+#include "options/number_options.hpp"
 #include "seqtopo/align/fast_alignment.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"

@@ -15,7 +15,7 @@
 #include <variant>
 
 #include "command_registry.hpp"
-#include "number_options.hpp"
+#include "options/number_options.hpp"
 #include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/core/text_file.hpp"

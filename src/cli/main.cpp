@@ -17,7 +17,7 @@
 
 #include "command_registry.hpp"
 #include "config_file.hpp"
-#include "number_options.hpp"
+#include "options/number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/core/text_file.hpp"
 #include "seqtopo/core/version.hpp"

@@ -16,7 +16,7 @@
 
 #include "command_registry.hpp"
 #include "map_online.hpp"
-#include "number_options.hpp"
+#include "options/number_options.hpp"
 #include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"

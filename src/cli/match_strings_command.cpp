@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "command_registry.hpp"
-#include "number_options.hpp"
+#include "options/number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/core/text_file.hpp"
 #include "seqtopo/core/version.hpp"

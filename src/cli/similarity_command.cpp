@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "command_registry.hpp"
-#include "number_options.hpp"
+#include "options/number_options.hpp"
 #include "progress.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/io/atomic_output.hpp"

@@ -23,7 +23,7 @@
 #include <thread>
 #include <vector>
 
-#include "cli/number_options.hpp"
+#include "options/number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/core/stopwatch.hpp"
 #include "seqtopo/formats/alignment_json.hpp"

@@ -1,7 +1,8 @@
 #pragma once
-// Numeric options of every command, parsed by the one number parser (core/parse_number.hpp) while the
-// command line is read: finite, in range, no trailing characters, no unsigned wrap-around, the option named
-// in the error, and all of it before any work starts or any output folder is made.
+// Numeric options of every command of both command-line programs (seqtopo, seqtopo-mpi), parsed by the one number
+// parser (core/parse_number.hpp) while the command line is read: finite, in range, no trailing characters, no
+// unsigned wrap-around, the option named in the error, and all of it before any work starts or any output folder
+// is made.
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
