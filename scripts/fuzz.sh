@@ -3,7 +3,7 @@
 # FASTA, strings files, --config files), built with Debian's clang under AddressSanitizer and
 # UndefinedBehaviorSanitizer in build/fuzz, started from the seed corpus of tests/fuzz/make_corpus.py.
 #
-#   scripts/fuzz.sh [SECONDS_EACH]   # each harness for SECONDS_EACH seconds (default 20: the CI smoke run)
+#   scripts/fuzz.sh [SECONDS_EACH]   # each harness for SECONDS_EACH seconds (default 20; CI smoke-runs 10)
 #   scripts/fuzz.sh 300              # the longer run
 #
 # Prints one line per harness (executions, result) and exits non-zero when any harness reports a crash, a

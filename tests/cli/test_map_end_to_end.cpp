@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "common/cli_run.hpp"
+#include "common/sanitizers.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/version.hpp"
 #include "seqtopo/image/image_io.hpp"
@@ -134,6 +135,7 @@ std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& png) {
 // pixel, 1050 pixels a side plus the axes' margins), with the same bytes for any thread count; a smaller one
 // keeps one pixel per image or more (the corridor: 84 images drawn 7 pixels each, 588).
 TEST_F(MapCommand, LargeMatrixFigureIsItsBlockMaxOverview) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("a 2100 x 2100 map");
   constexpr std::size_t n = 2100;
   seqtopo::DenseMatrix<float> s(n, n, 0.2F);
   std::mt19937 rng(3);

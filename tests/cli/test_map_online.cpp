@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/cli_run.hpp"
+#include "common/sanitizers.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -78,6 +79,7 @@ void expect_error_after_frames(const CommandResult& o, const std::string& subjec
 }
 
 TEST(MapOnline, EventsOfFrameKAreReadableBeforeFrameKPlusOneIsGiven) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("one online run per frame of the corridor");
   const seqtopo::test_support::TempDir dir;
   const auto files = corridor();
   ASSERT_EQ(files.size(), 84U);

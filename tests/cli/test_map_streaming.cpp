@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "common/cli_run.hpp"
+#include "common/sanitizers.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
@@ -152,6 +153,7 @@ TEST_F(MapStreaming, GroundTruthOdometryAndReport) {
 }
 
 TEST_F(MapStreaming, SyntheticRouteOfTheBenchmarkMapsItsRevisits) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("a long synthetic route");
   // `seqtopo bench scale --write-route` writes the route BENCHMARK.md maps at 10^5 frames, with its truth.
   auto r = run_cli("bench scale --sizes 3000 --write-route " + path("route"));
   ASSERT_EQ(r.status, 0) << r.err;
@@ -219,6 +221,7 @@ TEST_F(MapStreaming, ImageFolderStreamsTheNearestVectorDescriptor) {
 // says why in one line; an engine given is used as is. (Budgets around each engine's peak: test_engine_choice.cpp.)
 // 6,000 frames, so that the tables, not the process itself (larger under the sanitizers), decide at 1 GB.
 TEST_F(MapStreaming, EngineChosenByTheMemoryTheRunNeeds) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("large maps under several memory limits");
   write_walk(6000, 8);
   const std::string walk = path("walk.npy");
   ASSERT_EQ(setenv("SEQTOPO_MEMORY_LIMIT", "1G", 1), 0);

@@ -11,6 +11,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "common/sanitizers.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/mapping/online_mapper.hpp"
@@ -666,6 +667,7 @@ TEST(OnlineMapper, AShortRunIsFittedOnItsTableUntilTheIslandsSuffice) {
 // more often than about 2 E ln(N / t0) a run (t0 = 50, where the first fits come); the fixed threshold never
 // lets one through in so short a run, and the early fit was used in every run.
 TEST(OnlineMapper, TheEarlyFitKeepsItsEValueOnNoise) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("many noise sequences");
   for (const double e : {0.01, 0.1}) {
     OnlineMapConfig c;
     c.contrast_offset = 1.0F;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "common/sanitizers.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/pipeline/sequence_similarity.hpp"
@@ -69,6 +70,7 @@ TEST(Calibration, OnShortNoiseTheScoresGlobalRateRaisesTheOffset) {
 // Past 2 x 2,000 frames the statistics are fitted on diagonal blocks; K is per cell, so the E-values still count
 // the chance alignments of the whole search (8,000 frames: four times the blocks' area), not of the blocks.
 TEST(Calibration, OnALongNoiseSequenceTheEValuesCountTheWholeSearch) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("a long noise sequence");
   const std::size_t n = 8000;
   double permissive = 0;
   const int sequences = 2;
@@ -104,6 +106,7 @@ TEST(Calibration, OnALongNoiseSequenceTheEValuesCountTheWholeSearch) {
 // expected, 8 at E <= 0.01 for 3; the predictive one 8 and 5). The predictive E-value (score_statistics.hpp)
 // averages over lambda's uncertainty.
 TEST(Calibration, OnShortSmoothNoiseThePredictiveEValuesCountTheChanceAlignmentsFarAboveTheFit) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("many noise sequences");
   const int sequences = 150;
   const double e_value = 0.03;
   double predictive = 0, plug_in = 0;

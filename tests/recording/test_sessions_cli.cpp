@@ -15,6 +15,7 @@
 #include <set>
 
 #include "common/cli_run.hpp"
+#include "common/sanitizers.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/image/grey_matrix_file.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
@@ -45,6 +46,7 @@ bool edge_between(const nlohmann::json& map, std::size_t a, std::size_t b) {
 }
 
 TEST(Sessions, NordlandSummerAndWinterAsTwoSessions) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("3,600 Nordland frames");
   if (!fs::exists(kNordland / "summer")) GTEST_SKIP() << "no Nordland data at " << kNordland;
   TempDir dir;
   // The single-folder protocol of the README: summer then winter in one folder (links), poses.csv giving
