@@ -183,7 +183,8 @@ std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scor
 }
 
 // The source, telling `progress` the cells its readers have read of the `total` the passes search, at most the total
-// less one until the alignment ends (a traceback re-reads a few), in steps of a thousandth.
+// less one (a traceback re-reads a few; the caller tells the total when the alignment ends), in steps of a
+// thousandth.
 align::ScoreSource told_progress(align::ScoreSource source, std::size_t total,
                                  const std::function<void(std::size_t, std::size_t)>& progress) {
   if (!progress || total < 2) return source;
@@ -731,15 +732,15 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   d.cap = engine.cap;
   d.score_threshold = engine.threshold;
 
+  const auto searched = static_cast<std::size_t>(significance::search_area(n, n, true, c.min_separation, c.reverse));
   const align::ScoreSource scores =
-      told_progress(detail::soft_masked(minus(enhanced, offset), masked),
-                    static_cast<std::size_t>(significance::search_area(n, n, true, c.min_separation, c.reverse)),
-                    c.alignment_progress);
+      told_progress(detail::soft_masked(minus(enhanced, offset), masked), searched, c.alignment_progress);
   auto found = run_alignment ? run_alignment(engine, offset)
                : c.alignment_set == align::AlignmentSet::locally_optimal
                    ? (c.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
                                 : align::locally_optimal_alignments(scores, engine))
                    : run_engine(scores, engine, c.engine, c.reverse, c.threads);
+  if (c.alignment_progress && searched > 1) c.alignment_progress(searched, searched);
   for (auto& a : found) {
     const double path = align::path_score(a, scores, c.gap, c.gap);
     const double e = d.statistics.valid() ? d.statistics.e_value(path) : std::nan("");
