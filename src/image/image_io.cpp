@@ -196,6 +196,12 @@ std::optional<ImageHeader> read_image_header(const fs::path& path) {
   return std::nullopt;
 }
 
+ImageHeader image_size(const fs::path& path) {
+  if (const auto header = read_image_header(path)) return *header;
+  const RgbImage decoded = load_image(path);
+  return ImageHeader{decoded.width, decoded.height, 3, 1};
+}
+
 std::size_t decode_peak_bytes(const ImageHeader& h, std::size_t file_bytes) {
   const std::size_t pixels = static_cast<std::size_t>(h.width) * static_cast<std::size_t>(h.height);
   const auto channels = static_cast<std::size_t>(h.channels);

@@ -438,12 +438,8 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     if (!listing.files.empty()) {
       try {
         // Its header, not the picture: a huge image is refused by the memory check below before any decoding.
-        auto first = image::read_image_header(listing.files.front());
-        if (!first) {
-          const RgbImage decoded = image::load_image(listing.files.front());
-          first = image::ImageHeader{decoded.width, decoded.height, 3, 1};
-        }
-        if (looks_panoramic(first->width, first->height)) {
+        const image::ImageHeader first = image::image_size(listing.files.front());
+        if (looks_panoramic(first.width, first.height)) {
           const auto chosen = panorama_descriptors(request_.settings.descriptors);
           if (chosen != request_.settings.descriptors) {
             request_.settings.descriptors = chosen;
@@ -451,7 +447,7 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
             for (auto d : chosen) names += (names.empty() ? "" : ",") + std::string(descriptor_name(d));
             panorama_note_ =
                 fmt::format("{} x {} images look like 360-degree panoramas (at least {}:1): descriptors {}",
-                            first->width, first->height, kPanoramaAspect, names);
+                            first.width, first.height, kPanoramaAspect, names);
           }
         }
       } catch (const std::exception&) {

@@ -171,8 +171,7 @@ ImageWork image_work(const std::vector<std::filesystem::path>& files, const std:
     std::optional<image::ImageHeader> h = image::read_image_header(files[k]);
     if (!h && !known) {
       try {
-        const RgbImage decoded = image::load_image(files[k]);
-        h = image::ImageHeader{decoded.width, decoded.height, 3, 1};
+        h = image::image_size(files[k]);
       } catch (const std::exception&) {
         // an unreadable image is reported by the run itself
       }

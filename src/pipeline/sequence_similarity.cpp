@@ -198,14 +198,8 @@ std::size_t descriptor_bytes(Descriptor d, const Source& s, const SimilarityConf
     case Descriptor::joint_histogram: {
       std::size_t bins = JointHistogramConfig::bins;
       if (!s.images.empty()) {
-        std::size_t pixels = bins;
-        if (const auto header = image::read_image_header(s.images.front())) {
-          pixels = static_cast<std::size_t>(header->width) * static_cast<std::size_t>(header->height);
-        } else {
-          const RgbImage first = load_image(s.images.front());
-          pixels = static_cast<std::size_t>(first.width) * static_cast<std::size_t>(first.height);
-        }
-        bins = std::min(bins, pixels);
+        const image::ImageHeader first = image::image_size(s.images.front());
+        bins = std::min(bins, static_cast<std::size_t>(first.width) * static_cast<std::size_t>(first.height));
       }
       return sizeof(similarity::SparseHistogram) + bins * (sizeof(std::uint32_t) + sizeof(float));
     }

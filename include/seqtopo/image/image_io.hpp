@@ -31,6 +31,10 @@ struct ImageHeader {
 // call that reads them without decoding). std::nullopt for another format or a header it cannot read.
 std::optional<ImageHeader> read_image_header(const std::filesystem::path& path);
 
+// read_image_header's answer, or for another format the size of the image decoded once. Throws InputError naming
+// the file when it cannot be decoded.
+ImageHeader image_size(const std::filesystem::path& path);
+
 // The bytes load_image holds at its peak for an image of this header and `file_bytes` encoded: the file read,
 // the decoded picture, its 8-bit copy (16-bit images), the RGB conversion and the RgbImage returned.
 std::size_t decode_peak_bytes(const ImageHeader& header, std::size_t file_bytes);
