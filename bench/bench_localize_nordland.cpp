@@ -48,13 +48,13 @@ struct Row {
   double seconds = 0;
 };
 
-// Offline every frame's guess counts, ranked by its confidence; online only the frames in the map, by score.
+// Every frame's guess counts, ranked by its confidence (online: from the frames so far).
 evaluation::LocalizationMetrics evaluate(const std::vector<localize::FrameMatch>& frames, std::size_t map_frames,
-                                         std::size_t tolerance, bool online = false) {
+                                         std::size_t tolerance) {
   std::vector<evaluation::LocalizationPrediction> p(frames.size());
   for (std::size_t q = 0; q < frames.size(); ++q) {
-    if (!online || frames[q].covered) p[q].map = frames[q].map;
-    p[q].score = online ? frames[q].score : static_cast<float>(frames[q].confidence);
+    p[q].map = frames[q].map;
+    p[q].score = static_cast<float>(frames[q].confidence);
     p[q].candidates = frames[q].candidates;
   }
   return evaluation::evaluate_localization(p, evaluation::LocalizationTruth::same_index(frames.size(), map_frames),
@@ -178,10 +178,11 @@ int main(int argc, char** argv) {
       for (std::size_t q = 0; q < est.size(); ++q) {
         on[q].covered = est[q].in_map;
         on[q].map = est[q].map;
-        on[q].score = est[q].confidence;
+        on[q].score = est[q].score;
+        on[q].confidence = est[q].confidence;
         on[q].candidates = {est[q].map};
       }
-      rows.push_back({"seqtopo localize --online", evaluate(on, m, tolerance, true), seconds_since(t)});
+      rows.push_back({"seqtopo localize --online", evaluate(on, m, tolerance), seconds_since(t)});
     }
 
     for (const auto& r : rows) {

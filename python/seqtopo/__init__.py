@@ -732,7 +732,7 @@ def localize_sequences(
     query=None,
     config: LocalizeConfig | None = None,
     *,
-    descriptor: str = "patch",
+    descriptor: str | None = None,
     metric: str | None = None,
     kappa: float | None = None,
     input_kind: str = "auto",
@@ -748,6 +748,8 @@ def localize_sequences(
     ``map``, ``query``: image folders, videos or ``descriptors.npy`` (the command's ``--map``/``--query``); or
     ``map`` alone a query x map similarity (a ``similarity.npy`` path or an array, rows = query frames).
     ``config``: a :class:`LocalizeConfig`, keyword arguments override its fields. ``online``: frame by frame.
+    ``descriptor``: one name or several comma-separated (fused); ``None``, the map's default (joint histogram and
+    patch, panorama for 360-degree images), as the command without ``--descriptor``.
     ``ground_truth``: ``"same-index"`` (query k is map k), a CSV of ``query,map`` pairs, or an array of such
     pairs; the answers are then scored within +-``tolerance`` map frames beside the single-frame and SeqSLAM
     baselines. Returns a :class:`LocalizeRun`."""
@@ -773,7 +775,8 @@ def localize_sequences(
                     f.write("query,map\n" + "".join(f"{q},{m}\n" for q, m in pairs))
                 written[truth] = "ground_truth"
         try:
-            raw = _core.localize_sequences(_os.fspath(map), "" if query is None else _os.fspath(query), descriptor,
+            raw = _core.localize_sequences(_os.fspath(map), "" if query is None else _os.fspath(query),
+                                           "" if descriptor is None else descriptor,
                                            metric, kappa, input_kind, every, threads, config, online, truth,
                                            tolerance)
         except (ValueError, InputError) as error:

@@ -463,7 +463,10 @@ pipeline::LocalizeRun localize_sequences(const std::filesystem::path& map, const
   if (query.empty()) {
     request.similarity_file = map;  // one query x map similarity.npy
   }
-  request.settings.similarity.descriptor = pipeline::parse_descriptor(descriptor);
+  if (!descriptor.empty()) {  // empty: the map's default, as the command without --descriptor
+    request.settings.detect_panoramas = false;
+    request.settings.descriptors = pipeline::parse_descriptors(descriptor);
+  }
   if (metric) request.settings.similarity.distance = similarity::parse_distance(*metric);
   check_kappa(kappa);
   request.settings.similarity.kappa = kappa;

@@ -33,7 +33,8 @@ namespace fs = std::filesystem;
 struct LocalizeOptions {
   std::vector<std::string> map_paths;  // --map, once per map session
   SequenceOptions sequence;
-  std::string map_path, query_path, out_dir = "seqtopo-out", input_kind = "auto", descriptor = "patch", metric;
+  std::string map_path, query_path, out_dir = "seqtopo-out", input_kind = "auto", metric;
+  std::optional<std::string> descriptor;  // default: the map's descriptors (LocalizeSettings)
   std::optional<float> kappa;
   bool kappa_auto = false;
   std::string gt, gt_map_poses;
@@ -51,7 +52,6 @@ struct LocalizeOptions {
 
 pipeline::SimilarityConfig similarity_config(const LocalizeOptions& o) {
   pipeline::SimilarityConfig c;
-  c.descriptor = option_value("--descriptor", [&] { return pipeline::parse_descriptor(o.descriptor); });
   if (!o.metric.empty()) c.distance = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
   c.kappa = o.kappa;
   c.threads = resolve_threads(o.threads);
@@ -158,6 +158,11 @@ void run(LocalizeOptions o) {
     }
   }
   if (!request.similarity_file || !o.online) request.settings.similarity = similarity_config(o);
+  if (o.descriptor) {
+    request.settings.detect_panoramas = false;  // the descriptors asked for are the descriptors used
+    request.settings.descriptors =
+        option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
+  }
   // Checked (and staged beside) before the work: an output folder that cannot be replaced costs no time.
   std::vector<fs::path> inputs{o.map_path, o.query_path, o.gt_map_poses};
   if (truth_source && truth_source->format != pipeline::GroundTruthFormat::same_index) inputs.emplace_back(o.gt);
@@ -170,8 +175,10 @@ void run(LocalizeOptions o) {
   if (o.online) progress.pause_bar(true);
   if (o.online) std::cout << "query,map,confidence,latency_ms,wait_ms\n";
   const auto on_frame = [](std::size_t q, const pipeline::FrameAnswer& a, double seconds, double wait) {
-    std::cout << fmt::format("{},{},{:.4g},{:.3f},{:.3f}\n", q, a.map ? std::to_string(*a.map) : std::string(), a.score,
-                             1e3 * seconds, 1e3 * wait)
+    // The decision: the map frame when the frame is in the map, else empty; the confidence either way.
+    std::cout << fmt::format("{},{},{:.4g},{:.3f},{:.3f}\n", q,
+                             a.in_map && a.map ? std::to_string(*a.map) : std::string(), a.confidence, 1e3 * seconds,
+                             1e3 * wait)
               << std::flush;
   };
   request.settings.similarity.progress = [&progress](std::string_view what, std::size_t done, std::size_t total) {
@@ -182,6 +189,7 @@ void run(LocalizeOptions o) {
   progress.begin("localization");
   pipeline::LocalizeRun r = pipeline::localize_sequences(request, on_frame, next_path);
   const double localization_seconds = progress.end();
+  for (const auto& note : r.notes) progress.line("      " + note);
 
   // The ground truth must fit the sizes before anything is written.
   progress.begin("accuracy and baselines");
@@ -247,8 +255,9 @@ const RegisterCommand registered{
        add_number(app, "--every", o->every, kAtLeastOne,
                   "keep every K-th frame: of a video or bag, the images of a folder, the rows of descriptors.npy");
        app.add_option("--descriptor", o->descriptor,
-                      "patch|joint-histogram|panorama|npy (descriptors.npy inputs use their rows)")
-           ->capture_default_str();
+                      "joint-histogram|patch|panorama|npy (descriptors.npy inputs use their rows), or several "
+                      "comma-separated, fused as the map fuses them (default: joint-histogram,patch; "
+                      "joint-histogram,panorama for 360-degree panoramas)");
        app.add_option("--metric", o->metric, "chi2|l1|cosine|sad (default: by descriptor)");
        add_number_or(app, "--kappa", o->kappa, "auto", o->kappa_auto, kPositive,
                      "K > 0 in S = 1 - K * D, or auto (rows are contrast-enhanced, so it rarely matters)");

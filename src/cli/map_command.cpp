@@ -10,7 +10,6 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -117,13 +116,7 @@ Settings resolve_settings(const MapOptions& o) {
   Settings s = option_value("--preset", [&] { return pipeline::map_preset(o.preset); });
   if (o.descriptor) {
     s.detect_panoramas = false;  // the descriptors asked for are the descriptors used
-    s.descriptors = option_value("--descriptor", [&] {
-      std::vector<pipeline::Descriptor> list;
-      std::stringstream names(*o.descriptor);
-      for (std::string name; std::getline(names, name, ',');) list.push_back(pipeline::parse_descriptor(name));
-      if (list.empty()) throw std::invalid_argument("no descriptor given");
-      return list;
-    });
+    s.descriptors = option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
   }
   if (o.metric_name)
     s.similarity.distance = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });

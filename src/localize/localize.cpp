@@ -6,6 +6,8 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "seqtopo/align/pair_posterior.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
@@ -170,8 +172,9 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
   return frames;
 }
 
-LocalizeResult localize_sequence(const SimilarityMatrix& s, const LocalizeConfig& c) {
-  const SimilarityMatrix scores = score_matrix(s, c);
+LocalizeResult search_scores(const SimilarityMatrix& scores, const LocalizeConfig& c) {
+  check_matrix(scores);
+  validate(c);
   align::AlignConfig ac;
   ac.gap_a = c.gap;
   ac.gap_b = c.gap;
@@ -191,6 +194,11 @@ LocalizeResult localize_sequence(const SimilarityMatrix& s, const LocalizeConfig
   r.statistics = significance::fit_declumped_scores(
       best_first, significance::search_area(scores.rows, scores.cols, false, 0, c.reverse));
   for (double p : path_scores) r.e_values.push_back(r.statistics.valid() ? r.statistics.e_value(p) : std::nan(""));
+  return r;
+}
+
+LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeConfig& c) {
+  LocalizeResult r = search_scores(scores, c);
   // Without a fit, lambda from the cells (an upper bound on the gapped one), else 1.
   double lambda = r.statistics.lambda;
   if (!r.statistics.valid()) {
@@ -198,6 +206,122 @@ LocalizeResult localize_sequence(const SimilarityMatrix& s, const LocalizeConfig
     if (!(lambda > 0)) lambda = 1.0;
   }
   r.frames = frames_from_alignments(r.alignments, r.e_values, lambda, scores, c);
+  return r;
+}
+
+LocalizeResult localize_sequence(const SimilarityMatrix& s, const LocalizeConfig& c) {
+  return localize_scores(score_matrix(s, c), c);
+}
+
+void fused_score_row(std::span<const float* const> rows, std::size_t cols, const LocalizeConfig& c, float* out,
+                     float* scratch, std::span<const double> weights) {
+  if (rows.empty()) throw std::invalid_argument("no similarity row");
+  if (!weights.empty() && weights.size() != rows.size()) throw std::invalid_argument("one weight per descriptor");
+  if (rows.size() == 1) {
+    score_row(rows.front(), cols, c, out);
+    return;
+  }
+  double total = 0;
+  for (std::size_t d = 0; d < rows.size(); ++d) total += weights.empty() ? 1.0 : weights[d];
+  if (!(total > 0)) throw std::invalid_argument("the descriptors' weights sum to 0");
+  std::fill(out, out + cols, 0.0F);
+  for (std::size_t d = 0; d < rows.size(); ++d) {
+    if (!weights.empty() && weights[d] == 0) continue;
+    const float* row = rows[d];
+    if (c.enhance) {
+      similarity::enhance_row(row, cols, c.contrast_window == 0 ? cols : c.contrast_window, scratch);
+      row = scratch;
+    }
+    if (weights.empty()) {
+      for (std::size_t j = 0; j < cols; ++j) out[j] += row[j];
+    } else {
+      const auto w = static_cast<float>(weights[d] / total);
+      for (std::size_t j = 0; j < cols; ++j) out[j] += w * row[j];
+    }
+  }
+  // Equal weights: the sum divided by the count, as the map's fusion (mapping::enhanced_scores).
+  const float count = weights.empty() ? static_cast<float>(rows.size()) : 1.0F;
+  for (std::size_t j = 0; j < cols; ++j) out[j] = out[j] / count - c.contrast_offset;
+}
+
+namespace {
+
+void check_same_shape(std::span<const SimilarityMatrix> ss) {
+  if (ss.empty()) throw std::invalid_argument("no similarity matrix");
+  for (const auto& s : ss) {
+    check_matrix(s);
+    if (s.rows != ss.front().rows || s.cols != ss.front().cols) {
+      throw std::invalid_argument("the similarity matrices of the descriptors differ in shape (" +
+                                  std::to_string(s.rows) + " x " + std::to_string(s.cols) + " and " +
+                                  std::to_string(ss.front().rows) + " x " + std::to_string(ss.front().cols) + ")");
+    }
+  }
+}
+
+}  // namespace
+
+SimilarityMatrix fused_score_matrix(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c,
+                                    std::span<const double> weights) {
+  check_same_shape(ss);
+  validate(c);
+  if (ss.size() == 1) return score_matrix(ss.front(), c);
+  const std::size_t rows = ss.front().rows, cols = ss.front().cols;
+  SimilarityMatrix out(rows, cols);
+  std::vector<const float*> row(ss.size());
+  std::vector<float> scratch(cols);
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t d = 0; d < ss.size(); ++d) row[d] = ss[d].row(i).data();
+    fused_score_row(row, cols, c, out.row(i).data(), scratch.data(), weights);
+  }
+  return out;
+}
+
+std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c) {
+  check_same_shape(ss);
+  std::vector<double> equal(ss.size(), 1.0);
+  if (ss.size() < 2 || !c.enhance) return equal;
+  const double strict = c.even_odds_e_value / static_cast<double>(ss.size());
+  std::vector<bool> sees_alone(ss.size(), false);
+  std::vector<std::pair<std::size_t, std::size_t>> seen;  // the pairs of the alignments found at `strict`
+  for (std::size_t d = 0; d < ss.size(); ++d) {
+    const LocalizeResult alone = localize_sequence(ss[d], c);
+    if (!alone.statistics.valid()) continue;
+    for (std::size_t k = 0; k < alone.alignments.size(); ++k) {
+      sees_alone[d] = sees_alone[d] || alone.e_values[k] <= c.even_odds_e_value;
+      if (alone.e_values[k] <= strict) {
+        seen.insert(seen.end(), alone.alignments[k].pairs.begin(), alone.alignments[k].pairs.end());
+      }
+    }
+  }
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  if (seen.size() < 2) return equal;
+  std::vector<double> weights(ss.size(), 0.0);
+  for (std::size_t d = 0; d < ss.size(); ++d) {
+    const SimilarityMatrix e = score_matrix(ss[d], c);
+    double chance = 0;
+    for (float v : e.values) chance += v;
+    chance /= static_cast<double>(e.values.size());
+    double sum = 0, sum2 = 0;
+    for (const auto& [i, j] : seen) sum += e(i, j), sum2 += static_cast<double>(e(i, j)) * e(i, j);
+    const auto m = static_cast<double>(seen.size());
+    const double mean = sum / m, sd = std::sqrt(std::max(0.0, sum2 / m - mean * mean));
+    const bool blind = !sees_alone[d] && mean - chance < 3 * sd / std::sqrt(m);
+    weights[d] = blind ? 0.0 : std::max(mean - chance, 0.0);
+  }
+  if (std::all_of(weights.begin(), weights.end(), [](double w) { return w == 0; })) return equal;
+  return weights;
+}
+
+LocalizeResult localize_sequence(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c) {
+  check_same_shape(ss);
+  if (ss.size() == 1) return localize_sequence(ss.front(), c);
+  const std::vector<double> weights = descriptor_weights(ss, c);
+  LocalizeResult r = localize_scores(fused_score_matrix(ss, c, weights), c);
+  r.descriptor_weights = weights;
+  for (std::size_t d = 0; d < weights.size(); ++d) {
+    if (weights[d] == 0) r.blind_descriptors.push_back(d);
+  }
   return r;
 }
 

@@ -47,8 +47,7 @@ double latency_percentile(const pipeline::LocalizeRun& run, double p) {
 }
 
 std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDirectory& out) {
-  // Offline every frame has its best guess and the decision on its confidence; online a frame not in the map has
-  // no guess (empty map and score).
+  // Every frame has its best guess and the decision on its confidence (online from the frames so far).
   std::string csv = "query,map,score,confidence,e_value,in_map\n";
   std::size_t not_in_map = 0;
   for (std::size_t q = 0; q < r.answers.size(); ++q) {
@@ -83,13 +82,11 @@ std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDir
     j["seqtopo_version"] = std::string(version());
     j["tolerance"] = r.tolerance;
     j["mode"] = r.online ? "online" : "offline";
-    j["ranked_by"] = r.online ? "score" : "confidence";
+    j["ranked_by"] = "confidence";
     j["baselines"] = {{"single_frame", metrics_json(*r.single_frame)}, {"seqslam", metrics_json(*r.seqslam)}};
     j["baselines"]["seqslam"]["method"] = r.seqslam_method;
     if (r.decision) {
-      // Online the table value is the confidence and the threshold its minimum.
-      j["in_map"] = {{"min_confidence", r.online ? static_cast<double>(r.settings.localize.threshold)
-                                                 : r.settings.localize.min_confidence},
+      j["in_map"] = {{"min_confidence", r.settings.localize.min_confidence},
                      {"frames", r.decision->in_map},
                      {"correct", r.decision->correct},
                      {"precision", r.decision->precision},

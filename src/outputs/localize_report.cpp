@@ -15,9 +15,10 @@
 namespace seqtopo::outputs {
 namespace {
 
-// Offline every frame has its confidence (the probability its guess is right); online the table value stands in.
+// Every frame has its confidence, the probability its guess is right (online from the frames seen so far).
 const char* confidence_label(const pipeline::LocalizeRun& r) {
-  return r.online ? "online table value (higher = more confident)" : "confidence (probability the guess is right)";
+  return r.online ? "confidence (probability the guess is right, from the frames so far)"
+                  : "confidence (probability the guess is right)";
 }
 
 std::string read_file(const std::filesystem::path& path) {
@@ -51,9 +52,7 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
       {"mode", r.online ? "online (one frame at a time)" : "offline (whole query)"},
       {"query frames", std::to_string(r.queries)},
       {"map frames", std::to_string(r.maps)},
-      {r.online ? "frames not in the map"
-                : fmt::format("frames not in the map (confidence < {})", config.min_confidence),
-       std::to_string(not_in_map)},
+      {fmt::format("frames not in the map (confidence < {})", config.min_confidence), std::to_string(not_in_map)},
       {"seconds", fmt::format("{:.3f}", r.seconds)}};
   if (!r.online) summary.emplace_back("alignments", std::to_string(r.alignments.size()));
   if (r.online) {
@@ -83,13 +82,11 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
     if (r.decision) {
       html.paragraph(fmt::format(
           "In the map (confidence at least {}): {} frames, {} of them right (precision {:.3f}, recall {:.3f}).",
-          r.online ? static_cast<double>(config.threshold) : config.min_confidence, r.decision->in_map,
-          r.decision->correct, r.decision->precision, r.decision->recall));
+          config.min_confidence, r.decision->in_map, r.decision->correct, r.decision->precision, r.decision->recall));
     }
-    html.raw(std::string("<p class=\"note\">Precision-recall, sweeping the ") +
-             (r.online ? "per-frame score" : "confidence") +
-             " threshold; seqtopo on top, the baselines dashed; hover for the values.</p><div id=\"pr-view\"></div>"
-             "<div class=\"readout\" id=\"pr-readout\"></div>\n");
+    html.raw(
+        "<p class=\"note\">Precision-recall, sweeping the confidence threshold; seqtopo on top, the baselines dashed; "
+        "hover for the values.</p><div id=\"pr-view\"></div><div class=\"readout\" id=\"pr-readout\"></div>\n");
     data["pr"] =
         detail::pr_json({curve_points(method, "#dc1e1e", *r.metrics), curve_points("SeqSLAM", "#285adc", *r.seqslam),
                          curve_points("single frame", "#787878", *r.single_frame)});
@@ -114,7 +111,7 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
     const auto& a = r.answers[q];
     if (!a.map) continue;
     nlohmann::json row = {{"i", q}, {"j", *a.map}, {"score", a.score}, {"confidence", a.confidence}};
-    if (!r.online) row["in_map"] = a.in_map ? "yes" : "no";
+    row["in_map"] = a.in_map ? "yes" : "no";
     if (std::isfinite(a.e_value)) row["e_value"] = a.e_value;
     if (q < r.latencies.size()) row["latency_ms"] = 1e3 * r.latencies[q];
     values.push_back(a.confidence);
@@ -126,10 +123,8 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
                            {{"key", "j"}, {"label", "map frame"}},
                            {{"key", "score"}, {"label", "local score"}},
                            {{"key", "confidence"}, {"label", "confidence"}}};
-  if (!r.online) {
-    fields.push_back({{"key", "e_value"}, {"label", "E-value of its alignment"}});
-    fields.push_back({{"key", "in_map"}, {"label", "in the map"}});
-  }
+  fields.push_back({{"key", "e_value"}, {"label", r.online ? "E-value (frames so far)" : "E-value of its alignment"}});
+  fields.push_back({{"key", "in_map"}, {"label", "in the map"}});
   if (r.online) fields.push_back({{"key", "latency_ms"}, {"label", "latency [ms]"}});
   data["pairs"] = {{"singular", "Match"},
                    {"css", "match"},
@@ -153,7 +148,7 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
 
   html.heading("Parameters");
   const std::vector<std::pair<std::string, std::string>> parameters{
-      {"descriptor", std::string(pipeline::descriptor_name(r.settings.similarity.descriptor))},
+      {"descriptor", pipeline::descriptor_names(r.settings.descriptors)},
       {"gap", fmt::format("{}", config.gap)},
       {"cap", config.cap ? fmt::format("{}", *config.cap) : "none"},
       {"threshold", fmt::format("{}", config.threshold)},

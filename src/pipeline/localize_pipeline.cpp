@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/localize/online_localizer.hpp"
 #include "seqtopo/pipeline/baselines.hpp"
+#include "seqtopo/pipeline/presets.hpp"
 #include "seqtopo/similarity/distance.hpp"
 #ifdef SEQTOPO_HAVE_RECORDING
 #include "seqtopo/recording/recording.hpp"
@@ -58,32 +60,77 @@ std::vector<std::size_t> map_session_frames(const std::vector<SequenceInput>& ma
   return frames;
 }
 
+// The descriptors the run uses (into run.settings, with a note when panoramas change them): the rows of a
+// descriptors.npy map, else the settings', the panorama signature for 360-degree images.
+void choose_descriptors(const LocalizeRequest& request, LocalizeRun& run) {
+  auto& ds = run.settings.descriptors;
+  if (ds.empty()) throw std::invalid_argument("no descriptor asked for");
+  if (request.similarity_file) return;
+  const SequenceInput first = map_inputs(request).front();
+  if (resolve_input_kind(first) == InputKind::descriptors) {
+    ds = {Descriptor::npy};
+    return;
+  }
+  if (std::find(ds.begin(), ds.end(), Descriptor::npy) != ds.end()) {
+    throw InputError("--descriptor", "npy needs descriptors .npy files as input");
+  }
+  if (request.settings.detect_panoramas) {
+    const std::string note = detect_panorama_descriptors(first, ds);
+    if (!note.empty()) run.notes.push_back(note);
+  }
+}
+
 void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
   const auto t0 = Clock::now();
-  SimilarityResult s;
+  std::vector<SimilarityResult> s;
   try {
     if (request.similarity_file) {
       const SequenceInput file{*request.similarity_file, InputKind::similarity, 1};
-      s = compute_similarity(file, file, request.settings.similarity);
+      s.push_back(compute_similarity(file, file, request.settings.similarity));
     } else {
       const std::vector<SequenceInput> maps = map_inputs(request);
-      s = compute_similarity(std::span<const SequenceInput>(&request.query, 1), maps, request.settings.similarity);
-      run.map_session_frames = map_session_frames(maps, s.column_names);
+      s = compute_similarities(std::span<const SequenceInput>(&request.query, 1), maps, run.settings.descriptors,
+                               request.settings.similarity);
+      run.map_session_frames = map_session_frames(maps, s.front().column_names);
     }
   } catch (const std::invalid_argument& e) {
     throw InputError(request.query.path.empty() ? request.map.path.string() : request.query.path.string(), e.what());
   }
   run.timings.emplace_back("similarity matrix", seconds_since(t0));
-  run.similarity = std::move(s.similarity);
-  run.queries = run.similarity.rows;
-  run.maps = run.similarity.cols;
+  std::vector<SimilarityMatrix> similarities;
+  for (auto& r : s) similarities.push_back(std::move(r.similarity));
 
   const auto t1 = Clock::now();
-  const auto result = localize::localize_sequence(run.similarity, request.settings.localize);
+  const auto& config = request.settings.localize;
+  const auto result = localize::localize_sequence(similarities, config);
   run.timings.emplace_back("alignment (forward and reverse)", seconds_since(t1));
+  run.blind_descriptors = result.blind_descriptors;
+  run.descriptor_weights = result.descriptor_weights;
+  if (similarities.size() == 1) {
+    run.similarity = std::move(similarities.front());
+  } else {
+    std::string weights;
+    for (std::size_t d = 0; d < similarities.size(); ++d) {
+      weights += fmt::format("{}{} {:.2f}", d == 0 ? "" : ", ", descriptor_name(run.settings.descriptors[d]),
+                             result.descriptor_weights[d]);
+    }
+    run.notes.push_back("descriptors fused with the weights of their evidence: " + weights);
+    for (std::size_t d : result.blind_descriptors) {
+      run.notes.push_back(
+          fmt::format("descriptor {} sees no revisit (none on its own, nor higher scores than chance "
+                      "on the pairs another localizes): left out of the fusion",
+                      descriptor_name(run.settings.descriptors[d])));
+    }
+    // What the baselines and the figure see: the fused enhanced scores, before the offset.
+    localize::LocalizeConfig unshifted = config;
+    unshifted.contrast_offset = 0;
+    run.similarity = localize::fused_score_matrix(similarities, unshifted, result.descriptor_weights);
+  }
+  run.queries = run.similarity.rows;
+  run.maps = run.similarity.cols;
   for (std::size_t k = 0; k < result.alignments.size(); ++k) {
     const double e = result.e_values[k];
-    if (std::isfinite(e) ? e <= 1.0 : result.alignments[k].score >= request.settings.localize.threshold) {
+    if (std::isfinite(e) ? e <= 1.0 : result.alignments[k].score >= config.threshold) {
       run.alignments.push_back(result.alignments[k]);
       run.e_values.push_back(e);
     }
@@ -95,15 +142,22 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
 // A descriptor of one frame: dense (thumbnail, external descriptor) or a sparse joint histogram.
 using FrameDescriptor = std::variant<std::vector<float>, similarity::SparseHistogram>;
 
+// One frame's descriptor per descriptor asked for.
 struct Describer {
-  Descriptor descriptor;
+  std::vector<Descriptor> descriptors;
   SimilarityConfig config;
   std::string input;  // the input being read (named by an error of the image size)
   // The joint histogram does not resize: every image of the map and the query has the first one's size.
   std::optional<std::pair<int, int>> first_size;
   std::string first_input;
 
-  FrameDescriptor operator()(const RgbImage& image) {
+  std::vector<FrameDescriptor> operator()(const RgbImage& image) {
+    std::vector<FrameDescriptor> out;
+    for (Descriptor d : descriptors) out.push_back(describe(image, d));
+    return out;
+  }
+
+  FrameDescriptor describe(const RgbImage& image, Descriptor descriptor) {
     if (descriptor == Descriptor::joint_histogram) {
       const std::pair size{image.width, image.height};
       if (!first_size) {
@@ -139,7 +193,8 @@ double frame_distance(similarity::Distance metric, const FrameDescriptor& a, con
 // listed first; a query of "-" takes one image path at a time from next_path as the frames arrive).
 // `arrival` (when given) is set to the time each frame arrives: its path read, before it is decoded.
 void for_each_frame(const SequenceInput& input, Describer& describe, const NextPath& next_path,
-                    const std::function<void(FrameDescriptor)>& visit, Clock::time_point* arrival = nullptr) {
+                    const std::function<void(std::vector<FrameDescriptor>)>& visit,
+                    Clock::time_point* arrival = nullptr) {
   const auto arrived = [arrival] {
     if (arrival) *arrival = Clock::now();
   };
@@ -180,7 +235,7 @@ void for_each_frame(const SequenceInput& input, Describer& describe, const NextP
       if (rows.empty()) throw InputError(input.path.string(), "no descriptors (empty array)");
       for (std::size_t i = 0; i < rows.rows; ++i) {
         arrived();
-        visit(std::vector<float>(rows.row(i).begin(), rows.row(i).end()));
+        visit({std::vector<float>(rows.row(i).begin(), rows.row(i).end())});
       }
       return;
     }
@@ -195,10 +250,11 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
   const auto& config = request.settings.localize;
   auto report = [&](const localize::OnlineEstimate& e, double seconds, double wait) {
     FrameAnswer a;
-    if (e.in_map) a.map = e.map;
+    a.map = e.map;
     a.in_map = e.in_map;
-    a.score = e.confidence;
+    a.score = e.score;
     a.confidence = e.confidence;
+    a.e_value = e.e_value;
     a.candidates = {e.map};
     run.answers.push_back(a);
     run.latencies.push_back(seconds);
@@ -222,45 +278,49 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
     return;
   }
 
-  // Image, video or descriptor inputs: the map is described once; each query frame then costs one
-  // descriptor and one row of distances. The rows are contrast-enhanced, so S = 1 - kappa * D needs no kappa
-  // (any kappa > 0 gives the same scores).
+  // Image, video or descriptor inputs: the map is described once; each query frame then costs its descriptors and
+  // one row of distances for each. The rows are contrast-enhanced, so S = 1 - kappa * D needs no kappa (any
+  // kappa > 0 gives the same scores); several descriptors' enhanced rows are fused as offline.
   const auto& sc = request.settings.similarity;
-  const InputKind map_kind = resolve_input_kind(map_inputs(request).front());
-  const Descriptor d = map_kind == InputKind::descriptors ? Descriptor::npy : sc.descriptor;
-  if (d == Descriptor::npy && map_kind != InputKind::descriptors) {
-    throw InputError("--descriptor", "npy needs descriptors .npy files as input");
-  }
-  const similarity::Distance metric = sc.distance.value_or(default_distance(d));
-  Describer describe{d, sc, {}, std::nullopt, {}};
+  const std::vector<Descriptor>& ds = run.settings.descriptors;
+  std::vector<similarity::Distance> metrics;
+  for (Descriptor d : ds) metrics.push_back(sc.distance.value_or(default_distance(d)));
+  Describer describe{ds, sc, {}, std::nullopt, {}};
   const auto t0 = Clock::now();
-  std::vector<FrameDescriptor> map;
+  std::vector<std::vector<FrameDescriptor>> map;
   for (const auto& session : map_inputs(request)) {
     describe.input = session.path.string();
     const std::size_t before = map.size();
-    for_each_frame(session, describe, next_path, [&](FrameDescriptor f) { map.push_back(std::move(f)); });
+    for_each_frame(session, describe, next_path, [&](std::vector<FrameDescriptor> f) { map.push_back(std::move(f)); });
     run.map_session_frames.push_back(map.size() - before);
   }
   run.timings.emplace_back("map descriptors", seconds_since(t0));
   run.maps = map.size();
-  localize::OnlineLocalizer localizer(map.size(), config);
-  std::vector<float> row(map.size());
-  std::vector<float> kept;
+  localize::OnlineLocalizer localizer(map.size(), config, ds.size());
+  const std::size_t m = map.size();
+  std::vector<float> rows(ds.size() * m);
+  std::vector<std::span<const float>> row_of;
+  for (std::size_t d = 0; d < ds.size(); ++d) row_of.emplace_back(rows.data() + d * m, m);
+  std::vector<std::vector<float>> kept(ds.size());
   // A frame's latency is its processing, from its arrival (its path read) to its answer: decoding, describing,
   // aligning. The time spent waiting for it since the previous answer is reported apart.
   auto arrival = Clock::now(), answered = arrival;
   describe.input = request.query.path == "-" ? std::string("stdin") : request.query.path.string();
   for_each_frame(
       request.query, describe, next_path,
-      [&](FrameDescriptor q) {
+      [&](std::vector<FrameDescriptor> q) {
         try {
-          for (std::size_t j = 0; j < map.size(); ++j) row[j] = static_cast<float>(-frame_distance(metric, q, map[j]));
+          for (std::size_t d = 0; d < ds.size(); ++d) {
+            float* row = rows.data() + d * m;
+            for (std::size_t j = 0; j < m; ++j)
+              row[j] = static_cast<float>(-frame_distance(metrics[d], q[d], map[j][d]));
+          }
         } catch (const std::invalid_argument& e) {
           throw InputError(request.query.path.string(), e.what());
         }
-        const auto e = localizer.feed(row);
+        const auto e = localizer.feed_descriptors(row_of);
         const auto now = Clock::now();
-        kept.insert(kept.end(), row.begin(), row.end());
+        for (std::size_t d = 0; d < ds.size(); ++d) kept[d].insert(kept[d].end(), row_of[d].begin(), row_of[d].end());
         report(e, std::chrono::duration<double>(now - arrival).count(),
                std::chrono::duration<double>(arrival - answered).count());
         // The wait for the next frame starts at this answer (before it is reported: whoever waits for the answer
@@ -270,7 +330,17 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
       &arrival);
   run.queries = run.answers.size();
   if (run.queries == 0) throw InputError(request.query.path.string(), "no query frame");
-  run.similarity = SimilarityMatrix(run.queries, run.maps, std::move(kept));
+  std::vector<SimilarityMatrix> seen;
+  for (auto& k : kept) seen.emplace_back(run.queries, run.maps, std::move(k));
+  if (seen.size() == 1) {
+    run.similarity = std::move(seen.front());
+  } else {
+    // As offline: the fused enhanced scores before the offset, with the weights the localizer ended with.
+    localize::LocalizeConfig unshifted = config;
+    unshifted.contrast_offset = 0;
+    run.descriptor_weights = localizer.weights();
+    run.similarity = localize::fused_score_matrix(seen, unshifted, run.descriptor_weights);
+  }
 }
 
 }  // namespace
@@ -293,6 +363,7 @@ LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineQuery
     if (request.map_sessions.size() <= 1) run.map_input = map_inputs(request).front();
     run.query_input = request.query;
   }
+  choose_descriptors(request, run);
   const auto t0 = Clock::now();
   if (request.online) {
     run_online(request, on_frame, next_query_path, run);
@@ -331,7 +402,7 @@ void evaluate_localization_run(LocalizeRun& run, const evaluation::LocalizationT
                  ? 0.0
                  : static_cast<double>(d.correct) / static_cast<double>(run.metrics->queries_with_match);
   run.decision = d;
-  if (!run.online) run.calibration = evaluation::calibration(confidence, correct);
+  run.calibration = evaluation::calibration(confidence, correct);
   run.single_frame = evaluation::evaluate_localization(single_frame_localization(run.similarity), truth, tolerance);
   const baseline::SeqSlamConfig seqslam = localization_seqslam_config(threads);
   run.seqslam = evaluation::evaluate_localization(seqslam_localization(run.similarity, seqslam), truth, tolerance);

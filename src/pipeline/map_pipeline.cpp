@@ -434,26 +434,7 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
   }
   // 360-degree panoramas get the heading-invariant descriptor (presets.hpp), decided on the first image.
   if (request_.settings.detect_panoramas && kind_ == InputKind::images && !request_.streaming) {
-    const auto listing = list_input_images(inputs_.front());
-    if (!listing.files.empty()) {
-      try {
-        // Its header, not the picture: a huge image is refused by the memory check below before any decoding.
-        const image::ImageHeader first = image::image_size(listing.files.front());
-        if (looks_panoramic(first.width, first.height)) {
-          const auto chosen = panorama_descriptors(request_.settings.descriptors);
-          if (chosen != request_.settings.descriptors) {
-            request_.settings.descriptors = chosen;
-            std::string names;
-            for (auto d : chosen) names += (names.empty() ? "" : ",") + std::string(descriptor_name(d));
-            panorama_note_ =
-                fmt::format("{} x {} images look like 360-degree panoramas (at least {}:1): descriptors {}",
-                            first.width, first.height, kPanoramaAspect, names);
-          }
-        }
-      } catch (const std::exception&) {
-        // an unreadable image is reported by the run itself
-      }
-    }
+    panorama_note_ = detect_panorama_descriptors(inputs_.front(), request_.settings.descriptors);
   }
   // Every buffer of the run counted (memory_estimate.hpp); one that cannot fit is refused here, before any work.
   std::optional<std::size_t> expected = 0;

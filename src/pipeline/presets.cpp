@@ -1,8 +1,13 @@
 #include "seqtopo/pipeline/presets.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <exception>
 #include <stdexcept>
 #include <string>
+
+#include "seqtopo/image/image_io.hpp"
 
 namespace seqtopo::pipeline {
 
@@ -45,6 +50,24 @@ std::vector<Descriptor> panorama_descriptors(std::vector<Descriptor> descriptors
     descriptors.push_back(Descriptor::panorama);
   }
   return descriptors;
+}
+
+std::string detect_panorama_descriptors(const SequenceInput& input, std::vector<Descriptor>& descriptors) {
+  if (resolve_input_kind(input) != InputKind::images) return {};
+  const auto listing = list_input_images(input);
+  if (listing.files.empty()) return {};
+  try {
+    // Its header, not the picture: a huge image is refused by the memory check before any decoding.
+    const image::ImageHeader first = image::image_size(listing.files.front());
+    if (!looks_panoramic(first.width, first.height)) return {};
+    const auto chosen = panorama_descriptors(descriptors);
+    if (chosen == descriptors) return {};
+    descriptors = chosen;
+    return fmt::format("{} x {} images look like 360-degree panoramas (at least {}:1): descriptors {}", first.width,
+                       first.height, kPanoramaAspect, descriptor_names(chosen));
+  } catch (const std::exception&) {
+    return {};  // an unreadable image is reported by the run itself
+  }
 }
 
 std::vector<std::string_view> map_preset_names() { return {"default", "paper"}; }

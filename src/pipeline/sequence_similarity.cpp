@@ -57,6 +57,26 @@ std::string_view descriptor_name(Descriptor descriptor) {
   return "?";
 }
 
+std::vector<Descriptor> parse_descriptors(std::string_view names) {
+  std::vector<Descriptor> list;
+  while (!names.empty()) {
+    const std::size_t comma = names.find(',');
+    list.push_back(parse_descriptor(names.substr(0, comma)));
+    names = comma == std::string_view::npos ? std::string_view() : names.substr(comma + 1);
+  }
+  if (list.empty()) throw std::invalid_argument("no descriptor given");
+  return list;
+}
+
+std::string descriptor_names(std::span<const Descriptor> descriptors) {
+  std::string names;
+  for (Descriptor d : descriptors) {
+    if (!names.empty()) names += ',';
+    names += descriptor_name(d);
+  }
+  return names;
+}
+
 Distance default_distance(Descriptor descriptor) {
   switch (descriptor) {
     case Descriptor::joint_histogram:
@@ -829,6 +849,12 @@ std::vector<SimilarityResult> compute_similarities(std::span<const SequenceInput
                                                    std::span<const Descriptor> descriptors,
                                                    const SimilarityConfig& config) {
   return run(sessions, {}, false, config, descriptors);
+}
+
+std::vector<SimilarityResult> compute_similarities(std::span<const SequenceInput> a, std::span<const SequenceInput> b,
+                                                   std::span<const Descriptor> descriptors,
+                                                   const SimilarityConfig& config) {
+  return run(a, b, true, config, descriptors);
 }
 
 }  // namespace seqtopo::pipeline

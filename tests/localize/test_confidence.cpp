@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "seqtopo/localize/localize.hpp"
+#include "seqtopo/localize/online_localizer.hpp"
 
 namespace seqtopo::localize {
 namespace {
@@ -18,6 +19,7 @@ std::vector<std::vector<double>> route(std::size_t frames, std::size_t dim, std:
   std::normal_distribution<double> g(0.0, 1.0);
   const double rho = std::exp(-1.0 / 3.0);
   std::vector<std::vector<double>> out(frames, std::vector<double>(dim));
+  if (frames == 0) return out;
   for (std::size_t d = 0; d < dim; ++d) out[0][d] = g(rng);
   for (std::size_t i = 1; i < frames; ++i) {
     for (std::size_t d = 0; d < dim; ++d) out[i][d] = rho * out[i - 1][d] + std::sqrt(1 - rho * rho) * g(rng);
@@ -36,13 +38,13 @@ struct Case {
   std::vector<long> truth;  // map frame of each query frame, -1 = not in the map
 };
 
-// The query drives map frames [40, 140) with noise of standard deviation `noise` on every descriptor, then 30
-// frames somewhere new.
-Case drive(double noise, unsigned seed) {
+// The query drives map frames [40, 140) with noise of standard deviation `noise` on every descriptor, then
+// `elsewhere` frames somewhere new.
+Case drive(double noise, unsigned seed, std::size_t elsewhere_frames = 30) {
   std::mt19937 rng(seed);
   const std::size_t map_frames = 180, dim = 24;
   const auto map = route(map_frames, dim, rng);
-  const auto elsewhere = route(30, dim, rng);
+  const auto elsewhere = route(elsewhere_frames, dim, rng);
   std::normal_distribution<double> g(0.0, noise);
   std::vector<std::vector<double>> query;
   Case c;
@@ -63,41 +65,78 @@ Case drive(double noise, unsigned seed) {
   return c;
 }
 
+// Binned confidence against the share of right guesses (within the config's tolerance).
+struct Reliability {
+  static constexpr int kBins = 10;
+  std::vector<double> sum_confidence = std::vector<double>(kBins, 0), right = std::vector<double>(kBins, 0),
+                      count = std::vector<double>(kBins, 0);
+  double frames = 0;
+
+  void add(double confidence, bool ok) {
+    ASSERT_GE(confidence, 0.0);
+    ASSERT_LE(confidence, 1.0);
+    const auto bin = static_cast<std::size_t>(std::min(kBins - 1, static_cast<int>(confidence * kBins)));
+    sum_confidence[bin] += confidence;
+    right[bin] += ok ? 1 : 0;
+    count[bin] += 1;
+    frames += 1;
+  }
+  // Expected calibration error, computed here from its definition.
+  double ece() const {
+    double e = 0;
+    for (std::size_t k = 0; k < count.size(); ++k) {
+      if (count[k] > 0) e += count[k] / frames * std::abs(right[k] / count[k] - sum_confidence[k] / count[k]);
+    }
+    return e;
+  }
+};
+
+bool right_guess(const Case& c, std::size_t q, std::size_t map, std::size_t tolerance) {
+  return c.truth[q] >= 0 && std::abs(static_cast<long>(map) - c.truth[q]) <= static_cast<long>(tolerance);
+}
+
 TEST(Confidence, ReadsAsAProbabilityOnQueriesOfEveryDifficulty) {
   // From easy (noise 0.5: almost every frame right) to hard (noise 2.5: few are), 24 queries of 130 frames.
-  constexpr int kBins = 10;
-  std::vector<double> sum_confidence(kBins, 0), right(kBins, 0), count(kBins, 0);
-  double frames = 0;
+  Reliability offline;
   const LocalizeConfig config;
   for (int trial = 0; trial < 24; ++trial) {
     const Case c = drive(0.5 + 0.25 * (trial % 9), 100 + static_cast<unsigned>(trial));
     const auto r = localize_sequence(c.similarity, config);
     for (std::size_t q = 0; q < r.frames.size(); ++q) {
-      const auto& f = r.frames[q];
-      ASSERT_GE(f.confidence, 0.0);
-      ASSERT_LE(f.confidence, 1.0);
-      const bool ok =
-          c.truth[q] >= 0 && std::abs(static_cast<long>(f.map) - c.truth[q]) <= static_cast<long>(config.tolerance);
-      const int bin = std::min(kBins - 1, static_cast<int>(f.confidence * kBins));
-      sum_confidence[static_cast<std::size_t>(bin)] += f.confidence;
-      right[static_cast<std::size_t>(bin)] += ok ? 1 : 0;
-      count[static_cast<std::size_t>(bin)] += 1;
-      frames += 1;
+      offline.add(r.frames[q].confidence, right_guess(c, q, r.frames[q].map, config.tolerance));
     }
   }
-  // Expected calibration error, computed here from its definition.
-  double ece = 0;
-  for (int b = 0; b < kBins; ++b) {
-    const auto k = static_cast<std::size_t>(b);
-    if (count[k] == 0) continue;
-    ece += count[k] / frames * std::abs(right[k] / count[k] - sum_confidence[k] / count[k]);
-  }
-  EXPECT_LT(ece, 0.08);
+  EXPECT_LT(offline.ece(), 0.08);
   // The confident end is right, the unsure end mostly wrong.
-  ASSERT_GT(count[kBins - 1], 100);
-  EXPECT_GT(right[kBins - 1] / count[kBins - 1], 0.9);
-  ASSERT_GT(count[0], 100);
-  EXPECT_LT(right[0] / count[0], 0.3);
+  constexpr int kTop = Reliability::kBins - 1;
+  ASSERT_GT(offline.count[kTop], 100);
+  EXPECT_GT(offline.right[kTop] / offline.count[kTop], 0.9);
+  ASSERT_GT(offline.count[0], 100);
+  EXPECT_LT(offline.right[0] / offline.count[0], 0.3);
+}
+
+TEST(Confidence, OnlineReadsAsAProbabilityFromTheFramesSoFar) {
+  // Queries of every difficulty inside the map, one frame at a time: the confidence of each frame's guess, made
+  // before the later frames arrive, is a probability too (it was the table value, 1.5 to 3000). (A query that leaves
+  // the map keeps its last alignment's confidence for the frames its evidence takes to fall: docs/limitations.md.)
+  Reliability online;
+  const LocalizeConfig config;
+  for (int trial = 0; trial < 24; ++trial) {
+    const Case c = drive(0.5 + 0.25 * (trial % 9), 100 + static_cast<unsigned>(trial), 0);
+    const auto estimates = online_estimates(c.similarity, config);
+    for (std::size_t q = 0; q < estimates.size(); ++q) {
+      online.add(estimates[q].confidence, right_guess(c, q, estimates[q].map, config.tolerance));
+      EXPECT_EQ(estimates[q].in_map, estimates[q].confidence >= config.min_confidence && estimates[q].confidence > 0);
+    }
+  }
+  EXPECT_LT(online.ece(), 0.08);
+  constexpr int kTop = Reliability::kBins - 1;
+  ASSERT_GT(online.count[kTop], 100);
+  EXPECT_GT(online.right[kTop] / online.count[kTop], 0.9);
+  // (The unsure end is the first frames of each query, right more often than not: before the evidence builds up
+  // the confidence says too little, never too much.)
+  ASSERT_GT(online.count[0], 100);
+  EXPECT_GT(online.right[0] / online.count[0], online.sum_confidence[0] / online.count[0]);
 }
 
 TEST(Confidence, AWrongPairInsideALongCorrectAlignmentIsLessSureThanItsNeighbours) {

@@ -69,10 +69,12 @@ TEST(Online, EqualsNaiveTablesOnTheFramesSeenSoFar) {
           }
         }
       }
-      EXPECT_FLOAT_EQ(e.confidence, best);
+      EXPECT_FLOAT_EQ(e.score, best);
       EXPECT_EQ(e.map, best_j) << i;
       EXPECT_EQ(e.direction, best_d) << i;
-      EXPECT_EQ(e.in_map, best >= c.threshold && best > 0);
+      EXPECT_GE(e.confidence, 0.0);
+      EXPECT_LE(e.confidence, 1.0);
+      EXPECT_EQ(e.in_map, e.confidence >= c.min_confidence && e.confidence > 0);
     }
   }
 }
@@ -88,6 +90,7 @@ TEST(Online, EstimatesNeverDependOnLaterFrames) {
     const auto part = online_estimates(prefix, c);
     for (std::size_t i = 0; i < t; ++i) {
       EXPECT_EQ(part[i].map, all[i].map);
+      EXPECT_EQ(part[i].score, all[i].score);
       EXPECT_EQ(part[i].confidence, all[i].confidence);
       EXPECT_EQ(part[i].direction, all[i].direction);
     }
@@ -110,7 +113,7 @@ TEST(Online, BestConfidenceSoFarIsTheEnginesBestAlignmentScore) {
     OnlineLocalizer online(s.cols, c);
     float best_so_far = 0;
     for (std::size_t i = 0; i < s.rows; ++i) {
-      best_so_far = std::max(best_so_far, online.feed(s.row(i)).confidence);
+      best_so_far = std::max(best_so_far, online.feed(s.row(i)).score);
       align::AlignConfig ac;
       ac.gap_a = ac.gap_b = c.gap;
       ac.cap = c.cap;

@@ -9,14 +9,27 @@
 //   R(i, j) = min(cap, max(0, R(i-1, j+1) + s(i, j), R(i-1, j) - gap, R(i, j+1) - gap))
 // where s is the row-scored similarity (score_row). F(i, j) is the best alignment of query frames up to i
 // ending on the pair (i, j) with the map driven forwards, R the same driven backwards. After frame i the
-// estimate is the cell of row i with the highest value over both tables (ties: the higher row score
-// s(i, j), then forward before reverse, then the smaller j); its value is the confidence, and the frame is
-// "not in the map" while that value is below `threshold`. These rows are exactly the rows of the engine's
+// best guess is the cell of row i with the highest value v over both tables (ties: the higher row score
+// s(i, j), then forward before reverse, then the smaller j). These rows are exactly the rows of the engine's
 // first fill on the query frames seen so far, before any declumping, so they never change when later
-// frames arrive: the estimate of frame i is final when it is made. (The offline localize_sequence uses the
+// frames arrive: the guess of frame i is final when it is made. (The offline localize_sequence uses the
 // whole query, later frames included, and so may differ.)
 //
-// Work and memory per frame: O(map frames), independent of how many frames have been seen.
+// Confidence, as offline (localize.hpp): the probability that the guess is within `tolerance` map frames of the
+// truth, P(revisit | E) x posterior. E is the E-value of v, an alignment ending at the frame, in the search so far:
+// the extreme-value fit of the declumped alignments of the frames seen (significance/score_statistics.hpp, as
+// localize_sequence fits them), made again each time the frames seen double from 32 (the work of a few offline
+// localizations in all), its area scaled to the frames seen since. The posterior is where in row i the alignment
+// ends, given that one does: the weight exp(lambda F) of the cells within +-tolerance of the guess in its table over
+// that of every cell of both tables where an alignment ends (F > 0). Before a fit (fewer than 32 frames, or too
+// few chance alignments) P(revisit | E) is 1 when v >= `threshold` and 0 below, and lambda is Karlin & Altschul's of
+// the scores seen (significance::ungapped_lambda), as offline without a fit. The frame is "in the map" when the
+// confidence is at least `min_confidence`.
+//
+// Work per frame: O(map frames), plus the refits (a localization of the frames seen, at 32, 64, 128, ... frames).
+// Memory: the scored rows seen, for the refits (frames x map frames floats, as the matrix offline).
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -27,32 +40,56 @@
 namespace seqtopo::localize {
 
 struct OnlineEstimate {
-  std::size_t query = 0;  // index of the frame just fed
-  bool in_map = false;    // confidence >= threshold
-  std::size_t map = 0;    // best map frame now
-  float confidence = 0;   // the table value there (capped alignment score ending at this frame)
+  std::size_t query = 0;          // index of the frame just fed
+  bool in_map = false;            // confidence >= min_confidence
+  std::size_t map = 0;            // best guess of the map frame now, given for every frame
+  float score = 0;                // the table value there (capped alignment score ending at this frame)
+  double confidence = 0;          // the probability that the guess is right (see above)
+  double e_value = std::nan("");  // of the score in the search so far (NaN before a fit)
   align::Direction direction = align::Direction::forward;
 };
 
 class OnlineLocalizer {
  public:
-  // Throws std::invalid_argument on map_frames == 0 or an unusable config.
-  OnlineLocalizer(std::size_t map_frames, const LocalizeConfig& config = {});
+  static constexpr std::size_t kFirstFit = 8;  // frames seen at the first fit of the statistics
 
-  // Feeds the next query frame's similarities to every map frame (map_frames values, finite).
+  // `descriptors` similarities a frame, fused as offline (localize_sequence of several matrices): their weights
+  // (descriptor_weights) from the frames seen, made again at each refit. Throws std::invalid_argument on
+  // map_frames == 0, descriptors == 0 or an unusable config.
+  OnlineLocalizer(std::size_t map_frames, const LocalizeConfig& config = {}, std::size_t descriptors = 1);
+
+  // Feeds the next query frame's similarities to every map frame (map_frames values, finite): one descriptor.
   OnlineEstimate feed(std::span<const float> similarity_row);
+  // The same with one row per descriptor.
+  OnlineEstimate feed_descriptors(std::span<const std::span<const float>> similarity_rows);
 
   std::size_t map_frames() const { return map_frames_; }
   std::size_t frames_seen() const { return frames_seen_; }
   // The table rows of the last frame (map_frames values each), for inspection and tests.
   std::span<const float> forward_row() const { return forward_; }
   std::span<const float> reverse_row() const { return reverse_; }
+  // The statistics the confidences use now (valid() false before the first fit).
+  const significance::ScoreStatistics& statistics() const { return fit_; }
+  // The descriptors' weights in the fusion now (empty: equal, before the first fit or with one descriptor).
+  const std::vector<double>& weights() const { return weights_; }
 
  private:
+  void step();               // the recurrences' next rows from scores_
+  OnlineEstimate advance();  // step, then the estimate of the frame
+  void refit();              // the weights, statistics and lambda from the rows seen
+  float clamp(float v) const { return config_.cap ? std::min(v, *config_.cap) : v; }
+
   std::size_t map_frames_;
   LocalizeConfig config_;
   std::size_t frames_seen_ = 0;
   std::vector<float> forward_, reverse_, previous_forward_, previous_reverse_, scores_;
+  std::vector<float> seen_;              // the scored rows so far, for the refits
+  std::vector<std::vector<float>> raw_;  // several descriptors: each one's similarity rows so far
+  std::vector<double> weights_;
+  std::vector<float> scratch_;
+  significance::ScoreStatistics fit_;
+  double lambda_ = 1.0;
+  std::size_t next_fit_ = 1;  // frames seen at the next refit (doubling)
 };
 
 // The online estimates of every frame of a whole query matrix, computed in one go: the reference the online

@@ -28,11 +28,14 @@
 namespace seqtopo::pipeline {
 
 struct LocalizeSettings {
-  SimilarityConfig similarity = [] {
-    SimilarityConfig c;
-    c.descriptor = Descriptor::patch;  // localization's default descriptor
-    return c;
-  }();
+  SimilarityConfig similarity;  // its `descriptor` is not read: `descriptors` says which
+  // One query x map similarity per descriptor, fused as the map fuses its descriptors, a blind one left out
+  // (localize::localize_sequence): the map's default (MapSettings::descriptors). A descriptors.npy or similarity.npy
+  // input is one matrix whatever this says.
+  std::vector<Descriptor> descriptors{Descriptor::joint_histogram, Descriptor::patch};
+  // 360-degree panoramas get the heading-invariant descriptor, as the map's (MapSettings::detect_panoramas). Off
+  // when the descriptors are chosen.
+  bool detect_panoramas = true;
   localize::LocalizeConfig localize;
 };
 
@@ -50,13 +53,15 @@ struct LocalizeRequest {
 
 // One query frame's answer, whichever mode produced it.
 struct FrameAnswer {
-  // The best guess: offline given for every frame; online nullopt while the frame is "not in the map".
+  // The best guess, given for every frame (offline and online).
   std::optional<std::size_t> map;
-  bool in_map = false;  // the decision: confidence >= the minimum confidence (online: score >= threshold)
+  bool in_map = false;  // the decision: confidence >= the minimum confidence
   float score = 0;      // local alignment score (online: the table value)
-  // Offline: the probability that the guess is right (localize/localize.hpp); online: the table value.
+  // The probability that the guess is right (localize/localize.hpp; online from the frames so far,
+  // localize/online_localizer.hpp).
   double confidence = 0;
-  double e_value = std::nan("");        // offline: of the alignment that gave the guess (NaN: none or no fit)
+  // Of the alignment that gave the guess (online: of its score in the search so far); NaN: none or no fit.
+  double e_value = std::nan("");
   std::vector<std::size_t> candidates;  // best first
 };
 
@@ -68,9 +73,16 @@ struct InMapDecision {
 
 struct LocalizeRun {
   bool online = false;
-  std::string inputs;           // "QUERY in MAP", or the similarity file (for the report)
-  LocalizeSettings settings;    // what ran
-  SimilarityMatrix similarity;  // query x map (offline, or the rows seen online)
+  std::string inputs;         // "QUERY in MAP", or the similarity file (for the report)
+  LocalizeSettings settings;  // what ran (its descriptors those used: npy for descriptors, panorama detected)
+  // Offline with several descriptors: their weights in the fusion (localize::descriptor_weights) and those left out
+  // as blind (indices into settings.descriptors).
+  std::vector<double> descriptor_weights;
+  std::vector<std::size_t> blind_descriptors;
+  std::vector<std::string> notes;  // what the run decided (panoramas detected, a descriptor left out), in order
+  // query x map (offline, or the rows seen online): the similarity of one descriptor, or the fused contrast-enhanced
+  // scores of several (localize::fused_score_matrix with a contrast offset of 0)
+  SimilarityMatrix similarity;
   std::size_t queries = 0, maps = 0;
   std::vector<std::size_t> map_session_frames;  // map frames of each map session (one entry for one map)
   std::vector<FrameAnswer> answers;
@@ -89,7 +101,7 @@ struct LocalizeRun {
   // With ground truth (evaluate_localization_run):
   std::optional<evaluation::LocalizationMetrics> metrics, single_frame, seqslam;
   std::string seqslam_method;                          // the baseline's configuration, as the report names it
-  std::optional<evaluation::Calibration> calibration;  // offline: the confidence against the truth
+  std::optional<evaluation::Calibration> calibration;  // the confidence against the truth
   std::optional<InMapDecision> decision;
   std::size_t tolerance = 0;
 };

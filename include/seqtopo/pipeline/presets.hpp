@@ -5,6 +5,7 @@
 //    preset and why"); the pose graph draws the trajectory picture;
 //  * paper: the mapping paper's pipeline (section IV): joint histograms, chi2, S = 1 - kappa D aligned as it
 //    is, pruning by length ("the longest matching subsequence"), the EKF for the picture.
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -35,6 +36,10 @@ bool looks_panoramic(int width, int height);
 // The descriptors for panoramas: `descriptors` with patch replaced by panorama (and panorama added when neither
 // is there); unchanged when panorama is already in.
 std::vector<Descriptor> panorama_descriptors(std::vector<Descriptor> descriptors);
+// `descriptors` for an image input whose first image (by its header) looks panoramic: panorama_descriptors of
+// them, and the note that says so (empty, and `descriptors` unchanged, otherwise or when the image is unreadable:
+// the run itself reports that).
+std::string detect_panorama_descriptors(const SequenceInput& input, std::vector<Descriptor>& descriptors);
 
 // "default" or "paper"; throws std::invalid_argument naming the presets otherwise.
 MapSettings map_preset(std::string_view name);

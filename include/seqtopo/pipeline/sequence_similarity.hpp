@@ -30,6 +30,10 @@ using Distance = similarity::Distance;
 // "joint-histogram", "patch", "panorama", "npy"; throws std::invalid_argument otherwise.
 Descriptor parse_descriptor(std::string_view name);
 std::string_view descriptor_name(Descriptor descriptor);
+// A comma-separated list of names ("joint-histogram,patch"); throws std::invalid_argument on an unknown name or
+// an empty list. descriptor_names is its inverse.
+std::vector<Descriptor> parse_descriptors(std::string_view names);
+std::string descriptor_names(std::span<const Descriptor> descriptors);
 // chi2 for histograms, sad for thumbnails and panorama signatures, cosine for external descriptors.
 Distance default_distance(Descriptor descriptor);
 
@@ -88,6 +92,10 @@ SimilarityResult compute_similarity(std::span<const SequenceInput> a, std::span<
 // image is read and decoded once for all of them. A similarity.npy input gives its one matrix; a
 // descriptors.npy input is one descriptor. The pass's time is in the first result's seconds_descriptors.
 std::vector<SimilarityResult> compute_similarities(std::span<const SequenceInput> sessions,
+                                                   std::span<const Descriptor> descriptors,
+                                                   const SimilarityConfig& config = {});
+// The same N x M against `b`'s sessions (rows = a).
+std::vector<SimilarityResult> compute_similarities(std::span<const SequenceInput> a, std::span<const SequenceInput> b,
                                                    std::span<const Descriptor> descriptors,
                                                    const SimilarityConfig& config = {});
 
