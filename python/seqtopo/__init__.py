@@ -603,7 +603,9 @@ def map_sequence(
     """``seqtopo map`` as one call, on the same library pipeline. Returns a :class:`MapRun`;
     :func:`write_report` writes its files.
 
-    ``path``: an image folder, video, ``descriptors.npy`` or ``similarity.npy`` (as the command's INPUT), or arrays
+    ``path``: an image folder, video, ``descriptors.npy`` or ``similarity.npy`` (as the command's INPUT), a list of
+    such paths (sessions, as ``seqtopo map S1 S2 ...``: no transition from one's last frame to the next one's
+    first; ``odometry`` then one file per session or none), or arrays
     in memory: one N x N similarity matrix, a list of them (fused), or an N x D array of descriptors (compared by
     :func:`similarity` first). The ``preset``'s settings apply; ``config`` and keyword overrides replace its
     :class:`MapConfig`.
@@ -675,15 +677,25 @@ def map_sequence(
         raise ValueError("no descriptor given")
     for name, value in (("odometry", odometry), ("ground_truth", ground_truth), ("gt_places", gt_places),
                         ("gt_poses", gt_poses)):
-        if value is not None and not _is_path(value):
+        files = value if name == "odometry" and isinstance(value, (list, tuple)) else [value]
+        if value is not None and not all(_is_path(f) for f in files):
             raise ValueError(f"{name}: give a file with a path input (arrays go with arrays in memory)")
     if gt_junctions is not None:
         raise ValueError("gt_junctions: with a path input they are read from junctions.csv beside gt_places")
 
     def fs(p):
         return "" if p is None else _os.fspath(p)
-    raw = _core.map_sequence(_os.fspath(path), preset, config, list(descriptors or []), metric, kappa, input_kind,
-                             every, threads, fs(odometry), fs(ground_truth), gt_radius, fs(gt_places), fs(gt_poses),
+    paths = [_os.fspath(p) for p in path] if isinstance(path, (list, tuple)) else [_os.fspath(path)]
+    if not paths:
+        raise ValueError("path: no input given (an empty list)")
+    if odometry is None:
+        odometry_files = []
+    elif isinstance(odometry, (list, tuple)):
+        odometry_files = [_os.fspath(p) for p in odometry]
+    else:
+        odometry_files = [_os.fspath(odometry)]
+    raw = _core.map_sequence(paths, preset, config, list(descriptors or []), metric, kappa, input_kind,
+                             every, threads, odometry_files, fs(ground_truth), gt_radius, fs(gt_places), fs(gt_poses),
                              streaming, sparse, neighbours, diagonal_reach, callback)
     return MapRun(raw)
 

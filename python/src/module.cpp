@@ -319,15 +319,15 @@ py::dict map_preset(const std::string& name) {
 
 // pipeline::map_sequence from the command line's inputs; the run stays a C++ object (MapRun) that Python reads
 // and writes out (write_map_outputs).
-pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::string& preset,
+pipeline::MapRun map_sequence(const std::vector<std::filesystem::path>& paths, const std::string& preset,
                               const mapping::MapConfig& config, const std::vector<std::string>& descriptors,
                               const std::optional<std::string>& metric, std::optional<float> kappa,
                               const std::string& input_kind, std::size_t every, unsigned threads,
-                              const std::filesystem::path& odometry, const std::filesystem::path& ground_truth,
-                              std::optional<double> gt_radius, const std::filesystem::path& gt_places,
-                              const std::filesystem::path& gt_poses, bool streaming, bool sparse,
-                              std::size_t neighbours, std::optional<std::size_t> diagonal_reach,
-                              const py::object& progress) {
+                              const std::vector<std::filesystem::path>& odometry,
+                              const std::filesystem::path& ground_truth, std::optional<double> gt_radius,
+                              const std::filesystem::path& gt_places, const std::filesystem::path& gt_poses,
+                              bool streaming, bool sparse, std::size_t neighbours,
+                              std::optional<std::size_t> diagonal_reach, const py::object& progress) {
   pipeline::MapRequest request;
   request.preset = preset;
   request.settings = pipeline::map_preset(preset);
@@ -342,8 +342,19 @@ pipeline::MapRun map_sequence(const std::filesystem::path& path, const std::stri
   if (kappa) request.settings.similarity.kappa = kappa;
   if (every == 0) throw std::invalid_argument("every must be >= 1");
   request.settings.similarity.threads = threads;
-  request.input = {path, pipeline::parse_input_kind(input_kind), every};
-  request.odometry = odometry;
+  // Several paths are sessions, as `seqtopo map S1 S2 ...`; odometry none, or one file per session.
+  if (!odometry.empty() && odometry.size() != paths.size()) {
+    throw std::invalid_argument("odometry: " + std::to_string(odometry.size()) + " files for " +
+                                std::to_string(paths.size()) + " sessions: give one per session, in their order");
+  }
+  std::vector<pipeline::SessionSource> sessions;
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    pipeline::SessionSource session;
+    session.input = {paths[k], pipeline::parse_input_kind(input_kind), every};
+    if (!odometry.empty()) session.odometry = odometry[k];
+    sessions.push_back(std::move(session));
+  }
+  pipeline::set_sessions(request, std::move(sessions));
   request.truth = {ground_truth, gt_radius, gt_places, gt_poses};
   if (neighbours == 0) throw std::invalid_argument("neighbours must be >= 1");
   request.streaming = streaming || sparse;
@@ -683,7 +694,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("build_map", &build_map, py::arg("similarities"), py::arg("config"));
   bind_map_run(m);
   m.def("map_preset", &map_preset, py::arg("name"));
-  m.def("map_sequence", &map_sequence, py::arg("path"), py::arg("preset"), py::arg("config"), py::arg("descriptors"),
+  m.def("map_sequence", &map_sequence, py::arg("paths"), py::arg("preset"), py::arg("config"), py::arg("descriptors"),
         py::arg("metric"), py::arg("kappa"), py::arg("input_kind"), py::arg("every"), py::arg("threads"),
         py::arg("odometry"), py::arg("ground_truth"), py::arg("gt_radius"), py::arg("gt_places"), py::arg("gt_poses"),
         py::arg("streaming"), py::arg("sparse"), py::arg("neighbours"), py::arg("diagonal_reach"), py::arg("progress"));

@@ -352,3 +352,39 @@ def test_sparse_map_sequence_equals_cli(cli, tmp_path):
     for name in ("map.json", "alignments.json", "loop_closures.csv"):
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
     assert len((tmp_path / "cli" / "loop_closures.csv").read_text().splitlines()) > 100
+
+
+def test_map_sequence_of_sessions_equals_cli(cli, tmp_path):
+    # The corridor's two laps given as two sessions, from Python as a list and from `seqtopo map A B`: one map, and no
+    # edge from the first lap's last image to the second's first.
+    corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
+    laps = [tmp_path / "lap1", tmp_path / "lap2"]
+    for lap, frames in zip(laps, (range(1, 41), range(41, 85))):
+        lap.mkdir()
+        for k in frames:
+            (lap / f"{k:03d}.jpg").symlink_to(corridor / f"{k}.jpg")
+    run_cli(cli, "map", *laps, "--out", tmp_path / "cli")
+    run = seqtopo.map_sequence(laps)
+    seqtopo.write_report(run, tmp_path / "py")
+    for name in ("map.json", "alignments.json", "loop_closures.csv"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    written = json.loads((tmp_path / "cli" / "map.json").read_text())
+    assert [(x["begin"], x["end"]) for x in written["sessions"]] == [(0, 40), (40, 84)]
+    with pytest.raises(ValueError, match="path: no input"):
+        seqtopo.map_sequence([])
+
+
+def test_localize_sequences_default_descriptors_equal_cli(cli, tmp_path):
+    # Without a descriptor both front ends fuse the map's default descriptors (joint histogram and patch).
+    corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
+    laps = [tmp_path / "lap1", tmp_path / "lap2"]
+    for lap, frames in zip(laps, (range(1, 41), range(41, 85))):
+        lap.mkdir()
+        for k in frames:
+            (lap / f"{k:03d}.jpg").symlink_to(corridor / f"{k}.jpg")
+    run_cli(cli, "localize", "--map", laps[0], "--query", laps[1], "--out", tmp_path / "cli")
+    run = seqtopo.localize_sequences(laps[0], laps[1])
+    seqtopo.write_report(run, tmp_path / "py")
+    assert (tmp_path / "py" / "matches.csv").read_bytes() == (tmp_path / "cli" / "matches.csv").read_bytes()
+    patch = seqtopo.localize_sequences(laps[0], laps[1], descriptor="patch")
+    assert not np.array_equal(patch.map, run.map)  # the fusion is not the patch thumbnail alone

@@ -324,6 +324,7 @@ void run(MapOptions o) {
                                          o.inputs.size()));
     }
   }
+  std::vector<pipeline::SessionSource> sessions;
   for (std::size_t k = 0; k < o.inputs.size(); ++k) {
     pipeline::SessionSource session;
     session.input = {o.inputs[k], kind, o.every};
@@ -332,17 +333,9 @@ void run(MapOptions o) {
     if (!o.times_files.empty()) session.times = o.times_files[k];
     session.odometry_topic = o.odometry_topic;
     session.every_metres = o.every_metres;
-    request.sessions.push_back(std::move(session));
+    sessions.push_back(std::move(session));
   }
-  if (request.sessions.size() == 1) {  // the single-input form
-    const auto& single = request.sessions.front();
-    request.input = single.input;
-    request.odometry = single.odometry;
-    request.times = single.times;
-    request.odometry_topic = single.odometry_topic;
-    request.every_metres = single.every_metres;
-    request.sessions.clear();
-  }
+  pipeline::set_sessions(request, std::move(sessions));
   request.truth = {o.ground_truth, o.gt_radius, o.gt_places, o.gt_poses};
   request.report_images = o.images;
   request.streaming = o.streaming;

@@ -33,30 +33,40 @@ std::pair<float, double> best_f1_threshold(const std::vector<evaluation::PrPoint
 std::optional<LoopClosureBaseline> seqslam_loop_closure_baseline(
     const std::vector<std::pair<std::string, const SimilarityMatrix*>>& sources, const std::vector<bool>& has_partner,
     const evaluation::SamePlace& same_place, std::size_t min_separation, unsigned threads) {
-  baseline::SeqSlamConfig seqslam;
-  seqslam.self = true;
-  seqslam.min_separation = min_separation;
-  seqslam.threads = threads;
   std::optional<LoopClosureBaseline> best;
   for (const auto& [name, matrix] : sources) {
-    auto pairs = seqslam_loop_closures(*matrix, seqslam);
-    auto metrics = evaluation::evaluate_loop_closures(pairs, has_partner, same_place);
-    if (best && metrics.auc <= best->metrics.auc) continue;
-    const float threshold = best_f1_threshold(metrics.curve).first;
-    std::erase_if(pairs, [&](const evaluation::ScoredPair& p) { return p.score < threshold; });
-    const auto at_threshold = evaluation::evaluate_loop_closures(pairs, has_partner, same_place);
-    metrics.tp = at_threshold.tp;
-    metrics.fp = at_threshold.fp;
-    metrics.fn = at_threshold.fn;
-    metrics.precision = at_threshold.precision;
-    metrics.recall = at_threshold.recall;
-    metrics.f1 = at_threshold.f1;
-    best = LoopClosureBaseline{
-        std::move(metrics),
-        fmt::format("SeqSLAM-style on {} (sequence {}, velocities {}-{}, best-F1 threshold {:.3g})", name,
-                    seqslam.sequence_length, seqslam.min_velocity, seqslam.max_velocity, threshold)};
+    for (const baseline::SeqSlamConfig& standard : {localization_seqslam_config(threads), short_seqslam_config()}) {
+      baseline::SeqSlamConfig seqslam = standard;
+      seqslam.self = true;
+      seqslam.min_separation = min_separation;
+      seqslam.threads = threads;
+      auto pairs = seqslam_loop_closures(*matrix, seqslam);
+      auto metrics = evaluation::evaluate_loop_closures(pairs, has_partner, same_place);
+      if (best && metrics.auc <= best->metrics.auc) continue;
+      const float threshold = best_f1_threshold(metrics.curve).first;
+      std::erase_if(pairs, [&](const evaluation::ScoredPair& p) { return p.score < threshold; });
+      const auto at_threshold = evaluation::evaluate_loop_closures(pairs, has_partner, same_place);
+      metrics.tp = at_threshold.tp;
+      metrics.fp = at_threshold.fp;
+      metrics.fn = at_threshold.fn;
+      metrics.precision = at_threshold.precision;
+      metrics.recall = at_threshold.recall;
+      metrics.f1 = at_threshold.f1;
+      best = LoopClosureBaseline{
+          std::move(metrics),
+          fmt::format("SeqSLAM-style on {} (sequence {}, velocities {}-{}, best-F1 threshold {:.3g})", name,
+                      seqslam.sequence_length, seqslam.min_velocity, seqslam.max_velocity, threshold)};
+    }
   }
   return best;
+}
+
+baseline::SeqSlamConfig short_seqslam_config() {
+  baseline::SeqSlamConfig c;
+  c.sequence_length = 10;
+  c.min_velocity = 0.8F;
+  c.max_velocity = 1.25F;
+  return c;
 }
 
 baseline::SeqSlamConfig localization_seqslam_config(unsigned threads) {

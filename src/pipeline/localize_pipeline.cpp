@@ -121,10 +121,15 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
                       "on the pairs another localizes): left out of the fusion",
                       descriptor_name(run.settings.descriptors[d])));
     }
-    // What the baselines and the figure see: the fused enhanced scores, before the offset.
+    // What the figure and the baselines see: the fused enhanced scores, before the offset (and, for the baselines,
+    // each descriptor's own similarity).
     localize::LocalizeConfig unshifted = config;
     unshifted.contrast_offset = 0;
     run.similarity = localize::fused_score_matrix(similarities, unshifted, result.descriptor_weights);
+    for (std::size_t d = 0; d < similarities.size(); ++d) {
+      run.descriptor_similarities.emplace_back(descriptor_name(run.settings.descriptors[d]),
+                                               std::move(similarities[d]));
+    }
   }
   run.queries = run.similarity.rows;
   run.maps = run.similarity.cols;
@@ -403,14 +408,32 @@ void evaluate_localization_run(LocalizeRun& run, const evaluation::LocalizationT
                  : static_cast<double>(d.correct) / static_cast<double>(run.metrics->queries_with_match);
   run.decision = d;
   run.calibration = evaluation::calibration(confidence, correct);
-  run.single_frame = evaluation::evaluate_localization(single_frame_localization(run.similarity), truth, tolerance);
+  // Each baseline on every matrix of the run; the one that suits it best is reported.
+  std::vector<std::pair<std::string, const SimilarityMatrix*>> sources{
+      {run.descriptor_similarities.empty() ? std::string() : std::string("the fused enhanced scores"),
+       &run.similarity}};
+  for (const auto& [name, matrix] : run.descriptor_similarities) sources.emplace_back(name, &matrix);
+  const auto better = [](const evaluation::LocalizationMetrics& a, const evaluation::LocalizationMetrics& b) {
+    return a.recall_at_1 != b.recall_at_1 ? a.recall_at_1 > b.recall_at_1 : a.auc > b.auc;
+  };
   const baseline::SeqSlamConfig seqslam = localization_seqslam_config(threads);
-  run.seqslam = evaluation::evaluate_localization(seqslam_localization(run.similarity, seqslam), truth, tolerance);
+  std::string seqslam_source;
+  run.single_frame.reset();
+  run.seqslam.reset();
+  for (const auto& [name, matrix] : sources) {
+    auto single = evaluation::evaluate_localization(single_frame_localization(*matrix), truth, tolerance);
+    if (!run.single_frame || better(single, *run.single_frame)) run.single_frame = std::move(single);
+    auto sequence = evaluation::evaluate_localization(seqslam_localization(*matrix, seqslam), truth, tolerance);
+    if (!run.seqslam || better(sequence, *run.seqslam)) {
+      run.seqslam = std::move(sequence);
+      seqslam_source = name;
+    }
+  }
   run.seqslam_method = fmt::format(
       "SeqSLAM (contrast window {}, sequence {}, velocities {}-{} in {} steps; frames with a whole sequence behind "
-      "them answered)",
+      "them answered){}",
       seqslam.contrast_window, seqslam.sequence_length, seqslam.min_velocity, seqslam.max_velocity,
-      seqslam.velocity_steps);
+      seqslam.velocity_steps, seqslam_source.empty() ? std::string() : " on " + seqslam_source);
 }
 
 }  // namespace seqtopo::pipeline

@@ -533,6 +533,21 @@ std::size_t MapJob::truth_every() const {
 
 MapRun map_sequence(const MapRequest& request, const MapObserver& observer) { return MapJob(request).run(observer); }
 
+void set_sessions(MapRequest& request, std::vector<SessionSource> sessions) {
+  if (sessions.empty()) throw std::invalid_argument("no input given");
+  request.sessions.clear();
+  if (sessions.size() > 1) {
+    request.sessions = std::move(sessions);
+    return;
+  }
+  SessionSource& single = sessions.front();
+  request.input = std::move(single.input);
+  request.odometry = std::move(single.odometry);
+  request.times = std::move(single.times);
+  request.odometry_topic = std::move(single.odometry_topic);
+  request.every_metres = single.every_metres;
+}
+
 MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<std::string> names,
                         const MapSettings& settings, std::span<const Pose2> odometry, const MapTruth& truth,
                         const MapObserver& observer) {

@@ -83,6 +83,8 @@ struct LocalizeRun {
   // query x map (offline, or the rows seen online): the similarity of one descriptor, or the fused contrast-enhanced
   // scores of several (localize::fused_score_matrix with a contrast offset of 0)
   SimilarityMatrix similarity;
+  // Offline with several descriptors: each one's query x map similarity (named), which the baselines also run on.
+  std::vector<std::pair<std::string, SimilarityMatrix>> descriptor_similarities;
   std::size_t queries = 0, maps = 0;
   std::vector<std::size_t> map_session_frames;  // map frames of each map session (one entry for one map)
   std::vector<FrameAnswer> answers;
@@ -117,7 +119,8 @@ LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineQuery
                                const NextPath& next_query_path = {});
 
 // Scores the answers against the truth (within +-tolerance map frames) and runs the single-frame and SeqSLAM
-// baselines on the same matrix.
+// baselines on the run's matrix and on each descriptor's, reporting for each baseline the one that suits it best
+// (the higher recall@1, then AUC).
 void evaluate_localization_run(LocalizeRun& run, const evaluation::LocalizationTruth& truth, std::size_t tolerance,
                                unsigned threads);
 

@@ -176,6 +176,11 @@ class MapJob {
 // MapJob(request).run(observer).
 MapRun map_sequence(const MapRequest& request, const MapObserver& observer = {});
 
+// The request's inputs from the sessions given, as the command line and Python take them: one is the single-input
+// form (`input`, `odometry`, `times`, `odometry_topic`, `every_metres`), several are `sessions`. Throws
+// std::invalid_argument when none is given.
+void set_sessions(MapRequest& request, std::vector<SessionSource> sessions);
+
 // The pipeline from similarity matrices already in memory (one per descriptor, all N x N; several are fused),
 // named for the report (`names`, one per matrix, may be empty). `odometry` has one pose per image or is empty.
 // Throws std::invalid_argument on sizes that disagree.
