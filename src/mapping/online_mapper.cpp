@@ -1,8 +1,11 @@
 #include "seqtopo/mapping/online_mapper.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -425,6 +428,11 @@ void OnlineMapper::fill_rows() {
 }
 
 float OnlineMapper::confidence(float score) const {
+  // With the statistics, P(revisit | E) as the offline map's alignments (significance::revisit_probability); before
+  // them, the score's share of twice the threshold.
+  if (const auto e = e_value(score)) {
+    return static_cast<float>(significance::revisit_probability(*e, *config_.max_e_value));
+  }
   const float full = config_.cap ? *config_.cap : 2 * threshold_;
   return std::min(1.0F, score / full);
 }
@@ -520,6 +528,7 @@ void OnlineMapper::end_track(Track& track, bool at_finish, std::vector<OnlineEve
     events.push_back(std::move(correction));
   }
   if (too_short) return;
+  revisit_best_[track.id] = track.best;
   OnlineEvent e;
   e.kind = OnlineEventKind::revisit_end;
   e.frame = frames_;
@@ -996,9 +1005,51 @@ std::vector<OnlineEvent> OnlineMapper::finish() {
   tracks_.clear();
   drop_candidates(align::Direction::forward, nullptr, events);
   drop_candidates(align::Direction::reverse, nullptr, events);
+  review_closures(events);
   // Emitted after the last frame.
   for (auto& e : events) e.frame = frames_ == 0 ? 0 : frames_ - 1;
   return events;
+}
+
+void OnlineMapper::review_closures(std::vector<OnlineEvent>& events) {
+  // Every revisit judged again under the last statistics, as the offline map judges its alignments under the
+  // whole sequence's: one confirmed early, when the fit had few frames, may be insignificant now (withdrawn); the
+  // others' loop closures take the confidence of their revisit's best score now.
+  if (!config_.max_e_value || !statistics_.valid()) return;
+  std::map<std::size_t, OnlineEvent> corrections;  // by revisit
+  for (Closure& c : closures_) {
+    const auto best = revisit_best_.find(c.revisit);
+    if (c.withdrawn || best == revisit_best_.end()) continue;
+    const double e = statistics_.e_value(best->second);
+    if (e <= *config_.max_e_value) {
+      c.confidence = confidence(best->second);
+      continue;
+    }
+    c.withdrawn = true;
+    auto [it, added] = corrections.try_emplace(c.revisit);
+    OnlineEvent& correction = it->second;
+    if (added) {
+      correction.kind = OnlineEventKind::correction;
+      correction.frame = frames_;
+      correction.direction = c.direction;
+      correction.revisit = c.revisit;
+      correction.i = c.i;
+      correction.j = c.j;
+      correction.e_value = e;
+      correction.score = best->second;
+      correction.reason = fmt::format("insignificant under the statistics of the whole run (E {:.3g} > {:.3g})", e,
+                                      *config_.max_e_value);
+    }
+    correction.withdrawn.emplace_back(c.i, c.j);
+  }
+  if (corrections.empty()) return;
+  for (auto& [revisit, correction] : corrections) events.push_back(std::move(correction));
+  // The places again from the loop closures that stand (a place is named by its first frame).
+  DisjointSets<std::size_t> places(frames_);
+  for (const Closure& c : closures_) {
+    if (!c.withdrawn) places.unite(places.find(c.i), places.find(c.j));
+  }
+  places_ = std::move(places);
 }
 
 std::vector<OnlineLoopClosure> OnlineMapper::loop_closures() const {

@@ -416,6 +416,52 @@ TEST(OnlineMapper, NoiseGivesNoRevisitAtTheDefaultEValue) {
   EXPECT_GT(fixed, 20);
 }
 
+TEST(OnlineMapper, AtTheEndEveryRevisitIsJudgedUnderTheWholeRunsStatistics) {
+  // At a lenient E-value, chance revisits confirmed while the fit had few frames: at finish() those insignificant
+  // under the last statistics are withdrawn (a correction naming why) and their frames leave the places; every loop
+  // closure left belongs to a revisit at E <= max_e_value now, with that confidence.
+  std::size_t withdrawn = 0, standing = 0;
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    const SimilarityMatrix s = noise_scores(400, seed, 0.7F);
+    OnlineMapConfig c;
+    c.max_e_value = 0.5;
+    OnlineMapper m(c);
+    std::map<std::size_t, float> best;  // revisit -> its score at its end
+    for (std::size_t t = 0; t < s.rows; ++t) {
+      for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+        if (e.kind == OnlineEventKind::revisit_end) best[e.revisit] = e.score;
+      }
+    }
+    for (const auto& e : m.finish()) {
+      if (e.kind == OnlineEventKind::revisit_end) best[e.revisit] = e.score;
+      if (e.kind == OnlineEventKind::correction && e.reason.find("whole run") != std::string::npos) {
+        withdrawn += e.withdrawn.size();
+        ASSERT_GT(*e.e_value, 0.5);
+      }
+    }
+    ASSERT_TRUE(m.statistics().valid());
+    const auto places = m.places();
+    std::vector<std::size_t> joined(places.size(), 0);
+    for (const auto& lc : m.loop_closures()) {
+      ++standing;
+      ASSERT_TRUE(best.count(lc.revisit));
+      const double e = m.statistics().e_value(best[lc.revisit]);
+      EXPECT_LE(e, 0.5);
+      EXPECT_NEAR(lc.confidence, significance::revisit_probability(e, 0.5), 1e-6);
+      EXPECT_EQ(places[lc.i], places[lc.j]);
+      ++joined[lc.i];
+      ++joined[lc.j];
+    }
+    // A frame in a place of several frames is joined by a standing loop closure.
+    for (std::size_t f = 0; f < places.size(); ++f) {
+      if (places[f] != f) {
+        EXPECT_GT(joined[f], 0U) << "seed " << seed << " frame " << f;
+      }
+    }
+  }
+  EXPECT_GT(withdrawn, 0U);
+}
+
 // Candidates at E-value x: chance ones are about as many as revisits at that E-value would be (2 x ln(N / t0) a
 // run), each is confirmed or withdrawn by the end, and a true revisit's candidate comes before its revisit_begin,
 // which names it.

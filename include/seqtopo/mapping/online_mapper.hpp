@@ -263,6 +263,7 @@ class OnlineMapper {
   void emit_closure(Track& track, std::size_t i, std::size_t j, float score, std::vector<OnlineEvent>& events);
   void settle(Track& track, std::size_t up_to, std::vector<OnlineEvent>& events);
   void end_track(Track& track, bool at_finish, std::vector<OnlineEvent>& events);
+  void review_closures(std::vector<OnlineEvent>& events);  // at finish(): under the last statistics
   void add_junction(const Track& track, std::size_t i, std::size_t j, bool joining, std::vector<OnlineEvent>& events);
   float confidence(float score) const;
   std::optional<double> e_value(float score) const;
@@ -314,7 +315,8 @@ class OnlineMapper {
     float confidence;
     bool withdrawn;
   };
-  std::vector<Closure> closures_;     // standing, in emission order
+  std::vector<Closure> closures_;                        // standing, in emission order
+  std::unordered_map<std::size_t, float> revisit_best_;  // the best score of each ended revisit, by id
   DisjointSets<std::size_t> places_;  // frames joined by settled pairs; a place is named by its first frame
   std::vector<std::size_t> junction_places_;
   std::map<std::uint64_t, std::size_t> ended_starts_;  // start cell of an ended track -> its last frame
