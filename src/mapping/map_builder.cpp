@@ -25,6 +25,7 @@
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/significance/alignment_ends.hpp"
 #include "seqtopo/significance/alignment_phase.hpp"
+#include "seqtopo/significance/tandem_repeats.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 #include "seqtopo/similarity/hubness.hpp"
 
@@ -591,9 +592,36 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
     if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(source[k]);
   }
   SimilarityMatrix enhanced = enhanced_scores(blind.empty() ? source : seeing, framed.contrast_window);
+  // Tandem repeats of appearance (significance/tandem_repeats.hpp) are masked as the dark frames are.
+  std::vector<bool> masked_all = masked;
+  std::size_t repeats = 0;
+  if (config.mask_low_information && framed.contrast_window > 0 && framed.min_separation > 4) {
+    significance::TandemRepeatConfig rc;
+    // Periods up to the band (twice one fits in twice the band): a longer one is a revisit the band lets through.
+    rc.reach = 2 * framed.min_separation;
+    rc.min_frames = framed.min_separation;
+    rc.half_window = std::max<std::size_t>(framed.min_separation / 2, 2);
+    rc.near = std::clamp<std::size_t>(
+        static_cast<std::size_t>(std::lround(2 * (c.place_units ? c.frames_per_place.value_or(1.0) : 1.0))), 2,
+        framed.min_separation / 2);
+    const std::vector<std::size_t> in_repeats = significance::tandem_repeat_frames(enhanced, rc);
+    if (!in_repeats.empty() && masked_all.empty()) masked_all.assign(enhanced.rows, false);
+    for (std::size_t f : in_repeats) {
+      repeats += masked_all[f] ? 0 : 1;
+      masked_all[f] = true;
+    }
+  }
+  const std::vector<std::size_t> masked_frames =
+      framed.contrast_window > 0 ? flagged(masked_all) : std::vector<std::size_t>{};
   const double seconds_scores = seconds_since(start);
   MapResult result = build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols),
-                                             c, odometry, {}, low_information);
+                                             c, odometry, {}, masked_frames);
+  if (repeats > 0) {
+    result.decisions.notes.push_back(
+        fmt::format("{} frames in tandem repeats of appearance (they resemble frames one and two periods away within "
+                    "the self-alignment band: identical doors, shelves) carry no evidence of a revisit",
+                    repeats));
+  }
   result.decisions.blind_descriptors = blind;
   for (auto k = blind.rbegin(); k != blind.rend(); ++k) {  // first in the notes, in the descriptors' order
     result.decisions.notes.insert(result.decisions.notes.begin(), blind_descriptor_note(*k, similarities.size()));
@@ -605,7 +633,7 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   // What was aligned: the enhanced scores minus the offset the run chose (or S itself without enhancement).
   if (framed.contrast_window > 0) {
     for (auto& v : enhanced.values) v -= result.decisions.contrast_offset;
-    detail::soft_mask(enhanced, masked, 0.0F);
+    detail::soft_mask(enhanced, masked_all, 0.0F);
   }
   result.scores = std::move(enhanced);
   result.seconds_align += seconds_scores;

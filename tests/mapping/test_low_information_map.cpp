@@ -9,6 +9,7 @@
 #include <set>
 #include <vector>
 
+#include "common/sanitizers.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 
 namespace seqtopo::mapping {
@@ -100,6 +101,33 @@ TEST(LowInformationMap, DarkStretchesOfOnePassAreNoRevisit) {
   }
   EXPECT_GT(without_mask, 20U) << "the dark stretches must look like a revisit without the mask";
   EXPECT_EQ(with_mask, 0U);
+}
+
+// A corridor of identical doors in one pass (a 6-place door pattern passed 20 times, with noise), no revisit: the
+// stretch matches itself at every multiple of its period far beyond chance, and the map finds no revisit in it
+// once its frames are masked as a tandem repeat (significance/tandem_repeats.hpp). 50 seeds: at most the chance
+// alignments any sequence has at E <= 0.01 (about one run in a hundred).
+TEST(LowInformationMap, ACorridorOfIdenticalDoorsIsNoRevisit) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("50 sequences of 400 frames");
+  std::size_t masked_runs = 0, unmasked_runs = 0;
+  const std::size_t seeds = 50;
+  for (unsigned seed = 1; seed <= seeds; ++seed) {
+    Descriptors pass = route(400, seed);
+    const Descriptors door = route(6, seed + 1000);
+    std::mt19937 rng(seed + 2000);
+    std::normal_distribution<float> g(0.0F, 0.6F);
+    for (std::size_t i = 150; i < 270; ++i) {
+      for (std::size_t k = 0; k < kDim; ++k) pass[i][k] = 0.8F * door[(i - 150) % 6][k] + g(rng);
+    }
+    const SimilarityMatrix s = similarity(pass);
+    const MapResult r = build_map(std::vector<SimilarityMatrix>{s}, MapConfig{});
+    masked_runs += r.pruning.pairs.empty() ? 0 : 1;
+    MapConfig off;
+    off.mask_low_information = false;
+    unmasked_runs += build_map(std::vector<SimilarityMatrix>{s}, off).pruning.pairs.empty() ? 0 : 1;
+  }
+  EXPECT_GE(unmasked_runs * 10, seeds * 9) << "the doors must look like a revisit without the mask";
+  EXPECT_LE(masked_runs, seeds / 25);
 }
 
 // A route driven twice through the same tunnel: the revisit on either side of it is one revisit, the tunnel's

@@ -1,0 +1,73 @@
+#include "seqtopo/significance/tandem_repeats.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+
+namespace seqtopo::significance {
+
+std::vector<std::size_t> tandem_repeat_frames(const SimilarityMatrix& s, const TandemRepeatConfig& c) {
+  if (s.rows != s.cols) throw std::invalid_argument("the enhanced scores must be square");
+  if (c.near >= c.reach) throw std::invalid_argument("near must be below reach");
+  if (!(c.level > 0) || !std::isfinite(c.level)) throw std::invalid_argument("level must be a finite number > 0");
+  const std::size_t n = s.rows;
+  std::vector<bool> repeat(n, false);
+  std::vector<double> diagonal(c.reach + 2, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const bool ahead : {true, false}) {
+      // The mean enhanced score along each diagonal d within the `half_window` frames around i: of the pairs
+      // (k, k + d) ahead of it, or (k - d, k) behind it (a frame near a repeat's end sees its period on one side).
+      const std::size_t lo = i > c.half_window ? i - c.half_window : 0, hi = std::min(n - 1, i + c.half_window);
+      for (std::size_t d = c.near + 1; d <= c.reach; ++d) {
+        double sum = 0;
+        std::size_t count = 0;
+        for (std::size_t k = lo; k <= hi; ++k) {
+          if (ahead ? k + d < n : k >= d) sum += ahead ? s(k, k + d) : s(k - d, k), ++count;
+        }
+        diagonal[d] = count == 0 ? 0.0 : sum / static_cast<double>(count);
+      }
+      // The centres of the runs of diagonals above the level, but for a run next to the `near` ones (the sequence's
+      // own smoothness, or a stop, continued).
+      std::vector<double> centres;
+      std::size_t run_begin = 0;
+      bool in_run = false;
+      for (std::size_t d = c.near + 1; d <= c.reach + 1; ++d) {
+        const bool alike = d <= c.reach && diagonal[d] > c.level;
+        if (alike && !in_run) run_begin = d;
+        if (!alike && in_run && run_begin > c.near + 1) centres.push_back(0.5 * static_cast<double>(run_begin + d - 1));
+        in_run = alike;
+      }
+      // One period and two: runs at p and 2p (within a frame and a half).
+      for (std::size_t a = 0; a < centres.size() && !repeat[i]; ++a) {
+        for (std::size_t b = a + 1; b < centres.size(); ++b) {
+          if (std::abs(centres[b] - 2 * centres[a]) <= 1.5) repeat[i] = true;
+        }
+      }
+    }
+  }
+  // A repeat's frames each show its period only where the noise lets them: the frames between two flagged ones at
+  // most `reach` apart are in the repeat too (a closing).
+  std::size_t last = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!repeat[i]) continue;
+    if (last != n && i - last <= c.reach) {
+      std::fill(repeat.begin() + static_cast<std::ptrdiff_t>(last), repeat.begin() + static_cast<std::ptrdiff_t>(i),
+                true);
+    }
+    last = i;
+  }
+  // Stretches shorter than min_frames are left alone.
+  std::vector<std::size_t> frames;
+  for (std::size_t i = 0; i < n;) {
+    std::size_t end = i;
+    while (end < n && repeat[end]) ++end;
+    if (end - i >= c.min_frames) {
+      for (std::size_t k = i; k < end; ++k) frames.push_back(k);
+    }
+    i = end == i ? i + 1 : end;
+  }
+  return frames;
+}
+
+}  // namespace seqtopo::significance
