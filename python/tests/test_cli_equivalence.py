@@ -354,15 +354,21 @@ def test_sparse_map_sequence_equals_cli(cli, tmp_path):
     assert len((tmp_path / "cli" / "loop_closures.csv").read_text().splitlines()) > 100
 
 
-def test_map_sequence_of_sessions_equals_cli(cli, tmp_path):
-    # The corridor's two laps given as two sessions, from Python as a list and from `seqtopo map A B`: one map, and no
-    # edge from the first lap's last image to the second's first.
+def corridor_laps(folder):
+    """The bundled corridor's two laps (images 1-40 and 41-84) as two folders of links."""
     corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
-    laps = [tmp_path / "lap1", tmp_path / "lap2"]
+    laps = [folder / "lap1", folder / "lap2"]
     for lap, frames in zip(laps, (range(1, 41), range(41, 85))):
         lap.mkdir()
         for k in frames:
             (lap / f"{k:03d}.jpg").symlink_to(corridor / f"{k}.jpg")
+    return laps
+
+
+def test_map_sequence_of_sessions_equals_cli(cli, tmp_path):
+    # The corridor's two laps given as two sessions, from Python as a list and from `seqtopo map A B`: one map, and no
+    # edge from the first lap's last image to the second's first.
+    laps = corridor_laps(tmp_path)
     run_cli(cli, "map", *laps, "--out", tmp_path / "cli")
     run = seqtopo.map_sequence(laps)
     seqtopo.write_report(run, tmp_path / "py")
@@ -376,12 +382,7 @@ def test_map_sequence_of_sessions_equals_cli(cli, tmp_path):
 
 def test_localize_sequences_default_descriptors_equal_cli(cli, tmp_path):
     # Without a descriptor both front ends fuse the map's default descriptors (joint histogram and patch).
-    corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
-    laps = [tmp_path / "lap1", tmp_path / "lap2"]
-    for lap, frames in zip(laps, (range(1, 41), range(41, 85))):
-        lap.mkdir()
-        for k in frames:
-            (lap / f"{k:03d}.jpg").symlink_to(corridor / f"{k}.jpg")
+    laps = corridor_laps(tmp_path)
     run_cli(cli, "localize", "--map", laps[0], "--query", laps[1], "--out", tmp_path / "cli")
     run = seqtopo.localize_sequences(laps[0], laps[1])
     seqtopo.write_report(run, tmp_path / "py")

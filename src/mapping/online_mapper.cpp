@@ -455,6 +455,17 @@ void OnlineMapper::emit_closure(Track& track, std::size_t i, std::size_t j, floa
   closures_.push_back({i, j, track.id, track.direction, e.confidence, false});
 }
 
+OnlineEvent OnlineMapper::closure_event(OnlineEventKind kind, const Closure& c) const {
+  OnlineEvent e;
+  e.kind = kind;
+  e.frame = frames_;
+  e.i = c.i;
+  e.j = c.j;
+  e.direction = c.direction;
+  e.revisit = c.revisit;
+  return e;
+}
+
 void OnlineMapper::settle(Track& track, std::size_t up_to, std::vector<OnlineEvent>& events) {
   std::vector<std::size_t> keep;
   for (std::size_t index : track.pending) {
@@ -466,13 +477,7 @@ void OnlineMapper::settle(Track& track, std::size_t up_to, std::vector<OnlineEve
     const std::size_t a = places_.find(c.i), b = places_.find(c.j);
     if (a == b) continue;
     if (places_.set_size(a) >= 2 && places_.set_size(b) >= 2) {
-      OnlineEvent e;
-      e.kind = OnlineEventKind::place_merge;
-      e.frame = frames_;
-      e.i = c.i;
-      e.j = c.j;
-      e.direction = c.direction;
-      e.revisit = c.revisit;
+      OnlineEvent e = closure_event(OnlineEventKind::place_merge, c);
       e.first = std::min(a, b);
       e.last = std::max(a, b);
       events.push_back(e);
@@ -1029,12 +1034,7 @@ void OnlineMapper::review_closures(std::vector<OnlineEvent>& events) {
     auto [it, added] = corrections.try_emplace(c.revisit);
     OnlineEvent& correction = it->second;
     if (added) {
-      correction.kind = OnlineEventKind::correction;
-      correction.frame = frames_;
-      correction.direction = c.direction;
-      correction.revisit = c.revisit;
-      correction.i = c.i;
-      correction.j = c.j;
+      correction = closure_event(OnlineEventKind::correction, c);
       correction.e_value = e;
       correction.score = best->second;
       correction.reason = fmt::format("insignificant under the statistics of the whole run (E {:.3g} > {:.3g})", e,

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/sanitizers.hpp"
 #include "seqtopo/localize/localize.hpp"
 #include "seqtopo/localize/online_localizer.hpp"
 
@@ -62,6 +63,7 @@ TEST(Fusion, EqualWeightsAverageTheEnhancedRowsThenSubtractTheOffset) {
 }
 
 TEST(Fusion, WeighsEachDescriptorByTheShiftOfItsScoresOnTheRevisit) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("30 localizations of ten seeds");
   // Three descriptors see the same revisit with shifts 3, 1.5 and 0.75 (in noise of 1): their weights follow the
   // shifts, as the matched filter's do, over ten seeds.
   for (unsigned seed = 0; seed < 10; ++seed) {
@@ -76,6 +78,7 @@ TEST(Fusion, WeighsEachDescriptorByTheShiftOfItsScoresOnTheRevisit) {
 }
 
 TEST(Fusion, ABlindDescriptorIsLeftOutAndAWeakOneCostsNothing) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("60 localizations of ten seeds");
   std::size_t left_out = 0;
   double recall_alone = 0, recall_weighted = 0, recall_equal = 0;
   for (unsigned seed = 0; seed < 10; ++seed) {

@@ -315,7 +315,8 @@ class OnlineMapper {
     float confidence;
     bool withdrawn;
   };
-  std::vector<Closure> closures_;                        // standing, in emission order
+  std::vector<Closure> closures_;                                           // standing, in emission order
+  OnlineEvent closure_event(OnlineEventKind kind, const Closure& c) const;  // kind, frame, pair, direction, revisit
   std::unordered_map<std::size_t, float> revisit_best_;  // the best score of each ended revisit, by id
   DisjointSets<std::size_t> places_;  // frames joined by settled pairs; a place is named by its first frame
   std::vector<std::size_t> junction_places_;
