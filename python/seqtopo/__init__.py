@@ -701,11 +701,11 @@ def map_sequence(
 
 
 class LocalizeRun:
-    """Everything one :func:`localize_sequences` computed: per query frame ``.map`` (the best guess; online -1
-    while not in the map), ``.score`` (local alignment score), ``.confidence`` (offline: the probability the guess
-    is right) and ``.in_map`` (confidence >= the minimum); ``.alignments`` (offline); with ground truth
-    ``.metrics`` (recall@1, AUC, ... ranked by confidence), ``.calibration`` (expected calibration error) and
-    ``.baselines`` (single frame, SeqSLAM on the same matrix); ``.similarity`` (query x map), ``.timings``;
+    """Everything one :func:`localize_sequences` computed: per query frame ``.map`` (the best guess, offline and
+    online), ``.score`` (local alignment score; online the table value), ``.confidence`` (the probability the guess
+    is right; online from the frames so far) and ``.in_map`` (confidence >= the minimum); ``.alignments``
+    (offline); with ground truth ``.metrics`` (recall@1, AUC, ... ranked by confidence), ``.calibration`` (expected
+    calibration error) and ``.baselines`` (single frame, SeqSLAM; each on the matrix that suits it best); ``.similarity`` (query x map), ``.timings``;
     online ``.latencies`` (processing per frame, from arrival to answer [s]) and ``.waits``.
     :func:`write_report` writes it as ``seqtopo localize`` does."""
 

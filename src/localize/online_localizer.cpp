@@ -15,7 +15,6 @@ OnlineLocalizer::OnlineLocalizer(std::size_t map_frames, const LocalizeConfig& c
       previous_forward_(map_frames, 0.0F),
       previous_reverse_(map_frames, 0.0F),
       scores_(map_frames, 0.0F),
-
       raw_(descriptors > 1 ? descriptors : 0) {
   if (map_frames == 0) throw std::invalid_argument("the map has no frame");
   if (descriptors == 0) throw std::invalid_argument("at least one descriptor");
