@@ -132,20 +132,30 @@ OnlineEstimate OnlineLocalizer::advance() {
 }
 
 void OnlineLocalizer::refit() {
-  next_fit_ *= 2;
+  // Doubling up to kFitFrames, then every kFitFrames frames, each on the last kFitFrames rows: a refit's work (and
+  // the latency of the frame that makes it) stays bounded however long the query.
+  next_fit_ = next_fit_ < kFitFrames ? 2 * next_fit_ : next_fit_ + kFitFrames;
+  const std::size_t rows = std::min(frames_seen_, kFitFrames), first = frames_seen_ - rows;
+  const auto last_rows = [&](const std::vector<float>& all) {
+    return SimilarityMatrix(
+        rows, map_frames_,
+        std::vector<float>(all.begin() + static_cast<std::ptrdiff_t>(first * map_frames_), all.end()));
+  };
   if (frames_seen_ < kFirstFit) {
     lambda_ = significance::ungapped_lambda(seen_);
     if (!(lambda_ > 0)) lambda_ = 1.0;
     return;
   }
   if (!raw_.empty()) {
-    // The descriptors' weights from the frames seen (descriptor_weights); when they change, the scored rows and the
+    // The descriptors' weights from the last rows (descriptor_weights); when they change, every scored row and the
     // tables are made again with them, so that the next frames extend the alignments the new weights give.
-    std::vector<SimilarityMatrix> seen;
-    for (const auto& raw : raw_) seen.emplace_back(frames_seen_, map_frames_, raw);
-    std::vector<double> weights = descriptor_weights(seen, config_);
+    std::vector<SimilarityMatrix> recent;
+    for (const auto& raw : raw_) recent.push_back(last_rows(raw));
+    std::vector<double> weights = descriptor_weights(recent, config_);
     if (weights != weights_) {
       weights_ = std::move(weights);
+      std::vector<SimilarityMatrix> seen;
+      for (const auto& raw : raw_) seen.emplace_back(frames_seen_, map_frames_, raw);
       const SimilarityMatrix scored = fused_score_matrix(seen, config_, weights_);
       seen_ = scored.values;
       std::fill(forward_.begin(), forward_.end(), 0.0F);
@@ -160,9 +170,9 @@ void OnlineLocalizer::refit() {
   // cells, counted in it, pull it somewhat below). A fit at more than twice it (the first frames' chance alignments,
   // too few and too alike to show their tail: lambda 4-90 on Nordland's first 16-32 frames, where the cells give 1.3)
   // would make every alignment significant, and is not used.
-  const double ungapped = significance::ungapped_lambda(seen_);
-  const significance::ScoreStatistics fit =
-      search_scores(SimilarityMatrix(frames_seen_, map_frames_, seen_), config_).statistics;
+  const SimilarityMatrix recent = last_rows(seen_);
+  const double ungapped = significance::ungapped_lambda(recent.values);
+  const significance::ScoreStatistics fit = search_scores(recent, config_).statistics;
   if (fit.valid() && fit.lambda <= 2 * ungapped) fit_ = fit;
   lambda_ = fit_.valid() ? fit_.lambda : ungapped;
   if (!(lambda_ > 0)) lambda_ = 1.0;

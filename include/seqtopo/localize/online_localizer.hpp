@@ -18,25 +18,26 @@
 // Confidence, as offline (localize.hpp): the probability that the guess is within `tolerance` map frames of the
 // truth, P(revisit | E) x posterior. E is the E-value of v, an alignment ending at the frame, in the search so far:
 // the extreme-value fit of the declumped alignments of the frames seen (significance/score_statistics.hpp, as
-// localize_sequence fits them), made again each time the frames seen double from kFirstFit (the work of a few
-// offline localizations in all), its area scaled to the frames seen since. A fit whose lambda is more than twice
-// Karlin & Altschul's of the cells (which bounds the gapped one of chance alignments from above) is not used: the
-// first frames' chance alignments, too few to show their tail, gave lambda 4-90 on Nordland where the cells give 1.3,
-// and made every alignment significant. The posterior is where in row i the alignment ends, given that one does: the
-// weight exp(lambda F) of the alignment ends (cells reached by a matched pair, not by a gap) within +-tolerance of the
-// guess in its table over that of every alignment end of both tables. Before a fit P(revisit | E) is 1 when
-// v >= `threshold` and 0 below, and lambda is Karlin & Altschul's of the scores seen (significance::ungapped_lambda),
-// as offline without a fit. The frame is "in the map" when the confidence is at least `min_confidence`. Limit: past
-// the end of a revisit (the query leaves the map) the table keeps the alignment's value for as many frames as the
-// evidence takes to fall, and the confidence with it; offline, the later frames show where the revisit ended.
+// localize_sequence fits them), made again each time the frames seen double from kFirstFit up to kFitFrames, then
+// every kFitFrames frames on the last kFitFrames rows, its area scaled to the whole search so far. A fit whose lambda
+// is more than twice Karlin & Altschul's of the cells (which bounds the gapped one of chance alignments from above) is
+// not used: the first frames' chance alignments, too few to show their tail, gave lambda 4-90 on Nordland where the
+// cells give 1.3, and made every alignment significant. The posterior is where in row i the alignment ends, given that
+// one does: the weight exp(lambda F) of the alignment ends (cells reached by a matched pair, not by a gap) within
+// +-tolerance of the guess in its table over that of every alignment end of both tables. Before a fit P(revisit | E) is
+// 1 when v >= `threshold` and 0 below, and lambda is Karlin & Altschul's of the scores seen
+// (significance::ungapped_lambda), as offline without a fit. The frame is "in the map" when the confidence is at least
+// `min_confidence`. Limit: past the end of a revisit (the query leaves the map) the table keeps the alignment's value
+// for as many frames as the evidence takes to fall, and the confidence with it; offline, the later frames show where
+// the revisit ended.
 //
 // Several descriptors (the constructor's `descriptors`): each frame's rows are fused as offline (fused_score_row)
 // with the weights descriptor_weights gives on the frames seen, made again at each refit; when they change the
 // tables are replayed with them.
 //
-// Work per frame: O(map frames x descriptors), plus the refits (a localization of the frames seen, D + 1 with several
-// descriptors, at 8, 16, 32, ... frames). Memory: the rows seen, for the refits (frames x map frames floats, and as
-// many again per descriptor with several).
+// Work per frame: O(map frames x descriptors), plus the refits (a localization of at most kFitFrames rows, D + 1 with
+// several descriptors, at 8, 16, ..., 256, 512, 768, ... frames: a bounded latency at those frames). Memory: the rows
+// seen, for the refits (frames x map frames floats, and as many again per descriptor with several).
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -60,7 +61,8 @@ struct OnlineEstimate {
 
 class OnlineLocalizer {
  public:
-  static constexpr std::size_t kFirstFit = 8;  // frames seen at the first fit of the statistics
+  static constexpr std::size_t kFirstFit = 8;     // frames seen at the first fit of the statistics
+  static constexpr std::size_t kFitFrames = 256;  // the refits' rows: doubling up to it, then every kFitFrames
 
   // `descriptors` similarities a frame, fused as offline (localize_sequence of several matrices): their weights
   // (descriptor_weights) from the frames seen, made again at each refit. Throws std::invalid_argument on
