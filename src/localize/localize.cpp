@@ -298,6 +298,7 @@ std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> ss, con
   if (seen.size() < 2) return equal;
   std::vector<double> weights(ss.size(), 0.0);
   for (std::size_t d = 0; d < ss.size(); ++d) {
+    // Scored again rather than kept from the loop above: one query x map table at a time, as the map's check.
     const SimilarityMatrix e = score_matrix(ss[d], c);
     double chance = 0;
     for (float v : e.values) chance += v;

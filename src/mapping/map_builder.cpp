@@ -573,10 +573,9 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
     c.frames_per_place = scale->frames_per_place;
   }
   const MapConfig framed = settings_in_frames(c, c.frames_per_place.value_or(1.0));
+  const double place_frames = c.place_units ? c.frames_per_place.value_or(1.0) : 1.0;  // frames a place spans
   const std::size_t hub_k =
-      framed.contrast_window > 0 && c.hubness_neighbours > 0
-          ? in_frames(c.hubness_neighbours, c.place_units ? c.frames_per_place.value_or(1.0) : 1.0)
-          : 0;
+      framed.contrast_window > 0 && c.hubness_neighbours > 0 ? in_frames(c.hubness_neighbours, place_frames) : 0;
   std::vector<SimilarityMatrix> corrected;
   if (hub_k > 0) {
     corrected = similarities;
@@ -601,9 +600,7 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
     rc.reach = 2 * framed.min_separation;
     rc.min_frames = framed.min_separation;
     rc.half_window = std::max<std::size_t>(framed.min_separation / 2, 2);
-    rc.near = std::clamp<std::size_t>(
-        static_cast<std::size_t>(std::lround(2 * (c.place_units ? c.frames_per_place.value_or(1.0) : 1.0))), 2,
-        framed.min_separation / 2);
+    rc.near = std::clamp<std::size_t>(in_frames(2.0, place_frames), 2, framed.min_separation / 2);
     const std::vector<std::size_t> in_repeats = significance::tandem_repeat_frames(enhanced, rc);
     if (!in_repeats.empty() && masked_all.empty()) masked_all.assign(enhanced.rows, false);
     for (std::size_t f : in_repeats) {
