@@ -9,6 +9,7 @@
 
 #include "check_config.hpp"
 #include "search_region.hpp"
+#include "seqtopo/align/capped_cell.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 
 namespace seqtopo::align {
@@ -59,7 +60,7 @@ class Grid {
   }
   // Weight of the diagonal step into (i, j) (enterable).
   Score diagonal_weight(std::size_t i, std::size_t j) const { return s_[(i - 1) * n_ + (j - 1)]; }
-  Score clamp(Score v) const { return config_.cap ? std::min(v, *config_.cap) : v; }
+  Score clamp(Score v) const { return capped(v, config_.cap); }
   std::size_t original_col(std::size_t j) const { return config_.direction == Direction::forward ? j - 1 : n_ - j; }
 
  private:
@@ -78,13 +79,9 @@ std::vector<std::uint8_t> zero_cells(const Grid& g) {
   for (std::size_t i = 1; i <= m; ++i) {
     cur[0] = 0.0F;
     for (std::size_t j = 1; j <= n; ++j) {
-      Score v = 0.0F;
-      if (g.enterable(i, j)) {
-        v = std::max(v, prev[j - 1] + g.diagonal_weight(i, j));
-        v = std::max(v, prev[j] - c.gap_a);
-        v = std::max(v, cur[j - 1] - c.gap_b);
-        v = g.clamp(v);
-      }
+      const Score v = g.enterable(i, j) ? capped_cell(prev[j - 1] + g.diagonal_weight(i, j), prev[j], cur[j - 1],
+                                                      c.gap_a, c.gap_b, c.cap)
+                                        : 0.0F;
       cur[j] = v;
       zero[i * (n + 1) + j] = v > 0 ? 0 : 1;
     }

@@ -11,6 +11,7 @@
 #include "check_config.hpp"
 #include "plateau.hpp"
 #include "search_region.hpp"
+#include "seqtopo/align/capped_cell.hpp"
 #include "step_box.hpp"
 
 namespace seqtopo::align {
@@ -85,14 +86,12 @@ class Pass {
 
   bool used(std::size_t i, std::size_t j) const { return !used_.empty() && used_[(i - 1) * n_ + (j - 1)] != 0; }
 
-  Score clamp(Score v) const { return config_.cap ? std::min(v, *config_.cap) : v; }
+  Score clamp(Score v) const { return capped(v, config_.cap); }
 
+  // A diagonal step into a used pair is forbidden (declumping): its step counts as 0, which max(0, ...) ignores.
   Score cell_value(std::size_t i, std::size_t j, Score s) const {
-    Score v = 0.0F;
-    if (!used(i, j)) v = std::max(v, h(i - 1, j - 1) + s);
-    v = std::max(v, h(i - 1, j) - config_.gap_a);
-    v = std::max(v, h(i, j - 1) - config_.gap_b);
-    return clamp(v);
+    return capped_cell(used(i, j) ? 0.0F : h(i - 1, j - 1) + s, h(i - 1, j), h(i, j - 1), config_.gap_a, config_.gap_b,
+                       config_.cap);
   }
 
   void compute_cells(std::size_t i, std::size_t lo, std::size_t hi) {

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "seqtopo/align/online_row.hpp"
+
 namespace seqtopo::localize {
 
 OnlineLocalizer::OnlineLocalizer(std::size_t map_frames, const LocalizeConfig& config, std::size_t descriptors)
@@ -57,24 +59,8 @@ OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const
 void OnlineLocalizer::step() {
   std::swap(previous_forward_, forward_);
   std::swap(previous_reverse_, reverse_);
-  const float gap = config_.gap;
-  const std::size_t m = map_frames_;
-  // Same evaluation order and operations as the engine's fill, so values agree bit for bit.
-  for (std::size_t j = 0; j < m; ++j) {
-    const float diag = j > 0 ? previous_forward_[j - 1] : 0.0F;
-    float v = std::max(0.0F, diag + scores_[j]);
-    v = std::max(v, previous_forward_[j] - gap);
-    v = std::max(v, (j > 0 ? forward_[j - 1] : 0.0F) - gap);
-    forward_[j] = clamp(v);
-  }
-  for (std::size_t k = 0; k < m && config_.reverse; ++k) {
-    const std::size_t j = m - 1 - k;
-    const float diag = j + 1 < m ? previous_reverse_[j + 1] : 0.0F;
-    float v = std::max(0.0F, diag + scores_[j]);
-    v = std::max(v, previous_reverse_[j] - gap);
-    v = std::max(v, (j + 1 < m ? reverse_[j + 1] : 0.0F) - gap);
-    reverse_[j] = clamp(v);
-  }
+  align::fill_online_row(previous_forward_, scores_, forward_, false, config_.gap, config_.cap);
+  if (config_.reverse) align::fill_online_row(previous_reverse_, scores_, reverse_, true, config_.gap, config_.cap);
 }
 
 OnlineEstimate OnlineLocalizer::advance() {
@@ -120,7 +106,7 @@ OnlineEstimate OnlineLocalizer::advance() {
       const float v = (*table)[j];
       if (!(v > 0)) continue;
       const float diag = backwards ? (j + 1 < m ? previous[j + 1] : 0.0F) : (j > 0 ? previous[j - 1] : 0.0F);
-      if (v != clamp(diag + scores_[j])) continue;
+      if (v != align::capped(diag + scores_[j], config_.cap)) continue;
       const double w = std::exp(lambda_ * (static_cast<double>(v) - e.score));
       all += w;
       if (table == &best_table && (j > e.map ? j - e.map : e.map - j) <= config_.tolerance) near += w;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "median.hpp"
+#include "seqtopo/align/online_row.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/significance/alignment_phase.hpp"
@@ -378,53 +379,34 @@ void OnlineMapper::fill_rows() {
   const std::size_t t = frames_;
   const std::size_t n = scores_.size();
   const float gap = config_.gap;
-  auto clamp = [&](float v) { return config_.cap ? std::min(v, *config_.cap) : v; };
   std::swap(previous_forward_, forward_);
   std::swap(previous_reverse_, reverse_);
   std::swap(previous_forward_start_, forward_start_);
   std::swap(previous_reverse_start_, reverse_start_);
-  // One cell: the engine's evaluation order and operations (smith_waterman.cpp, cell_value), so the rows agree
-  // bit for bit; the start of the cell follows the first step that attains it, in the same order. `diag` is the
-  // previous row's diagonal predecessor and `left` this row's filled neighbour (j - 1 forward, j + 1 reverse),
-  // each absent (npos) outside the row.
-  constexpr std::size_t npos = static_cast<std::size_t>(-1);
-  const auto fill_cell = [&](std::vector<float>& row, std::vector<std::uint64_t>& start,
-                             const std::vector<float>& previous, const std::vector<std::uint64_t>& previous_start,
-                             std::size_t j, std::size_t diag_at, std::size_t left_at) {
-    const float diag = diag_at != npos ? previous[diag_at] : 0.0F;
-    const float up = j < previous.size() ? previous[j] : 0.0F;
-    const float left = left_at != npos ? row[left_at] : 0.0F;
-    const float a = diag + scores_[j];
-    float v = std::max(0.0F, a);
-    v = std::max(v, up - gap);
-    v = std::max(v, left - gap);
-    v = clamp(v);
-    row[j] = v;
-    if (v <= 0) return;
-    if (clamp(a) == v) {
-      start[j] = diag > 0 ? previous_start[diag_at] : cell(t, j);
-    } else if (clamp(up - gap) == v) {
-      start[j] = previous_start[j];
-    } else {
-      start[j] = start[left_at];
-    }
+  // The rows of align/online_row.hpp, and where each cell's alignment starts: the start follows the first step
+  // that attains the cell's value, in the engine's order (diagonal, up, left).
+  const auto fill = [&](std::vector<float>& row, std::vector<std::uint64_t>& start, const std::vector<float>& previous,
+                        const std::vector<std::uint64_t>& previous_start, bool reverse) {
+    row.assign(n, 0.0F);
+    start.assign(n, kNoStart);
+    align::fill_online_row(previous, scores_, row, reverse, gap, config_.cap,
+                           [&](std::size_t j, std::size_t diagonal_at, std::size_t left_at, float step, float v) {
+                             if (v <= 0) return;
+                             const float up = j < previous.size() ? previous[j] : 0.0F;
+                             if (align::capped(step, config_.cap) == v) {
+                               const bool extends = diagonal_at != align::kNoCell && previous[diagonal_at] > 0;
+                               start[j] = extends ? previous_start[diagonal_at] : cell(t, j);
+                             } else if (align::capped(up - gap, config_.cap) == v) {
+                               start[j] = previous_start[j];
+                             } else {
+                               start[j] = start[left_at];
+                             }
+                           });
   };
-  const std::size_t m = previous_forward_.size();  // n - 1, or 0
-  forward_.assign(n, 0.0F);
-  forward_start_.assign(n, kNoStart);
-  for (std::size_t j = 0; j < n; ++j) {
-    fill_cell(forward_, forward_start_, previous_forward_, previous_forward_start_, j,
-              j > 0 && j - 1 < m ? j - 1 : npos, j > 0 ? j - 1 : npos);
-  }
-  reverse_.assign(config_.reverse ? n : 0, 0.0F);
-  reverse_start_.assign(config_.reverse ? n : 0, kNoStart);
-  if (!config_.reverse) return;
-  const std::size_t mr = previous_reverse_.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t j = n - 1 - k;
-    fill_cell(reverse_, reverse_start_, previous_reverse_, previous_reverse_start_, j, j + 1 < mr ? j + 1 : npos,
-              j + 1 < n ? j + 1 : npos);
-  }
+  fill(forward_, forward_start_, previous_forward_, previous_forward_start_, false);
+  reverse_.clear();
+  reverse_start_.clear();
+  if (config_.reverse) fill(reverse_, reverse_start_, previous_reverse_, previous_reverse_start_, true);
 }
 
 float OnlineMapper::confidence(float score) const {

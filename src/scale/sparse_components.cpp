@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "both_passes.hpp"
+#include "seqtopo/align/capped_cell.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/core/disjoint_sets.hpp"
 
@@ -97,12 +98,10 @@ class SparseFill {
           const Cell* diag = t > 0 ? find_cell(prev, t - 1) : nullptr;
           const Cell* up = find_cell(prev, t);
           const Cell* left = !cur.empty() && t > 0 && cur.back().col == t - 1 ? &cur.back() : nullptr;
-          // The engine's cell_value, with inactive neighbours at 0.
-          float v = 0.0F;
-          v = std::max(v, (diag != nullptr ? diag->h : 0.0F) + s);
-          v = std::max(v, (up != nullptr ? up->h : 0.0F) - config_.gap_a);
-          v = std::max(v, (left != nullptr ? left->h : 0.0F) - config_.gap_b);
-          if (config_.cap) v = std::min(v, *config_.cap);
+          // The engine's cell, with inactive neighbours at 0.
+          const float v =
+              align::capped_cell((diag != nullptr ? diag->h : 0.0F) + s, up != nullptr ? up->h : 0.0F,
+                                 left != nullptr ? left->h : 0.0F, config_.gap_a, config_.gap_b, config_.cap);
           if (!(v > 0)) continue;
           std::uint32_t label = std::numeric_limits<std::uint32_t>::max();
           for (const Cell* p : {diag, up, left}) {

@@ -88,7 +88,6 @@ class OnlineLocalizer {
   void step();               // the recurrences' next rows from scores_
   OnlineEstimate advance();  // step, then the estimate of the frame
   void refit();              // the weights, statistics and lambda from the rows seen
-  float clamp(float v) const { return config_.cap ? std::min(v, *config_.cap) : v; }
 
   std::size_t map_frames_;
   LocalizeConfig config_;
