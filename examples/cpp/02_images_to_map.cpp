@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   }
   namespace pipeline = seqtopo::pipeline;
   pipeline::MapRequest request;
-  request.input = {argv[1]};
+  request.sessions = {pipeline::SessionSource{{argv[1]}}};
   request.settings = pipeline::map_preset("default");
   if (argc > 2) request.truth.same_place = argv[2];
   try {

@@ -444,7 +444,8 @@ class MapRun:
     """Everything one :func:`map_sequence` computed: the map (``.map``, a :class:`MapResult`), the accuracy
     against the ground truth (``.metrics``, and the SeqSLAM-style ``.baseline`` on the same matrices),
     ``.topology`` and ``.trajectory_errors`` (with places or poses), ``.timings`` (stage, seconds: consecutive
-    parts of the run). :func:`write_report` writes it as ``seqtopo map`` does."""
+    parts of the run), ``.engine`` (the engine that ran: ``"exact"``, ``"fast"``, ``"streaming"`` or ``"sparse"``).
+    :func:`write_report` writes it as ``seqtopo map`` does."""
 
     def __init__(self, raw):
         self._raw = raw
@@ -457,6 +458,7 @@ class MapRun:
         self.descriptor_names = list(raw.descriptor_names)
         self.input = raw.input
         self.preset = raw.preset
+        self.engine = raw.engine
 
     def __repr__(self) -> str:
         m = self.map
@@ -482,8 +484,8 @@ def _arrays(x) -> bool:
 
 def _refuse_path_options(**given) -> None:
     """Options that read or compute from files, given with arrays in memory: one error naming the first."""
-    defaults = {"streaming": False, "sparse": False, "descriptors": None, "input_kind": "auto", "metric": None,
-                "kappa": None}
+    defaults = {"engine": None, "streaming": False, "sparse": False, "neighbours": None, "diagonal_reach": None,
+                "descriptors": None, "input_kind": "auto", "metric": None, "kappa": None}
     for name, value in given.items():
         if value is not None and value != defaults[name]:
             what = ("compares descriptors; a similarity matrix is mapped as it is" if name in ("metric", "kappa")
@@ -592,9 +594,10 @@ def map_sequence(
     gt_places=None,
     gt_junctions=None,
     gt_poses=None,
+    engine: str = "automatic",
     streaming: bool = False,
     sparse: bool = False,
-    neighbours: int = 10,
+    neighbours: int | None = None,
     diagonal_reach: int | None = None,
     names: list[str] | None = None,
     progress: _typing.Callable[[ProgressEvent], object] | None = None,
@@ -614,9 +617,11 @@ def map_sequence(
     ``--gt-radius``, ``--gt-places``, ``--gt-poses``) or as arrays for an array input: ``odometry`` N x 3
     (x, y, theta [m, m, rad], cumulative), ``ground_truth`` an N x N same-place matrix or N x 2 positions with
     ``gt_radius`` [m], ``gt_places`` the true place per image (``gt_junctions``: the true junction places),
-    ``gt_poses`` N x 3 true poses. ``names``: one per matrix, for the report. ``streaming`` and ``sparse``
-    (with ``neighbours`` candidates per frame and ``diagonal_reach``) are the command's ``--streaming`` and
-    ``--sparse`` (``--neighbours``, ``--diagonal-reach``), for a path input. ``every``: as the command's
+    ``gt_poses`` N x 3 true poses. ``names``: one per matrix, for the report. ``engine`` is the command's
+    ``--engine``: ``"automatic"`` (chosen by the memory the run needs, as the command chooses it), ``"exact"``,
+    ``"fast"``, ``"streaming"`` or ``"sparse"`` (with ``neighbours`` candidates per frame, default 10, and
+    ``diagonal_reach``); ``streaming=True`` and ``sparse=True`` are the command's ``--streaming`` and ``--sparse``;
+    all for a path input. ``every``: as the command's
     ``--every``; with descriptors in memory it keeps rows 0, k, 2k, ..., thins ``odometry`` (every frame's) alike,
     and a ground truth of every frame too (one of the rows kept is used as it is). Options that only apply to a
     path input, or ``metric``/``kappa`` with similarity matrices, are refused rather than ignored.
@@ -632,7 +637,9 @@ def map_sequence(
     if _arrays(path):
         matrices = list(path) if isinstance(path, (list, tuple)) else [path]
         descriptor_rows = len(matrices) == 1 and matrices[0].ndim == 2 and matrices[0].shape[0] != matrices[0].shape[1]
-        _refuse_path_options(streaming=streaming, sparse=sparse, descriptors=descriptors, input_kind=input_kind,
+        _refuse_path_options(engine=None if engine == "automatic" else engine, streaming=streaming, sparse=sparse,
+                             neighbours=neighbours, diagonal_reach=diagonal_reach, descriptors=descriptors,
+                             input_kind=input_kind,
                              metric=None if descriptor_rows else metric, kappa=None if descriptor_rows else kappa)
         for name, value in (("odometry", odometry), ("ground_truth", ground_truth), ("gt_places", gt_places),
                             ("gt_poses", gt_poses)):
@@ -696,7 +703,7 @@ def map_sequence(
         odometry_files = [_os.fspath(odometry)]
     raw = _core.map_sequence(paths, preset, config, list(descriptors or []), metric, kappa, input_kind,
                              every, threads, odometry_files, fs(ground_truth), gt_radius, fs(gt_places), fs(gt_poses),
-                             streaming, sparse, neighbours, diagonal_reach, callback)
+                             engine, streaming, sparse, neighbours, diagonal_reach, callback)
     return MapRun(raw)
 
 

@@ -317,8 +317,8 @@ py::dict map_preset(const std::string& name) {
   return d;
 }
 
-// pipeline::map_sequence from the command line's inputs; the run stays a C++ object (MapRun) that Python reads
-// and writes out (write_map_outputs).
+// pipeline::map_sequence from the command line's inputs, through the request and the overrides the command line
+// fills (map_request.hpp); the run stays a C++ object (MapRun) that Python reads and writes out.
 pipeline::MapRun map_sequence(const std::vector<std::filesystem::path>& paths, const std::string& preset,
                               const mapping::MapConfig& config, const std::vector<std::string>& descriptors,
                               const std::optional<std::string>& metric, std::optional<float> kappa,
@@ -326,41 +326,43 @@ pipeline::MapRun map_sequence(const std::vector<std::filesystem::path>& paths, c
                               const std::vector<std::filesystem::path>& odometry,
                               const std::filesystem::path& ground_truth, std::optional<double> gt_radius,
                               const std::filesystem::path& gt_places, const std::filesystem::path& gt_poses,
-                              bool streaming, bool sparse, std::size_t neighbours,
-                              std::optional<std::size_t> diagonal_reach, const py::object& progress) {
+                              const std::string& engine, bool streaming, bool sparse,
+                              std::optional<std::size_t> neighbours, std::optional<std::size_t> diagonal_reach,
+                              const py::object& progress) {
   pipeline::MapRequest request;
   request.preset = preset;
-  request.settings = pipeline::map_preset(preset);
-  request.settings.map = config;
+  pipeline::MapSettings base = pipeline::map_preset(preset);
+  base.map = config;  // the preset's, with the keyword overrides Python applied
+  pipeline::MapOverrides set;
   if (!descriptors.empty()) {
-    request.settings.detect_panoramas = false;  // as --descriptor: the descriptors asked for are used
-    request.settings.descriptors.clear();
-    for (const auto& d : descriptors) request.settings.descriptors.push_back(pipeline::parse_descriptor(d));
+    set.descriptors.emplace();
+    for (const auto& d : descriptors) set.descriptors->push_back(pipeline::parse_descriptor(d));
   }
-  if (metric) request.settings.similarity.distance = similarity::parse_distance(*metric);
+  if (metric) set.metric = similarity::parse_distance(*metric);
   check_kappa(kappa);
-  if (kappa) request.settings.similarity.kappa = kappa;
+  set.kappa = kappa;
+  set.threads = threads;
+  request.settings = pipeline::apply_overrides(std::move(base), set);
+  try {
+    request.engine = pipeline::engine_with_flags(pipeline::parse_engine(engine), streaming, sparse);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("engine: ") + e.what());
+  }
+  request.sparse.neighbours = neighbours;
+  request.sparse.diagonal_reach = diagonal_reach;
   if (every == 0) throw std::invalid_argument("every must be >= 1");
-  request.settings.similarity.threads = threads;
   // Several paths are sessions, as `seqtopo map S1 S2 ...`; odometry none, or one file per session.
   if (!odometry.empty() && odometry.size() != paths.size()) {
     throw std::invalid_argument("odometry: " + std::to_string(odometry.size()) + " files for " +
                                 std::to_string(paths.size()) + " sessions: give one per session, in their order");
   }
-  std::vector<pipeline::SessionSource> sessions;
   for (std::size_t k = 0; k < paths.size(); ++k) {
     pipeline::SessionSource session;
     session.input = {paths[k], pipeline::parse_input_kind(input_kind), every};
     if (!odometry.empty()) session.odometry = odometry[k];
-    sessions.push_back(std::move(session));
+    request.sessions.push_back(std::move(session));
   }
-  pipeline::set_sessions(request, std::move(sessions));
   request.truth = {ground_truth, gt_radius, gt_places, gt_poses};
-  if (neighbours == 0) throw std::invalid_argument("neighbours must be >= 1");
-  request.streaming = streaming || sparse;
-  request.sparse = sparse;
-  request.sparse_neighbours = neighbours;
-  if (diagonal_reach) request.sparse_diagonal_reach = *diagonal_reach;
   PythonProgress reporter(progress);
   std::optional<pipeline::MapRun> run;
   {
@@ -594,6 +596,8 @@ void bind_map_run(py::module_& m) {
       .def_readonly("descriptor_names", &pipeline::MapRun::descriptor_names)
       .def_readonly("input", &pipeline::MapRun::input)
       .def_readonly("preset", &pipeline::MapRun::preset)
+      .def_property_readonly("engine",
+                             [](const pipeline::MapRun& r) { return std::string(pipeline::engine_name(r.engine)); })
       .def_readonly("timings", &pipeline::MapRun::timings)
       .def_property_readonly("metrics",
                              [](const pipeline::MapRun& r) {
@@ -697,7 +701,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("map_sequence", &map_sequence, py::arg("paths"), py::arg("preset"), py::arg("config"), py::arg("descriptors"),
         py::arg("metric"), py::arg("kappa"), py::arg("input_kind"), py::arg("every"), py::arg("threads"),
         py::arg("odometry"), py::arg("ground_truth"), py::arg("gt_radius"), py::arg("gt_places"), py::arg("gt_poses"),
-        py::arg("streaming"), py::arg("sparse"), py::arg("neighbours"), py::arg("diagonal_reach"), py::arg("progress"));
+        py::arg("engine"), py::arg("streaming"), py::arg("sparse"), py::arg("neighbours"), py::arg("diagonal_reach"),
+        py::arg("progress"));
   m.def("write_map_outputs", &write_map_outputs, py::arg("run"), py::arg("folder"));
   m.def("map_similarities", &map_similarities, py::arg("similarities"), py::arg("names"), py::arg("config"),
         py::arg("odometry"), py::arg("same_place"), py::arg("true_places"), py::arg("true_junctions"),

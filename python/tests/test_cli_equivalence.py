@@ -332,10 +332,9 @@ def test_paper_preset_from_python_equals_cli(cli, tmp_path):
     assert_map_equal(result, tmp_path / "cli")
 
 
-def test_sparse_map_sequence_equals_cli(cli, tmp_path):
-    # A walk through descriptor space revisited forward and backward: --sparse from Python and the command line.
-    rng = np.random.default_rng(11)
-    n = 600
+def write_walk(path, n, seed=11):
+    """A walk through descriptor space revisited forward and backward (a fifth of it each way)."""
+    rng = np.random.default_rng(seed)
     x = np.zeros((n, 8), np.float32)
     x[0] = rng.standard_normal(8)
     for i in range(1, n):
@@ -345,13 +344,40 @@ def test_sparse_map_sequence_equals_cli(cli, tmp_path):
         elif n // 2 + n // 5 <= i < n // 2 + 2 * (n // 5):
             base = x[n - i]
         x[i] = base + 0.4 * rng.standard_normal(8)
-    np.save(tmp_path / "walk.npy", x)
-    run_cli(cli, "map", tmp_path / "walk.npy", "--sparse", "--neighbours", "40", "--out", tmp_path / "cli")
-    run = seqtopo.map_sequence(tmp_path / "walk.npy", sparse=True, neighbours=40)
+    np.save(path, x)
+
+
+@pytest.mark.parametrize("args, options", [
+    (["--sparse", "--neighbours", "40"], {"sparse": True, "neighbours": 40}),
+    (["--streaming"], {"streaming": True}),
+    (["--engine", "streaming"], {"engine": "streaming"}),
+    (["--engine", "fast"], {"engine": "fast"}),
+])
+def test_engines_of_map_sequence_equal_cli(cli, tmp_path, args, options):
+    # One request from both front ends: the same engine, the same files.
+    write_walk(tmp_path / "walk.npy", 600)
+    run_cli(cli, "map", tmp_path / "walk.npy", *args, "--out", tmp_path / "cli")
+    run = seqtopo.map_sequence(tmp_path / "walk.npy", **options)
+    assert run.engine == (args[-1] if args[0] == "--engine" else args[0][2:])
     seqtopo.write_report(run, tmp_path / "py")
     for name in ("map.json", "alignments.json", "loop_closures.csv"):
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
     assert len((tmp_path / "cli" / "loop_closures.csv").read_text().splitlines()) > 100
+
+
+def test_automatic_engine_of_map_sequence_equals_cli(cli, tmp_path, monkeypatch):
+    # No engine given and a small machine: both front ends choose by the memory the run needs, here not the exact
+    # engine, and write the same map. (6,000 frames, so that the tables, not the processes, decide at 1 GB.)
+    write_walk(tmp_path / "walk.npy", 6000)
+    monkeypatch.setenv("SEQTOPO_MEMORY_LIMIT", "1G")
+    err = run_cli(cli, "map", tmp_path / "walk.npy", "--out", tmp_path / "cli").stderr
+    assert "engine streaming: " in err, err
+    run = seqtopo.map_sequence(tmp_path / "walk.npy")
+    monkeypatch.delenv("SEQTOPO_MEMORY_LIMIT")
+    assert run.engine == "streaming"
+    seqtopo.write_report(run, tmp_path / "py")
+    for name in ("map.json", "alignments.json", "loop_closures.csv"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
 
 
 def corridor_laps(folder):

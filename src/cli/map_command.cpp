@@ -62,19 +62,13 @@ struct MapOptions {
   std::string input_kind = "auto";
   std::size_t every = 1;
   std::string preset = "default";
-  std::optional<std::string> descriptor, metric_name;
-  std::optional<float> kappa, gap, threshold, cap;
-  bool kappa_auto = false, no_cap = false, cap_auto = false, no_e_value = false, fpp_auto = false;
-  std::optional<double> e_value, frames_per_place, cap_factor;
-  std::optional<std::string> odometry_gate;
-  std::optional<std::string> engine;  // default exact, fast with --streaming
-  std::optional<std::string> alignment_set;
-  std::optional<std::size_t> min_separation, contrast_window;
-  std::optional<float> contrast_offset;
-  bool no_reverse = false;
-  std::optional<bool> graph_cleanup, odometry_evidence;
+  // The changes to the preset's settings given as numbers or flags; the named ones below are parsed into it.
+  pipeline::MapOverrides set;
+  std::optional<std::string> descriptor, metric_name, alignment_set, odometry_gate;
+  bool kappa_auto = false, fpp_auto = false, no_reverse = false;
+  std::optional<std::string> engine;  // default automatic
   bool streaming = false, sparse = false;
-  std::optional<std::size_t> neighbours, diagonal_reach;
+  pipeline::SparseOptions sparse_options;
   std::string ground_truth, gt_places, gt_poses;
   std::optional<double> gt_radius;
   unsigned threads = 0;
@@ -111,35 +105,16 @@ std::optional<mapping::OdometryGate> parse_odometry_gate(const std::string& text
   return gate;
 }
 
-// The preset fixes the defaults; every explicit option overrides them.
+// The preset fixes the defaults; every explicit option overrides them (pipeline::apply_overrides).
 Settings resolve_settings(const MapOptions& o) {
-  Settings s = option_value("--preset", [&] { return pipeline::map_preset(o.preset); });
-  if (o.descriptor) {
-    s.detect_panoramas = false;  // the descriptors asked for are the descriptors used
-    s.descriptors = option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
-  }
-  if (o.metric_name)
-    s.similarity.distance = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });
-  if (o.kappa) s.similarity.kappa = *o.kappa;
-  s.similarity.threads = resolve_threads(o.threads);
-  if (o.gap) s.map.gap = *o.gap;
-  if (o.threshold) s.map.threshold = *o.threshold;
-  if (o.no_cap || o.cap) s.map.cap_from_statistics = false;  // an explicit cap is the cap
-  if (o.no_cap) s.map.cap.reset();
-  if (o.cap) s.map.cap = *o.cap;
-  if (o.no_e_value) s.map.max_e_value.reset();
-  if (o.e_value) s.map.max_e_value = *o.e_value;
-  if (o.frames_per_place) s.map.frames_per_place = *o.frames_per_place;
-  if (o.cap_factor) s.map.cap_factor = static_cast<float>(*o.cap_factor);
-  const std::string engine = o.engine.value_or(o.streaming ? "fast" : "exact");
-  if (engine == "fast") {
-    s.map.engine = mapping::MapConfig::Engine::fast;
-  } else if (engine != "exact") {
-    throw InputError("--engine", "expected exact or fast, got '" + engine + "'");
-  }
+  pipeline::MapOverrides set = o.set;
+  if (o.descriptor)
+    set.descriptors = option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
+  if (o.metric_name) set.metric = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });
+  set.threads = resolve_threads(o.threads);
   if (o.alignment_set) {
     try {
-      s.map.alignment_set = align::parse_alignment_set(*o.alignment_set);
+      set.alignment_set = align::parse_alignment_set(*o.alignment_set);
     } catch (const std::invalid_argument&) {
       throw InputError("--alignment-set",
                        "expected locally-optimal or non-intersecting, got '" + *o.alignment_set + "'");
@@ -148,90 +123,14 @@ Settings resolve_settings(const MapOptions& o) {
   if (o.odometry_gate) {
     // A bad value is a bad command line (exit 2), as for every other number option.
     try {
-      s.map.odometry_gate = parse_odometry_gate(*o.odometry_gate);
+      set.odometry_gate = parse_odometry_gate(*o.odometry_gate);
+      set.no_odometry_gate = !set.odometry_gate;
     } catch (const InputError& e) {
       throw CLI::ValidationError(e.subject(), e.what());
     }
   }
-  if (o.min_separation) s.map.min_separation = *o.min_separation;
-  if (o.contrast_window) s.map.contrast_window = *o.contrast_window;
-  if (o.contrast_offset) s.map.contrast_offset = *o.contrast_offset;
-  s.map.reverse = !o.no_reverse;
-  if (o.graph_cleanup) s.map.clean_graph = *o.graph_cleanup;
-  if (o.odometry_evidence) s.map.odometry_evidence = *o.odometry_evidence;
-  s.map.threads = resolve_threads(o.threads);
-  return s;
-}
-
-// An N x N ground truth: an image, or a numeric .npy (VPR-Bench's object arrays are lists).
-bool is_same_place_matrix(const std::string& file) {
-  std::string ext = fs::path(file).extension().string();
-  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".npy") {
-    try {
-      io::read_npy_header(file);
-      return true;
-    } catch (const std::exception&) {
-      return false;  // not a numeric matrix (objects), or unreadable: the reader says which
-    }
-  }
-  return ext != ".csv" && ext != ".txt" && ext != ".tum" && ext != ".kitti" && !ext.empty();
-}
-
-// --streaming never reads an N x N ground truth (checked before the ground truth is read).
-void check_streaming_truth(const MapOptions& o) {
-  if (o.streaming && !o.ground_truth.empty() && is_same_place_matrix(o.ground_truth)) {
-    throw InputError("--ground-truth",
-                     "an N x N image or matrix (N^2 bytes, 10 GB at 10^5 images) is refused with --streaming; give "
-                     "pairs (query,map CSV), VPR-Bench .npy, or poses with --gt-radius");
-  }
-}
-
-// --streaming aligns contrast-enhanced cosine scores of one vector descriptor per image, computed on the
-// fly (scale/streaming_similarity.hpp); whatever needs the N x N matrix is refused here, before any work.
-void check_streaming(const MapOptions& o, const Settings& s, pipeline::InputKind kind) {
-  if (o.preset == "paper") {
-    throw InputError("--preset",
-                     "paper aligns the raw S = 1 - kappa D, whose kappa needs the whole distance matrix; "
-                     "--streaming never holds it (use the default preset)");
-  }
-  if (s.map.engine != mapping::MapConfig::Engine::fast) {
-    throw InputError("--engine", "exact fills an N x N table; --streaming needs the fast engine (its default)");
-  }
-  if (s.map.alignment_set == align::AlignmentSet::locally_optimal) {
-    throw InputError("--alignment-set", "locally-optimal keeps the N x N scores; --streaming never holds them");
-  }
-  if (kind == pipeline::InputKind::similarity) {
-    throw InputError("--streaming",
-                     "needs descriptors (descriptors.npy, or images with one vector descriptor), "
-                     "not a similarity matrix");
-  }
-  if (s.map.contrast_window == 0) {
-    throw InputError("--contrast-window",
-                     "0 aligns the raw S = 1 - kappa D, whose kappa needs the whole distance "
-                     "matrix; --streaming aligns contrast-enhanced scores (window >= 1)");
-  }
-  if (o.kappa || o.kappa_auto)
-    throw InputError("--kappa", "has no effect with --streaming: the contrast enhancement removes kappa");
-  if (o.metric_name && s.similarity.distance != pipeline::Distance::cosine) {
-    throw InputError("--metric", "--streaming scores by cosine similarity only, got '" + *o.metric_name + "'");
-  }
-  if (o.descriptor && s.descriptors.size() != 1) {
-    throw InputError("--descriptor", fmt::format("--streaming takes one descriptor, got {} (fusing needs one N x N "
-                                                 "matrix per descriptor)",
-                                                 s.descriptors.size()));
-  }
-  // Without --descriptor or --metric the job streams the nearest vector descriptor by cosine (engine_choice.hpp).
-  if (kind != pipeline::InputKind::descriptors && o.descriptor) {  // images or a video: the descriptor is computed
-    if (s.descriptors.front() == pipeline::Descriptor::npy) {
-      throw InputError("--descriptor", "npy needs a descriptors.npy input");
-    }
-    if (s.descriptors.front() == pipeline::Descriptor::joint_histogram) {
-      throw InputError("--descriptor",
-                       "joint-histogram is a sparse histogram without a vector form; --streaming "
-                       "needs patch or panorama (compared by cosine)");
-    }
-  }
+  if (o.no_reverse) set.reverse = false;
+  return pipeline::apply_overrides(option_value("--preset", [&] { return pipeline::map_preset(o.preset); }), set);
 }
 
 // The options of the offline map that --online does not read (its offline outputs too are the online run's
@@ -248,18 +147,18 @@ std::vector<std::string> ignored_online(const MapOptions& o) {
   check(o.preset != "default", "--preset");
   check(o.descriptor.has_value(), "--descriptor");
   check(o.metric_name.has_value(), "--metric");
-  check(o.kappa || o.kappa_auto, "--kappa");
-  check(o.frames_per_place || o.fpp_auto, "--frames-per-place");
-  check(o.cap_factor.has_value(), "--cap-factor");
+  check(o.set.kappa || o.kappa_auto, "--kappa");
+  check(o.set.frames_per_place || o.fpp_auto, "--frames-per-place");
+  check(o.set.cap_factor.has_value(), "--cap-factor");
   check(o.odometry_gate.has_value(), "--odometry-gate");
-  check(o.odometry_evidence.has_value(), "--odometry-evidence");
+  check(o.set.odometry_evidence.has_value(), "--odometry-evidence");
   check(o.engine.has_value(), "--engine");
   check(o.alignment_set.has_value(), "--alignment-set");
-  check(o.graph_cleanup.has_value(), "--graph-cleanup");
+  check(o.set.graph_cleanup.has_value(), "--graph-cleanup");
   check(o.streaming, "--streaming");
   check(o.sparse, "--sparse");
-  check(o.neighbours.has_value(), "--neighbours");
-  check(o.diagonal_reach.has_value(), "--diagonal-reach");
+  check(o.sparse_options.neighbours.has_value(), "--neighbours");
+  check(o.sparse_options.diagonal_reach.has_value(), "--diagonal-reach");
   check(!o.gt_places.empty(), "--gt-places");
   check(!o.gt_poses.empty(), "--gt-poses");
   check(!o.sequence.image_topic.empty(), "--image-topic");
@@ -282,11 +181,19 @@ void run(MapOptions o) {
                                                fmt::join(ignored, ", "), ignored.size() > 1 ? "s" : "",
                                                ignored.size() > 1 ? "them" : "it"));
     }
-    run_map_online({o.inputs,          o.out,        o.input_kind,          o.ground_truth,
-                    o.every,           o.gap,        o.threshold,           o.cap,
-                    o.contrast_offset, o.no_cap,     o.no_reverse,          o.min_separation,
-                    o.contrast_window, o.gt_radius,  !o.no_offline_outputs, o.threads,
-                    o.e_value,         o.no_e_value, o.candidate_e_value,   o.no_candidates});
+    pipeline::MapOverrides set = o.set;
+    if (o.no_reverse) set.reverse = false;
+    run_map_online({.inputs = o.inputs,
+                    .out = o.out,
+                    .input_kind = o.input_kind,
+                    .ground_truth = o.ground_truth,
+                    .gt_radius = o.gt_radius,
+                    .every = o.every,
+                    .set = set,
+                    .candidate_e_value = o.candidate_e_value,
+                    .no_candidates = o.no_candidates,
+                    .offline_outputs = !o.no_offline_outputs,
+                    .threads = o.threads});
     return;
   }
   const auto matrices = option_value("--save-matrices", [&]() -> std::optional<bool> {
@@ -299,16 +206,19 @@ void run(MapOptions o) {
   // Everything the user gave is checked before the long computation starts (and before any progress
   // output), so a mistake costs one line and no time.
   pipeline::MapRequest request;
-  if (o.neighbours && !o.sparse) throw InputError("--neighbours", "is the sparse mode's: give --sparse too");
-  if (o.diagonal_reach && !o.sparse) throw InputError("--diagonal-reach", "is the sparse mode's: give --sparse too");
-  if (o.sparse) o.streaming = true;  // the sparse mode streams the scores at its candidates
   request.settings = resolve_settings(o);
   request.preset = o.preset;
+  request.engine = pipeline::engine_with_flags(
+      o.engine ? std::optional(option_value("--engine", [&] { return pipeline::parse_engine(*o.engine); }))
+               : std::nullopt,
+      o.streaming, o.sparse);
+  request.sparse = o.sparse_options;
+  const bool streams = pipeline::streams(request.engine);
   const bool bundled_default = o.inputs.empty();
   if (bundled_default) {
     o.inputs = {bundled_corridor().string()};
-    // Its ground truth is an N x N image, which --streaming refuses.
-    if (o.ground_truth.empty() && !o.streaming) o.ground_truth = (fs::path(o.inputs[0]) / "ground_truth.bmp").string();
+    // Its ground truth is an N x N image, which the streaming engines refuse.
+    if (o.ground_truth.empty() && !streams) o.ground_truth = (fs::path(o.inputs[0]) / "ground_truth.bmp").string();
   }
   const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
   // --odometry and --times: one for a single input, one per session or none for several.
@@ -335,25 +245,18 @@ void run(MapOptions o) {
     session.every_metres = o.every_metres;
     sessions.push_back(std::move(session));
   }
-  pipeline::set_sessions(request, std::move(sessions));
+  request.sessions = std::move(sessions);
   request.truth = {o.ground_truth, o.gt_radius, o.gt_places, o.gt_poses};
   request.report_images = o.images;
-  request.streaming = o.streaming;
-  request.choose_engine = !o.engine && !o.streaming;
-  request.sparse = o.sparse;
-  if (o.neighbours) request.sparse_neighbours = *o.neighbours;
-  if (o.diagonal_reach) request.sparse_diagonal_reach = *o.diagonal_reach;
-  check_streaming_truth(o);
   const pipeline::MapJob job(request);
-  if (o.streaming) check_streaming(o, request.settings, job.input_kind());
   std::vector<std::filesystem::path> inputs(o.inputs.begin(), o.inputs.end());
   for (const auto* files : {&o.odometry_files, &o.times_files})
     inputs.insert(inputs.end(), files->begin(), files->end());
   for (const auto* file : {&o.ground_truth, &o.gt_places, &o.gt_poses}) inputs.emplace_back(*file);
   io::OutputDirectory out(o.out, {.inputs = inputs, .command = "seqtopo map"});
   if (bundled_default) progress.line("no input given: mapping the bundled corridor data " + o.inputs[0]);
-  if (bundled_default && o.streaming) {
-    progress.line("its ground truth is an N x N image, which --streaming does not read");
+  if (bundled_default && streams) {
+    progress.line("its ground truth is an N x N image, which the streaming engines do not read");
   }
   const double setup_seconds = progress.elapsed();
   const auto line = [&progress](std::string_view text) { progress.line(text); };
@@ -414,35 +317,37 @@ const RegisterCommand registered{
                       "joint-histogram|patch|panorama|npy (npy: the rows of a descriptors.npy INPUT), or several "
                       "separated by commas to fuse them (default joint-histogram,patch; paper preset joint-histogram)");
        app.add_option("--metric", o->metric_name, "chi2|l1|cosine|sad (default: by descriptor)");
-       add_number_or(app, "--kappa", o->kappa, "auto", o->kappa_auto, kPositive,
+       add_number_or(app, "--kappa", o->set.kappa, "auto", o->kappa_auto, kPositive,
                      "S = 1 - kappa * D: a number > 0, or auto (from the sequence's own distances)");
-       add_number(app, "--gap", o->gap, kNonNegative,
+       add_number(app, "--gap", o->set.gap, kNonNegative,
                   fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
        app.add_option("--engine", o->engine,
-                      "exact (scalar reference, N x N table) or fast (vectorized, no N x N table, scores quantized "
-                      "to 1/512); default: chosen by the memory the run needs (exact, fast, then --streaming), "
-                      "said on stderr");
+                      "automatic (chosen by the memory the run needs, said on stderr), exact (scalar reference, N x N "
+                      "table), fast (vectorized, no N x N table, scores quantized to 1/512), streaming or sparse (as "
+                      "--streaming, --sparse); default automatic");
        app.add_option("--alignment-set", o->alignment_set,
                       fmt::format("non-intersecting (Waterman-Eggert: no two revisits share a pair) or locally-optimal "
                                   "(every alignment no shortening or extension improves, after Schmidt; "
                                   "docs/alignment_sets.md); default {}",
                                   align::to_string(mapping::MapConfig{}.alignment_set)));
-       app.add_flag("--streaming", o->streaming,
-                    "never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor "
-                    "(descriptors.npy rows, or images' patch or panorama thumbnails, by cosine) computed on the fly, "
-                    "fast engine; "
-                    "no scores.npy, similarity.npy nor SeqSLAM baseline, similarity.png a block-max overview");
+       app.add_flag(
+           "--streaming", o->streaming,
+           "--engine streaming: never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor "
+           "(descriptors.npy rows, or images' patch or panorama thumbnails, by cosine) computed on the fly, "
+           "fast engine; "
+           "no scores.npy, similarity.npy nor SeqSLAM baseline, similarity.png a block-max overview");
        app.add_flag("--sparse", o->sparse,
-                    "as --streaming, but align only each frame's nearest neighbours (FAISS candidates; every other "
+                    "--engine sparse: as --streaming, but align only each frame's nearest neighbours (FAISS "
+                    "candidates; every other "
                     "pair scores -1): maps of 10^6 frames in a few GB, the same map where the candidates cover "
                     "the revisits (docs/scaling.md)");
-       add_number(app, "--neighbours", o->neighbours, kAtLeastOne,
+       add_number(app, "--neighbours", o->sparse_options.neighbours, kAtLeastOne,
                   "--sparse: candidates per frame (default 10), nearest first");
-       add_number(app, "--diagonal-reach", o->diagonal_reach, kNonNegative,
+       add_number(app, "--diagonal-reach", o->sparse_options.diagonal_reach, kNonNegative,
                   fmt::format("--sparse: the diagonals this many frames around each candidate pair are candidates "
                               "too, so a revisit whose frames seldom have their true match among the nearest grows "
                               "from a few (default {})",
-                              pipeline::MapRequest{}.sparse_diagonal_reach));
+                              0));
        app.add_option(
            "--odometry-gate", o->odometry_gate,
            fmt::format("with --odometry: drop alignments whose images odometry puts more than BASE + DRIFT * "
@@ -453,42 +358,42 @@ const RegisterCommand registered{
                        "BASE,DRIFT[,WINDOW[,TURN]], or none (default {},{},{},{})",
                        mapping::OdometryGate{}.base, mapping::OdometryGate{}.drift, mapping::OdometryGate{}.trim_window,
                        mapping::OdometryGate{}.turn));
-       add_number_or(app, "--e-value", o->e_value, "none", o->no_e_value, kPositive,
+       add_number_or(app, "--e-value", o->set.e_value, "none", o->set.no_e_value, kPositive,
                      fmt::format("a revisit's E-value (alignments this good expected by chance in this sequence) is "
                                  "at most this, or none for the fixed --threshold (default {}, paper preset none)",
                                  *mapping::MapConfig{}.max_e_value));
-       add_number_or(app, "--frames-per-place", o->frames_per_place, "auto", o->fpp_auto, kAtLeastOne,
+       add_number_or(app, "--frames-per-place", o->set.frames_per_place, "auto", o->fpp_auto, kAtLeastOne,
                      "images per place, the unit of --contrast-window and --min-separation; auto estimates it from "
                      "the similarity's decay along the sequence (default auto; paper preset: frames)");
        add_number_or(
-           app, "--cap", o->cap, "none", o->no_cap, kPositive,
+           app, "--cap", o->set.cap, "none", o->set.no_cap, kPositive,
            fmt::format("cap on the cumulative score, or none (default: {} x the score a significant alignment "
                        "needs; {} without --e-value)",
                        mapping::MapConfig{}.cap_factor, *mapping::MapConfig{}.cap));
-       add_number(app, "--cap-factor", o->cap_factor, kPositive,
+       add_number(app, "--cap-factor", o->set.cap_factor, kPositive,
                   fmt::format("without --cap: the cap is this many times the score a significant alignment needs "
                               "(default {})",
                               mapping::MapConfig{}.cap_factor));
-       add_number(app, "--threshold", o->threshold, kPositive,
+       add_number(app, "--threshold", o->set.threshold, kPositive,
                   fmt::format("minimum alignment score of a revisit with --e-value none (default {})",
                               mapping::MapConfig{}.threshold));
-       add_number(app, "--min-separation", o->min_separation, kSeparation,
+       add_number(app, "--min-separation", o->set.min_separation, kSeparation,
                   fmt::format("places (frames with the paper preset) around the diagonal that never count (default {})",
                               mapping::MapConfig{}.min_separation));
        add_number(
-           app, "--contrast-window", o->contrast_window, kNonNegative,
+           app, "--contrast-window", o->set.contrast_window, kNonNegative,
            fmt::format("local contrast enhancement before alignment, half-width in places (paper: frames); 0 = off "
                        "(default {}, paper preset 0)",
                        mapping::MapConfig{}.contrast_window));
-       add_number(app, "--contrast-offset", o->contrast_offset, kAnyFinite,
+       add_number(app, "--contrast-offset", o->set.contrast_offset, kAnyFinite,
                   fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
                               mapping::MapConfig{}.contrast_offset));
        app.add_flag("--no-reverse", o->no_reverse, "do not look for paths revisited in the opposite direction");
-       app.add_option("--odometry-evidence", o->odometry_evidence,
+       app.add_option("--odometry-evidence", o->set.odometry_evidence,
                       "count an alignment's agreement with the odometry as evidence: its E-value times the share of "
                       "chance alignments that agree (INTERFACE.md); true by default")
            ->type_name("true|false");
-       app.add_option("--graph-cleanup", o->graph_cleanup,
+       app.add_option("--graph-cleanup", o->set.graph_cleanup,
                       "clean the place graph before reading the topology: overhangs, tips, bubbles, redundant edges "
                       "(mapping/graph_cleanup.hpp); true by default, false with --preset paper")
            ->type_name("true|false");

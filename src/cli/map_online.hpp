@@ -7,22 +7,22 @@
 #include <string>
 #include <vector>
 
+#include "seqtopo/pipeline/map_request.hpp"
+
 namespace seqtopo::cli {
 
 struct OnlineCliOptions {
   std::vector<std::string> inputs;
   std::string out, input_kind, ground_truth;
-  std::size_t every = 1;
-  std::optional<float> gap, threshold, cap, contrast_offset;
-  bool no_cap = false, no_reverse = false;
-  std::optional<std::size_t> min_separation, contrast_window;
   std::optional<double> gt_radius;
-  bool offline_outputs = true;
-  unsigned threads = 0;
-  std::optional<double> e_value;            // --e-value E
-  bool no_e_value = false;                  // --e-value none
+  std::size_t every = 1;
+  // The offline map's options --online reads (gap, threshold, cap, e_value, min_separation, contrast window and
+  // offset, reverse); the others are refused before this is called.
+  pipeline::MapOverrides set;
   std::optional<double> candidate_e_value;  // --candidate-e-value E
   bool no_candidates = false;               // --candidate-e-value none
+  bool offline_outputs = true;
+  unsigned threads = 0;
 };
 
 // --online, --no-offline-outputs and --candidate-e-value on `seqtopo map`.

@@ -25,11 +25,6 @@
 namespace seqtopo::outputs {
 namespace {
 
-nlohmann::json metrics_json(const evaluation::LoopClosureMetrics& m) {
-  return {{"tp", m.tp},         {"fp", m.fp}, {"fn", m.fn},   {"precision", m.precision},
-          {"recall", m.recall}, {"f1", m.f1}, {"auc", m.auc}, {"recall_at_100_precision", m.recall_at_100_precision}};
-}
-
 // The Graphviz text of the map's drawing and the number of nodes it draws.
 struct TopologyDrawing {
   std::string dot;
@@ -283,9 +278,9 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out, co
     nlohmann::json metrics = {{"seqtopo_version", std::string(version())}};
     if (run.streaming) metrics["streaming"] = true;
     if (run.metrics) {
-      metrics["loop_closure"] = metrics_json(*run.metrics);
+      metrics["loop_closure"] = detail::loop_closure_metrics_json(*run.metrics);
       if (run.baseline_metrics) {
-        metrics["baseline"] = metrics_json(*run.baseline_metrics);
+        metrics["baseline"] = detail::loop_closure_metrics_json(*run.baseline_metrics);
         metrics["baseline"]["method"] = run.baseline_name;
       } else {
         metrics["baseline_skipped"] = run.baseline_skipped;

@@ -18,6 +18,11 @@
 #include "seqtopo/report/interactive.hpp"
 
 namespace seqtopo::outputs::detail {
+
+nlohmann::json loop_closure_metrics_json(const evaluation::LoopClosureMetrics& m) {
+  return {{"tp", m.tp},         {"fp", m.fp}, {"fn", m.fn},   {"precision", m.precision},
+          {"recall", m.recall}, {"f1", m.f1}, {"auc", m.auc}, {"recall_at_100_precision", m.recall_at_100_precision}};
+}
 namespace {
 
 std::string jpeg_uri(const std::string& jpeg) { return "data:image/jpeg;base64," + report::base64(jpeg); }

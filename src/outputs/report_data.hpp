@@ -11,12 +11,16 @@
 #include "seqtopo/align/local_alignment.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/evaluation/calibration.hpp"
+#include "seqtopo/evaluation/loop_closure_metrics.hpp"
 #include "seqtopo/outputs/report_options.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/plot/pr_curve.hpp"
 #include "seqtopo/report/html_report.hpp"
 
 namespace seqtopo::outputs::detail {
+
+// metrics.json's and online.json's loop-closure figures.
+nlohmann::json loop_closure_metrics_json(const evaluation::LoopClosureMetrics& m);
 
 // {"count", "names", "thumbnails": [data: URI or null per frame], "note"}. Thumbnails exist for image folders and
 // videos (descriptor and similarity inputs have no images: the note says so). `wanted` frames come first when

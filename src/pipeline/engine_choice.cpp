@@ -9,21 +9,6 @@
 
 namespace seqtopo::pipeline {
 
-std::string streaming_obstacle(const MapRequest& request, InputKind kind) {
-  const MapSettings& s = request.settings;
-  if (request.preset == "paper") return "the paper preset aligns the raw S = 1 - kappa D, whose kappa needs N x N";
-  if (kind == InputKind::similarity) return "the input is a similarity matrix";
-  if (s.map.alignment_set == align::AlignmentSet::locally_optimal) return "locally-optimal keeps the N x N scores";
-  if (s.map.contrast_window == 0) return "a contrast window of 0 aligns the raw S, whose kappa needs N x N";
-  if (s.similarity.kappa) return "--kappa needs the N x N distances";
-  if (s.similarity.distance && *s.similarity.distance != Distance::cosine) return "streaming compares by cosine only";
-  const auto& truth = request.truth.same_place;
-  if (!truth.empty() && std::filesystem::path(truth).extension() != ".csv") {
-    return "an N x N ground-truth image is refused when streaming";
-  }
-  return {};
-}
-
 std::string streaming_settings(MapSettings& settings, InputKind kind) {
   const bool was_cosine = settings.similarity.distance == Distance::cosine;
   settings.similarity.distance = Distance::cosine;
@@ -45,11 +30,7 @@ std::string streaming_settings(MapSettings& settings, InputKind kind) {
 namespace {
 
 std::size_t peak_of(MapRequest request, InputKind kind, std::size_t images, MapEngine engine) {
-  request.settings.map.engine =
-      engine == MapEngine::exact ? mapping::MapConfig::Engine::exact : mapping::MapConfig::Engine::fast;
-  request.streaming = engine == MapEngine::streaming || engine == MapEngine::sparse;
-  request.sparse = engine == MapEngine::sparse;
-  if (request.streaming) streaming_settings(request.settings, kind);
+  apply_engine(request, kind, engine);
   return estimate_map_memory(map_memory_input(request, kind, images)).peak;
 }
 
@@ -71,8 +52,8 @@ EngineChoice choose_engine(const MapRequest& request, InputKind kind, std::size_
                                          "more than a quarter of {}; the fast engine needs about {}",
                                          similarity::format_bytes(exact), total, similarity::format_bytes(fast))};
   }
-  const std::string obstacle = streaming_obstacle(request, kind);
-  if (obstacle.empty()) {
+  const auto obstacle = streaming_obstacle(request, kind);
+  if (!obstacle) {
     const std::size_t streamed = peak_of(request, kind, images, MapEngine::streaming);
     if (streamed <= *budget / 2) {
       return {MapEngine::streaming,
@@ -86,22 +67,30 @@ EngineChoice choose_engine(const MapRequest& request, InputKind kind, std::size_
               fmt::format("engine sparse: streamed every pair the run would need {}, more than half of {}; aligning "
                           "each frame's {} nearest neighbours it needs about {} (a revisit under strong appearance "
                           "change, whose frames' nearest neighbours are seldom right, needs --diagonal-reach)",
-                          similarity::format_bytes(streamed), total, request.sparse_neighbours,
+                          similarity::format_bytes(streamed), total,
+                          request.sparse.neighbours.value_or(SparseOptions::kDefaultNeighbours),
                           similarity::format_bytes(sparse))};
     }
   }
   return {MapEngine::fast,
           fmt::format("engine fast: the run needs about {}{}", similarity::format_bytes(fast),
-                      obstacle.empty() ? std::string() : fmt::format(" (it cannot stream: {})", obstacle))};
+                      !obstacle ? std::string() : fmt::format(" (it cannot stream: {})", obstacle->what()))};
 }
 
-std::string apply_engine_choice(MapRequest& request, InputKind kind, const EngineChoice& choice) {
+std::string apply_engine(MapRequest& request, InputKind kind, MapEngine engine) {
+  request.engine = engine;
   request.settings.map.engine =
-      choice.engine == MapEngine::exact ? mapping::MapConfig::Engine::exact : mapping::MapConfig::Engine::fast;
-  request.streaming = choice.engine == MapEngine::streaming || choice.engine == MapEngine::sparse;
-  request.sparse = choice.engine == MapEngine::sparse;
-  if (!request.streaming) return choice.why;
-  const std::string changed = streaming_settings(request.settings, kind);
+      engine == MapEngine::exact ? mapping::MapConfig::Engine::exact : mapping::MapConfig::Engine::fast;
+  return streams(engine) ? streaming_settings(request.settings, kind) : std::string();
+}
+
+std::string resolve_engine(MapRequest& request, InputKind kind, std::optional<std::size_t> images,
+                           std::optional<std::size_t> budget) {
+  if (request.engine != MapEngine::automatic) return apply_engine(request, kind, request.engine);
+  const EngineChoice choice =
+      images ? choose_engine(request, kind, *images, budget)
+             : EngineChoice{MapEngine::exact, "engine exact (the number of images is not known before they are read)"};
+  const std::string changed = apply_engine(request, kind, choice.engine);
   return changed.empty() ? choice.why : choice.why + "; " + changed;
 }
 

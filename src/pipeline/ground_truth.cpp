@@ -114,6 +114,19 @@ std::string_view ground_truth_format_name(GroundTruthFormat format) {
   return "?";
 }
 
+bool is_same_place_matrix_file(const fs::path& file) {
+  const std::string ext = lower(file.extension().string());
+  if (ext == ".npy") {
+    try {
+      io::read_npy_header(file);
+      return true;
+    } catch (const std::exception&) {
+      return false;  // not a numeric matrix (objects), or unreadable: the reader says which
+    }
+  }
+  return ext != ".csv" && ext != ".txt" && ext != ".tum" && ext != ".kitti" && !ext.empty();
+}
+
 GroundTruthFile read_ground_truth(const std::string& spec, std::span<const std::string_view> keywords,
                                   std::optional<double> radius, std::string_view option) {
   GroundTruthFile t;

@@ -97,12 +97,18 @@ mapping::MapConfig map_config_of(const MapSettings& settings, const MapRun& run)
   return config;
 }
 
+// The odometry file named in errors (one session's; several sessions' odometry is checked session by session).
+std::string odometry_name(const MapRequest& request) {
+  return request.sessions.size() == 1 ? request.sessions.front().odometry.string() : std::string();
+}
+
 // A map needs two images; when --every or --every-metres thinned the sequence to fewer, the error says so.
 [[noreturn]] void too_few_images(const MapRequest& request, std::span<const SequenceInput> inputs, std::size_t n) {
   const SequenceInput& input = inputs.front();
   std::string why = fmt::format("needs at least 2 images, got {}", n);
-  if (inputs.size() == 1 && request.every_metres && !input.frames.empty()) {
-    why += fmt::format(" (--every-metres {} kept {}; give a shorter distance)", *request.every_metres, n);
+  const auto& every_metres = request.sessions.front().every_metres;
+  if (inputs.size() == 1 && every_metres && !input.frames.empty()) {
+    why += fmt::format(" (--every-metres {} kept {}; give a shorter distance)", *every_metres, n);
   } else if (inputs.size() == 1 && input.every > 1) {
     why += fmt::format(" (--every {} kept {}; give a smaller step)", input.every, n);
   }
@@ -145,7 +151,7 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   if (n < 2) too_few_images(request, inputs, n);
 
   clock.begin();
-  check_odometry(odometry, n, request.odometry.string());
+  check_odometry(odometry, n, odometry_name(request));
   // Dark or near-uniform images carry no evidence of a revisit (significance/low_information.hpp).
   const std::vector<double>& entropy = run.similarities.front().frame_entropy;
   const std::vector<std::size_t> low_information =
@@ -199,17 +205,18 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
       described.descriptor == Descriptor::npy ? "descriptors.npy" : std::string(descriptor_name(described.descriptor)));
   say(observer, fmt::format("      {}: {} images, {} dimensions", run.descriptor_names.back(), n, dim));
   if (n < 2) too_few_images(request, inputs, n);
-  check_odometry(odometry, n, request.odometry.string());
+  check_odometry(odometry, n, odometry_name(request));
   // The place scale from the raw cosine near the diagonal (or the odometry), then the windows in frames.
   mapping::MapConfig config = map_config_of(settings, run);
   std::optional<mapping::PlaceScale> place;
   std::optional<scale::StreamingSimilarity> streamed;
   const auto make_streamed = [&](std::size_t window) {
     try {
-      streamed.emplace(described.descriptors.values, n, dim,
-                       scale::StreamingConfig{.contrast_window = window,
-                                              .contrast_offset = 0.0F,
-                                              .cache_tiles = streamed_cache_tiles(n, request.sparse)});
+      streamed.emplace(
+          described.descriptors.values, n, dim,
+          scale::StreamingConfig{.contrast_window = window,
+                                 .contrast_offset = 0.0F,
+                                 .cache_tiles = streamed_cache_tiles(n, request.engine == MapEngine::sparse)});
     } catch (const std::invalid_argument& e) {
       throw InputError(inputs.front().path.string(), e.what());  // e.g. an all-zero descriptor has no direction
     }
@@ -228,17 +235,17 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
   // --sparse: the contrast-enhanced score at each frame's nearest neighbours (FAISS), the background elsewhere.
   std::optional<scale::SparseScores> candidates;
-  if (request.sparse) {
+  if (request.engine == MapEngine::sparse) {
     scale::CandidateConfig cc;
-    cc.neighbours = request.sparse_neighbours;
-    cc.diagonal_reach = request.sparse_diagonal_reach;
+    cc.neighbours = request.sparse.neighbours.value_or(SparseOptions::kDefaultNeighbours);
+    cc.diagonal_reach = request.sparse.diagonal_reach.value_or(0);
     cc.exclude = framed.min_separation;
     scale::CandidateStats stats;
-    candidates = scale::sparse_map_scores(*streamed, request.sparse_background, cc, &stats);
+    candidates = scale::sparse_map_scores(*streamed, request.sparse.background, cc, &stats);
     run.sparse_pairs = stats.pairs;
     say(observer, fmt::format("      sparse: {} candidate pairs ({} nearest neighbours per frame, diagonals {} frames "
                               "around them), background {:.3g}",
-                              stats.pairs, cc.neighbours, cc.diagonal_reach, request.sparse_background));
+                              stats.pairs, cc.neighbours, cc.diagonal_reach, request.sparse.background));
   }
   clock.end();
 
@@ -371,6 +378,7 @@ MapRun new_run(const MapSettings& settings, std::string input, std::string prese
   run.input = std::move(input);
   run.preset = std::move(preset);
   run.map_config = settings.map;
+  run.engine = settings.map.engine == mapping::MapConfig::Engine::fast ? MapEngine::fast : MapEngine::exact;
   run.paper_trajectory = settings.paper_trajectory;
   return run;
 }
@@ -378,13 +386,10 @@ MapRun new_run(const MapSettings& settings, std::string input, std::string prese
 }  // namespace
 
 MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
-  std::vector<SessionSource> sources = request_.sessions;
-  if (sources.empty()) {
-    sources.push_back(
-        {request_.input, request_.odometry, request_.times, request_.odometry_topic, request_.every_metres});
-  }
+  if (request_.sessions.empty()) throw InputError("input", "no input given");
+  const std::vector<SessionSource>& sources = request_.sessions;
   for (const auto& source : sources) {
-    if (!std::filesystem::exists(source.input.path)) {
+    if (!source.input.listing && !std::filesystem::exists(source.input.path)) {
       throw InputError(source.input.path.string(), "no such file or folder");
     }
     for (const auto* path : {&source.odometry, &source.times}) {
@@ -397,10 +402,11 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
   for (const auto* path : {&request_.truth.poses, &request_.truth.places}) {
     if (!path->empty() && !std::filesystem::exists(*path)) throw InputError(path->string(), "no such file");
   }
+  kind_ = resolve_input_kind(sources.front().input);
+  check_request(request_, kind_);
   // The same-place truth is read (its format recognized and parsed) before any work; its size is checked below.
   if (!request_.truth.same_place.empty())
     same_place_ = read_ground_truth(request_.truth.same_place.string(), {}, request_.truth.radius);
-  kind_ = resolve_input_kind(sources.front().input);
   if (!request_.report_images.empty() &&
       (sources.size() > 1 || (kind_ != InputKind::descriptors && kind_ != InputKind::similarity))) {
     throw InputError("--images",
@@ -433,7 +439,7 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     inputs_.push_back(s.input);
   }
   // 360-degree panoramas get the heading-invariant descriptor (presets.hpp), decided on the first image.
-  if (request_.settings.detect_panoramas && kind_ == InputKind::images && !request_.streaming) {
+  if (request_.settings.detect_panoramas && kind_ == InputKind::images && !streams(request_.engine)) {
     panorama_note_ = detect_panorama_descriptors(inputs_.front(), request_.settings.descriptors);
   }
   // Every buffer of the run counted (memory_estimate.hpp); one that cannot fit is refused here, before any work.
@@ -446,14 +452,6 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
     *expected += *s.frames;
   }
   if (expected && same_place_) check_same_place_size(*same_place_, *expected, truth_every());
-  if (expected && request_.choose_engine) {
-    MapRequest sized = request_;
-    sized.input = inputs_.front();
-    engine_note_ =
-        apply_engine_choice(request_, kind_, choose_engine(sized, kind_, *expected, similarity::memory_budget_bytes()));
-  } else if (request_.streaming) {
-    engine_note_ = streaming_settings(request_.settings, kind_);
-  }
   // A video's frames are known once it is read; the frames its container announces size the estimate.
   std::optional<std::size_t> announced = expected;
   if (!announced && kind_ == InputKind::video && inputs_.size() == 1 && inputs_.front().frames.empty()) {
@@ -461,10 +459,14 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
       announced = every_kth_count(*frames, inputs_.front().every);
     }
   }
+  // Sized from the first session's input (its .npy header or first image, its kept frames); the image count is
+  // every session's.
+  MapRequest sized = request_;
+  sized.sessions.front().input = inputs_.front();
+  engine_note_ = resolve_engine(sized, kind_, announced, similarity::memory_budget_bytes());
+  request_.engine = sized.engine;
+  request_.settings = sized.settings;
   if (announced) {
-    // Sized from the first session's input (its .npy header or first image); the image count is every session's.
-    MapRequest sized = request_;
-    sized.input = inputs_.front();
     memory_note_ = check_map_memory(sized, kind_, *announced, similarity::available_memory_bytes());
     request_.settings.similarity.note_memory_above = std::numeric_limits<std::size_t>::max();  // ours is printed
   }
@@ -489,14 +491,15 @@ MapRun MapJob::run(const MapObserver& observer) const {
   if (!memory_note_.empty()) say(observer, "      " + memory_note_);
   if (!panorama_note_.empty()) say(observer, "      " + panorama_note_);
   if (!engine_note_.empty()) say(observer, "      " + engine_note_);
-  run.streaming = request_.streaming;
+  run.engine = request_.engine;
+  run.streaming = streams(run.engine);
   run.odometry = odometry_;
   const auto& files = request_.truth;
   const bool poses = !files.poses.empty() && !run.odometry.empty();
   const bool any_truth = !files.same_place.empty() || !files.places.empty() || poses;
   StageClock clock(observer, run,
-                   stage_names(request_.streaming, false, !odometry_.empty(), any_truth, !files.same_place.empty()));
-  if (request_.streaming) {
+                   stage_names(run.streaming, false, !odometry_.empty(), any_truth, !files.same_place.empty()));
+  if (run.streaming) {
     map_streamed(request_, inputs_, odometry_, observer, clock, run);
   } else {
     map_dense(request_, inputs_, kind_, odometry_, observer, clock, run);
@@ -532,21 +535,6 @@ std::size_t MapJob::truth_every() const {
 }
 
 MapRun map_sequence(const MapRequest& request, const MapObserver& observer) { return MapJob(request).run(observer); }
-
-void set_sessions(MapRequest& request, std::vector<SessionSource> sessions) {
-  if (sessions.empty()) throw std::invalid_argument("no input given");
-  request.sessions.clear();
-  if (sessions.size() > 1) {
-    request.sessions = std::move(sessions);
-    return;
-  }
-  SessionSource& single = sessions.front();
-  request.input = std::move(single.input);
-  request.odometry = std::move(single.odometry);
-  request.times = std::move(single.times);
-  request.odometry_topic = std::move(single.odometry_topic);
-  request.every_metres = single.every_metres;
-}
 
 MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<std::string> names,
                         const MapSettings& settings, std::span<const Pose2> odometry, const MapTruth& truth,

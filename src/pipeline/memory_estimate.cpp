@@ -290,6 +290,8 @@ MapMemoryEstimate estimate_map_memory(const MapMemoryInput& in) {
 
 MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::size_t images) {
   const MapSettings& s = request.settings;
+  if (request.sessions.empty()) throw std::invalid_argument("map_memory_input: no session");
+  const SequenceInput& input = request.sessions.front().input;
   MapMemoryInput in;
   in.images = images;
   in.contrast_window = s.map.contrast_window;
@@ -298,20 +300,22 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
   in.threads = s.map.threads == 0 ? cores : s.map.threads;
   if (!in.fast_engine && s.map.threads == 0) in.threads = 1;  // the exact engine's passes: concurrent only if > 1
-  in.streaming = request.streaming;
-  in.sparse = request.streaming && request.sparse;
-  in.neighbours = request.sparse_neighbours;
-  in.place_from_similarity = s.map.place_units && !s.map.frames_per_place && request.odometry.empty();
+  in.streaming = streams(request.engine);
+  in.sparse = request.engine == MapEngine::sparse;
+  in.neighbours = request.sparse.neighbours.value_or(SparseOptions::kDefaultNeighbours);
+  const bool odometry = std::any_of(request.sessions.begin(), request.sessions.end(),
+                                    [](const SessionSource& session) { return !session.odometry.empty(); });
+  in.place_from_similarity = s.map.place_units && !s.map.frames_per_place && !odometry;
   // The run decodes images or at least encodes its figures: the codecs' libraries (~80 MB resident) are part
   // of the process it will be.
   image::codecs::load();
   in.base_bytes = resident_bytes();
   const std::filesystem::path& truth = request.truth.same_place;
-  in.baseline = !truth.empty() && !request.streaming;
+  in.baseline = !truth.empty() && !in.streaming;
   if (!truth.empty() && truth.extension() != ".csv") in.truth_bytes = mul(images, images);
 
   if (kind == InputKind::descriptors || kind == InputKind::similarity) {
-    const auto header = io::read_npy_header(request.input.path);
+    const auto header = io::read_npy_header(input.path);
     std::size_t count = 1;
     for (const std::size_t extent : header.shape) count = mul(count, extent);
     // The float copy, and the raw values read in blocks of 2^16 (io/npy.cpp).
@@ -326,10 +330,10 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   // image, every bin for a video).
   std::vector<Descriptor> descriptors = s.descriptors;
   if (descriptors.empty()) descriptors = {Descriptor::joint_histogram};
-  if (request.streaming) descriptors.resize(1);
+  if (in.streaming) descriptors.resize(1);
   std::size_t pixels = image::JointHistogramConfig::bins;
   if (kind == InputKind::images) {
-    const auto files = list_input_images(request.input).files;
+    const auto files = list_input_images(input).files;
     const ImageWork work = image_work(files, descriptors);
     if (work.first_pixels) pixels = work.first_pixels;
     const std::size_t threads = std::min<std::size_t>(std::max<std::size_t>(1, images),
@@ -338,7 +342,7 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   } else if (kind == InputKind::video) {
     // Frames are decoded in order and described in batches of 8 a thread (sequence_similarity.cpp): the batch's
     // RgbImages, the decoder's frame and its RGB conversion, and each thread's describing temporaries.
-    if (const auto header = image::video_frame_header(request.input.path)) {
+    if (const auto header = image::video_frame_header(input.path)) {
       const std::size_t frame = mul(static_cast<std::size_t>(header->width), static_cast<std::size_t>(header->height));
       const std::size_t threads = s.similarity.threads == 0 ? cores : s.similarity.threads;
       in.image_work_bytes = sum({mul(mul(8 * threads, 3), frame), mul(frame, 2 * 3),
@@ -412,7 +416,7 @@ std::string check_map_memory(const MapRequest& request, InputKind kind, std::siz
   std::string advice = fits.empty() ? "nothing of --threads 1, --engine fast, --streaming or --sparse fits either"
                                     : "it would fit with " + fits.front();
   for (std::size_t k = 1; k < fits.size(); ++k) advice += ", or " + fits[k];
-  throw InputError(request.input.path.string(),
+  throw InputError(request.sessions.front().input.path.string(),
                    figure + ", only " + similarity::format_bytes(*available) + " of memory is available; " + advice);
 }
 

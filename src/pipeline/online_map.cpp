@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <istream>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -15,6 +16,7 @@
 #include "seqtopo/image/joint_histogram.hpp"
 #include "seqtopo/image/patch_thumbnail.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/similarity/distance.hpp"
 
 namespace seqtopo::pipeline {
@@ -106,8 +108,14 @@ std::vector<std::vector<float>> OnlineImageRows::add(const RgbImage& image) {
 }
 
 OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFrameCallback& on_frame) {
+  const auto start = std::chrono::steady_clock::now();
   OnlineMapRun run;
   const SequenceInput& input = request.input;
+  // The ground truth is read (its format recognized and parsed) before the first frame; its size is checked at the
+  // end, when the number of frames is known.
+  std::optional<GroundTruthFile> truth;
+  if (!request.truth.same_place.empty())
+    truth = read_ground_truth(request.truth.same_place.string(), {}, request.truth.radius);
   const bool from_stream = input.path == "-";
   run.kind = from_stream ? InputKind::images : resolve_input_kind(input);
   mapping::OnlineMapConfig config = request.config;
@@ -211,6 +219,31 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
                      fmt::format("needs at least 2 images, got {}", run.frame_names.size()));
   }
   feeder.finish();
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (const auto& e : run.events) ++run.event_counts[std::string(mapping::to_string(e.kind))];
+  if (truth) {
+    // Image paths from a stream are the frames as given (--every thins files, folders and videos).
+    const auto same_place = same_place_truth(*truth, request.truth.radius, run.frames, from_stream ? 1 : input.every);
+    const auto has_partner = evaluation::images_with_earlier_partner(
+        run.frames, same_place.same_place, same_place.earlier_partners, config.min_separation);
+    run.metrics =
+        evaluation::evaluate_loop_closures(online_scored_pairs(run.loop_closures), has_partner, same_place.same_place);
+  }
+  if (request.offline_map) {
+    MapRequest offline;
+    offline.settings.similarity.threads = request.threads;
+    offline.settings.map.threads = std::max(1U, request.threads);
+    SessionSource session{input};
+    if (from_stream) {
+      // The files the stream named, in its order: the offline map reads the frames the online run read.
+      session.input = SequenceInput("stdin", InputKind::images);
+      session.input.listing = std::make_shared<const ImageListing>(ImageListing{run.image_files, {}});
+    }
+    offline.sessions = {std::move(session)};
+    offline.truth.same_place = request.truth.same_place;
+    offline.truth.radius = request.truth.radius;
+    run.offline = MapJob(std::move(offline)).run();
+  }
   return run;
 }
 

@@ -194,6 +194,25 @@ TEST(MapOnline, WritesTheOnlineAndTheOfflineOutputs) {
   EXPECT_NE(o.err.find("chance alignments of the table so far"), std::string::npos) << o.err;
 }
 
+// Image paths on stdin: the offline map is made of the files they name, in their order (no folder of links), so it
+// is the folder's map when the paths list the folder in its order, and errors name the user's files.
+TEST(MapOnline, StdinPathsGetTheOfflineMapOfTheFilesTheyName) {
+  const seqtopo::test_support::TempDir dir;
+  const fs::path data = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  std::ofstream(dir.path / "paths.txt") << path_lines(corridor());
+  const std::string truth = " --ground-truth " + (data / "ground_truth.bmp").string();
+  const auto piped = run_cli("map - --online" + truth + " --out " + (dir.path / "piped").string() + " < " +
+                             (dir.path / "paths.txt").string());
+  ASSERT_EQ(piped.status, 0) << piped.err;
+  const auto folder = run_cli("map " + data.string() + truth + " --out " + (dir.path / "folder").string());
+  ASSERT_EQ(folder.status, 0) << folder.err;
+  EXPECT_EQ(read_text(dir.path / "piped" / "loop_closures.csv"), read_text(dir.path / "folder" / "loop_closures.csv"));
+  EXPECT_TRUE(fs::exists(dir.path / "piped" / "report.html"));
+  const auto summary = nlohmann::json::parse(read_text(dir.path / "piped" / "online.json"));
+  const auto offline = nlohmann::json::parse(read_text(dir.path / "folder" / "metrics.json"));
+  EXPECT_EQ(summary["offline_metrics"]["f1"], offline["loop_closure"]["f1"]);
+}
+
 // White-noise descriptors, and their cosine similarity as a similarity.npy: the offset is raised where the scores'
 // chance paths would grow with the run (one stderr line, online.json), and no chance loop closure stands.
 TEST(MapOnline, WhiteNoiseRaisesTheOffsetAndGivesNoLoopClosure) {

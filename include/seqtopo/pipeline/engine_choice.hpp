@@ -14,32 +14,33 @@
 #include <optional>
 #include <string>
 
-#include "seqtopo/pipeline/map_pipeline.hpp"
+#include "seqtopo/pipeline/map_request.hpp"
 
 namespace seqtopo::pipeline {
-
-enum class MapEngine { exact, fast, streaming, sparse };
 
 struct EngineChoice {
   MapEngine engine = MapEngine::exact;
   std::string why;  // one line: the engine, the estimated peak and the budget
 };
 
-// Why `request` cannot run streamed (--streaming), or empty when it can. Only settings the user chose stand in
-// the way; the descriptors are adapted by streaming_settings.
-std::string streaming_obstacle(const MapRequest& request, InputKind kind);
-
 // The nearest settings that stream: images compared by one vector descriptor (the first of patch or panorama
 // among settings.descriptors, patch when neither is there) by cosine similarity; a descriptors.npy by cosine.
 // Returns what changed, for the user ("" when nothing did).
 std::string streaming_settings(MapSettings& settings, InputKind kind);
 
-// The choice for `images` images of `request` (which must not force an engine) against `budget` bytes; with
-// no budget known, exact.
+// The choice for `images` images of `request` (whose own engine is not read) against `budget` bytes; with no
+// budget known, exact.
 EngineChoice choose_engine(const MapRequest& request, InputKind kind, std::size_t images,
                            std::optional<std::size_t> budget);
 
-// `request` with the choice applied (engine, streaming, and the streaming settings); returns their note.
-std::string apply_engine_choice(MapRequest& request, InputKind kind, const EngineChoice& choice);
+// `request` set to run `engine` (not automatic): request.engine, the mapping engine of its settings, and for the
+// streaming engines the streaming settings. Returns what changed in the settings ("" when nothing did).
+std::string apply_engine(MapRequest& request, InputKind kind, MapEngine engine);
+
+// The one translation of request.engine: automatic is chosen for `images` images (when known; exact otherwise)
+// against `budget`, then applied. Returns the note for the user: the choice and why, and what the streaming
+// settings changed ("" when the engine was asked for and nothing changed).
+std::string resolve_engine(MapRequest& request, InputKind kind, std::optional<std::size_t> images,
+                           std::optional<std::size_t> budget);
 
 }  // namespace seqtopo::pipeline

@@ -50,6 +50,10 @@ struct GroundTruthFile {
 GroundTruthFile read_ground_truth(const std::string& spec, std::span<const std::string_view> keywords,
                                   std::optional<double> radius, std::string_view option = "--ground-truth");
 
+// Whether `file` is read as an N x N matrix (an image, or a numeric .npy; VPR-Bench's object arrays are lists), from
+// its name and, for a .npy, its header: for checks that must not read N^2 values (streaming refuses them).
+bool is_same_place_matrix_file(const std::filesystem::path& file);
+
 // Same place for `seqtopo map`: the relation (symmetric) and, where the format allows it, the images with an
 // earlier partner found without testing every pair (evaluation::EarlierPartners).
 struct SamePlaceTruth {

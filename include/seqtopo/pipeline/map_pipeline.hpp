@@ -8,7 +8,7 @@
 //     -> accuracy against the ground truth, and the SeqSLAM-style baseline on the same matrices
 //
 //   pipeline::MapRequest request;
-//   request.input = {"data/rtabmap-corridor"};
+//   request.sessions = {pipeline::SessionSource{{"data/rtabmap-corridor"}}};     // map_request.hpp
 //   request.truth.same_place = "data/rtabmap-corridor/ground_truth.bmp";
 //   pipeline::MapRun run = pipeline::map_sequence(request);   // run.result.map, run.metrics->f1
 //
@@ -31,6 +31,7 @@
 #include "seqtopo/formats/map_json.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
+#include "seqtopo/pipeline/map_request.hpp"
 #include "seqtopo/pipeline/presets.hpp"
 #include "seqtopo/pipeline/progress.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
@@ -47,49 +48,6 @@ struct MapTruth {
   std::vector<int> places;                       // true place of every image (topology)
   std::vector<int> junctions;                    // true junction places
   std::vector<Pose2> poses;                      // true poses (trajectory error, with odometry)
-};
-
-// The same, as the files users give (ground_truth.hpp reads them).
-struct MapTruthFiles {
-  std::filesystem::path same_place;  // any format of ground_truth.hpp but same-index (poses with `radius`)
-  std::optional<double> radius;      // [m]
-  std::filesystem::path places;      // places.csv (junctions.csv beside it)
-  std::filesystem::path poses;       // poses.csv
-};
-
-struct MapRequest {
-  SequenceInput input;
-  std::string preset = "default";  // the name of `settings` (for the report)
-  MapSettings settings = map_preset("default");
-  std::filesystem::path odometry;  // odometry CSV, or empty
-  MapTruthFiles truth;
-  // Never hold the N x N matrix: contrast-enhanced cosine scores of one vector descriptor, computed when the
-  // engine reads them (scale/streaming_similarity.hpp). Needs the fast engine.
-  bool streaming = false;
-  // With `streaming`: align only each frame's nearest neighbours (FAISS candidates, scale/sparse_candidates.hpp)
-  // with the sparse engine (scale/sparse_alignment.hpp); every other pair scores `sparse_background`.
-  bool sparse = false;
-  std::size_t sparse_neighbours = 10;
-  // The diagonal and anti-diagonal this many frames around every candidate pair are candidates too
-  // (scale::CandidateConfig::diagonal_reach): a revisit under strong appearance change, whose frames' true
-  // matches are seldom among their nearest neighbours, grows from a few seeds.
-  std::size_t sparse_diagonal_reach = 0;
-  float sparse_background = -1.0F;
-  // No engine asked for: the run chooses exact, fast or streaming by the memory it needs (engine_choice.hpp)
-  // and says which and why.
-  bool choose_engine = false;
-  // For `input` (session_input.hpp): the image times of a timestamped `odometry` file, a bag's odometry
-  // topic, and one frame kept per D metres of odometry.
-  std::filesystem::path times;
-  std::string odometry_topic;
-  std::optional<double> every_metres;
-  // Several sessions (seqtopo map S1 S2 ...): when not empty they replace `input`, `odometry`, `times`,
-  // `odometry_topic` and `every_metres`. Their frames are mapped as one sequence, session after session,
-  // with no transition between one session's last image and the next one's first.
-  std::vector<SessionSource> sessions;
-  // The images of a descriptors.npy or similarity.npy input, one per row (thinned by the input's --every alike),
-  // shown by the report; empty: the report has no images for them.
-  std::filesystem::path report_images;
 };
 
 struct TrajectoryErrors {
@@ -126,6 +84,7 @@ struct MapRun {
   // Streaming: no matrix is held (`matrices` and result.scores are empty); similarity.png draws this
   // block-max overview of the aligned scores instead, and the report states what the streaming cost.
   bool streaming = false;
+  MapEngine engine = MapEngine::exact;  // the engine that ran (map_request.hpp; never automatic)
   plot::MatrixOverview overview;
   std::uint64_t streamed_cells = 0;      // similarity cells computed by the alignment, recomputations included
   std::size_t streamed_cache_bytes = 0;  // the tile cache's capacity [bytes]
@@ -149,14 +108,16 @@ struct MapObserver {
   int thumbnail_side = 0;
 };
 
-// A checked request: the constructor reads what is small (the odometry, the number of images where it is
-// known without decoding) and throws InputError on anything wrong, before any long work, a run whose memory
-// estimate (memory_estimate.hpp) exceeds the memory available included; run() does the work.
+// A checked request: the constructor checks it (check_request), reads what is small (the odometry, the number of
+// images where it is known without decoding), resolves its engine (engine_choice.hpp) and throws InputError on
+// anything wrong, before any long work, a run whose memory estimate (memory_estimate.hpp) exceeds the memory
+// available included; run() does the work.
 class MapJob {
  public:
   explicit MapJob(MapRequest request);
   MapRun run(const MapObserver& observer = {}) const;
-  InputKind input_kind() const { return kind_; }  // of the first session
+  InputKind input_kind() const { return kind_; }        // of the first session
+  MapEngine engine() const { return request_.engine; }  // resolved: never automatic
   const std::vector<PreparedSession>& sessions() const { return sessions_; }
 
  private:
@@ -167,7 +128,7 @@ class MapJob {
   std::vector<Pose2> odometry_;                // all sessions', concatenated
   std::string memory_note_;                    // the whole run's memory estimate (memory_estimate.hpp)
   std::string panorama_note_;                  // the descriptors chosen for 360-degree panoramas (presets.hpp)
-  std::string engine_note_;                    // the engine chosen, or the settings adapted to streaming
+  std::string engine_note_;                    // the engine chosen, and the settings adapted to streaming
   std::optional<GroundTruthFile> same_place_;  // request.truth.same_place, read and checked before the work
   // The step a ground truth of the whole recording is thinned by (one input thinned by --every alone).
   std::size_t truth_every() const;
@@ -175,11 +136,6 @@ class MapJob {
 
 // MapJob(request).run(observer).
 MapRun map_sequence(const MapRequest& request, const MapObserver& observer = {});
-
-// The request's inputs from the sessions given, as the command line and Python take them: one is the single-input
-// form (`input`, `odometry`, `times`, `odometry_topic`, `every_metres`), several are `sessions`. Throws
-// std::invalid_argument when none is given.
-void set_sessions(MapRequest& request, std::vector<SessionSource> sessions);
 
 // The pipeline from similarity matrices already in memory (one per descriptor, all N x N; several are fused),
 // named for the report (`names`, one per matrix, may be empty). `odometry` has one pose per image or is empty.

@@ -7,16 +7,24 @@
 // thumbnails by SAD, each row contrast-enhanced on its own and fused: OnlineImageRows), the rows of a
 // descriptors.npy (cosine), image paths one per line on a stream (INPUT "-"), or the rows of a similarity.npy
 // (row t's first t values: the similarity of frame t to the earlier frames).
+//
+// The job: the online run, its loop closures scored against a same-place ground truth when one is given, and, when
+// asked, the offline map of the same frames (map_pipeline.hpp) scored alike, for the files outputs writes
+// (outputs/online_outputs.hpp). The command line parses options, prints the events as they come and the summary.
 #include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
+#include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
 #include "seqtopo/mapping/online_mapper.hpp"
+#include "seqtopo/pipeline/map_pipeline.hpp"
+#include "seqtopo/pipeline/map_request.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/pipeline/sequence_similarity.hpp"
 
@@ -43,6 +51,13 @@ struct OnlineMapRequest {
   std::istream* paths = nullptr;    // for "-"
   mapping::OnlineMapConfig config;  // `distance` is set from the input (sad for images, cosine for npy rows)
   SimilarityConfig similarity;      // the patch thumbnail's settings
+  // A same-place ground truth (`same_place` and `radius` only; ground_truth.hpp's formats but same-index) that the
+  // loop closures standing at the end are scored against, as the offline map's; read before the first frame.
+  MapTruthFiles truth;
+  // Then the offline map of the same frames (the default preset; image paths from a stream are mapped as the
+  // list of files they name), scored against the same truth.
+  bool offline_map = false;
+  unsigned threads = 0;  // the offline map's (0 = every core)
 };
 
 struct OnlineMapRun {
@@ -63,12 +78,17 @@ struct OnlineMapRun {
   float contrast_offset = 0;
   std::vector<mapping::OnlineMapper::OffsetChange> offset_changes;
   std::vector<std::string> warnings;  // about the input (a video that ended before the frames it announced)
+  double seconds = 0;                 // the online run's wall time, reading and decoding included [s]
+  std::map<std::string, std::size_t> event_counts;        // by event name (mapping::to_string)
+  std::optional<evaluation::LoopClosureMetrics> metrics;  // of `loop_closures`, with a ground truth
+  std::optional<MapRun> offline;                          // OnlineMapRequest::offline_map
 };
 
 // Called after each frame with its events (possibly none), and once after the last frame with finish()'s.
 using OnlineMapFrameCallback = std::function<void(std::size_t frame, std::span<const mapping::OnlineEvent> events)>;
 
-// Throws InputError naming the file for bad input (unreadable image, a bag, descriptors of another length).
+// Throws InputError naming the file for bad input (unreadable image, a bag, descriptors of another length, a ground
+// truth of another size).
 OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFrameCallback& on_frame = {});
 
 // One event as one JSON object on one line (no newline), as in events.jsonl (INTERFACE.md).

@@ -18,20 +18,21 @@
 
 namespace seqtopo::pipeline {
 
+// Default member initializers: `SessionSource{{"run.bag"}}` alone stays free of -Wmissing-field-initializers.
 struct SessionSource {
   SequenceInput input;
   // Odometry or poses: index CSV, timestamped CSV, TUM or KITTI (formats/pose_files.hpp), or empty. A bag
   // without a file uses its odometry topic (below).
-  std::filesystem::path odometry;
+  std::filesystem::path odometry = {};
   // Image times for a timestamped pose file and an image folder or video: a times.txt (one time per frame
   // [s]); empty = `times.txt` in the image folder when there is one, else the file names when every one is a
   // number (seconds, or nanoseconds when above 1e15, as EuRoC names them). Bags carry their own times.
-  std::filesystem::path times;
+  std::filesystem::path times = {};
   // Bags: the odometry topic; empty = the bag's only nav_msgs/Odometry or PoseStamped topic, if any;
   // "none" = do not use the bag's odometry.
-  std::string odometry_topic;
+  std::string odometry_topic = {};
   // Keep one frame per this many metres of odometry travelled (needs odometry) [m].
-  std::optional<double> every_metres;
+  std::optional<double> every_metres = {};
 };
 
 struct PreparedSession {

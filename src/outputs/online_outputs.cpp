@@ -1,0 +1,71 @@
+#include "seqtopo/outputs/online_outputs.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "report_data.hpp"
+#include "seqtopo/outputs/map_outputs.hpp"
+
+namespace seqtopo::outputs {
+
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0;
+  std::sort(values.begin(), values.end());
+  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+  return values[std::min(values.size() - 1, k == 0 ? 0 : k - 1)];
+}
+
+void write_online_map_outputs(const pipeline::OnlineMapRun& run, const mapping::OnlineMapConfig& config,
+                              io::OutputDirectory& out) {
+  std::string closures = "i,j,direction,confidence,revisit\n";
+  for (const auto& lc : run.loop_closures) {
+    closures += fmt::format("{},{},{},{},{}\n", lc.i, lc.j, align::to_string(lc.direction), lc.confidence, lc.revisit);
+  }
+  out.write("online_loop_closures.csv", closures);
+  if (run.offline) {
+    write_map_outputs(*run.offline, out);
+    write_map_report(*run.offline, out, {});
+  }
+  nlohmann::ordered_json summary = {{"frames", run.frames},
+                                    {"loop_closures", run.loop_closures.size()},
+                                    {"seconds", run.seconds},
+                                    {"frame_seconds",
+                                     {{"median", quantile(run.frame_seconds, 0.5)},
+                                      {"p99", quantile(run.frame_seconds, 0.99)},
+                                      {"max", quantile(run.frame_seconds, 1.0)}}},
+                                    {"events", run.event_counts}};
+  nlohmann::ordered_json significance = {
+      {"max_e_value", config.max_e_value ? nlohmann::ordered_json(*config.max_e_value) : nlohmann::ordered_json()},
+      {"threshold", run.threshold}};
+  const auto& st = run.statistics;
+  if (st.valid()) {
+    significance["lambda"] = st.lambda;
+    significance["k"] = st.k;
+    significance["area"] = st.area;
+    significance["fitted"] = st.fitted;
+    significance["fitted_to"] = run.statistics_from_table ? "table" : "islands";
+  }
+  significance["contrast_offset"] = run.contrast_offset;
+  auto& changes = significance["offset_changes"] = nlohmann::ordered_json::array();
+  for (const auto& x : run.offset_changes) {
+    changes.push_back({{"frame", x.frame},
+                       {"from", x.from},
+                       {"to", x.to},
+                       {"check", x.check},
+                       {"global_rate", x.global_rate},
+                       {"chance_length", x.chance_length},
+                       {"bound", x.bound},
+                       {"frames_per_place", x.frames_per_place}});
+  }
+  summary["significance"] = std::move(significance);
+  if (run.metrics) summary["metrics"] = detail::loop_closure_metrics_json(*run.metrics);
+  if (run.offline && run.offline->metrics) {
+    summary["offline_metrics"] = detail::loop_closure_metrics_json(*run.offline->metrics);
+  }
+  out.write("online.json", summary.dump(2) + "\n");
+}
+
+}  // namespace seqtopo::outputs
