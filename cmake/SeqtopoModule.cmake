@@ -4,13 +4,16 @@
 # A module is built only when every target in DEPS exists: the seqtopo::<x> modules it needs, built earlier,
 # and the third-party targets found by the top-level CMakeLists.txt. Otherwise it is skipped with one status
 # line, and so is every module that needs it; the alignment engine, for one, needs only the standard library.
+# DEPS are PUBLIC (the module's headers include them: its users compile against them), PRIVATE ones only its
+# sources use (a static library still names them in its link interface, so the package looks both up).
 # OPTIONAL targets are linked when they exist, and the module's own sources then see SEQTOPO_HAVE_<NAME>
-# (e.g. seqtopo::recording -> SEQTOPO_HAVE_RECORDING).
+# (e.g. seqtopo::recording -> SEQTOPO_HAVE_RECORDING). Each module's third-party targets are recorded for the
+# package config, which finds exactly those of the modules installed (cmake/SeqtopoPackage.cmake).
 include(GNUInstallDirs)
 set(SEQTOPO_MODULES "" CACHE STRING "The modules to build (a ;-list, with what they need; empty: every module)")
 
 function(seqtopo_add_module name)
-  cmake_parse_arguments(M "" "" "DEPS;OPTIONAL" ${ARGN})
+  cmake_parse_arguments(M "" "" "DEPS;PRIVATE;OPTIONAL" ${ARGN})
   # SEQTOPO_MODULES (a list; empty: all) builds only the modules named and the vocabulary (core): a project that
   # needs one module does not compile the others.
   if(SEQTOPO_MODULES AND NOT name STREQUAL "core" AND NOT name IN_LIST SEQTOPO_MODULES)
@@ -18,7 +21,7 @@ function(seqtopo_add_module name)
     return()
   endif()
   set(missing)
-  foreach(dep IN LISTS M_DEPS)
+  foreach(dep IN LISTS M_DEPS M_PRIVATE)
     if(NOT TARGET ${dep})
       list(APPEND missing ${dep})
     endif()
@@ -45,6 +48,18 @@ function(seqtopo_add_module name)
     target_link_libraries(seqtopo_${name} ${scope} seqtopo_core)  # every module may use the vocabulary
   endif()
   target_link_libraries(seqtopo_${name} ${scope} ${M_DEPS})
+  if(M_PRIVATE)
+    if(NOT sources)
+      message(FATAL_ERROR "seqtopo: header-only module ${name} cannot have PRIVATE dependencies")
+    endif()
+    target_link_libraries(seqtopo_${name} PRIVATE ${M_PRIVATE})
+  endif()
+  set(third_party)
+  foreach(dep IN LISTS M_DEPS M_PRIVATE)
+    if(NOT dep MATCHES "^seqtopo::")
+      list(APPEND third_party ${dep})
+    endif()
+  endforeach()
   foreach(dep IN LISTS M_OPTIONAL)
     if(TARGET ${dep})
       target_link_libraries(seqtopo_${name} ${scope} ${dep})
@@ -59,6 +74,7 @@ function(seqtopo_add_module name)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/seqtopo/${name} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/seqtopo)
   set_property(GLOBAL APPEND PROPERTY SEQTOPO_MODULES seqtopo_${name})
   set_property(GLOBAL APPEND PROPERTY SEQTOPO_MODULE_NAMES ${name})
+  set_property(GLOBAL PROPERTY SEQTOPO_THIRD_PARTY_${name} ${third_party})
 endfunction()
 
 # Every tests/<module>/test_*.cpp is one GoogleTest executable linked to its module and to LIBS.

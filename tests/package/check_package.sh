@@ -5,7 +5,10 @@
 #     installed command maps its installed demo data when given no input;
 #  2. the same source configured with every optional dependency disabled and only the alignment engine asked for
 #     (SEQTOPO_MODULES: the other modules are not compiled, which took most of this test's time): it still builds
-#     with the standard library alone, installs, and a consumer of seqtopo::align builds and runs.
+#     with the standard library alone, installs, and a consumer of seqtopo::align builds and runs;
+#  3. a middle subset, the mapping module and what it needs (no io, formats, images): the package config finds only
+#     their third-party packages (derived from what the modules link), and a consumer of seqtopo::mapping builds and
+#     runs.
 # Usage: tests/package/check_package.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$1
@@ -59,3 +62,21 @@ cmake -S "$source/tests/package/align_only" -B "$tmp/align-only" "${generator[@]
 cmake --build "$tmp/align-only" >/dev/null
 "$tmp/align-only/align_only"
 echo "package: examples and the standard-library-only engine built and ran"
+
+cmake -S "$source" -B "$tmp/mapping" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DSEQTOPO_BUILD_TESTS=OFF \
+  -DSEQTOPO_BUILD_BENCH=OFF -DSEQTOPO_BUILD_PYTHON=OFF -DSEQTOPO_BUILD_MPI=OFF \
+  "-DSEQTOPO_MODULES=align;similarity;significance;mapping" >"$tmp/mapping.log" 2>&1
+cmake --build "$tmp/mapping" >/dev/null
+cmake --install "$tmp/mapping" --prefix "$tmp/mapping-prefix" >/dev/null
+test -f "$tmp/mapping-prefix/lib/libseqtopo_mapping.a"
+test ! -e "$tmp/mapping-prefix/lib/libseqtopo_formats.a"
+test ! -e "$tmp/mapping-prefix/lib/libseqtopo_io.a"
+if grep -q "nlohmann_json\|OpenCV\|OpenSSL" "$tmp/mapping-prefix/lib/cmake/seqtopo/seqtopoConfig.cmake"; then
+  echo "the mapping-only package looks up packages its modules do not link:"
+  grep "find_dependency" "$tmp/mapping-prefix/lib/cmake/seqtopo/seqtopoConfig.cmake"
+  exit 1
+fi
+cmake -S "$source/tests/package/mapping_only" -B "$tmp/mapping-only" "${generator[@]}" \
+  -DCMAKE_PREFIX_PATH="$tmp/mapping-prefix" >/dev/null
+cmake --build "$tmp/mapping-only" >/dev/null
+"$tmp/mapping-only/mapping_only" >/dev/null
