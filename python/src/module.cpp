@@ -471,7 +471,7 @@ pipeline::LocalizeRun localize_sequences(const std::filesystem::path& map, const
   pipeline::LocalizeRequest request;
   const auto kind = pipeline::parse_input_kind(input_kind);
   if (every == 0) throw std::invalid_argument("every must be >= 1");
-  request.map = {map, kind, every};
+  request.map = {pipeline::SequenceInput(map, kind, every)};
   request.query = {query, kind, every};
   if (query.empty()) {
     request.similarity_file = map;  // one query x map similarity.npy

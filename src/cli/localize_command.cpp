@@ -144,18 +144,14 @@ void run(LocalizeOptions o) {
   }
   if (o.query_path == "-" && !o.online) throw InputError("--query", "'-' (paths on standard input) needs --online");
   request.similarity_file = similarity_file(o, kind);
-  request.map = {o.map_path, kind, o.every};
   request.query = {o.query_path, kind, o.every};
-  o.sequence.apply(request.map);
   o.sequence.apply(request.query);
-  if (o.map_paths.size() > 1) {
-    if (request.similarity_file) {
-      throw InputError("--map", "a similarity matrix holds the whole map; give it once, not with other map sessions");
-    }
-    for (const auto& p : o.map_paths) {
-      request.map_sessions.push_back({p, kind, o.every});
-      o.sequence.apply(request.map_sessions.back());
-    }
+  if (o.map_paths.size() > 1 && request.similarity_file) {
+    throw InputError("--map", "a similarity matrix holds the whole map; give it once, not with other map sessions");
+  }
+  for (const auto& p : o.map_paths.size() > 1 ? o.map_paths : std::vector<std::string>{o.map_path}) {
+    request.map.push_back({p, kind, o.every});
+    o.sequence.apply(request.map.back());
   }
   if (!request.similarity_file || !o.online) request.settings.similarity = similarity_config(o);
   if (o.descriptor) {

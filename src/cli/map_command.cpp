@@ -22,6 +22,7 @@
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 #include "seqtopo/outputs/report_options.hpp"
+#include "seqtopo/pipeline/machine_memory.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
 #include "seqtopo/pipeline/memory_estimate.hpp"
 #include "seqtopo/similarity/memory.hpp"
@@ -271,7 +272,7 @@ void run(MapOptions o) {
   run.timings.insert(run.timings.begin(), {"start-up, options, inputs checked", setup_seconds});
 
   // The pairs are known now: outputs that would not fit are refused before any is written.
-  pipeline::check_outputs_memory(run, similarity::available_memory_bytes(), o.out);
+  pipeline::check_outputs_memory(run, pipeline::available_memory_bytes(), o.out);
   progress.begin("files and figures");
   const std::size_t images = run.result.map.labels.size();
   if (!run.streaming && !matrices && !outputs::writes_matrices(images, matrices)) {

@@ -11,6 +11,7 @@
 #include "command_registry.hpp"
 #include "options/number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/formats/online_events.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/online_outputs.hpp"
 #include "seqtopo/pipeline/online_map.hpp"
@@ -81,8 +82,8 @@ void run_map_online(const OnlineCliOptions& o) {
   const pipeline::OnlineMapRun run =
       pipeline::run_online_map(request, [&](std::size_t frame, std::span<const mapping::OnlineEvent> frame_events) {
         for (const auto& e : frame_events) {
-          events << pipeline::online_event_json(e) << '\n';
-          std::cout << pipeline::online_event_summary(e) << '\n';
+          events << formats::online_event_json(e) << '\n';
+          std::cout << formats::online_event_summary(e) << '\n';
         }
         // Every event of this frame is readable before the next frame is read.
         events.flush();

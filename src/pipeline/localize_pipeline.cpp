@@ -38,10 +38,6 @@ FrameAnswer answer_of(const localize::FrameMatch& f) {
   return a;
 }
 
-std::vector<SequenceInput> map_inputs(const LocalizeRequest& request) {
-  return request.map_sessions.empty() ? std::vector<SequenceInput>{request.map} : request.map_sessions;
-}
-
 // Frames of each map session, from the column names ("session/frame" when several).
 std::vector<std::size_t> map_session_frames(const std::vector<SequenceInput>& maps,
                                             const std::vector<std::string>& columns) {
@@ -66,7 +62,7 @@ void choose_descriptors(const LocalizeRequest& request, LocalizeRun& run) {
   auto& ds = run.settings.descriptors;
   if (ds.empty()) throw std::invalid_argument("no descriptor asked for");
   if (request.similarity_file) return;
-  const SequenceInput first = map_inputs(request).front();
+  const SequenceInput first = request.map.front();
   if (resolve_input_kind(first) == InputKind::descriptors) {
     ds = {Descriptor::npy};
     return;
@@ -88,13 +84,15 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
       const SequenceInput file{*request.similarity_file, InputKind::similarity, 1};
       s.push_back(compute_similarity(file, file, request.settings.similarity));
     } else {
-      const std::vector<SequenceInput> maps = map_inputs(request);
+      const std::vector<SequenceInput> maps = request.map;
       s = compute_similarities(std::span<const SequenceInput>(&request.query, 1), maps, run.settings.descriptors,
                                request.settings.similarity);
       run.map_session_frames = map_session_frames(maps, s.front().column_names);
     }
   } catch (const std::invalid_argument& e) {
-    throw InputError(request.query.path.empty() ? request.map.path.string() : request.query.path.string(), e.what());
+    throw InputError(request.query.path.empty() && !request.map.empty() ? request.map.front().path.string()
+                                                                        : request.query.path.string(),
+                     e.what());
   }
   run.timings.emplace_back("similarity matrix", seconds_since(t0));
   std::vector<SimilarityMatrix> similarities;
@@ -293,7 +291,7 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
   Describer describe{ds, sc, {}, std::nullopt, {}};
   const auto t0 = Clock::now();
   std::vector<std::vector<FrameDescriptor>> map;
-  for (const auto& session : map_inputs(request)) {
+  for (const auto& session : request.map) {
     describe.input = session.path.string();
     const std::size_t before = map.size();
     for_each_frame(session, describe, next_path, [&](std::vector<FrameDescriptor> f) { map.push_back(std::move(f)); });
@@ -353,11 +351,12 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
 LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineQueryCallback& on_frame,
                                const NextPath& next_query_path) {
   localize::validate(request.settings.localize);
+  if (request.map.empty() && !request.similarity_file) throw std::invalid_argument("localize: no map given");
   LocalizeRun run;
   run.online = request.online;
   run.settings = request.settings;
   std::string maps;
-  for (const auto& m : map_inputs(request)) {
+  for (const auto& m : request.map) {
     if (!maps.empty()) maps += " + ";
     maps += m.path.string();
   }
@@ -365,7 +364,7 @@ LocalizeRun localize_sequences(const LocalizeRequest& request, const OnlineQuery
       request.similarity_file ? request.similarity_file->string() : request.query.path.string() + " in " + maps;
   if (!request.similarity_file) {
     // Thumbnails of a map made of several sessions are not read (the report says so).
-    if (request.map_sessions.size() <= 1) run.map_input = map_inputs(request).front();
+    if (request.map.size() == 1) run.map_input = request.map.front();
     run.query_input = request.query;
   }
   choose_descriptors(request, run);

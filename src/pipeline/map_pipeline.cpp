@@ -16,6 +16,7 @@
 #include "seqtopo/pipeline/baselines.hpp"
 #include "seqtopo/pipeline/engine_choice.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
+#include "seqtopo/pipeline/machine_memory.hpp"
 #include "seqtopo/pipeline/memory_estimate.hpp"
 #include "seqtopo/plot/png.hpp"
 #include "seqtopo/scale/sparse_alignment.hpp"
@@ -463,11 +464,11 @@ MapJob::MapJob(MapRequest request) : request_(std::move(request)) {
   // every session's.
   MapRequest sized = request_;
   sized.sessions.front().input = inputs_.front();
-  engine_note_ = resolve_engine(sized, kind_, announced, similarity::memory_budget_bytes());
+  engine_note_ = resolve_engine(sized, kind_, announced, memory_budget_bytes());
   request_.engine = sized.engine;
   request_.settings = sized.settings;
   if (announced) {
-    memory_note_ = check_map_memory(sized, kind_, *announced, similarity::available_memory_bytes());
+    memory_note_ = check_map_memory(sized, kind_, *announced, available_memory_bytes());
     request_.settings.similarity.note_memory_above = std::numeric_limits<std::size_t>::max();  // ours is printed
   }
 }

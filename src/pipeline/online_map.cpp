@@ -26,24 +26,6 @@ namespace fs = std::filesystem;
 using mapping::OnlineEvent;
 using mapping::OnlineEventKind;
 
-// A JSON number for a float: shortest text that reads back as the same float.
-std::string number(float v) { return fmt::format("{}", v); }
-
-std::string json_string(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
 class Feeder {
  public:
   Feeder(const OnlineMapRequest& request, OnlineMapRun& run, const OnlineMapFrameCallback& on_frame)
@@ -245,84 +227,6 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
     run.offline = MapJob(std::move(offline)).run();
   }
   return run;
-}
-
-std::string online_event_json(const OnlineEvent& e) {
-  std::string s = fmt::format(R"({{"frame": {}, "event": "{}")", e.frame, mapping::to_string(e.kind));
-  const auto direction = [&] { return fmt::format(R"(, "direction": "{}")", align::to_string(e.direction)); };
-  // The E-value of the score in the frames so far; null before the statistics could be fitted.
-  const auto e_value = [&] {
-    return fmt::format(R"(, "e_value": {})", e.e_value ? fmt::format("{:.3g}", *e.e_value) : "null");
-  };
-  switch (e.kind) {
-    case OnlineEventKind::loop_closure:
-      s += fmt::format(R"(, "i": {}, "j": {}{}, "confidence": {}, "score": {}{}, "revisit": {})", e.i, e.j, direction(),
-                       number(e.confidence), number(e.score), e_value(), e.revisit);
-      break;
-    case OnlineEventKind::revisit_begin:
-      s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "score": {}{}, "delay": {})", e.revisit, direction(),
-                       e.i, e.j, number(e.score), e_value(), e.frame - e.first);
-      if (e.candidate) s += fmt::format(R"(, "candidate": {})", *e.candidate);
-      break;
-    case OnlineEventKind::revisit_candidate:
-      s += fmt::format(R"(, "candidate": {}{}, "i": {}, "j": {}, "start": [{}, {}], "score": {}{}, "delay": {})",
-                       *e.candidate, direction(), e.i, e.j, e.first, e.last, number(e.score), e_value(),
-                       e.frame - e.first);
-      break;
-    case OnlineEventKind::revisit_end:
-      s += fmt::format(R"(, "revisit": {}{}, "i": {}, "j": {}, "first": {}, "last": {}, "frames": {}, "score": {}{})",
-                       e.revisit, direction(), e.i, e.j, e.first, e.last, e.frames, number(e.score), e_value());
-      break;
-    case OnlineEventKind::junction:
-      s += fmt::format(R"(, "i": {}, "j": {}, "joining": {}, "revisit": {}{})", e.i, e.j, e.joining, e.revisit,
-                       direction());
-      break;
-    case OnlineEventKind::place_merge:
-      s +=
-          fmt::format(R"(, "i": {}, "j": {}, "places": [{}, {}], "revisit": {})", e.i, e.j, e.first, e.last, e.revisit);
-      break;
-    case OnlineEventKind::correction: {
-      s += e.candidate ? fmt::format(R"(, "candidate": {}{}, "reason": {}, "withdrawn": [)", *e.candidate, direction(),
-                                     json_string(e.reason))
-                       : fmt::format(R"(, "revisit": {}{}, "reason": {}, "withdrawn": [)", e.revisit, direction(),
-                                     json_string(e.reason));
-      for (std::size_t k = 0; k < e.withdrawn.size(); ++k) {
-        s += fmt::format("{}[{}, {}]", k ? ", " : "", e.withdrawn[k].first, e.withdrawn[k].second);
-      }
-      s += "]";
-      break;
-    }
-  }
-  return s + "}";
-}
-
-std::string online_event_summary(const OnlineEvent& e) {
-  const std::string_view d = align::to_string(e.direction);
-  switch (e.kind) {
-    case OnlineEventKind::loop_closure:
-      return fmt::format("frame {}: loop closure {} ~ {} ({}, confidence {:.2f})", e.frame, e.i, e.j, d, e.confidence);
-    case OnlineEventKind::revisit_begin:
-      return fmt::format("frame {}: revisit {} begins at {} ~ {} ({}, {} frames late{})", e.frame, e.revisit, e.i, e.j,
-                         d, e.frame - e.first,
-                         e.candidate ? fmt::format(", candidate {} confirmed", *e.candidate) : std::string());
-    case OnlineEventKind::revisit_candidate:
-      return fmt::format("frame {}: revisit candidate {} at {} ~ {} ({}, E-value {}, from {} ~ {})", e.frame,
-                         *e.candidate, e.i, e.j, d, e.e_value ? fmt::format("{:.3g}", *e.e_value) : "?", e.first,
-                         e.last);
-    case OnlineEventKind::revisit_end:
-      return fmt::format("frame {}: revisit {} ended at {} ~ {} ({}, frames {}-{})", e.frame, e.revisit, e.i, e.j, d,
-                         e.first, e.last);
-    case OnlineEventKind::junction:
-      return fmt::format("frame {}: junction at frame {} (frame {} {} the old path)", e.frame, e.j, e.i,
-                         e.joining ? "joins" : "leaves");
-    case OnlineEventKind::place_merge:
-      return fmt::format("frame {}: places {} and {} merged ({} ~ {})", e.frame, e.first, e.last, e.i, e.j);
-    case OnlineEventKind::correction:
-      if (e.candidate) return fmt::format("frame {}: correction, {}", e.frame, e.reason);
-      return fmt::format("frame {}: correction, {} loop closure(s) of revisit {} withdrawn: {}", e.frame,
-                         e.withdrawn.size(), e.revisit, e.reason);
-  }
-  return {};
 }
 
 std::vector<evaluation::ScoredPair> online_scored_pairs(const std::vector<mapping::OnlineLoopClosure>& closures) {

@@ -17,6 +17,7 @@
 #include "seqtopo/core/stopwatch.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/pipeline/machine_memory.hpp"
 #include "seqtopo/significance/low_information.hpp"
 #include "seqtopo/similarity/distance_matrix.hpp"
 #include "seqtopo/similarity/memory.hpp"
@@ -242,7 +243,7 @@ void check_memory(const Source& a, const Source* b, Descriptor d, const Similari
   const std::size_t items = rows + (b ? cols : 0);
   const std::size_t desc = per_item != 0 && items > max / per_item ? max : items * per_item;
   total = total > max - desc ? max : total + desc;
-  const auto available = similarity::available_memory_bytes();
+  const auto available = available_memory_bytes();
   const std::string what =
       "the " + std::to_string(rows) + " x " + std::to_string(cols) + " similarity matrix with its descriptors";
   if (c.note && total >= c.note_memory_above) {
@@ -726,6 +727,7 @@ std::vector<SimilarityResult> run(std::span<const SequenceInput> inputs_a, std::
   similarity::MatrixConfig mc;
   mc.threads = c.threads;
   mc.tile = c.tile;
+  mc.memory_budget = available_memory_bytes();
   if (c.progress) mc.progress = [&c](std::size_t done, std::size_t total) { c.progress("matrix", done, total); };
   std::vector<SimilarityResult> results;
   for (std::size_t k = 0; k < ds.size(); ++k) {
@@ -810,12 +812,13 @@ SimilarityResult similarity_of_descriptors(const DenseMatrix<float>& a, const De
   const std::size_t bytes =
       similarity::matrix_bytes(a.rows, cols) + (a.values.size() + (b ? b->values.size() : 0)) * sizeof(float);
   similarity::check_fits(
-      bytes, similarity::available_memory_bytes(),
+      bytes, available_memory_bytes(),
       "the " + std::to_string(a.rows) + " x " + std::to_string(cols) + " similarity matrix with its descriptors");
   const Distance metric = c.distance.value_or(default_distance(Descriptor::npy));
   similarity::MatrixConfig mc;
   mc.threads = c.threads;
   mc.tile = c.tile;
+  mc.memory_budget = available_memory_bytes();
   const auto set_a = similarity::DescriptorSet::from_dense(a);
   DenseMatrix<float> distances =
       b ? similarity::distance_matrix(set_a, similarity::DescriptorSet::from_dense(*b), metric, mc)

@@ -241,7 +241,7 @@ DenseMatrix<float> compute(const DescriptorSet& a, const DescriptorSet& b, bool 
   }
   validate(a, metric, "first sequence");
   if (!symmetric) validate(b, metric, "second sequence");
-  check_fits(matrix_bytes(rows, cols), available_memory_bytes(),
+  check_fits(matrix_bytes(rows, cols), config.memory_budget,
              "a " + std::to_string(rows) + " x " + std::to_string(cols) + " distance matrix");
   DenseMatrix<float> out(rows, cols, 0.0F);
   if (rows == 0 || cols == 0) return out;

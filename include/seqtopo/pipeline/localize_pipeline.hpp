@@ -5,7 +5,7 @@
 // SeqSLAM baselines on the same matrix (baselines.hpp). Writing the results is outputs/localize_outputs.hpp.
 //
 //   pipeline::LocalizeRequest request;
-//   request.map = {"summer"};
+//   request.map = {{"summer"}};
 //   request.query = {"winter"};
 //   pipeline::LocalizeRun run = pipeline::localize_sequences(request);   // run.answers[q].map
 #include <cmath>
@@ -40,11 +40,10 @@ struct LocalizeSettings {
 };
 
 struct LocalizeRequest {
-  SequenceInput map, query;  // the query's path "-" (online only): image paths from next_query_path
-  // A map made of several sessions (seqtopo localize --map A --map B): when not empty it replaces `map`; the
-  // map frames are the sessions' frames one after the other (columns of the similarity, map indices of the
-  // answers, in that order).
-  std::vector<SequenceInput> map_sessions;
+  // The map's sessions (seqtopo localize --map A [--map B ...]; one map is a list of one): the map frames are the
+  // sessions' frames one after the other (columns of the similarity, map indices of the answers, in that order).
+  std::vector<SequenceInput> map;
+  SequenceInput query;  // path "-" (online only): image paths from next_query_path
   // A query x map similarity.npy instead of the two sequences (rows = query frames, columns = map frames).
   std::optional<std::filesystem::path> similarity_file;
   LocalizeSettings settings;

@@ -91,10 +91,6 @@ using OnlineMapFrameCallback = std::function<void(std::size_t frame, std::span<c
 // truth of another size).
 OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFrameCallback& on_frame = {});
 
-// One event as one JSON object on one line (no newline), as in events.jsonl (INTERFACE.md).
-std::string online_event_json(const mapping::OnlineEvent& event);
-// One human-readable line (no newline).
-std::string online_event_summary(const mapping::OnlineEvent& event);
 // The standing loop closures as scored pairs (score = confidence), for evaluation::evaluate_loop_closures.
 std::vector<evaluation::ScoredPair> online_scored_pairs(const std::vector<mapping::OnlineLoopClosure>& closures);
 

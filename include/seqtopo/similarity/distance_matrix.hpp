@@ -7,6 +7,7 @@
 // descriptors alone, with a fixed order of summation, so the matrix is bit-identical for any thread count.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,11 +34,13 @@ struct MatrixConfig {
   unsigned threads = 0;   // 0 = every core
   std::size_t tile = 64;  // tile side [cells]
   // Called after each finished tile with (cells done, cells total), from one thread at a time.
-  std::function<void(std::size_t, std::size_t)> progress;
+  std::function<void(std::size_t, std::size_t)> progress = {};
+  // The bytes the matrix may take: a larger one is refused (MemoryError) before it is allocated; unset: no check.
+  std::optional<std::size_t> memory_budget = {};
 };
 
 // N x N distances of one sequence. Throws std::invalid_argument when the metric does not apply (chi2 on
-// negative values) and MemoryError when the matrix would not fit in memory.
+// negative values) and MemoryError when the matrix would not fit in config.memory_budget.
 DenseMatrix<float> distance_matrix(const DescriptorSet& items, Distance metric, const MatrixConfig& config = {});
 // N x M distances: rows = a, columns = b. Both sets must be of the same kind and dimension.
 DenseMatrix<float> distance_matrix(const DescriptorSet& a, const DescriptorSet& b, Distance metric,
