@@ -262,20 +262,21 @@ void run(MapOptions o) {
   const double setup_seconds = progress.elapsed();
   const auto line = [&progress](std::string_view text) { progress.line(text); };
   // The report's thumbnails are made while the similarity stage reads the images (one image folder).
-  int thumbnail_side = 0;
+  std::optional<outputs::ThumbnailCollector> thumbnails;
   if (job.sessions().size() == 1 && job.input_kind() == pipeline::InputKind::images && job.sessions()[0].frames)
-    thumbnail_side = outputs::report_thumbnail_side(*job.sessions()[0].frames);
-  pipeline::MapRun run = job.run({.progress = line,
-                                  .stage = progress.observer(),
-                                  .later_stages = {"files and figures", "report"},
-                                  .thumbnail_side = thumbnail_side});
+    thumbnails.emplace(outputs::report_thumbnail_side(*job.sessions()[0].frames));
+  pipeline::MapObserver observer{
+      .progress = line, .stage = progress.observer(), .later_stages = {"files and figures", "report"}};
+  if (thumbnails)
+    observer.on_image = [&thumbnails](std::size_t i, const RgbImage& image) { thumbnails->add(i, image); };
+  pipeline::MapRun run = job.run(observer);
   run.timings.insert(run.timings.begin(), {"start-up, options, inputs checked", setup_seconds});
 
   // The pairs are known now: outputs that would not fit are refused before any is written.
   pipeline::check_outputs_memory(run, pipeline::available_memory_bytes(), o.out);
   progress.begin("files and figures");
   const std::size_t images = run.result.map.labels.size();
-  if (!run.streaming && !matrices && !outputs::writes_matrices(images, matrices)) {
+  if (!run.streamed() && !matrices && !outputs::writes_matrices(images, matrices)) {
     progress.line(fmt::format(
         "similarity.npy and scores.npy not written: {} images, 2 x {:.0f} MB (written up to {} "
         "images; --save-matrices yes writes them)",
@@ -285,8 +286,10 @@ void run(MapOptions o) {
   run.timings.emplace_back("files and figures", progress.end());
   progress.begin("report");
   // The report's timings add up to the wall time up to its own writing (the rest is the final rename).
-  const auto report =
-      outputs::write_map_report(run, out, {.seconds_before = progress.elapsed(), .command_line = command_line()});
+  const auto report = outputs::write_map_report(run, out,
+                                                {.seconds_before = progress.elapsed(),
+                                                 .command_line = command_line(),
+                                                 .thumbnails = thumbnails ? &thumbnails->jpegs() : nullptr});
   progress.end();
   if (!report.warning.empty()) progress.line("warning: " + report.warning);
   const auto written = out.commit();

@@ -246,7 +246,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out, co
   out.write("map.json", formats::map_json(result, run.sessions));
   out.write("alignments.json", formats::alignments_json(result));
   out.write("loop_closures.csv", formats::loop_closures_csv(result));
-  if (!run.streaming && writes_matrices(map.labels.size(), options.matrices)) {
+  if (!run.streamed() && writes_matrices(map.labels.size(), options.matrices)) {
     out.write_pieces("similarity.npy", {io::npy_header(run.matrices.front()), io::npy_body(run.matrices.front())});
     out.write_pieces("scores.npy", {io::npy_header(result.scores), io::npy_body(result.scores)});
   }
@@ -276,7 +276,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out, co
 
   if (run.metrics || run.ate || run.topology) {
     nlohmann::json metrics = {{"seqtopo_version", std::string(version())}};
-    if (run.streaming) metrics["streaming"] = true;
+    if (run.streamed()) metrics["streaming"] = true;
     if (run.metrics) {
       metrics["loop_closure"] = detail::loop_closure_metrics_json(*run.metrics);
       if (run.baseline_metrics) {

@@ -375,10 +375,10 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   // The matrix view: the aligned scores (or their block-max overview), alignments and loop closures over it.
   html.heading("Similarity matrix and alignments");
   const DrawnMatrix drawn(run);  // what similarity.png draws
-  const std::string what = run.streaming ? "Contrast-enhanced similarity (streamed: block maxima)"
-                                         : (run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity"
-                                                                               : "Similarity S = 1 - kappa D") +
-                                               (drawn.block() > 1 ? std::string(" (block maxima)") : std::string());
+  const std::string what = run.streamed() ? "Contrast-enhanced similarity (streamed: block maxima)"
+                                          : (run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity"
+                                                                                : "Similarity S = 1 - kappa D") +
+                                                (drawn.block() > 1 ? std::string(" (block maxima)") : std::string());
   html.raw(detail::matrix_view_markup(
       what +
       " of every pair of images (bright = similar): kept alignments red, pruned ones dashed blue, each "
@@ -390,7 +390,7 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
            : std::string())));
   html.raw("<div id=\"alignment-table\"></div>\n");
   data["matrix"] = detail::matrix_json(drawn.cells(), n, n, "image i", "image j",
-                                       run.streaming || run.map_config.contrast_window > 0 ? "score [sd]" : "S");
+                                       run.streamed() || run.map_config.contrast_window > 0 ? "score [sd]" : "S");
   nlohmann::json alignments = nlohmann::json::array();
   for (std::size_t k = 0; k < result.alignments.size(); ++k) {
     alignments.push_back(
@@ -407,7 +407,7 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   for (const auto& p : result.pruning.pairs) wanted.push_back(p.i), wanted.push_back(p.j);
   data["sequences"] = {{"rows", run.session_inputs.size() > 1 && run.session_inputs.size() == run.sessions.size()
                                     ? sessions_json(run, wanted)
-                                    : detail::sequence_json(run.sequence, n, wanted, "image", &run.thumbnails)},
+                                    : detail::sequence_json(run.sequence, n, wanted, "image", options.thumbnails)},
                        {"cols", "rows"}};
   if (data["sequences"]["rows"]["note"] != "") {
     html.paragraph("Images: " + data["sequences"]["rows"]["note"].get<std::string>() + ".");
@@ -446,7 +446,7 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   html.heading("Parameters");
   const auto& c = run.map_config;
   std::vector<std::pair<std::string, std::string>> parameters{{"input", run.input}, {"preset", run.preset}};
-  if (run.streaming) {
+  if (run.streamed()) {
     const double nn = static_cast<double>(n);
     parameters.emplace_back("streaming",
                             "true: cosine similarity of the descriptors, contrast-enhanced on the fly "

@@ -298,3 +298,14 @@ std::string matrix_view_markup(const std::string& help) {
 }
 
 }  // namespace seqtopo::outputs::detail
+
+namespace seqtopo::outputs {
+
+void ThumbnailCollector::add(std::size_t index, const RgbImage& image) {
+  std::string jpeg = plot::encode_jpeg(plot::shrink(image, side_), 75);
+  const std::lock_guard lock(mutex_);
+  if (jpegs_.size() <= index) jpegs_.resize(index + 1);
+  jpegs_[index] = std::move(jpeg);
+}
+
+}  // namespace seqtopo::outputs

@@ -26,7 +26,7 @@ nlohmann::json loop_closure_metrics_json(const evaluation::LoopClosureMetrics& m
 // videos (descriptor and similarity inputs have no images: the note says so). `wanted` frames come first when
 // not every frame can be embedded (more than kMaxThumbnails).
 inline constexpr std::size_t kMaxThumbnails = 20000;
-// `jpegs` (one per frame, from pipeline::MapObserver::thumbnail_side) saves decoding an image folder again.
+// `jpegs` (one per frame, ReportOptions::thumbnails) saves decoding an image folder again.
 nlohmann::json sequence_json(const pipeline::SequenceInput& input, std::size_t frames,
                              const std::vector<std::size_t>& wanted, const std::string& noun,
                              const std::vector<std::string>* jpegs = nullptr);

@@ -127,15 +127,7 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   auto config = settings.similarity;
   if (!config.note && observer.progress) config.note = observer.progress;
   if (!config.progress) config.progress = clock.similarity_progress();
-  std::mutex thumbnails;
-  if (observer.thumbnail_side > 0 && inputs.size() == 1 && kind == InputKind::images) {
-    config.on_image = [&run, &thumbnails, side = observer.thumbnail_side](std::size_t i, const RgbImage& image) {
-      std::string jpeg = plot::encode_jpeg(plot::shrink(image, side), 75);
-      const std::lock_guard lock(thumbnails);
-      if (run.thumbnails.size() <= i) run.thumbnails.resize(i + 1);
-      run.thumbnails[i] = std::move(jpeg);
-    };
-  }
+  if (observer.on_image && inputs.size() == 1 && kind == InputKind::images) config.on_image = observer.on_image;
   // Every descriptor from one pass over the images.
   run.similarities = compute_similarities(inputs, descriptors, config);
   record_sessions(inputs, run.similarities.front().session_rows, run);
@@ -353,7 +345,7 @@ void trajectory_and_accuracy(const MapSettings& settings, const std::function<Ma
   }
   clock.end();
   if (truth.same_place) {
-    if (run.streaming) {
+    if (run.streamed()) {
       run.baseline_skipped = "the SeqSLAM-style baseline needs the dense N x N matrix; not run with --streaming";
     } else {
       // The baseline runs on every matrix seqtopo saw (each descriptor's S and the fused, enhanced scores).
@@ -493,14 +485,13 @@ MapRun MapJob::run(const MapObserver& observer) const {
   if (!panorama_note_.empty()) say(observer, "      " + panorama_note_);
   if (!engine_note_.empty()) say(observer, "      " + engine_note_);
   run.engine = request_.engine;
-  run.streaming = streams(run.engine);
   run.odometry = odometry_;
   const auto& files = request_.truth;
   const bool poses = !files.poses.empty() && !run.odometry.empty();
   const bool any_truth = !files.same_place.empty() || !files.places.empty() || poses;
   StageClock clock(observer, run,
-                   stage_names(run.streaming, false, !odometry_.empty(), any_truth, !files.same_place.empty()));
-  if (run.streaming) {
+                   stage_names(run.streamed(), false, !odometry_.empty(), any_truth, !files.same_place.empty()));
+  if (run.streamed()) {
     map_streamed(request_, inputs_, odometry_, observer, clock, run);
   } else {
     map_dense(request_, inputs_, kind_, odometry_, observer, clock, run);

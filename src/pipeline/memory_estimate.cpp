@@ -425,7 +425,7 @@ void check_outputs_memory(const MapRun& run, std::optional<std::size_t> availabl
   std::size_t pairs = 0;
   for (const auto& a : run.result.alignments) pairs = add(pairs, a.pairs.size());
   for (const auto& a : run.result.rejected) pairs = add(pairs, a.pairs.size());
-  const std::size_t need = outputs_extra_bytes(run.result.map.labels.size(), pairs, run.streaming);
+  const std::size_t need = outputs_extra_bytes(run.result.map.labels.size(), pairs, run.streamed());
   if (need > *available) {
     throw InputError(folder, fmt::format("writing the outputs ({} aligned pairs) needs about {} more, only {} of "
                                          "memory is available; nothing was written",

@@ -164,8 +164,8 @@ TEST_F(MapCommand, LargeMatrixFigureIsItsBlockMaxOverview) {
   EXPECT_EQ(png_size(read_file(dir_.path / "corridor" / "similarity.png")).first, 78U + 588U + 118U);
 }
 
-// The report's thumbnails are made while the run reads the images (pipeline::MapObserver::thumbnail_side): the
-// very data the report would embed from decoding each image again.
+// The report's thumbnails are made while the run reads the images (outputs::ThumbnailCollector through
+// pipeline::MapObserver::on_image): the very data the report would embed from decoding each image again.
 TEST_F(MapCommand, ReportThumbnailsFromTheRunAreTheDecodedImages) {
   const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
   const fs::path out = dir_.path / "out";

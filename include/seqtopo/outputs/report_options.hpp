@@ -1,8 +1,13 @@
 #pragma once
 // What a report is told about the run around it, and what it says back.
 #include <cstddef>
+#include <functional>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "seqtopo/core/rgb_image.hpp"
 
 namespace seqtopo::outputs {
 
@@ -14,6 +19,9 @@ struct ReportOptions {
   // The command that made the run, shown under the report's title with seqtopo's version (empty: the version
   // alone, as for a run from the Python module).
   std::string command_line;
+  // JPEG thumbnails of the images, one per image (ThumbnailCollector), made while the run read them; empty: the
+  // report decodes the images again.
+  const std::vector<std::string>* thumbnails = nullptr;
 };
 
 // The side of the report's image thumbnails [pixels]: larger sequences get smaller ones, so that the page
@@ -23,6 +31,21 @@ inline int report_thumbnail_side(std::size_t frames) {
   if (frames <= 4000) return 96;
   return 64;
 }
+
+// The report's thumbnails made as a run reads its images (pipeline::MapObserver::on_image, called from the
+// describing threads), so that the report need not decode them again: each image shrunk to `side` pixels, JPEG at
+// quality 75, at its index.
+class ThumbnailCollector {
+ public:
+  explicit ThumbnailCollector(int side) : side_(side) {}
+  void add(std::size_t index, const RgbImage& image);
+  const std::vector<std::string>& jpegs() const { return jpegs_; }
+
+ private:
+  int side_;
+  std::mutex mutex_;
+  std::vector<std::string> jpegs_;
+};
 
 struct ReportResult {
   bool interactive = true;  // false: D3 was not found and the report is static

@@ -81,15 +81,14 @@ struct MapRun {
   // Stage, seconds: the parts of run(), one after the other, so they add up to its wall time (the command line
   // appends its own: setup, files and figures, report).
   std::vector<std::pair<std::string, double>> timings;
-  // Streaming: no matrix is held (`matrices` and result.scores are empty); similarity.png draws this
-  // block-max overview of the aligned scores instead, and the report states what the streaming cost.
-  bool streaming = false;
   MapEngine engine = MapEngine::exact;  // the engine that ran (map_request.hpp; never automatic)
+  bool streamed() const { return streams(engine); }
+  // Streamed: no matrix is held (`matrices` and result.scores are empty); similarity.png draws this
+  // block-max overview of the aligned scores instead, and the report states what the streaming cost.
   plot::MatrixOverview overview;
   std::uint64_t streamed_cells = 0;      // similarity cells computed by the alignment, recomputations included
   std::size_t streamed_cache_bytes = 0;  // the tile cache's capacity [bytes]
   std::size_t sparse_pairs = 0;          // --sparse: candidate cells aligned (both triangles)
-  std::vector<std::string> thumbnails;   // MapObserver::thumbnail_side: JPEG bytes per image (empty: none)
 };
 
 // Lines about the work as it goes (stages, sizes, memory estimates); the library never prints.
@@ -103,9 +102,10 @@ struct MapObserver {
   std::function<void(std::string_view)> progress = {};
   StageObserver stage = {};
   std::vector<std::string> later_stages = {};
-  // > 0: a single image folder's images are kept shrunk to this side as JPEG (quality 75) in
-  // MapRun::thumbnails as they are read, for the report (outputs), which then need not decode them again.
-  int thumbnail_side = 0;
+  // A single image folder's images as they are read (index, pixels), from the describing threads one call at a time
+  // per image, in any order: the report's thumbnails (outputs::ThumbnailCollector), which then need not be decoded
+  // again.
+  std::function<void(std::size_t, const RgbImage&)> on_image = {};
 };
 
 // A checked request: the constructor checks it (check_request), reads what is small (the odometry, the number of
