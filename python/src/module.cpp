@@ -317,6 +317,25 @@ py::dict map_preset(const std::string& name) {
   return d;
 }
 
+// The descriptor options of `map` and `localize` as the library takes them: names (each may be a comma list), a
+// metric name, kappa and threads.
+pipeline::DescriptorOverrides described(const std::vector<std::string>& descriptors,
+                                        const std::optional<std::string>& metric, std::optional<float> kappa,
+                                        unsigned threads) {
+  pipeline::DescriptorOverrides o;
+  if (!descriptors.empty()) {
+    o.descriptors.emplace();
+    for (const auto& names : descriptors) {
+      for (auto d : pipeline::parse_descriptors(names)) o.descriptors->push_back(d);
+    }
+  }
+  if (metric) o.metric = similarity::parse_distance(*metric);
+  check_kappa(kappa);
+  o.kappa = kappa;
+  o.threads = threads;
+  return o;
+}
+
 // pipeline::map_sequence from the command line's inputs, through the request and the overrides the command line
 // fills (map_request.hpp); the run stays a C++ object (MapRun) that Python reads and writes out.
 pipeline::MapRun map_sequence(const std::vector<std::filesystem::path>& paths, const std::string& preset,
@@ -334,14 +353,7 @@ pipeline::MapRun map_sequence(const std::vector<std::filesystem::path>& paths, c
   pipeline::MapSettings base = pipeline::map_preset(preset);
   base.map = config;  // the preset's, with the keyword overrides Python applied
   pipeline::MapOverrides set;
-  if (!descriptors.empty()) {
-    set.descriptors.emplace();
-    for (const auto& d : descriptors) set.descriptors->push_back(pipeline::parse_descriptor(d));
-  }
-  if (metric) set.metric = similarity::parse_distance(*metric);
-  check_kappa(kappa);
-  set.kappa = kappa;
-  set.threads = threads;
+  set.described = described(descriptors, metric, kappa, threads);
   request.settings = pipeline::apply_overrides(std::move(base), set);
   try {
     request.engine = pipeline::engine_with_flags(pipeline::parse_engine(engine), streaming, sparse);
@@ -476,14 +488,11 @@ pipeline::LocalizeRun localize_sequences(const std::filesystem::path& map, const
   if (query.empty()) {
     request.similarity_file = map;  // one query x map similarity.npy
   }
-  if (!descriptor.empty()) {  // empty: the map's default, as the command without --descriptor
-    request.settings.detect_panoramas = false;
-    request.settings.descriptors = pipeline::parse_descriptors(descriptor);
-  }
-  if (metric) request.settings.similarity.distance = similarity::parse_distance(*metric);
-  check_kappa(kappa);
-  request.settings.similarity.kappa = kappa;
-  request.settings.similarity.threads = threads;
+  // An empty descriptor: the map's default, as the command without --descriptor.
+  pipeline::apply_descriptor_overrides(
+      described(descriptor.empty() ? std::vector<std::string>{} : std::vector<std::string>{descriptor}, metric, kappa,
+                threads),
+      request.settings.descriptors, request.settings.detect_panoramas, request.settings.similarity);
   request.settings.localize = config;
   request.online = online;
   std::optional<pipeline::GroundTruthFile> source;

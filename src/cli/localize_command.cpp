@@ -50,12 +50,15 @@ struct LocalizeOptions {
 
 // ---- offline ---------------------------------------------------------------------------------------
 
-pipeline::SimilarityConfig similarity_config(const LocalizeOptions& o) {
-  pipeline::SimilarityConfig c;
-  if (!o.metric.empty()) c.distance = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
-  c.kappa = o.kappa;
-  c.threads = resolve_threads(o.threads);
-  return c;
+// --descriptor, --metric, --kappa and --threads, as `map` takes them.
+pipeline::DescriptorOverrides descriptor_overrides(const LocalizeOptions& o) {
+  pipeline::DescriptorOverrides d;
+  if (o.descriptor)
+    d.descriptors = option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
+  if (!o.metric.empty()) d.metric = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
+  d.kappa = o.kappa;
+  d.threads = resolve_threads(o.threads);
+  return d;
 }
 
 // The similarity file when one of --map/--query is an N x M similarity.npy (rows = query, columns = map).
@@ -153,12 +156,14 @@ void run(LocalizeOptions o) {
     request.map.push_back({p, kind, o.every});
     o.sequence.apply(request.map.back());
   }
-  if (!request.similarity_file || !o.online) request.settings.similarity = similarity_config(o);
-  if (o.descriptor) {
-    request.settings.detect_panoramas = false;  // the descriptors asked for are the descriptors used
-    request.settings.descriptors =
-        option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
+  pipeline::DescriptorOverrides described = descriptor_overrides(o);
+  if (request.similarity_file && o.online) {  // rows read from the file, compared by nothing
+    described.metric.reset();
+    described.kappa.reset();
+    described.threads.reset();
   }
+  pipeline::apply_descriptor_overrides(described, request.settings.descriptors, request.settings.detect_panoramas,
+                                       request.settings.similarity);
   // Checked (and staged beside) before the work: an output folder that cannot be replaced costs no time.
   std::vector<fs::path> inputs{o.map_path, o.query_path, o.gt_map_poses};
   if (truth_source && truth_source->format != pipeline::GroundTruthFormat::same_index) inputs.emplace_back(o.gt);

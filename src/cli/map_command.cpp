@@ -109,10 +109,14 @@ std::optional<mapping::OdometryGate> parse_odometry_gate(const std::string& text
 // The preset fixes the defaults; every explicit option overrides them (pipeline::apply_overrides).
 Settings resolve_settings(const MapOptions& o) {
   pipeline::MapOverrides set = o.set;
-  if (o.descriptor)
-    set.descriptors = option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
-  if (o.metric_name) set.metric = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });
-  set.threads = resolve_threads(o.threads);
+  auto& described = set.described;
+  if (o.descriptor) {
+    described.descriptors = option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
+  }
+  if (o.metric_name) {
+    described.metric = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });
+  }
+  described.threads = resolve_threads(o.threads);
   if (o.alignment_set) {
     try {
       set.alignment_set = align::parse_alignment_set(*o.alignment_set);
@@ -148,7 +152,7 @@ std::vector<std::string> ignored_online(const MapOptions& o) {
   check(o.preset != "default", "--preset");
   check(o.descriptor.has_value(), "--descriptor");
   check(o.metric_name.has_value(), "--metric");
-  check(o.set.kappa || o.kappa_auto, "--kappa");
+  check(o.set.described.kappa || o.kappa_auto, "--kappa");
   check(o.set.frames_per_place || o.fpp_auto, "--frames-per-place");
   check(o.set.cap_factor.has_value(), "--cap-factor");
   check(o.odometry_gate.has_value(), "--odometry-gate");
@@ -321,7 +325,7 @@ const RegisterCommand registered{
                       "joint-histogram|patch|panorama|npy (npy: the rows of a descriptors.npy INPUT), or several "
                       "separated by commas to fuse them (default joint-histogram,patch; paper preset joint-histogram)");
        app.add_option("--metric", o->metric_name, "chi2|l1|cosine|sad (default: by descriptor)");
-       add_number_or(app, "--kappa", o->set.kappa, "auto", o->kappa_auto, kPositive,
+       add_number_or(app, "--kappa", o->set.described.kappa, "auto", o->kappa_auto, kPositive,
                      "S = 1 - kappa * D: a number > 0, or auto (from the sequence's own distances)");
        add_number(app, "--gap", o->set.gap, kNonNegative,
                   fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));

@@ -48,14 +48,8 @@ MapEngine engine_with_flags(std::optional<MapEngine> engine, bool streaming, boo
 }
 
 MapSettings apply_overrides(MapSettings s, const MapOverrides& o) {
-  if (o.descriptors) {
-    if (o.descriptors->empty()) throw std::invalid_argument("no descriptor given");
-    s.detect_panoramas = false;  // the descriptors asked for are the descriptors used
-    s.descriptors = *o.descriptors;
-  }
-  if (o.metric) s.similarity.distance = *o.metric;
-  if (o.kappa) s.similarity.kappa = *o.kappa;
-  if (o.threads) s.similarity.threads = s.map.threads = *o.threads;
+  apply_descriptor_overrides(o.described, s.descriptors, s.detect_panoramas, s.similarity);
+  if (o.described.threads) s.map.threads = *o.described.threads;
   if (o.gap) s.map.gap = *o.gap;
   if (o.threshold) s.map.threshold = *o.threshold;
   if (o.no_cap || o.cap) s.map.cap_from_statistics = false;  // an explicit cap is the cap

@@ -58,6 +58,18 @@ std::string_view descriptor_name(Descriptor descriptor) {
   return "?";
 }
 
+void apply_descriptor_overrides(const DescriptorOverrides& o, std::vector<Descriptor>& descriptors,
+                                bool& detect_panoramas, SimilarityConfig& similarity) {
+  if (o.descriptors) {
+    if (o.descriptors->empty()) throw std::invalid_argument("no descriptor given");
+    detect_panoramas = false;
+    descriptors = *o.descriptors;
+  }
+  if (o.metric) similarity.distance = *o.metric;
+  if (o.kappa) similarity.kappa = *o.kappa;
+  if (o.threads) similarity.threads = *o.threads;
+}
+
 std::vector<Descriptor> parse_descriptors(std::string_view names) {
   std::vector<Descriptor> list;
   while (!names.empty()) {

@@ -94,11 +94,11 @@ TEST(EngineChoice, CheckRequestNamesTheOptionInTheWay) {
   request.sparse = {};
   EXPECT_EQ(subject(request, InputKind::similarity), "--streaming");
   MapRequest changed = request;
-  changed.settings = apply_overrides(request.settings, {.kappa = 2.0F});
+  changed.settings = apply_overrides(request.settings, {.described = {.kappa = 2.0F}});
   EXPECT_EQ(subject(changed, InputKind::descriptors), "--kappa");
   changed.settings = apply_overrides(request.settings, {.contrast_window = 0});
   EXPECT_EQ(subject(changed, InputKind::descriptors), "--contrast-window");
-  changed.settings = apply_overrides(request.settings, {.descriptors = {{Descriptor::joint_histogram}}});
+  changed.settings = apply_overrides(request.settings, {.described = {.descriptors = {{Descriptor::joint_histogram}}}});
   EXPECT_EQ(subject(changed, InputKind::images), "--descriptor");
   EXPECT_EQ(subject(changed, InputKind::descriptors), "");  // a descriptors.npy is its own vector descriptor
   changed = request;

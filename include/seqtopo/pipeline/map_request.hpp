@@ -77,10 +77,7 @@ struct MapRequest {
 // function applies them for the command line and Python.
 // Default member initializers: `{.gap = 0.5F}` alone stays free of -Wmissing-field-initializers.
 struct MapOverrides {
-  std::optional<std::vector<Descriptor>> descriptors = {};  // the descriptors asked for are used (no panorama swap)
-  std::optional<Distance> metric = {};
-  std::optional<float> kappa = {};
-  std::optional<unsigned> threads = {};  // 0 = every core
+  DescriptorOverrides described = {};  // its threads are the alignment's too
   std::optional<float> gap = {};
   std::optional<float> threshold = {};
   std::optional<float> contrast_offset = {};

@@ -58,6 +58,19 @@ struct SimilarityConfig {
   std::function<void(std::size_t, const RgbImage&)> on_image;
 };
 
+// The user's choice of descriptors and of their comparison, by the options `map` and `localize` share
+// (--descriptor, --metric, --kappa, --threads); unset: the settings' own. apply_descriptor_overrides applies them
+// for the command line and Python alike: the descriptors asked for are the descriptors used (no panorama swap).
+struct DescriptorOverrides {
+  std::optional<std::vector<Descriptor>> descriptors = {};
+  std::optional<Distance> metric = {};
+  std::optional<float> kappa = {};
+  std::optional<unsigned> threads = {};  // 0 = every core
+};
+// Throws std::invalid_argument on an empty descriptor list.
+void apply_descriptor_overrides(const DescriptorOverrides& overrides, std::vector<Descriptor>& descriptors,
+                                bool& detect_panoramas, SimilarityConfig& similarity);
+
 struct SimilarityResult {
   SimilarityMatrix similarity;  // S, rows = first sequence, cols = second (or same)
   float kappa = 0;              // the kappa used (NaN when the input was a similarity matrix)
