@@ -488,14 +488,15 @@ void check_map_config(const MapConfig& c) {
   require(c.fit_alignments > 0, "fit_alignments", ">= 1");
 }
 
+namespace {
+
+// The note for similarity k (0-based) of `count` left out as blind, named when the config names it.
 std::string blind_descriptor_note(std::size_t k, std::size_t count, std::string_view name) {
   return fmt::format(
       "descriptor {} of {}{} sees no revisit (none on its own, nor higher scores than chance on the pairs another "
       "maps): left out of the fusion",
       k + 1, count, name.empty() ? std::string() : fmt::format(" ({})", name));
 }
-
-namespace {
 
 // MapConfig::drop_blind_descriptors: the similarities that see no revisit (ascending; empty when the check does not
 // apply or none is blind). Blind: its own map has no loop closure, another's has one at E <= max_e_value / D
@@ -621,7 +622,10 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   }
   result.decisions.blind_descriptors = blind;
   for (auto k = blind.rbegin(); k != blind.rend(); ++k) {  // first in the notes, in the descriptors' order
-    result.decisions.notes.insert(result.decisions.notes.begin(), blind_descriptor_note(*k, similarities.size()));
+    result.decisions.notes.insert(
+        result.decisions.notes.begin(),
+        blind_descriptor_note(*k, similarities.size(),
+                              *k < config.descriptor_names.size() ? config.descriptor_names[*k] : std::string_view()));
   }
   result.decisions.frames_per_place_estimated = estimate;
   if (scale && !scale->found) {

@@ -41,14 +41,6 @@ void say(const MapObserver& observer, const std::string& text) {
 
 // The timing and the one progress line of the map stage, the same for every path.
 void report_map(MapRun& run, const MapObserver& observer) {
-  // The map names a descriptor it left out by its place in the fusion; the run knows its name.
-  for (std::size_t k : run.result.decisions.blind_descriptors) {
-    if (k >= run.descriptor_names.size()) continue;
-    const std::string unnamed = mapping::blind_descriptor_note(k, run.matrices.size());
-    for (auto& note : run.result.decisions.notes) {
-      if (note == unnamed) note = mapping::blind_descriptor_note(k, run.matrices.size(), run.descriptor_names[k]);
-    }
-  }
   const auto& d = run.result.decisions;
   if (run.map_config.place_units) {
     say(observer, fmt::format("      {:.2f} frames per place{}: contrast window {} frames, min separation {} frames",
@@ -151,6 +143,7 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
       entropy.size() == n ? significance::low_information_frames(entropy) : std::vector<std::size_t>{};
   mapping::MapConfig map_config = map_config_of(settings, run);
   map_config.alignment_progress = clock.alignment_progress();
+  map_config.descriptor_names = run.descriptor_names;
   run.result = mapping::build_map(run.matrices, map_config, odometry, low_information);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
@@ -552,6 +545,7 @@ MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<
   clock.begin();
   mapping::MapConfig config = settings.map;
   config.alignment_progress = clock.alignment_progress();
+  config.descriptor_names = run.descriptor_names;
   run.result = mapping::build_map(run.matrices, config, odometry);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});

@@ -123,6 +123,8 @@ struct MapConfig {
   // map alone that still scores the revisit stays (decisions.blind_descriptors, a note).
   bool drop_blind_descriptors = true;
   std::size_t max_blind_check_frames = 8000;
+  // The names of build_map's similarities, for its notes (a descriptor left out is named); empty: by number.
+  std::vector<std::string> descriptor_names;
   // Frames of little information given to build_map (dark or near-uniform images: significance/low_information.hpp)
   // carry no evidence of a revisit, as a sequence search soft-masks low-complexity regions: with contrast
   // enhancement their enhanced scores are capped at the contrast offset (aligned, at most 0), so an alignment
@@ -246,10 +248,6 @@ struct TableFit {
   bool logarithmic = false;  // valid statistics, and both checks hold
 };
 TableFit fit_table_statistics(const align::ScoreSource& scores, const MapConfig& config, double frames_per_place = 1);
-
-// The note build_map adds for similarity k (0-based) of `count` left out as blind (MapConfig::drop_blind_descriptors);
-// with the descriptor's name when the caller knows it.
-std::string blind_descriptor_note(std::size_t k, std::size_t count, std::string_view name = {});
 
 // The topology settings of step 5 for a config in frames (the clean-up's transitive reduction and junction regions).
 TopologyConfig topology_settings(const MapConfig& config);
