@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
@@ -18,7 +17,6 @@
 #include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/pipeline/machine_memory.hpp"
 #include "seqtopo/pipeline/memory_estimate.hpp"
-#include "seqtopo/plot/png.hpp"
 #include "seqtopo/scale/sparse_alignment.hpp"
 #include "seqtopo/scale/sparse_candidates.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
