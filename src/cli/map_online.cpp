@@ -49,19 +49,9 @@ void run_map_online(const OnlineCliOptions& o) {
   request.input = pipeline::SequenceInput(fs::path(input), kind, o.every);
   request.paths = &std::cin;
   auto& c = request.config;
-  const pipeline::MapOverrides& set = o.set;
-  if (set.gap) c.gap = *set.gap;
-  if (set.threshold) c.threshold = *set.threshold;
-  if (set.e_value) c.max_e_value = *set.e_value;
-  if (set.no_e_value) c.max_e_value.reset();
+  pipeline::apply_overrides(c, o.set);
   if (o.candidate_e_value) c.candidate_e_value = *o.candidate_e_value;
   if (o.no_candidates) c.candidate_e_value.reset();
-  if (set.cap) c.cap = *set.cap;
-  if (set.no_cap) c.cap.reset();
-  if (set.min_separation) c.min_separation = *set.min_separation;
-  if (set.contrast_window) c.contrast_window = *set.contrast_window;
-  if (set.contrast_offset) c.contrast_offset = *set.contrast_offset;
-  if (set.reverse) c.reverse = *set.reverse;
   option_value("--online", [&] {
     mapping::validate(c);
     return 0;

@@ -89,6 +89,19 @@ std::vector<std::vector<float>> OnlineImageRows::add(const RgbImage& image) {
   return rows;
 }
 
+void apply_overrides(mapping::OnlineMapConfig& c, const MapOverrides& o) {
+  if (o.gap) c.gap = *o.gap;
+  if (o.threshold) c.threshold = *o.threshold;
+  if (o.e_value) c.max_e_value = *o.e_value;
+  if (o.no_e_value) c.max_e_value.reset();
+  if (o.cap) c.cap = *o.cap;
+  if (o.no_cap) c.cap.reset();
+  if (o.min_separation) c.min_separation = *o.min_separation;
+  if (o.contrast_window) c.contrast_window = *o.contrast_window;
+  if (o.contrast_offset) c.contrast_offset = *o.contrast_offset;
+  if (o.reverse) c.reverse = *o.reverse;
+}
+
 OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFrameCallback& on_frame) {
   const auto start = std::chrono::steady_clock::now();
   OnlineMapRun run;

@@ -84,6 +84,11 @@ struct OnlineMapRun {
   std::optional<MapRun> offline;                          // OnlineMapRequest::offline_map
 };
 
+// The map's options the online mapper reads, applied to `config` as the offline map applies them to its preset
+// (apply_overrides, map_request.hpp): gap, threshold, cap, e_value, min_separation, contrast window and offset,
+// reverse. min_separation and the contrast window are in frames here (the online map has no place scale).
+void apply_overrides(mapping::OnlineMapConfig& config, const MapOverrides& overrides);
+
 // Called after each frame with its events (possibly none), and once after the last frame with finish()'s.
 using OnlineMapFrameCallback = std::function<void(std::size_t frame, std::span<const mapping::OnlineEvent> events)>;
 
