@@ -5,15 +5,14 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "seqtopo/formats/json_number.hpp"
+
 namespace seqtopo::formats {
 namespace {
 
 using mapping::OnlineEvent;
 using mapping::OnlineEventKind;
 using Json = nlohmann::ordered_json;
-
-// A float as the double of its shortest decimal, so that the JSON says 0.85, not 0.8500000238418579.
-double shortest(float v) { return std::stod(fmt::format("{}", v)); }
 
 }  // namespace
 
@@ -27,8 +26,8 @@ std::string online_event_json(const OnlineEvent& e) {
       j["i"] = e.i;
       j["j"] = e.j;
       direction();
-      j["confidence"] = shortest(e.confidence);
-      j["score"] = shortest(e.score);
+      j["confidence"] = json_number(e.confidence);
+      j["score"] = json_number(e.score);
       e_value();
       j["revisit"] = e.revisit;
       break;
@@ -37,7 +36,7 @@ std::string online_event_json(const OnlineEvent& e) {
       direction();
       j["i"] = e.i;
       j["j"] = e.j;
-      j["score"] = shortest(e.score);
+      j["score"] = json_number(e.score);
       e_value();
       j["delay"] = e.frame - e.first;
       if (e.candidate) j["candidate"] = *e.candidate;
@@ -48,7 +47,7 @@ std::string online_event_json(const OnlineEvent& e) {
       j["i"] = e.i;
       j["j"] = e.j;
       j["start"] = {e.first, e.last};
-      j["score"] = shortest(e.score);
+      j["score"] = json_number(e.score);
       e_value();
       j["delay"] = e.frame - e.first;
       break;
@@ -60,7 +59,7 @@ std::string online_event_json(const OnlineEvent& e) {
       j["first"] = e.first;
       j["last"] = e.last;
       j["frames"] = e.frames;
-      j["score"] = shortest(e.score);
+      j["score"] = json_number(e.score);
       e_value();
       break;
     case OnlineEventKind::junction:

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "report_data.hpp"
+#include "seqtopo/formats/json_number.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 
 namespace seqtopo::outputs {
@@ -39,7 +40,7 @@ void write_online_map_outputs(const pipeline::OnlineMapRun& run, const mapping::
                                     {"events", run.event_counts}};
   nlohmann::ordered_json significance = {
       {"max_e_value", config.max_e_value ? nlohmann::ordered_json(*config.max_e_value) : nlohmann::ordered_json()},
-      {"threshold", run.threshold}};
+      {"threshold", formats::json_number(run.threshold)}};
   const auto& st = run.statistics;
   if (st.valid()) {
     significance["lambda"] = st.lambda;
@@ -48,12 +49,12 @@ void write_online_map_outputs(const pipeline::OnlineMapRun& run, const mapping::
     significance["fitted"] = st.fitted;
     significance["fitted_to"] = run.statistics_from_table ? "table" : "islands";
   }
-  significance["contrast_offset"] = run.contrast_offset;
+  significance["contrast_offset"] = formats::json_number(run.contrast_offset);
   auto& changes = significance["offset_changes"] = nlohmann::ordered_json::array();
   for (const auto& x : run.offset_changes) {
     changes.push_back({{"frame", x.frame},
-                       {"from", x.from},
-                       {"to", x.to},
+                       {"from", formats::json_number(x.from)},
+                       {"to", formats::json_number(x.to)},
                        {"check", x.check},
                        {"global_rate", x.global_rate},
                        {"chance_length", x.chance_length},
