@@ -50,17 +50,6 @@ struct LocalizeOptions {
 
 // ---- offline ---------------------------------------------------------------------------------------
 
-// --descriptor, --metric, --kappa and --threads, as `map` takes them.
-pipeline::DescriptorOverrides descriptor_overrides(const LocalizeOptions& o) {
-  pipeline::DescriptorOverrides d;
-  if (o.descriptor)
-    d.descriptors = option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
-  if (!o.metric.empty()) d.metric = option_value("--metric", [&] { return similarity::parse_distance(o.metric); });
-  d.kappa = o.kappa;
-  d.threads = resolve_threads(o.threads);
-  return d;
-}
-
 // The similarity file when one of --map/--query is an N x M similarity.npy (rows = query, columns = map).
 std::optional<fs::path> similarity_file(const LocalizeOptions& o, pipeline::InputKind kind) {
   auto is_similarity = [&](const std::string& path) {
@@ -156,7 +145,8 @@ void run(LocalizeOptions o) {
     request.map.push_back({p, kind, o.every});
     o.sequence.apply(request.map.back());
   }
-  pipeline::DescriptorOverrides described = descriptor_overrides(o);
+  pipeline::DescriptorOverrides described =
+      descriptor_overrides(o.descriptor, o.metric.empty() ? std::nullopt : std::optional(o.metric), o.kappa, o.threads);
   if (request.similarity_file && o.online) {  // rows read from the file, compared by nothing
     described.metric.reset();
     described.kappa.reset();

@@ -80,8 +80,6 @@ struct MapOptions {
   std::string images;  // the images of a descriptors.npy / similarity.npy input, for the report
 };
 
-using Settings = pipeline::MapSettings;
-
 // --odometry-gate BASE,DRIFT[,WINDOW[,TURN]] or none; InputError naming the option otherwise.
 std::optional<mapping::OdometryGate> parse_odometry_gate(const std::string& text) {
   if (text == "none") return std::nullopt;
@@ -106,17 +104,11 @@ std::optional<mapping::OdometryGate> parse_odometry_gate(const std::string& text
   return gate;
 }
 
-// The preset fixes the defaults; every explicit option overrides them (pipeline::apply_overrides).
-Settings resolve_settings(const MapOptions& o) {
+// The changes to the preset the options ask for, the named ones parsed (pipeline::apply_overrides applies them;
+// --online reads its part of them).
+pipeline::MapOverrides map_overrides(const MapOptions& o) {
   pipeline::MapOverrides set = o.set;
-  auto& described = set.described;
-  if (o.descriptor) {
-    described.descriptors = option_value("--descriptor", [&] { return pipeline::parse_descriptors(*o.descriptor); });
-  }
-  if (o.metric_name) {
-    described.metric = option_value("--metric", [&] { return similarity::parse_distance(*o.metric_name); });
-  }
-  described.threads = resolve_threads(o.threads);
+  set.described = descriptor_overrides(o.descriptor, o.metric_name, o.set.described.kappa, o.threads);
   if (o.alignment_set) {
     try {
       set.alignment_set = align::parse_alignment_set(*o.alignment_set);
@@ -135,7 +127,7 @@ Settings resolve_settings(const MapOptions& o) {
     }
   }
   if (o.no_reverse) set.reverse = false;
-  return pipeline::apply_overrides(option_value("--preset", [&] { return pipeline::map_preset(o.preset); }), set);
+  return set;
 }
 
 // The options of the offline map that --online does not read (its offline outputs too are the online run's
@@ -186,15 +178,13 @@ void run(MapOptions o) {
                                                fmt::join(ignored, ", "), ignored.size() > 1 ? "s" : "",
                                                ignored.size() > 1 ? "them" : "it"));
     }
-    pipeline::MapOverrides set = o.set;
-    if (o.no_reverse) set.reverse = false;
     run_map_online({.inputs = o.inputs,
                     .out = o.out,
                     .input_kind = o.input_kind,
                     .ground_truth = o.ground_truth,
                     .gt_radius = o.gt_radius,
                     .every = o.every,
-                    .set = set,
+                    .set = map_overrides(o),
                     .candidate_e_value = o.candidate_e_value,
                     .no_candidates = o.no_candidates,
                     .offline_outputs = !o.no_offline_outputs,
@@ -211,7 +201,10 @@ void run(MapOptions o) {
   // Everything the user gave is checked before the long computation starts (and before any progress
   // output), so a mistake costs one line and no time.
   pipeline::MapRequest request;
-  request.settings = resolve_settings(o);
+  // The preset fixes the defaults; every explicit option overrides them.
+  const pipeline::MapOverrides overrides = map_overrides(o);
+  request.settings =
+      pipeline::apply_overrides(option_value("--preset", [&] { return pipeline::map_preset(o.preset); }), overrides);
   request.preset = o.preset;
   request.engine = pipeline::engine_with_flags(
       o.engine ? std::optional(option_value("--engine", [&] { return pipeline::parse_engine(*o.engine); }))

@@ -3,9 +3,11 @@
 // listed and which topic of a bag holds the images (INTERFACE.md, "Recordings and sessions").
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "seqtopo/pipeline/sequence_input.hpp"
+#include "seqtopo/pipeline/sequence_similarity.hpp"
 
 namespace seqtopo::cli {
 
@@ -31,5 +33,11 @@ inline void add_sequence_options(CLI::App& app, SequenceOptions& o) {
                "image folders: leave out, with a warning listing them, entries named like images that cannot be "
                "read (dangling or looping links, folders, FIFOs, corrupt files) instead of stopping");
 }
+
+// --descriptor, --metric, --kappa and --threads as `map` and `localize` take them: the names parsed (an error names
+// the option), the threads resolved (command_registry.hpp).
+pipeline::DescriptorOverrides descriptor_overrides(const std::optional<std::string>& descriptor,
+                                                   const std::optional<std::string>& metric, std::optional<float> kappa,
+                                                   unsigned threads);
 
 }  // namespace seqtopo::cli
