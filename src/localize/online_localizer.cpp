@@ -17,6 +17,8 @@ OnlineLocalizer::OnlineLocalizer(std::size_t map_frames, const LocalizeConfig& c
       previous_forward_(map_frames, 0.0F),
       previous_reverse_(map_frames, 0.0F),
       scores_(map_frames, 0.0F),
+      forward_ends_(map_frames, 0),
+      reverse_ends_(map_frames, 0),
       raw_(descriptors > 1 ? descriptors : 0) {
   if (map_frames == 0) throw std::invalid_argument("the map has no frame");
   if (descriptors == 0) throw std::invalid_argument("at least one descriptor");
@@ -59,8 +61,15 @@ OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const
 void OnlineLocalizer::step() {
   std::swap(previous_forward_, forward_);
   std::swap(previous_reverse_, reverse_);
-  align::fill_online_row(previous_forward_, scores_, forward_, false, config_.gap, config_.cap);
-  if (config_.reverse) align::fill_online_row(previous_reverse_, scores_, reverse_, true, config_.gap, config_.cap);
+  const auto fill = [&](const std::vector<float>& previous, std::vector<float>& row, std::vector<std::uint8_t>& ends,
+                        bool backwards) {
+    align::fill_online_row(previous, scores_, row, backwards, config_.gap, config_.cap,
+                           [&](std::size_t j, align::Step step, std::size_t, std::size_t) {
+                             ends[j] = step == align::Step::diagonal ? 1 : 0;
+                           });
+  };
+  fill(previous_forward_, forward_, forward_ends_, false);
+  if (config_.reverse) fill(previous_reverse_, reverse_, reverse_ends_, true);
 }
 
 OnlineEstimate OnlineLocalizer::advance() {
@@ -101,12 +110,10 @@ OnlineEstimate OnlineLocalizer::advance() {
   for (const std::vector<float>* table : {&forward_, &reverse_}) {
     const bool backwards = table == &reverse_;
     if (backwards && !reverse) break;
-    const std::vector<float>& previous = backwards ? previous_reverse_ : previous_forward_;
+    const std::vector<std::uint8_t>& ends = backwards ? reverse_ends_ : forward_ends_;
     for (std::size_t j = 0; j < m; ++j) {
+      if (ends[j] == 0) continue;
       const float v = (*table)[j];
-      if (!(v > 0)) continue;
-      const float diag = backwards ? (j + 1 < m ? previous[j + 1] : 0.0F) : (j > 0 ? previous[j - 1] : 0.0F);
-      if (v != align::capped(diag + scores_[j], config_.cap)) continue;
       const double w = std::exp(lambda_ * (static_cast<double>(v) - e.score));
       all += w;
       if (table == &best_table && (j > e.map ? j - e.map : e.map - j) <= config_.tolerance) near += w;

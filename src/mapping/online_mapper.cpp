@@ -383,23 +383,28 @@ void OnlineMapper::fill_rows() {
   std::swap(previous_reverse_, reverse_);
   std::swap(previous_forward_start_, forward_start_);
   std::swap(previous_reverse_start_, reverse_start_);
-  // The rows of align/online_row.hpp, and where each cell's alignment starts: the start follows the first step
-  // that attains the cell's value, in the engine's order (diagonal, up, left).
+  // The rows of align/online_row.hpp, and where each cell's alignment starts: the start follows the step that gives
+  // the cell its value.
   const auto fill = [&](std::vector<float>& row, std::vector<std::uint64_t>& start, const std::vector<float>& previous,
                         const std::vector<std::uint64_t>& previous_start, bool reverse) {
     row.assign(n, 0.0F);
     start.assign(n, kNoStart);
     align::fill_online_row(previous, scores_, row, reverse, gap, config_.cap,
-                           [&](std::size_t j, std::size_t diagonal_at, std::size_t left_at, float step, float v) {
-                             if (v <= 0) return;
-                             const float up = j < previous.size() ? previous[j] : 0.0F;
-                             if (align::capped(step, config_.cap) == v) {
-                               const bool extends = diagonal_at != align::kNoCell && previous[diagonal_at] > 0;
-                               start[j] = extends ? previous_start[diagonal_at] : cell(t, j);
-                             } else if (align::capped(up - gap, config_.cap) == v) {
-                               start[j] = previous_start[j];
-                             } else {
-                               start[j] = start[left_at];
+                           [&](std::size_t j, align::Step step, std::size_t diagonal_at, std::size_t left_at) {
+                             switch (step) {
+                               case align::Step::none:
+                                 break;
+                               case align::Step::diagonal: {
+                                 const bool extends = diagonal_at != align::kNoCell && previous[diagonal_at] > 0;
+                                 start[j] = extends ? previous_start[diagonal_at] : cell(t, j);
+                                 break;
+                               }
+                               case align::Step::up:
+                                 start[j] = previous_start[j];
+                                 break;
+                               case align::Step::left:
+                                 start[j] = start[left_at];
+                                 break;
                              }
                            });
   };

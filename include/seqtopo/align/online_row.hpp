@@ -16,10 +16,14 @@ namespace seqtopo::align {
 
 inline constexpr std::size_t kNoCell = static_cast<std::size_t>(-1);
 
+// The step that gives a cell its value: the first of diagonal, up, left (the engine's order) that attains it; none
+// for a cell at 0. A local alignment ends on a matched pair, so a cell is an alignment's end when its step is
+// diagonal.
+enum class Step { none, diagonal, up, left };
+
 // Fills row[j] for every j < row.size() from `previous` and scores[j] (scores.size() >= row.size()), and calls
-// visit(j, diagonal_at, left_at, diagonal_step, value) after each cell: the index in `previous` of the diagonal
-// predecessor and the index in `row` of the left one (kNoCell outside), the diagonal step's value and the cell's
-// (for callers that follow where alignments start).
+// visit(j, step, diagonal_at, left_at) after each cell: the step that gave its value, the index in `previous` of the
+// diagonal predecessor and the index in `row` of the left one (kNoCell outside), for callers that follow the paths.
 template <class Visit>
 void fill_online_row(std::span<const float> previous, std::span<const float> scores, std::span<float> row, bool reverse,
                      float gap, const std::optional<float>& cap, Visit&& visit) {
@@ -32,14 +36,18 @@ void fill_online_row(std::span<const float> previous, std::span<const float> sco
     const float up = j < m ? previous[j] : 0.0F;
     const float left = left_at != kNoCell ? row[left_at] : 0.0F;
     const float step = diagonal + scores[j];
-    row[j] = capped_cell(step, up, left, gap, gap, cap);
-    visit(j, diagonal_at, left_at, step, row[j]);
+    const float v = row[j] = capped_cell(step, up, left, gap, gap, cap);
+    const Step attained = !(v > 0)                     ? Step::none
+                          : capped(step, cap) == v     ? Step::diagonal
+                          : capped(up - gap, cap) == v ? Step::up
+                                                       : Step::left;
+    visit(j, attained, diagonal_at, left_at);
   }
 }
 
 inline void fill_online_row(std::span<const float> previous, std::span<const float> scores, std::span<float> row,
                             bool reverse, float gap, const std::optional<float>& cap) {
-  fill_online_row(previous, scores, row, reverse, gap, cap, [](std::size_t, std::size_t, std::size_t, float, float) {});
+  fill_online_row(previous, scores, row, reverse, gap, cap, [](std::size_t, Step, std::size_t, std::size_t) {});
 }
 
 }  // namespace seqtopo::align

@@ -41,6 +41,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -93,8 +94,9 @@ class OnlineLocalizer {
   LocalizeConfig config_;
   std::size_t frames_seen_ = 0;
   std::vector<float> forward_, reverse_, previous_forward_, previous_reverse_, scores_;
-  std::vector<float> seen_;              // the scored rows so far, for the refits
-  std::vector<std::vector<float>> raw_;  // several descriptors: each one's similarity rows so far
+  std::vector<std::uint8_t> forward_ends_, reverse_ends_;  // 1 where an alignment ends on a matched pair this row
+  std::vector<float> seen_;                                // the scored rows so far, for the refits
+  std::vector<std::vector<float>> raw_;                    // several descriptors: each one's similarity rows so far
   std::vector<double> weights_;
   std::vector<float> scratch_;
   significance::ScoreStatistics fit_;
