@@ -62,7 +62,7 @@ void choose_descriptors(const LocalizeRequest& request, LocalizeRun& run) {
   auto& ds = run.settings.descriptors;
   if (ds.empty()) throw std::invalid_argument("no descriptor asked for");
   if (request.similarity_file) return;
-  const SequenceInput first = request.map.front();
+  const SequenceInput& first = request.map.front();
   if (resolve_input_kind(first) == InputKind::descriptors) {
     ds = {Descriptor::npy};
     return;
@@ -84,7 +84,7 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
       const SequenceInput file{*request.similarity_file, InputKind::similarity, 1};
       s.push_back(compute_similarity(file, file, request.settings.similarity));
     } else {
-      const std::vector<SequenceInput> maps = request.map;
+      const std::vector<SequenceInput>& maps = request.map;
       s = compute_similarities(std::span<const SequenceInput>(&request.query, 1), maps, run.settings.descriptors,
                                request.settings.similarity);
       run.map_session_frames = map_session_frames(maps, s.front().column_names);

@@ -823,14 +823,15 @@ SimilarityResult similarity_of_descriptors(const DenseMatrix<float>& a, const De
   const std::size_t cols = b ? b->rows : a.rows;
   const std::size_t bytes =
       similarity::matrix_bytes(a.rows, cols) + (a.values.size() + (b ? b->values.size() : 0)) * sizeof(float);
+  const auto available = available_memory_bytes();
   similarity::check_fits(
-      bytes, available_memory_bytes(),
+      bytes, available,
       "the " + std::to_string(a.rows) + " x " + std::to_string(cols) + " similarity matrix with its descriptors");
   const Distance metric = c.distance.value_or(default_distance(Descriptor::npy));
   similarity::MatrixConfig mc;
   mc.threads = c.threads;
   mc.tile = c.tile;
-  mc.memory_budget = available_memory_bytes();
+  mc.memory_budget = available;
   const auto set_a = similarity::DescriptorSet::from_dense(a);
   DenseMatrix<float> distances =
       b ? similarity::distance_matrix(set_a, similarity::DescriptorSet::from_dense(*b), metric, mc)
