@@ -108,16 +108,16 @@ int main(int argc, char** argv) {
     else if (a == "--tolerance")
       config.tolerance = tolerance = std::stoul(next());
     else if (a == "--offset")
-      config.contrast_offset = std::stof(next());
+      config.score.contrast_offset = std::stof(next());
     else if (a == "--gap")
-      config.gap = std::stof(next());
+      config.search.gap = std::stof(next());
     else if (a == "--cap") {
       const auto v = next();
-      config.cap = v == "none" ? std::nullopt : std::optional<float>(std::stof(v));
+      config.search.cap = v == "none" ? std::nullopt : std::optional<float>(std::stof(v));
     } else if (a == "--threshold")
-      config.threshold = std::stof(next());
+      config.significance.threshold = std::stof(next());
     else if (a == "--window")
-      config.contrast_window = std::stoul(next());
+      config.score.contrast_window = std::stoul(next());
     else if (a == "--max-alignments")
       config.max_alignments = std::stoul(next());
     else if (a == "--score-window")

@@ -70,8 +70,8 @@ int main(int argc, char** argv) {
     SimilarityMatrix s = base;
     if (const char* window = std::getenv("ENHANCE")) {
       mapping::MapConfig c;
-      c.contrast_window = static_cast<std::size_t>(std::atoi(window));
-      c.contrast_offset = static_cast<float>(mult);
+      c.score.contrast_window = static_cast<std::size_t>(std::atoi(window));
+      c.score.contrast_offset = static_cast<float>(mult);
       std::vector<SimilarityMatrix> sources{base};
       if (const char* other = std::getenv("FUSE")) sources.push_back(io::read_npy_matrix<float>(other));
       s = mapping::alignment_scores(sources, c);
@@ -95,15 +95,15 @@ int main(int argc, char** argv) {
         for (double cap : caps) {
           for (double thr : thresholds) {
             mapping::MapConfig c;
-            c.contrast_window = 0;  // s is already the matrix to align
-            c.gap = static_cast<float>(gap);
-            c.cap = cap > 0 ? std::optional<float>(static_cast<float>(cap)) : std::nullopt;
-            c.threshold = static_cast<float>(thr);
-            c.min_separation = static_cast<std::size_t>(sep);
+            c.score.contrast_window = 0;  // s is already the matrix to align
+            c.search.gap = static_cast<float>(gap);
+            c.search.cap = cap > 0 ? std::optional<float>(static_cast<float>(cap)) : std::nullopt;
+            c.significance.threshold = static_cast<float>(thr);
+            c.search.min_separation = static_cast<std::size_t>(sep);
             const auto result = mapping::build_map(s, c);
             std::vector<evaluation::ScoredPair> pairs;
             for (const auto& p : result.pruning.pairs) pairs.push_back({p.i, p.j, p.score});
-            const auto m = evaluation::evaluate_loop_closures(pairs, n, same_place, c.min_separation);
+            const auto m = evaluation::evaluate_loop_closures(pairs, n, same_place, c.search.min_separation);
             rows.push_back({m.f1, m.auc, m.recall_at_100_precision, m.precision, m.recall,
                             fmt::format("kmult {} gap {} cap {} threshold {} sep {} ({} alignments, {:.2f} s)", mult,
                                         gap, cap > 0 ? fmt::format("{}", cap) : "none", thr, sep,

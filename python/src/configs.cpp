@@ -134,12 +134,12 @@ void bind_map(py::module_& m) {
   add_repr(topology, "TopologyConfig", {"u_turn_separation", "reduce_transitive", "junction_region"});
 
   const MapConfig d{};
-  auto labelling_name = [](MapConfig::Labelling l) {
-    return std::string(l == MapConfig::Labelling::consistent ? "consistent" : "pruned_transitive");
+  auto labelling_name = [](mapping::LabelSettings::Method l) {
+    return std::string(l == mapping::LabelSettings::Method::consistent ? "consistent" : "pruned_transitive");
   };
   auto labelling_value = [](const std::string& name) {
-    if (name == "consistent") return MapConfig::Labelling::consistent;
-    if (name == "pruned_transitive") return MapConfig::Labelling::pruned_transitive;
+    if (name == "consistent") return mapping::LabelSettings::Method::consistent;
+    if (name == "pruned_transitive") return mapping::LabelSettings::Method::pruned_transitive;
     throw std::invalid_argument("unknown labelling '" + name + "' (expected consistent or pruned_transitive)");
   };
   py::class_<MapConfig> c(
@@ -174,34 +174,34 @@ void bind_map(py::module_& m) {
                      bool drop_blind_descriptors, std::size_t max_blind_check_frames, bool mask_low_information,
                      double hubness_neighbours, std::size_t confidence_tolerance) {
           MapConfig config;
-          config.contrast_window = contrast_window;
-          config.contrast_offset = contrast_offset;
-          config.gap = gap;
-          config.cap = cap;
+          config.score.contrast_window = contrast_window;
+          config.score.contrast_offset = contrast_offset;
+          config.search.gap = gap;
+          config.search.cap = cap;
           config.cap_from_statistics = cap_from_statistics;
           config.cap_factor = cap_factor;
-          config.max_e_value = max_e_value;
-          config.threshold = threshold;
+          config.significance.max_e_value = max_e_value;
+          config.significance.threshold = threshold;
           config.min_revisit_places = min_revisit_places;
-          config.adapt_offset = adapt_offset;
-          config.min_separation = min_separation;
-          config.place_units = place_units;
+          config.phase.adapt_offset = adapt_offset;
+          config.search.min_separation = min_separation;
+          config.unit = place_units ? align::Unit::places : align::Unit::frames;
           config.frames_per_place = frames_per_place;
-          config.reverse = reverse;
-          config.labelling = labelling_value(labelling);
-          config.max_visit_span = max_visit_span;
-          config.clean_graph = clean_graph;
-          config.pruning = pruning;
-          config.topology = topology;
+          config.search.reverse = reverse;
+          config.labels.method = labelling_value(labelling);
+          config.labels.max_visit_span = max_visit_span;
+          config.graph.clean = clean_graph;
+          config.labels.pruning = pruning;
+          config.graph.topology = topology;
           config.threads = threads;
-          config.contrast_offset_step = contrast_offset_step;
-          config.max_contrast_offset = max_contrast_offset;
+          config.phase.contrast_offset_step = contrast_offset_step;
+          config.phase.max_contrast_offset = max_contrast_offset;
           config.fit_alignments = fit_alignments;
           config.confidence_band = confidence_band;
           config.alignment_set = align::parse_alignment_set(alignment_set);
           config.trim_chance_ends = trim_chance_ends;
-          config.odometry_evidence = odometry_evidence;
-          config.max_global_rate = max_global_rate;
+          config.odometry.evidence = odometry_evidence;
+          config.phase.max_global_rate = max_global_rate;
           config.drop_blind_descriptors = drop_blind_descriptors;
           config.max_blind_check_frames = max_blind_check_frames;
           config.mask_low_information = mask_low_information;
@@ -209,53 +209,76 @@ void bind_map(py::module_& m) {
           config.confidence_tolerance = confidence_tolerance;
           return config;
         }),
-        py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("contrast_offset") = d.contrast_offset,
-        py::arg("gap") = d.gap, py::arg("cap") = d.cap, py::arg("cap_from_statistics") = d.cap_from_statistics,
-        py::arg("cap_factor") = d.cap_factor, py::arg("max_e_value") = d.max_e_value,
-        py::arg("threshold") = d.threshold, py::arg("min_revisit_places") = d.min_revisit_places,
-        py::arg("adapt_offset") = d.adapt_offset, py::arg("min_separation") = d.min_separation,
-        py::arg("place_units") = d.place_units, py::arg("frames_per_place") = d.frames_per_place,
-        py::arg("reverse") = d.reverse, py::arg("labelling") = labelling_name(d.labelling),
-        py::arg("max_visit_span") = d.max_visit_span, py::arg("clean_graph") = d.clean_graph,
-        py::arg("pruning") = d.pruning, py::arg("topology") = d.topology, py::arg("threads") = d.threads,
-        py::arg("contrast_offset_step") = d.contrast_offset_step,
-        py::arg("max_contrast_offset") = d.max_contrast_offset, py::arg("fit_alignments") = d.fit_alignments,
+        py::kw_only(), py::arg("contrast_window") = d.score.contrast_window,
+        py::arg("contrast_offset") = d.score.contrast_offset, py::arg("gap") = d.search.gap,
+        py::arg("cap") = d.search.cap, py::arg("cap_from_statistics") = d.cap_from_statistics,
+        py::arg("cap_factor") = d.cap_factor, py::arg("max_e_value") = d.significance.max_e_value,
+        py::arg("threshold") = d.significance.threshold, py::arg("min_revisit_places") = d.min_revisit_places,
+        py::arg("adapt_offset") = d.phase.adapt_offset, py::arg("min_separation") = d.search.min_separation,
+        py::arg("place_units") = d.unit == align::Unit::places, py::arg("frames_per_place") = d.frames_per_place,
+        py::arg("reverse") = d.search.reverse, py::arg("labelling") = labelling_name(d.labels.method),
+        py::arg("max_visit_span") = d.labels.max_visit_span, py::arg("clean_graph") = d.graph.clean,
+        py::arg("pruning") = d.labels.pruning, py::arg("topology") = d.graph.topology, py::arg("threads") = d.threads,
+        py::arg("contrast_offset_step") = d.phase.contrast_offset_step,
+        py::arg("max_contrast_offset") = d.phase.max_contrast_offset, py::arg("fit_alignments") = d.fit_alignments,
         py::arg("confidence_band") = d.confidence_band,
         py::arg("alignment_set") = std::string(align::to_string(d.alignment_set)),
-        py::arg("trim_chance_ends") = d.trim_chance_ends, py::arg("odometry_evidence") = d.odometry_evidence,
-        py::arg("max_global_rate") = d.max_global_rate, py::arg("drop_blind_descriptors") = d.drop_blind_descriptors,
+        py::arg("trim_chance_ends") = d.trim_chance_ends, py::arg("odometry_evidence") = d.odometry.evidence,
+        py::arg("max_global_rate") = d.phase.max_global_rate,
+        py::arg("drop_blind_descriptors") = d.drop_blind_descriptors,
         py::arg("max_blind_check_frames") = d.max_blind_check_frames,
         py::arg("mask_low_information") = d.mask_low_information, py::arg("hubness_neighbours") = d.hubness_neighbours,
         py::arg("confidence_tolerance") = d.confidence_tolerance)
-      .def_readwrite("contrast_window", &MapConfig::contrast_window)
-      .def_readwrite("contrast_offset", &MapConfig::contrast_offset)
-      .def_readwrite("gap", &MapConfig::gap)
-      .def_readwrite("cap", &MapConfig::cap)
+      .def_property("contrast_window", section_getter(&MapConfig::score, &align::ScoreSettings::contrast_window),
+                    section_setter(&MapConfig::score, &align::ScoreSettings::contrast_window))
+      .def_property("contrast_offset", section_getter(&MapConfig::score, &align::ScoreSettings::contrast_offset),
+                    section_setter(&MapConfig::score, &align::ScoreSettings::contrast_offset))
+      .def_property("gap", section_getter(&MapConfig::search, &align::SearchSettings::gap),
+                    section_setter(&MapConfig::search, &align::SearchSettings::gap))
+      .def_property("cap", section_getter(&MapConfig::search, &align::SearchSettings::cap),
+                    section_setter(&MapConfig::search, &align::SearchSettings::cap))
       .def_readwrite("cap_from_statistics", &MapConfig::cap_from_statistics)
       .def_readwrite("cap_factor", &MapConfig::cap_factor)
-      .def_readwrite("max_e_value", &MapConfig::max_e_value)
-      .def_readwrite("threshold", &MapConfig::threshold)
+      .def_property("max_e_value", section_getter(&MapConfig::significance, &align::SignificanceSettings::max_e_value),
+                    section_setter(&MapConfig::significance, &align::SignificanceSettings::max_e_value))
+      .def_property("threshold", section_getter(&MapConfig::significance, &align::SignificanceSettings::threshold),
+                    section_setter(&MapConfig::significance, &align::SignificanceSettings::threshold))
       .def_readwrite("min_revisit_places", &MapConfig::min_revisit_places)
-      .def_readwrite("adapt_offset", &MapConfig::adapt_offset)
-      .def_readwrite("contrast_offset_step", &MapConfig::contrast_offset_step)
-      .def_readwrite("max_contrast_offset", &MapConfig::max_contrast_offset)
-      .def_readwrite("max_global_rate", &MapConfig::max_global_rate)
-      .def_readwrite("min_separation", &MapConfig::min_separation)
-      .def_readwrite("place_units", &MapConfig::place_units)
-      .def_readwrite("frames_per_place", &MapConfig::frames_per_place)
-      .def_readwrite("reverse", &MapConfig::reverse)
+      .def_property("adapt_offset", section_getter(&MapConfig::phase, &align::PhaseSettings::adapt_offset),
+                    section_setter(&MapConfig::phase, &align::PhaseSettings::adapt_offset))
+      .def_property("contrast_offset_step",
+                    section_getter(&MapConfig::phase, &align::PhaseSettings::contrast_offset_step),
+                    section_setter(&MapConfig::phase, &align::PhaseSettings::contrast_offset_step))
+      .def_property("max_contrast_offset",
+                    section_getter(&MapConfig::phase, &align::PhaseSettings::max_contrast_offset),
+                    section_setter(&MapConfig::phase, &align::PhaseSettings::max_contrast_offset))
+      .def_property("max_global_rate", section_getter(&MapConfig::phase, &align::PhaseSettings::max_global_rate),
+                    section_setter(&MapConfig::phase, &align::PhaseSettings::max_global_rate))
+      .def_property("min_separation", section_getter(&MapConfig::search, &align::SearchSettings::min_separation),
+                    section_setter(&MapConfig::search, &align::SearchSettings::min_separation))
       .def_property(
-          "labelling", [labelling_name](const MapConfig& x) { return labelling_name(x.labelling); },
-          [labelling_value](MapConfig& x, const std::string& name) { x.labelling = labelling_value(name); })
-      .def_readwrite("max_visit_span", &MapConfig::max_visit_span)
-      .def_readwrite("clean_graph", &MapConfig::clean_graph)
-      .def_readwrite("pruning", &MapConfig::pruning)
-      .def_readwrite("topology", &MapConfig::topology)
+          "place_units", [](const MapConfig& x) { return x.unit == align::Unit::places; },
+          [](MapConfig& x, bool places) { x.unit = places ? align::Unit::places : align::Unit::frames; })
+      .def_readwrite("frames_per_place", &MapConfig::frames_per_place)
+      .def_property("reverse", section_getter(&MapConfig::search, &align::SearchSettings::reverse),
+                    section_setter(&MapConfig::search, &align::SearchSettings::reverse))
+      .def_property(
+          "labelling", [labelling_name](const MapConfig& x) { return labelling_name(x.labels.method); },
+          [labelling_value](MapConfig& x, const std::string& name) { x.labels.method = labelling_value(name); })
+      .def_property("max_visit_span", section_getter(&MapConfig::labels, &mapping::LabelSettings::max_visit_span),
+                    section_setter(&MapConfig::labels, &mapping::LabelSettings::max_visit_span))
+      .def_property("clean_graph", section_getter(&MapConfig::graph, &mapping::GraphSettings::clean),
+                    section_setter(&MapConfig::graph, &mapping::GraphSettings::clean))
+      .def_property("pruning", section_getter(&MapConfig::labels, &mapping::LabelSettings::pruning),
+                    section_setter(&MapConfig::labels, &mapping::LabelSettings::pruning))
+      .def_property("topology", section_getter(&MapConfig::graph, &mapping::GraphSettings::topology),
+                    section_setter(&MapConfig::graph, &mapping::GraphSettings::topology))
       .def_readwrite("threads", &MapConfig::threads)
       .def_readwrite("fit_alignments", &MapConfig::fit_alignments)
       .def_readwrite("confidence_band", &MapConfig::confidence_band)
       .def_readwrite("trim_chance_ends", &MapConfig::trim_chance_ends)
-      .def_readwrite("odometry_evidence", &MapConfig::odometry_evidence)
+      .def_property("odometry_evidence", section_getter(&MapConfig::odometry, &mapping::OdometrySettings::evidence),
+                    section_setter(&MapConfig::odometry, &mapping::OdometrySettings::evidence))
       .def_readwrite("drop_blind_descriptors", &MapConfig::drop_blind_descriptors)
       .def_readwrite("max_blind_check_frames", &MapConfig::max_blind_check_frames)
       .def_readwrite("mask_low_information", &MapConfig::mask_low_information)
@@ -287,13 +310,13 @@ void bind_localize(py::module_& m) {
                     std::size_t score_window, std::size_t candidates, std::size_t posterior_band, std::size_t tolerance,
                     double min_confidence, unsigned threads, double even_odds_e_value) {
           LocalizeConfig config;
-          config.contrast_window = contrast_window;
+          config.score.contrast_window = contrast_window;
           config.enhance = enhance;
-          config.contrast_offset = contrast_offset;
-          config.gap = gap;
-          config.cap = cap;
-          config.threshold = threshold;
-          config.reverse = reverse;
+          config.score.contrast_offset = contrast_offset;
+          config.search.gap = gap;
+          config.search.cap = cap;
+          config.significance.threshold = threshold;
+          config.search.reverse = reverse;
           config.max_alignments = max_alignments;
           config.score_window = score_window;
           config.candidates = candidates;
@@ -301,23 +324,30 @@ void bind_localize(py::module_& m) {
           config.tolerance = tolerance;
           config.min_confidence = min_confidence;
           config.threads = threads;
-          config.even_odds_e_value = even_odds_e_value;
+          config.significance.max_e_value = even_odds_e_value;
           return config;
         }),
-        py::kw_only(), py::arg("contrast_window") = d.contrast_window, py::arg("enhance") = d.enhance,
-        py::arg("contrast_offset") = d.contrast_offset, py::arg("gap") = d.gap, py::arg("cap") = d.cap,
-        py::arg("threshold") = d.threshold, py::arg("reverse") = d.reverse,
-        py::arg("max_alignments") = d.max_alignments, py::arg("score_window") = d.score_window,
-        py::arg("candidates") = d.candidates, py::arg("posterior_band") = d.posterior_band,
-        py::arg("tolerance") = d.tolerance, py::arg("min_confidence") = d.min_confidence,
-        py::arg("threads") = d.threads, py::arg("even_odds_e_value") = d.even_odds_e_value)
-      .def_readwrite("contrast_window", &LocalizeConfig::contrast_window)
+        py::kw_only(), py::arg("contrast_window") = d.score.contrast_window, py::arg("enhance") = d.enhance,
+        py::arg("contrast_offset") = d.score.contrast_offset, py::arg("gap") = d.search.gap,
+        py::arg("cap") = d.search.cap, py::arg("threshold") = d.significance.threshold,
+        py::arg("reverse") = d.search.reverse, py::arg("max_alignments") = d.max_alignments,
+        py::arg("score_window") = d.score_window, py::arg("candidates") = d.candidates,
+        py::arg("posterior_band") = d.posterior_band, py::arg("tolerance") = d.tolerance,
+        py::arg("min_confidence") = d.min_confidence, py::arg("threads") = d.threads,
+        py::arg("even_odds_e_value") = d.significance.max_e_value)
+      .def_property("contrast_window", section_getter(&LocalizeConfig::score, &align::ScoreSettings::contrast_window),
+                    section_setter(&LocalizeConfig::score, &align::ScoreSettings::contrast_window))
       .def_readwrite("enhance", &LocalizeConfig::enhance)
-      .def_readwrite("contrast_offset", &LocalizeConfig::contrast_offset)
-      .def_readwrite("gap", &LocalizeConfig::gap)
-      .def_readwrite("cap", &LocalizeConfig::cap)
-      .def_readwrite("threshold", &LocalizeConfig::threshold)
-      .def_readwrite("reverse", &LocalizeConfig::reverse)
+      .def_property("contrast_offset", section_getter(&LocalizeConfig::score, &align::ScoreSettings::contrast_offset),
+                    section_setter(&LocalizeConfig::score, &align::ScoreSettings::contrast_offset))
+      .def_property("gap", section_getter(&LocalizeConfig::search, &align::SearchSettings::gap),
+                    section_setter(&LocalizeConfig::search, &align::SearchSettings::gap))
+      .def_property("cap", section_getter(&LocalizeConfig::search, &align::SearchSettings::cap),
+                    section_setter(&LocalizeConfig::search, &align::SearchSettings::cap))
+      .def_property("threshold", section_getter(&LocalizeConfig::significance, &align::SignificanceSettings::threshold),
+                    section_setter(&LocalizeConfig::significance, &align::SignificanceSettings::threshold))
+      .def_property("reverse", section_getter(&LocalizeConfig::search, &align::SearchSettings::reverse),
+                    section_setter(&LocalizeConfig::search, &align::SearchSettings::reverse))
       .def_readwrite("max_alignments", &LocalizeConfig::max_alignments)
       .def_readwrite("score_window", &LocalizeConfig::score_window)
       .def_readwrite("candidates", &LocalizeConfig::candidates)
@@ -325,7 +355,9 @@ void bind_localize(py::module_& m) {
       .def_readwrite("tolerance", &LocalizeConfig::tolerance)
       .def_readwrite("min_confidence", &LocalizeConfig::min_confidence)
       .def_readwrite("threads", &LocalizeConfig::threads)
-      .def_readwrite("even_odds_e_value", &LocalizeConfig::even_odds_e_value);
+      .def_property("even_odds_e_value",
+                    section_getter(&LocalizeConfig::significance, &align::SignificanceSettings::max_e_value),
+                    section_setter(&LocalizeConfig::significance, &align::SignificanceSettings::max_e_value));
   add_repr(c, "LocalizeConfig",
            {"contrast_window", "enhance", "contrast_offset", "gap", "cap", "threshold", "reverse", "max_alignments",
             "score_window", "candidates", "posterior_band", "tolerance", "min_confidence", "threads"});

@@ -169,18 +169,18 @@ void bind_online(py::module_& m) {
                     std::size_t island_sample, bool adapt_offset, std::size_t early_fit_frames) {
           OnlineMapConfig config;
           config.distance = similarity::parse_distance(distance);
-          config.contrast_window = contrast_window;
-          config.contrast_offset = contrast_offset;
-          config.gap = gap;
-          config.cap = cap;
-          config.max_e_value = max_e_value;
+          config.score.contrast_window = contrast_window;
+          config.score.contrast_offset = contrast_offset;
+          config.search.gap = gap;
+          config.search.cap = cap;
+          config.significance.max_e_value = max_e_value;
           config.candidate_e_value = candidate_e_value;
-          config.threshold = threshold;
+          config.significance.threshold = threshold;
           config.island_sample = island_sample;
-          config.adapt_offset = adapt_offset;
+          config.phase.adapt_offset = adapt_offset;
           config.early_fit_frames = early_fit_frames;
-          config.min_separation = min_separation;
-          config.reverse = reverse;
+          config.search.min_separation = min_separation;
+          config.search.reverse = reverse;
           config.reach = reach;
           config.x_drop = x_drop;
           config.min_revisit_frames = min_revisit_frames;
@@ -188,31 +188,39 @@ void bind_online(py::module_& m) {
           mapping::validate(config);
           return config;
         }),
-        py::kw_only(), py::arg("distance") = "cosine", py::arg("contrast_window") = OnlineMapConfig{}.contrast_window,
-        py::arg("contrast_offset") = OnlineMapConfig{}.contrast_offset, py::arg("gap") = OnlineMapConfig{}.gap,
-        py::arg("cap") = OnlineMapConfig{}.cap, py::arg("max_e_value") = OnlineMapConfig{}.max_e_value,
+        py::kw_only(), py::arg("distance") = "cosine",
+        py::arg("contrast_window") = OnlineMapConfig{}.score.contrast_window,
+        py::arg("contrast_offset") = OnlineMapConfig{}.score.contrast_offset,
+        py::arg("gap") = OnlineMapConfig{}.search.gap, py::arg("cap") = OnlineMapConfig{}.search.cap,
+        py::arg("max_e_value") = OnlineMapConfig{}.significance.max_e_value,
         py::arg("candidate_e_value") = OnlineMapConfig{}.candidate_e_value,
-        py::arg("threshold") = OnlineMapConfig{}.threshold,
-        py::arg("min_separation") = OnlineMapConfig{}.min_separation, py::arg("reverse") = OnlineMapConfig{}.reverse,
-        py::arg("reach") = OnlineMapConfig{}.reach, py::arg("x_drop") = OnlineMapConfig{}.x_drop,
+        py::arg("threshold") = OnlineMapConfig{}.significance.threshold,
+        py::arg("min_separation") = OnlineMapConfig{}.search.min_separation,
+        py::arg("reverse") = OnlineMapConfig{}.search.reverse, py::arg("reach") = OnlineMapConfig{}.reach,
+        py::arg("x_drop") = OnlineMapConfig{}.x_drop,
         py::arg("min_revisit_frames") = OnlineMapConfig{}.min_revisit_frames,
         py::arg("patience") = OnlineMapConfig{}.patience, py::arg("island_sample") = OnlineMapConfig{}.island_sample,
-        py::arg("adapt_offset") = OnlineMapConfig{}.adapt_offset,
+        py::arg("adapt_offset") = OnlineMapConfig{}.phase.adapt_offset,
         py::arg("early_fit_frames") = OnlineMapConfig{}.early_fit_frames);
   c.def_property_readonly("distance",
                           [](const OnlineMapConfig& x) { return std::string(similarity::distance_name(x.distance)); });
-  c.def_readonly("contrast_window", &OnlineMapConfig::contrast_window);
-  c.def_readonly("contrast_offset", &OnlineMapConfig::contrast_offset);
-  c.def_readonly("gap", &OnlineMapConfig::gap);
-  c.def_readonly("cap", &OnlineMapConfig::cap);
-  c.def_readonly("max_e_value", &OnlineMapConfig::max_e_value);
+  c.def_property_readonly("contrast_window",
+                          section_getter(&OnlineMapConfig::score, &align::ScoreSettings::contrast_window));
+  c.def_property_readonly("contrast_offset",
+                          section_getter(&OnlineMapConfig::score, &align::ScoreSettings::contrast_offset));
+  c.def_property_readonly("gap", section_getter(&OnlineMapConfig::search, &align::SearchSettings::gap));
+  c.def_property_readonly("cap", section_getter(&OnlineMapConfig::search, &align::SearchSettings::cap));
+  c.def_property_readonly("max_e_value",
+                          section_getter(&OnlineMapConfig::significance, &align::SignificanceSettings::max_e_value));
   c.def_readonly("candidate_e_value", &OnlineMapConfig::candidate_e_value);
-  c.def_readonly("threshold", &OnlineMapConfig::threshold);
+  c.def_property_readonly("threshold",
+                          section_getter(&OnlineMapConfig::significance, &align::SignificanceSettings::threshold));
   c.def_readonly("island_sample", &OnlineMapConfig::island_sample);
-  c.def_readonly("adapt_offset", &OnlineMapConfig::adapt_offset);
+  c.def_property_readonly("adapt_offset", section_getter(&OnlineMapConfig::phase, &align::PhaseSettings::adapt_offset));
   c.def_readonly("early_fit_frames", &OnlineMapConfig::early_fit_frames);
-  c.def_readonly("min_separation", &OnlineMapConfig::min_separation);
-  c.def_readonly("reverse", &OnlineMapConfig::reverse);
+  c.def_property_readonly("min_separation",
+                          section_getter(&OnlineMapConfig::search, &align::SearchSettings::min_separation));
+  c.def_property_readonly("reverse", section_getter(&OnlineMapConfig::search, &align::SearchSettings::reverse));
   c.def_readonly("reach", &OnlineMapConfig::reach);
   c.def_readonly("x_drop", &OnlineMapConfig::x_drop);
   c.def_readonly("min_revisit_frames", &OnlineMapConfig::min_revisit_frames);

@@ -118,9 +118,9 @@ def test_truth_and_odometry_of_another_length_or_not_finite_are_refused():
 @pytest.mark.parametrize("field, value, message", [
     ("frames_per_place", -3.0, "frames_per_place must be >= 1"),
     ("frames_per_place", 0.0, "frames_per_place must be >= 1"),
-    ("max_e_value", 0.0, "max_e_value must be > 0"),
-    ("threshold", -1.0, "threshold must be >= 0"),
-    ("gap", float("nan"), "gap must be >= 0"),
+    ("max_e_value", 0.0, "significance.max_e_value must be > 0"),
+    ("threshold", -1.0, "significance.threshold must be >= 0"),
+    ("gap", float("nan"), "search.gap must be >= 0"),
 ])
 def test_a_map_config_out_of_range_names_its_field(field, value, message):
     config = seqtopo.MapConfig()

@@ -70,15 +70,15 @@ std::optional<fs::path> similarity_file(const LocalizeOptions& o, pipeline::Inpu
 
 localize::LocalizeConfig localize_config(const LocalizeOptions& o, std::size_t tolerance) {
   localize::LocalizeConfig c;
-  c.gap = o.gap;
-  c.cap = o.cap;
-  c.threshold = o.threshold;
-  c.contrast_offset = o.offset;
-  c.contrast_window = o.window;
+  c.search.gap = o.gap;
+  c.search.cap = o.cap;
+  c.significance.threshold = o.threshold;
+  c.score.contrast_offset = o.offset;
+  c.score.contrast_window = o.window;
   c.score_window = o.score_window;
   c.tolerance = tolerance;  // the confidence is the probability of a match the evaluation counts as right
   c.min_confidence = o.min_confidence;
-  c.reverse = !o.no_reverse;
+  c.search.reverse = !o.no_reverse;
   c.threads = std::min(2U, resolve_threads(o.threads));
   try {
     localize::validate(c);

@@ -145,7 +145,7 @@ std::vector<std::string> ignored_online(const MapOptions& o) {
   check(o.descriptor.has_value(), "--descriptor");
   check(o.metric_name.has_value(), "--metric");
   check(o.set.described.kappa || o.kappa_auto, "--kappa");
-  check(o.set.frames_per_place || o.fpp_auto, "--frames-per-place");
+  check(o.fpp_auto, "--frames-per-place auto");
   check(o.set.cap_factor.has_value(), "--cap-factor");
   check(o.odometry_gate.has_value(), "--odometry-gate");
   check(o.set.odometry_evidence.has_value(), "--odometry-evidence");
@@ -321,7 +321,7 @@ const RegisterCommand registered{
        add_number_or(app, "--kappa", o->set.described.kappa, "auto", o->kappa_auto, kPositive,
                      "S = 1 - kappa * D: a number > 0, or auto (from the sequence's own distances)");
        add_number(app, "--gap", o->set.gap, kNonNegative,
-                  fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.gap));
+                  fmt::format("penalty per skipped image (default {})", mapping::MapConfig{}.search.gap));
        app.add_option("--engine", o->engine,
                       "automatic (chosen by the memory the run needs, said on stderr), exact (scalar reference, N x N "
                       "table), fast (vectorized, no N x N table, scores quantized to 1/512), streaming or sparse (as "
@@ -362,7 +362,7 @@ const RegisterCommand registered{
        add_number_or(app, "--e-value", o->set.e_value, "none", o->set.no_e_value, kPositive,
                      fmt::format("a revisit's E-value (alignments this good expected by chance in this sequence) is "
                                  "at most this, or none for the fixed --threshold (default {}, paper preset none)",
-                                 *mapping::MapConfig{}.max_e_value));
+                                 *mapping::MapConfig{}.significance.max_e_value));
        add_number_or(app, "--frames-per-place", o->set.frames_per_place, "auto", o->fpp_auto, kAtLeastOne,
                      "images per place, the unit of --contrast-window and --min-separation; auto estimates it from "
                      "the similarity's decay along the sequence (default auto; paper preset: frames)");
@@ -370,25 +370,25 @@ const RegisterCommand registered{
            app, "--cap", o->set.cap, "none", o->set.no_cap, kPositive,
            fmt::format("cap on the cumulative score, or none (default: {} x the score a significant alignment "
                        "needs; {} without --e-value)",
-                       mapping::MapConfig{}.cap_factor, *mapping::MapConfig{}.cap));
+                       mapping::MapConfig{}.cap_factor, *mapping::MapConfig{}.search.cap));
        add_number(app, "--cap-factor", o->set.cap_factor, kPositive,
                   fmt::format("without --cap: the cap is this many times the score a significant alignment needs "
                               "(default {})",
                               mapping::MapConfig{}.cap_factor));
        add_number(app, "--threshold", o->set.threshold, kPositive,
                   fmt::format("minimum alignment score of a revisit with --e-value none (default {})",
-                              mapping::MapConfig{}.threshold));
+                              mapping::MapConfig{}.significance.threshold));
        add_number(app, "--min-separation", o->set.min_separation, kSeparation,
                   fmt::format("places (frames with the paper preset) around the diagonal that never count (default {})",
-                              mapping::MapConfig{}.min_separation));
+                              mapping::MapConfig{}.search.min_separation));
        add_number(
            app, "--contrast-window", o->set.contrast_window, kNonNegative,
            fmt::format("local contrast enhancement before alignment, half-width in places (paper: frames); 0 = off "
                        "(default {}, paper preset 0)",
-                       mapping::MapConfig{}.contrast_window));
+                       mapping::MapConfig{}.score.contrast_window));
        add_number(app, "--contrast-offset", o->set.contrast_offset, kAnyFinite,
                   fmt::format("enhanced scores above this many standard deviations are rewarded (default {})",
-                              mapping::MapConfig{}.contrast_offset));
+                              mapping::MapConfig{}.score.contrast_offset));
        app.add_flag("--no-reverse", o->no_reverse, "do not look for paths revisited in the opposite direction");
        app.add_option("--odometry-evidence", o->set.odometry_evidence,
                       "count an alignment's agreement with the odometry as evidence: its E-value times the share of "

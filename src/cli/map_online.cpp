@@ -102,7 +102,7 @@ void run_map_online(const OnlineCliOptions& o) {
     const std::string why =
         x.check == "scores"
             ? fmt::format("the scores' global alignment rate is {:.3f} a step, above {:.2f} (linear phase)",
-                          x.global_rate, request.config.max_global_rate.value_or(0.0F))
+                          x.global_rate, request.config.phase.max_global_rate.value_or(0.0F))
             : fmt::format(
                   "chance islands grow with the sequence ({:.1f} places at {:.2f} frames per place, linear "
                   "phase)",
@@ -116,7 +116,7 @@ void run_map_online(const OnlineCliOptions& o) {
         "{:g} needed a score of {:.3g}\n",
         st.lambda, st.k, st.fitted,
         run.statistics_from_table ? "alignments of the table so far: too few islands yet" : "islands",
-        *request.config.max_e_value, run.threshold);
+        *request.config.significance.max_e_value, run.threshold);
   }
   if (metrics) {
     std::cerr << fmt::format("seqtopo map: online loop closures: precision {:.3f} recall {:.3f} F1 {:.3f}\n",

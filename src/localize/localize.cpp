@@ -29,10 +29,14 @@ void check_matrix(const SimilarityMatrix& s) {
 }  // namespace
 
 void validate(const LocalizeConfig& c) {
-  if (!std::isfinite(c.gap) || c.gap < 0) throw std::invalid_argument("gap must be a finite number >= 0");
-  if (!std::isfinite(c.contrast_offset)) throw std::invalid_argument("contrast_offset must be a finite number");
-  if (c.cap && !(std::isfinite(*c.cap) && *c.cap > 0)) throw std::invalid_argument("cap must be a finite number > 0");
-  if (!std::isfinite(c.threshold)) throw std::invalid_argument("threshold must be a finite number");
+  if (!std::isfinite(c.search.gap) || c.search.gap < 0) throw std::invalid_argument("gap must be a finite number >= 0");
+  if (!std::isfinite(c.score.contrast_offset)) throw std::invalid_argument("contrast_offset must be a finite number");
+  if (c.search.cap && !(std::isfinite(*c.search.cap) && *c.search.cap > 0))
+    throw std::invalid_argument("cap must be a finite number > 0");
+  if (!std::isfinite(c.significance.threshold)) throw std::invalid_argument("threshold must be a finite number");
+  if (!(c.significance.max_e_value && std::isfinite(*c.significance.max_e_value) && *c.significance.max_e_value > 0))
+    throw std::invalid_argument("significance.max_e_value must be set, finite and > 0");
+  if (c.search.min_separation != 0) throw std::invalid_argument("search.min_separation must be 0 (no self pairs)");
   if (c.max_alignments == 0) throw std::invalid_argument("max_alignments must be >= 1");
   if (c.candidates == 0) throw std::invalid_argument("candidates must be >= 1");
   if (!(c.min_confidence >= 0 && c.min_confidence <= 1))
@@ -41,11 +45,11 @@ void validate(const LocalizeConfig& c) {
 
 void score_row(const float* row, std::size_t cols, const LocalizeConfig& c, float* out) {
   if (!c.enhance) {
-    for (std::size_t j = 0; j < cols; ++j) out[j] = row[j] - c.contrast_offset;
+    for (std::size_t j = 0; j < cols; ++j) out[j] = row[j] - c.score.contrast_offset;
     return;
   }
-  similarity::enhance_row(row, cols, c.contrast_window == 0 ? cols : c.contrast_window, out);
-  for (std::size_t j = 0; j < cols; ++j) out[j] -= c.contrast_offset;
+  similarity::enhance_row(row, cols, c.score.contrast_window == 0 ? cols : c.score.contrast_window, out);
+  for (std::size_t j = 0; j < cols; ++j) out[j] -= c.score.contrast_offset;
 }
 
 SimilarityMatrix score_matrix(const SimilarityMatrix& s, const LocalizeConfig& c) {
@@ -109,7 +113,7 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
   std::vector<std::vector<Candidate>> per_frame(scores.rows);
   align::PosteriorConfig pc;
   pc.lambda = lambda;
-  pc.gap_a = pc.gap_b = c.gap;
+  pc.gap_a = pc.gap_b = c.search.gap;
   pc.band = c.posterior_band;
   pc.tolerance = c.tolerance;
   const auto source = align::ScoreSource::dense(std::span<const float>(scores.values), scores.rows, scores.cols);
@@ -118,9 +122,9 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
     const auto& a = alignments[rank];
     if (a.pairs.empty()) continue;
     const double e = e_values[rank];
-    const double real = std::isfinite(e) ? significance::revisit_probability(e, c.even_odds_e_value)
-                                         : (a.score >= c.threshold ? 1.0 : 0.0);
-    const std::vector<double> path = path_prefix(a, scores, c.gap);
+    const double real = std::isfinite(e) ? significance::revisit_probability(e, *c.significance.max_e_value)
+                                         : (a.score >= c.significance.threshold ? 1.0 : 0.0);
+    const std::vector<double> path = path_prefix(a, scores, c.search.gap);
     // Between the alignment's first and last pair the row is on it: where along it, given that (as the map's
     // pairs). Past its ends, whether a chain extending it reaches the row at all is part of the answer.
     align::PosteriorConfig wide = pc;
@@ -176,23 +180,24 @@ LocalizeResult search_scores(const SimilarityMatrix& scores, const LocalizeConfi
   check_matrix(scores);
   validate(c);
   align::AlignConfig ac;
-  ac.gap_a = c.gap;
-  ac.gap_b = c.gap;
-  ac.cap = c.cap;
+  ac.gap_a = c.search.gap;
+  ac.gap_b = c.search.gap;
+  ac.cap = c.search.cap;
   ac.threshold = 0.0F;  // every positive alignment: the chance ones are the statistics' sample
   ac.max_alignments = c.max_alignments;
   const auto source = align::ScoreSource::dense(std::span<const float>(scores.values), scores.rows, scores.cols);
   LocalizeResult r;
-  r.alignments = c.reverse ? align::local_alignments_both(source, ac, c.threads) : align::local_alignments(source, ac);
+  r.alignments =
+      c.search.reverse ? align::local_alignments_both(source, ac, c.threads) : align::local_alignments(source, ac);
   // The fit: the alignments' own path scores (a capped alignment's evidence is its path), shadows left out.
   std::vector<double> path_scores, best_first;
   for (std::size_t k = 0; k < r.alignments.size(); ++k) {
     const auto& a = r.alignments[k];
-    path_scores.push_back(c.cap ? align::path_score(a, source, c.gap, c.gap) : a.score);
+    path_scores.push_back(c.search.cap ? align::path_score(a, source, c.search.gap, c.search.gap) : a.score);
     if (!significance::shadows_earlier(r.alignments, k, significance::kShadowReach)) best_first.push_back(a.score);
   }
   r.statistics = significance::fit_declumped_scores(
-      best_first, significance::search_area(scores.rows, scores.cols, false, 0, c.reverse));
+      best_first, significance::search_area(scores.rows, scores.cols, false, 0, c.search.reverse));
   for (double p : path_scores) r.e_values.push_back(r.statistics.valid() ? r.statistics.e_value(p) : std::nan(""));
   return r;
 }
@@ -229,7 +234,7 @@ void fused_score_row(std::span<const float* const> rows, std::size_t cols, const
     if (!weights.empty() && weights[d] == 0) continue;
     const float* row = rows[d];
     if (c.enhance) {
-      similarity::enhance_row(row, cols, c.contrast_window == 0 ? cols : c.contrast_window, scratch);
+      similarity::enhance_row(row, cols, c.score.contrast_window == 0 ? cols : c.score.contrast_window, scratch);
       row = scratch;
     }
     if (weights.empty()) {
@@ -241,7 +246,7 @@ void fused_score_row(std::span<const float* const> rows, std::size_t cols, const
   }
   // Equal weights: the sum divided by the count, as the map's fusion (mapping::enhanced_scores).
   const float count = weights.empty() ? static_cast<float>(rows.size()) : 1.0F;
-  for (std::size_t j = 0; j < cols; ++j) out[j] = out[j] / count - c.contrast_offset;
+  for (std::size_t j = 0; j < cols; ++j) out[j] = out[j] / count - c.score.contrast_offset;
 }
 
 namespace {
@@ -280,14 +285,14 @@ std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> ss, con
   check_same_shape(ss);
   std::vector<double> equal(ss.size(), 1.0);
   if (ss.size() < 2 || !c.enhance) return equal;
-  const double strict = c.even_odds_e_value / static_cast<double>(ss.size());
+  const double strict = *c.significance.max_e_value / static_cast<double>(ss.size());
   std::vector<bool> sees_alone(ss.size(), false);
   std::vector<std::pair<std::size_t, std::size_t>> seen;  // the pairs of the alignments found at `strict`
   for (std::size_t d = 0; d < ss.size(); ++d) {
     const LocalizeResult alone = localize_sequence(ss[d], c);
     if (!alone.statistics.valid()) continue;
     for (std::size_t k = 0; k < alone.alignments.size(); ++k) {
-      sees_alone[d] = sees_alone[d] || alone.e_values[k] <= c.even_odds_e_value;
+      sees_alone[d] = sees_alone[d] || alone.e_values[k] <= *c.significance.max_e_value;
       if (alone.e_values[k] <= strict) {
         seen.insert(seen.end(), alone.alignments[k].pairs.begin(), alone.alignments[k].pairs.end());
       }

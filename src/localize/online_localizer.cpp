@@ -63,19 +63,19 @@ void OnlineLocalizer::step() {
   std::swap(previous_reverse_, reverse_);
   const auto fill = [&](const std::vector<float>& previous, std::vector<float>& row, std::vector<std::uint8_t>& ends,
                         bool backwards) {
-    align::fill_online_row(previous, scores_, row, backwards, config_.gap, config_.cap,
+    align::fill_online_row(previous, scores_, row, backwards, config_.search.gap, config_.search.cap,
                            [&](std::size_t j, align::Step step, std::size_t, std::size_t) {
                              ends[j] = step == align::Step::diagonal ? 1 : 0;
                            });
   };
   fill(previous_forward_, forward_, forward_ends_, false);
-  if (config_.reverse) fill(previous_reverse_, reverse_, reverse_ends_, true);
+  if (config_.search.reverse) fill(previous_reverse_, reverse_, reverse_ends_, true);
 }
 
 OnlineEstimate OnlineLocalizer::advance() {
   step();
   const std::size_t m = map_frames_;
-  const bool reverse = config_.reverse;
+  const bool reverse = config_.search.reverse;
   seen_.insert(seen_.end(), scores_.begin(), scores_.end());
   OnlineEstimate e;
   e.query = frames_seen_++;
@@ -96,11 +96,11 @@ OnlineEstimate OnlineLocalizer::advance() {
   }
 
   // P(revisit | E): the score's E-value in the search so far (the fit's area scaled to it), as offline.
-  double real = e.score >= config_.threshold && e.score > 0 ? 1.0 : 0.0;
+  double real = e.score >= config_.significance.threshold && e.score > 0 ? 1.0 : 0.0;
   if (fit_.valid() && e.score > 0) {
     const double area = significance::search_area(frames_seen_, m, false, 0, reverse);
     e.e_value = fit_.e_value(e.score) * area / fit_.area;
-    real = significance::revisit_probability(e.e_value, config_.even_odds_e_value);
+    real = significance::revisit_probability(e.e_value, *config_.significance.max_e_value);
   }
   // The posterior of where in this row the alignment ends: the guess's neighbourhood against every end. A local
   // alignment ends on a matched pair, never on a gap, so the cells reached by a gap (the same path with gaps after

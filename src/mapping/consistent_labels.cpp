@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "seqtopo/core/disjoint_sets.hpp"
+
 namespace seqtopo::mapping {
 namespace {
 
@@ -13,20 +15,14 @@ struct Stretch {
   std::size_t first = 0, last = 0;
 };
 
-// Places as disjoint sets whose members are kept sorted, so a merge can be checked against the passes.
+// Places as disjoint sets (core/disjoint_sets.hpp) whose members are kept sorted, by root, so a merge can be
+// checked against the passes.
 class Places {
  public:
-  explicit Places(std::size_t n) : parent_(n), members_(n) {
-    std::iota(parent_.begin(), parent_.end(), 0);
+  explicit Places(std::size_t n) : sets_(n), members_(n) {
     for (std::size_t k = 0; k < n; ++k) members_[k] = {k};
   }
-  std::size_t find(std::size_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
+  std::size_t find(std::size_t x) { return sets_.find(x); }
   // Whether the place of `a` holds an image of the pass of `b` other than b itself: b's pass already
   // matched there, so pairing a with b again (a shadow of that match) would only widen the place.
   bool holds_pass_of(std::size_t a, std::size_t b, std::size_t min_separation) {
@@ -55,16 +51,15 @@ class Places {
         return false;
       }
     }
-    if (members_[a].size() < members_[b].size()) std::swap(a, b);
-    parent_[b] = a;
-    members_[a] = std::move(merged);
-    members_[b].clear();
-    members_[b].shrink_to_fit();
+    const auto [root, absorbed] = sets_.unite(a, b);
+    members_[root] = std::move(merged);
+    members_[absorbed].clear();
+    members_[absorbed].shrink_to_fit();
     return true;
   }
 
  private:
-  std::vector<std::size_t> parent_;
+  DisjointSets<std::size_t> sets_;
   std::vector<std::vector<std::size_t>> members_;
 };
 

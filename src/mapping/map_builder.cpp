@@ -67,20 +67,17 @@ align::ScoreSource minus(const align::ScoreSource& source, float offset) {
       [source, offset](std::size_t i, std::size_t j) { return source.at(i, j) - offset; });
 }
 
-std::size_t in_frames(double places, double frames_per_place) {
-  // Saturated: a count beyond 2^62 frames is beyond any sequence (and its conversion would be undefined).
-  const double frames = std::max(1.0, std::round(places * frames_per_place));
-  return frames < 0x1p62 ? static_cast<std::size_t>(frames) : std::size_t{1} << 62U;
-}
+using align::places_in_frames;
 
 }  // namespace
 
 MapConfig settings_in_frames(const MapConfig& c, double frames_per_place) {
   MapConfig f = c;
-  if (!c.place_units) return f;
-  if (c.contrast_window > 0) f.contrast_window = in_frames(static_cast<double>(c.contrast_window), frames_per_place);
-  f.min_separation = in_frames(static_cast<double>(c.min_separation), frames_per_place);
-  f.topology.u_turn_separation = in_frames(static_cast<double>(c.topology.u_turn_separation), frames_per_place);
+  f.score = align::in_frames(c.score, c.unit, frames_per_place);
+  f.search = align::in_frames(c.search, c.unit, frames_per_place);
+  if (c.unit == align::Unit::places)
+    f.graph.topology.u_turn_separation =
+        places_in_frames(static_cast<double>(c.graph.topology.u_turn_separation), frames_per_place);
   return f;
 }
 
@@ -125,7 +122,7 @@ struct PhaseChecks {
 PhaseChecks phase_checks(const FitRun& fit, const MapConfig& c, double area_places) {
   PhaseChecks p;
   p.short_chance = logarithmic_phase(fit.chance_length, area_places);
-  const bool falling = !c.max_global_rate || fit.global_rate <= *c.max_global_rate;
+  const bool falling = !c.phase.max_global_rate || fit.global_rate <= *c.phase.max_global_rate;
   p.logarithmic = fit.statistics.valid() && p.short_chance && falling;
   return p;
 }
@@ -148,11 +145,12 @@ std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scor
   // A sequence this short is fitted whole, from a copy in memory when the source is not (a streamed source
   // recomputes its tiles for every alignment's traceback and declumping).
   const std::size_t size = whole ? n : kFitBlock, blocks = whole ? 1 : kFitBlocks;
-  area = static_cast<double>(blocks) * significance::search_area(size, size, true, c.min_separation, c.reverse);
+  area = static_cast<double>(blocks) *
+         significance::search_area(size, size, true, c.search.min_separation, c.search.reverse);
   if (!whole) engine.max_alignments = (engine.max_alignments + blocks - 1) / blocks;
   std::vector<align::LocalAlignment> all;
   std::vector<align::Score> block(size * size);
-  const double block_cells = significance::search_area(size, size, true, c.min_separation, false);
+  const double block_cells = significance::search_area(size, size, true, c.search.min_separation, false);
   const auto phase_stride =
       std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(blocks) * block_cells / kPhaseCells));
   double sum = 0;  // of the cells off the self band, for their mean
@@ -160,15 +158,15 @@ std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scor
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t start = blocks == 1 ? 0 : (n - size) * b / (blocks - 1);
     for (std::size_t i = 0; i < size; ++i) scores.read_row(start + i, start, start + size, block.data() + i * size);
-    for (std::size_t i = c.min_separation; i < size; ++i) {
-      for (std::size_t j = 0; j + c.min_separation <= i; ++j) {
+    for (std::size_t i = c.search.min_separation; i < size; ++i) {
+      for (std::size_t j = 0; j + c.search.min_separation <= i; ++j) {
         sum += block[i * size + j];
         // Every stride-th cell, about kPhaseCells of the blocks' (the same cells whatever the thread count).
         if (cells++ % phase_stride == 0) cell_sample.push_back(block[i * size + j]);
       }
     }
-    auto found =
-        run_engine(align::ScoreSource::dense(block, size, size), engine, MapConfig::Engine::fast, c.reverse, c.threads);
+    auto found = run_engine(align::ScoreSource::dense(block, size, size), engine, MapConfig::Engine::fast,
+                            c.search.reverse, c.threads);
     for (auto& a : found) {
       a.a_begin += start;
       a.a_end += start;
@@ -216,14 +214,15 @@ FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, doub
   double area = 0;
   std::vector<float> cells;
   run.alignments = fit_alignments(scores, engine, c, area, run.cell_mean, cells);
-  if (!cells.empty()) run.global_rate = significance::resampled_global_rate(cells, kPhaseTable, c.gap);
+  if (!cells.empty()) run.global_rate = significance::resampled_global_rate(cells, kPhaseTable, c.search.gap);
   std::vector<double> best_first;
   std::vector<std::size_t> fitted;  // indices of the alignments in best_first
   for (std::size_t k = 0; k < run.alignments.size(); ++k) {
     // Chance alignments stay far below the run's cap, where the engine's score is the path's; a path is scored
     // again only when the cap may have clipped it.
     const auto& a = run.alignments[k];
-    run.path_scores.push_back(a.score < 0.5F * *engine.cap ? a.score : align::path_score(a, scores, c.gap, c.gap));
+    run.path_scores.push_back(a.score < 0.5F * *engine.cap ? a.score
+                                                           : align::path_score(a, scores, c.search.gap, c.search.gap));
     if (significance::shadows_earlier(run.alignments, k, significance::kShadowReach)) continue;
     best_first.push_back(run.alignments[k].score);
     fitted.push_back(k);
@@ -288,7 +287,7 @@ std::vector<std::size_t> realign_in_bands(std::vector<align::LocalAlignment>& al
   return kept;
 }
 
-// MapConfig::odometry_evidence: the share of the statistics' run's chance alignments (E > 1) that the odometry
+// MapConfig::odometry.evidence: the share of the statistics' run's chance alignments (E > 1) that the odometry
 // gate passes, (passed + 1) / (tested + 2); 1 with fewer than 20 of them.
 double chance_agreement(const FitRun& fit, std::span<const Pose2> odometry, const OdometryGate& gate) {
   std::vector<align::LocalAlignment> chance;
@@ -330,19 +329,19 @@ SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similariti
 }
 
 SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config) {
-  SimilarityMatrix s = enhanced_scores(similarities, config.contrast_window);
-  if (config.contrast_window == 0) return s;
-  for (auto& v : s.values) v -= config.contrast_offset;
+  SimilarityMatrix s = enhanced_scores(similarities, config.score.contrast_window);
+  if (config.score.contrast_window == 0) return s;
+  for (auto& v : s.values) v -= config.score.contrast_offset;
   return s;
 }
 
 align::AlignConfig align_config(const MapConfig& config) {
   align::AlignConfig c;
-  c.gap_a = c.gap_b = config.gap;
-  c.cap = config.cap;
-  c.threshold = config.threshold;
+  c.gap_a = c.gap_b = config.search.gap;
+  c.cap = config.search.cap;
+  c.threshold = config.significance.threshold;
   c.self = true;
-  c.min_separation = config.min_separation;
+  c.min_separation = config.search.min_separation;
   return c;
 }
 
@@ -396,7 +395,7 @@ void add_confidences(const align::ScoreSource& scores, const align::AlignConfig&
   pc.gap_b = engine.gap_b;
   pc.band = std::max<std::size_t>(c.confidence_band, static_cast<std::size_t>(std::ceil(d.frames_per_place)));
   pc.self = true;
-  pc.min_separation = c.min_separation;
+  pc.min_separation = c.search.min_separation;
   // Right within the tolerance the evaluation of place recognition uses, or a place when that is wider.
   pc.tolerance = std::max(c.confidence_tolerance, static_cast<std::size_t>(std::lround(d.frames_per_place)));
   result.posteriors.assign(result.alignments.size(), {});
@@ -439,16 +438,18 @@ void add_confidences(const align::ScoreSource& scores, const align::AlignConfig&
                                  ? result.posteriors[p.alignment][static_cast<std::size_t>(at - pairs.begin())]
                                  : row_posterior(p);
     const double e = p.alignment < result.e_values.size() ? result.e_values[p.alignment] : std::nan("");
-    p.confidence =
-        (std::isfinite(e) && c.max_e_value ? significance::revisit_probability(e, *c.max_e_value) : 1.0) * posterior;
+    p.confidence = (std::isfinite(e) && c.significance.max_e_value
+                        ? significance::revisit_probability(e, *c.significance.max_e_value)
+                        : 1.0) *
+                   posterior;
   }
 }
 
 }  // namespace
 
 TopologyConfig topology_settings(const MapConfig& c) {
-  TopologyConfig topology = c.topology;
-  if (c.clean_graph) {
+  TopologyConfig topology = c.graph.topology;
+  if (c.graph.clean) {
     topology.reduce_transitive = true;
     // Branch points closer than the shortest revisit cannot be told apart by an alignment between them.
     if (topology.junction_region == 0) {
@@ -460,8 +461,8 @@ TopologyConfig topology_settings(const MapConfig& c) {
 
 TableFit fit_table_statistics(const align::ScoreSource& scores, const MapConfig& config, double frames_per_place) {
   FitRun fit = fit_looking_further(scores, config, frames_per_place);
-  fit.statistics.area =
-      significance::search_area(scores.rows(), scores.cols(), true, config.min_separation, config.reverse);
+  fit.statistics.area = significance::search_area(scores.rows(), scores.cols(), true, config.search.min_separation,
+                                                  config.search.reverse);
   TableFit out{fit.statistics, fit.chance_length, fit.global_rate};
   out.logarithmic = phase_checks(fit, config, fit.statistics.area / (frames_per_place * frames_per_place)).logarithmic;
   return out;
@@ -473,18 +474,18 @@ void check_map_config(const MapConfig& c) {
   };
   const auto finite_at_least = [](double v, double low) { return std::isfinite(v) && v >= low; };
   const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
-  require(finite_at_least(c.gap, 0), "gap", ">= 0");
-  require(!c.cap || positive(*c.cap), "cap", "> 0");
+  require(finite_at_least(c.search.gap, 0), "search.gap", ">= 0");
+  require(!c.search.cap || positive(*c.search.cap), "search.cap", "> 0");
   require(positive(c.cap_factor), "cap_factor", "> 0");
-  require(!c.max_e_value || positive(*c.max_e_value), "max_e_value", "> 0");
-  require(finite_at_least(c.threshold, 0), "threshold", ">= 0");
+  require(!c.significance.max_e_value || positive(*c.significance.max_e_value), "significance.max_e_value", "> 0");
+  require(finite_at_least(c.significance.threshold, 0), "significance.threshold", ">= 0");
   require(finite_at_least(c.min_revisit_places, 0), "min_revisit_places", ">= 0");
-  require(std::isfinite(c.contrast_offset), "contrast_offset", "finite");
-  require(positive(c.contrast_offset_step), "contrast_offset_step", "> 0");
-  require(std::isfinite(c.max_contrast_offset), "max_contrast_offset", "finite");
-  require(!c.max_global_rate || std::isfinite(*c.max_global_rate), "max_global_rate", "finite");
+  require(std::isfinite(c.score.contrast_offset), "score.contrast_offset", "finite");
+  require(positive(c.phase.contrast_offset_step), "phase.contrast_offset_step", "> 0");
+  require(std::isfinite(c.phase.max_contrast_offset), "phase.max_contrast_offset", "finite");
+  require(!c.phase.max_global_rate || std::isfinite(*c.phase.max_global_rate), "phase.max_global_rate", "finite");
   require(!c.frames_per_place || finite_at_least(*c.frames_per_place, 1), "frames_per_place", ">= 1");
-  require(positive(c.max_visit_span), "max_visit_span", "> 0");
+  require(positive(c.labels.max_visit_span), "labels.max_visit_span", "> 0");
   require(c.fit_alignments > 0, "fit_alignments", ">= 1");
 }
 
@@ -511,11 +512,11 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
                                            const std::vector<bool>& masked,
                                            std::span<const std::size_t> low_information) {
   const std::size_t n = similarities.front().rows;
-  if (!c.drop_blind_descriptors || similarities.size() < 2 || !c.max_e_value || contrast_window == 0 ||
+  if (!c.drop_blind_descriptors || similarities.size() < 2 || !c.significance.max_e_value || contrast_window == 0 ||
       n > c.max_blind_check_frames) {
     return {};
   }
-  const double strict = *c.max_e_value / static_cast<double>(similarities.size());
+  const double strict = *c.significance.max_e_value / static_cast<double>(similarities.size());
   std::vector<std::size_t> unseeing;
   std::vector<std::pair<std::size_t, std::size_t>> seen;  // the pairs of the maps that see at `strict`
   for (std::size_t k = 0; k < similarities.size(); ++k) {
@@ -534,11 +535,11 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
   for (std::size_t k : unseeing) {
     // Enhanced again rather than kept from the loop above: one N x N table at a time.
     SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
-    detail::soft_mask(e, masked, c.contrast_offset);  // as the map's alignment sees them
+    detail::soft_mask(e, masked, c.score.contrast_offset);  // as the map's alignment sees them
     double chance = 0;
     std::size_t cells = 0;
-    for (std::size_t i = c.min_separation; i < n; ++i) {
-      for (std::size_t j = 0; j + c.min_separation <= i; ++j) chance += e(i, j), ++cells;
+    for (std::size_t i = c.search.min_separation; i < n; ++i) {
+      for (std::size_t j = 0; j + c.search.min_separation <= i; ++j) chance += e(i, j), ++cells;
     }
     chance /= static_cast<double>(std::max<std::size_t>(cells, 1));
     double sum = 0, sum2 = 0;
@@ -565,7 +566,7 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
   check_map_config(config);
   MapConfig c = config;
-  const bool estimate = config.place_units && !config.frames_per_place;
+  const bool estimate = (config.unit == align::Unit::places) && !config.frames_per_place;
   std::optional<PlaceScale> scale;
   if (estimate) {
     // The travelled distance when there is odometry (a smooth descriptor can look alike over many places);
@@ -574,34 +575,36 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
     c.frames_per_place = scale->frames_per_place;
   }
   const MapConfig framed = settings_in_frames(c, c.frames_per_place.value_or(1.0));
-  const double place_frames = c.place_units ? c.frames_per_place.value_or(1.0) : 1.0;  // frames a place spans
-  const std::size_t hub_k =
-      framed.contrast_window > 0 && c.hubness_neighbours > 0 ? in_frames(c.hubness_neighbours, place_frames) : 0;
+  const double place_frames =
+      (c.unit == align::Unit::places) ? c.frames_per_place.value_or(1.0) : 1.0;  // frames a place spans
+  const std::size_t hub_k = framed.score.contrast_window > 0 && c.hubness_neighbours > 0
+                                ? places_in_frames(c.hubness_neighbours, place_frames)
+                                : 0;
   std::vector<SimilarityMatrix> corrected;
   if (hub_k > 0) {
     corrected = similarities;
-    for (auto& s : corrected) similarity::correct_hubness(s, hub_k, framed.min_separation);
+    for (auto& s : corrected) similarity::correct_hubness(s, hub_k, framed.search.min_separation);
   }
   const std::vector<SimilarityMatrix>& source = hub_k > 0 ? corrected : similarities;
   const std::vector<std::size_t> low_information =
-      framed.contrast_window > 0 ? flagged(masked) : std::vector<std::size_t>{};
+      framed.score.contrast_window > 0 ? flagged(masked) : std::vector<std::size_t>{};
   const std::vector<std::size_t> blind =
-      blind_descriptors(source, c, framed.contrast_window, odometry, masked, low_information);
+      blind_descriptors(source, c, framed.score.contrast_window, odometry, masked, low_information);
   std::vector<SimilarityMatrix> seeing;  // a copy only when some are left out
   for (std::size_t k = 0; k < source.size() && !blind.empty(); ++k) {
     if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(source[k]);
   }
-  SimilarityMatrix enhanced = enhanced_scores(blind.empty() ? source : seeing, framed.contrast_window);
+  SimilarityMatrix enhanced = enhanced_scores(blind.empty() ? source : seeing, framed.score.contrast_window);
   // Tandem repeats of appearance (significance/tandem_repeats.hpp) are masked as the dark frames are.
   std::vector<bool> masked_all = masked;
   std::size_t repeats = 0;
-  if (config.mask_low_information && framed.contrast_window > 0 && framed.min_separation > 4) {
+  if (config.mask_low_information && framed.score.contrast_window > 0 && framed.search.min_separation > 4) {
     significance::TandemRepeatConfig rc;
     // Periods up to the band (twice one fits in twice the band): a longer one is a revisit the band lets through.
-    rc.reach = 2 * framed.min_separation;
-    rc.min_frames = framed.min_separation;
-    rc.half_window = std::max<std::size_t>(framed.min_separation / 2, 2);
-    rc.near = std::clamp<std::size_t>(in_frames(2.0, place_frames), 2, framed.min_separation / 2);
+    rc.reach = 2 * framed.search.min_separation;
+    rc.min_frames = framed.search.min_separation;
+    rc.half_window = std::max<std::size_t>(framed.search.min_separation / 2, 2);
+    rc.near = std::clamp<std::size_t>(places_in_frames(2.0, place_frames), 2, framed.search.min_separation / 2);
     const std::vector<std::size_t> in_repeats = significance::tandem_repeat_frames(enhanced, rc);
     if (!in_repeats.empty() && masked_all.empty()) masked_all.assign(enhanced.rows, false);
     for (std::size_t f : in_repeats) {
@@ -610,7 +613,7 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
     }
   }
   const std::vector<std::size_t> masked_frames =
-      framed.contrast_window > 0 ? flagged(masked_all) : std::vector<std::size_t>{};
+      framed.score.contrast_window > 0 ? flagged(masked_all) : std::vector<std::size_t>{};
   const double seconds_scores = seconds_since(start);
   MapResult result = build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols),
                                              c, odometry, {}, masked_frames);
@@ -632,7 +635,7 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
     result.decisions.notes.insert(result.decisions.notes.begin(), kNoPlaceScaleNote);
   }
   // What was aligned: the enhanced scores minus the offset the run chose (or S itself without enhancement).
-  if (framed.contrast_window > 0) {
+  if (framed.score.contrast_window > 0) {
     for (auto& v : enhanced.values) v -= result.decisions.contrast_offset;
     detail::soft_mask(enhanced, masked_all, 0.0F);
   }
@@ -671,26 +674,26 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   MapResult result;
   auto& d = result.decisions;
   auto start = std::chrono::steady_clock::now();
-  d.frames_per_place = config.place_units ? config.frames_per_place.value_or(1.0) : 1.0;
+  d.frames_per_place = (config.unit == align::Unit::places) ? config.frames_per_place.value_or(1.0) : 1.0;
   const MapConfig c = settings_in_frames(config, d.frames_per_place);
-  d.contrast_window = c.contrast_window;
-  d.min_separation = c.min_separation;
-  d.min_revisit_pairs = c.max_e_value ? in_frames(c.min_revisit_places, d.frames_per_place) : 0;
+  d.contrast_window = c.score.contrast_window;
+  d.min_separation = c.search.min_separation;
+  d.min_revisit_pairs = c.significance.max_e_value ? places_in_frames(c.min_revisit_places, d.frames_per_place) : 0;
   // Without contrast enhancement the scores are S itself, aligned as given (the paper): no offset.
-  float offset = c.contrast_window > 0 ? c.contrast_offset : 0.0F;
+  float offset = c.score.contrast_window > 0 ? c.score.contrast_offset : 0.0F;
   align::AlignConfig engine = align_config(c);
 
   // Frames of little information carry no evidence of a revisit, in the statistics' fit as in the alignment.
   const std::vector<bool> masked = low_information.empty() ? std::vector<bool>{} : frame_flags(n, low_information);
-  if (c.max_e_value) {
-    const double area_places =
-        significance::search_area(n, n, true, c.min_separation, c.reverse) / (d.frames_per_place * d.frames_per_place);
+  if (c.significance.max_e_value) {
+    const double area_places = significance::search_area(n, n, true, c.search.min_separation, c.search.reverse) /
+                               (d.frames_per_place * d.frames_per_place);
     FitRun fit;
     while (true) {
       fit = fit_looking_further(detail::soft_masked(minus(enhanced, offset), masked), c, d.frames_per_place);
       const auto [short_chance, logarithmic] = phase_checks(fit, c, area_places);
-      if (logarithmic || !fit.statistics.valid() || !c.adapt_offset || c.contrast_window == 0 ||
-          offset + c.contrast_offset_step > c.max_contrast_offset + 1e-6F) {
+      if (logarithmic || !fit.statistics.valid() || !c.phase.adapt_offset || c.score.contrast_window == 0 ||
+          offset + c.phase.contrast_offset_step > c.phase.max_contrast_offset + 1e-6F) {
         if (!logarithmic && fit.statistics.valid()) {
           d.notes.push_back(
               short_chance ? fmt::format("the scores' global alignment rate stays at {:.3f} a step even at contrast "
@@ -706,51 +709,53 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
           short_chance
               ? fmt::format("contrast offset {:.2f}: the scores' global alignment rate is {:.3f} a step, above {:.2f} "
                             "(linear phase); raised to {:.2f}",
-                            offset, fit.global_rate, *c.max_global_rate, offset + c.contrast_offset_step)
+                            offset, fit.global_rate, *c.phase.max_global_rate, offset + c.phase.contrast_offset_step)
               : fmt::format("contrast offset {:.2f}: chance alignments grow with the sequence ({:.1f} places, "
                             "linear phase); raised to {:.2f}",
-                            offset, fit.chance_length, offset + c.contrast_offset_step));
-      offset += c.contrast_offset_step;
+                            offset, fit.chance_length, offset + c.phase.contrast_offset_step));
+      offset += c.phase.contrast_offset_step;
     }
     d.statistics = fit.statistics;
     // K is per cell: a fit on diagonal blocks of a long sequence counts the chance alignments of the whole
     // search (the chance agreement below keeps the fit's own area: which of its alignments are chance).
-    d.statistics.area = significance::search_area(n, n, true, c.min_separation, c.reverse);
+    d.statistics.area = significance::search_area(n, n, true, c.search.min_separation, c.search.reverse);
     d.chance_length = fit.chance_length;
     d.chance_mean = fit.cell_mean;
     if (fit.statistics.valid()) {
-      if (!odometry.empty() && c.odometry_gate && c.odometry_evidence) {
-        d.odometry_chance_agreement = chance_agreement(fit, odometry, *c.odometry_gate);
+      if (!odometry.empty() && c.odometry.gate && c.odometry.evidence) {
+        d.odometry_chance_agreement = chance_agreement(fit, odometry, *c.odometry.gate);
       }
       // On a grid of 1/64 score units, which both engines represent exactly (the fast engine's scale is a power
       // of two of at least 64 for caps up to 512), so they agree on what is significant.
       const auto grid = [](double v) { return static_cast<float>(std::ceil(std::max(v, 1.0 / 64) * 64.0) / 64.0); };
-      engine.threshold = grid(d.statistics.score_at(*c.max_e_value / d.odometry_chance_agreement));
+      engine.threshold = grid(d.statistics.score_at(*c.significance.max_e_value / d.odometry_chance_agreement));
       // The cap from the score's own significance: the odometry does not change how far chance extends a path.
       if (c.cap_from_statistics) {
-        engine.cap = grid(c.cap_factor * grid(d.statistics.score_at(*c.max_e_value)));
+        engine.cap = grid(c.cap_factor * grid(d.statistics.score_at(*c.significance.max_e_value)));
         // Masking takes the look-alike chance alignments of dark frames out of the fit, so its tail is lighter
         // and the cap lower than the sequence as recorded gives: never lower than that, so a revisit that runs
         // through a weak stretch beside a tunnel stays one (Nordland's frames 127-182, winter against summer).
         if (!masked.empty()) {
           const FitRun recorded = fit_looking_further(minus(enhanced, offset), c, d.frames_per_place);
           if (recorded.statistics.valid()) {
-            engine.cap = std::max(*engine.cap, grid(c.cap_factor * grid(recorded.statistics.score_at(*c.max_e_value))));
+            engine.cap = std::max(*engine.cap,
+                                  grid(c.cap_factor * grid(recorded.statistics.score_at(*c.significance.max_e_value))));
           }
         }
       }
       // What the filter removed: chance alignments of the statistics' run above the raw threshold.
       for (std::size_t k = 0; k < fit.alignments.size(); ++k) {
         const double e = d.statistics.e_value(fit.path_scores[k]);
-        if (e * d.odometry_chance_agreement > *c.max_e_value && fit.alignments[k].score >= c.threshold) {
+        if (e * d.odometry_chance_agreement > *c.significance.max_e_value &&
+            fit.alignments[k].score >= c.significance.threshold) {
           result.insignificant.push_back(fit.alignments[k]);
           result.insignificant_e_values.push_back(e);
         }
       }
     } else {
       // The fixed threshold and cap were chosen for one frame per place; scores grow with the frames per place.
-      engine.threshold = static_cast<float>(c.threshold * d.frames_per_place);
-      if (c.cap) engine.cap = static_cast<float>(*c.cap * d.frames_per_place);
+      engine.threshold = static_cast<float>(c.significance.threshold * d.frames_per_place);
+      if (c.search.cap) engine.cap = static_cast<float>(*c.search.cap * d.frames_per_place);
       d.notes.push_back(fmt::format(
           "too few chance alignments ({}) to fit the significance statistics: a fixed threshold of {:.4g} and cap "
           "{} apply",
@@ -761,17 +766,18 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   d.cap = engine.cap;
   d.score_threshold = engine.threshold;
 
-  const auto searched = static_cast<std::size_t>(significance::search_area(n, n, true, c.min_separation, c.reverse));
+  const auto searched =
+      static_cast<std::size_t>(significance::search_area(n, n, true, c.search.min_separation, c.search.reverse));
   const align::ScoreSource scores =
       told_progress(detail::soft_masked(minus(enhanced, offset), masked), searched, c.alignment_progress);
   auto found = run_alignment ? run_alignment(engine, offset)
                : c.alignment_set == align::AlignmentSet::locally_optimal
-                   ? (c.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
-                                : align::locally_optimal_alignments(scores, engine))
-                   : run_engine(scores, engine, c.engine, c.reverse, c.threads);
+                   ? (c.search.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
+                                       : align::locally_optimal_alignments(scores, engine))
+                   : run_engine(scores, engine, c.engine, c.search.reverse, c.threads);
   if (c.alignment_progress && searched > 1) c.alignment_progress(searched, searched);
   for (auto& a : found) {
-    const double path = align::path_score(a, scores, c.gap, c.gap);
+    const double path = align::path_score(a, scores, c.search.gap, c.search.gap);
     const double e = d.statistics.valid() ? d.statistics.e_value(path) : std::nan("");
     if (a.pairs.size() < d.min_revisit_pairs) {
       result.insignificant.push_back(std::move(a));
@@ -787,7 +793,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     const double max_tail_gain = std::log(20.0) / d.statistics.lambda;
     const std::size_t before = pair_count(result.alignments);
     for (auto& a : result.alignments) {
-      a = significance::trim_chance_ends(a, scores, c.gap, c.gap, d.chance_mean, max_tail_gain);
+      a = significance::trim_chance_ends(a, scores, c.search.gap, c.search.gap, d.chance_mean, max_tail_gain);
     }
     const std::size_t trimmed = before - pair_count(result.alignments);
     if (trimmed > 0) {
@@ -795,9 +801,9 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
           fmt::format("{} aligned pairs at alignments' ends more likely chance than revisit trimmed off", trimmed));
     }
   }
-  if (c.max_e_value && engine.cap) {
-    select_alignments(result, realign_in_bands(result.alignments, scores, engine, c.gap,
-                                               in_frames(significance::kShadowReach, d.frames_per_place)));
+  if (c.significance.max_e_value && engine.cap) {
+    select_alignments(result, realign_in_bands(result.alignments, scores, engine, c.search.gap,
+                                               places_in_frames(significance::kShadowReach, d.frames_per_place)));
   }
   if (!low_information.empty()) {
     select_alignments(result, detail::through_masked_frames(result.alignments, masked));
@@ -811,8 +817,8 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t x, std::size_t y) { return result.path_scores[x] > result.path_scores[y]; });
   select_alignments(result, order);
-  if (!odometry.empty() && c.odometry_gate) {
-    const std::vector<OdometryVerdict> verdicts = odometry_verdicts(result.alignments, odometry, *c.odometry_gate);
+  if (!odometry.empty() && c.odometry.gate) {
+    const std::vector<OdometryVerdict> verdicts = odometry_verdicts(result.alignments, odometry, *c.odometry.gate);
     std::vector<std::size_t> kept;
     for (std::size_t k = 0; k < verdicts.size(); ++k) {
       if (verdicts[k] == OdometryVerdict::consistent) {
@@ -823,14 +829,14 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       }
     }
     select_alignments(result, kept);
-    // Every alignment left agrees with the odometry: that is evidence too (MapConfig::odometry_evidence), weighed
+    // Every alignment left agrees with the odometry: that is evidence too (MapConfig::odometry.evidence), weighed
     // by how well it agrees. Those the evidence does not carry below max_e_value are not significant.
     if (d.odometry_chance_agreement < 1) {
-      const std::vector<double> r = odometry_agreement(result.alignments, odometry, *c.odometry_gate);
+      const std::vector<double> r = odometry_agreement(result.alignments, odometry, *c.odometry.gate);
       std::vector<std::size_t> significant;
       for (std::size_t k = 0; k < r.size(); ++k) {
         result.e_values[k] *= std::min(1.0, d.odometry_chance_agreement / std::exp(-0.5 * r[k] * r[k]));
-        if (result.e_values[k] <= *c.max_e_value) {
+        if (result.e_values[k] <= *c.significance.max_e_value) {
           significant.push_back(k);
         } else {
           result.insignificant.push_back(result.alignments[k]);
@@ -840,7 +846,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       select_alignments(result, significant);
     }
     const std::size_t before = pair_count(result.alignments);
-    result.alignments = trim_to_odometry(result.alignments, odometry, *c.odometry_gate);
+    result.alignments = trim_to_odometry(result.alignments, odometry, *c.odometry.gate);
     const std::size_t trimmed = before - pair_count(result.alignments);
     if (trimmed > 0) {
       d.notes.push_back(
@@ -851,29 +857,30 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
 
   start = std::chrono::steady_clock::now();
   std::vector<PlaceLabel> labels;
-  if (c.labelling == MapConfig::Labelling::consistent) {
+  if (c.labels.method == LabelSettings::Method::consistent) {
     ConsistentLabellingConfig lc;
-    lc.min_separation = c.min_separation;
-    lc.max_visit_span = in_frames(c.max_visit_span, d.frames_per_place);
-    auto labelling = label_consistently(n, result.alignments, result.path_scores, lc, c.pruning.min_retained_fraction);
+    lc.min_separation = c.search.min_separation;
+    lc.max_visit_span = places_in_frames(c.labels.max_visit_span, d.frames_per_place);
+    auto labelling =
+        label_consistently(n, result.alignments, result.path_scores, lc, c.labels.pruning.min_retained_fraction);
     result.pruning = std::move(labelling.accepted);
     labels = std::move(labelling.labels);
   } else {
-    result.pruning = prune_per_column(result.alignments, c.pruning);
+    result.pruning = prune_per_column(result.alignments, c.labels.pruning);
     std::vector<std::pair<std::size_t, std::size_t>> same_place;
     same_place.reserve(result.pruning.pairs.size());
     for (const auto& p : result.pruning.pairs) same_place.emplace_back(p.i, p.j);
     labels = label_places(n, same_place);
   }
   const TopologyConfig topology = topology_settings(c);
-  if (c.clean_graph) {
+  if (c.graph.clean) {
     GraphCleanupConfig cleanup;
-    cleanup.min_separation = c.min_separation;
+    cleanup.min_separation = c.search.min_separation;
     // Nothing shorter than the shortest revisit can be told apart from the place beside it.
-    const std::size_t shortest = std::max<std::size_t>(1, in_frames(c.min_revisit_places, d.frames_per_place));
+    const std::size_t shortest = std::max<std::size_t>(1, places_in_frames(c.min_revisit_places, d.frames_per_place));
     cleanup.max_tip_frames = shortest;
     cleanup.max_bubble_frames = shortest;
-    cleanup.session_starts = c.topology.session_starts;
+    cleanup.session_starts = c.graph.topology.session_starts;
     labels = clean_graph(labels, result.alignments, result.pruning, cleanup).labels;
   }
   result.map = build_topology(labels, result.alignments, result.pruning, topology);
@@ -889,8 +896,8 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
 MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config,
                                 std::span<const Pose2> odometry) {
   MapConfig c = config;
-  c.contrast_window = 0;  // the scores are aligned as they are
-  c.place_units = false;
+  c.score.contrast_window = 0;  // the scores are aligned as they are
+  c.unit = align::Unit::frames;
   return build_map_from_enhanced(scores, c, odometry);
 }
 

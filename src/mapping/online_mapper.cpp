@@ -39,30 +39,6 @@ std::uint64_t cell(std::size_t i, std::size_t j) { return (static_cast<std::uint
 std::size_t cell_i(std::uint64_t c) { return static_cast<std::size_t>(c >> 32U); }
 std::size_t cell_j(std::uint64_t c) { return static_cast<std::size_t>(c & 0xFFFFFFFFU); }
 
-// Eight partial sums so that the loop vectorises without reassociation flags (fixed order: deterministic).
-float dot(const float* a, const float* b, std::size_t n) {
-  float acc[8] = {};
-  std::size_t k = 0;
-  for (; k + 8 <= n; k += 8) {
-    for (std::size_t l = 0; l < 8; ++l) acc[l] += a[k + l] * b[k + l];
-  }
-  float tail = 0;
-  for (; k < n; ++k) tail += a[k] * b[k];
-  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7])) + tail;
-}
-
-float sad(const float* a, const float* b, std::size_t n) {
-  float acc[8] = {};
-  std::size_t k = 0;
-  for (; k + 8 <= n; k += 8) {
-    for (std::size_t l = 0; l < 8; ++l) acc[l] += std::fabs(a[k + l] - b[k + l]);
-  }
-  float tail = 0;
-  for (; k < n; ++k) tail += std::fabs(a[k] - b[k]);
-  return (((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7])) + tail) /
-         static_cast<float>(n);
-}
-
 // Row[j] is the row's largest value within `radius` columns (the first of equal ones).
 bool row_peak(const std::vector<float>& row, std::size_t j, std::size_t radius) {
   const float v = row[j];
@@ -97,37 +73,55 @@ std::string_view to_string(OnlineEventKind kind) {
 
 void validate(const OnlineMapConfig& c) {
   auto fail = [](const std::string& what) { throw std::invalid_argument("online mapping: " + what); };
-  if (!(c.gap >= 0) || !std::isfinite(c.gap)) fail("gap must be finite and >= 0");
-  if (c.cap && !(*c.cap > 0 && std::isfinite(*c.cap))) fail("cap must be finite and > 0");
-  if (!(c.threshold > 0) || !std::isfinite(c.threshold)) fail("threshold must be finite and > 0");
-  if (c.cap && c.threshold > *c.cap) fail("threshold must not exceed the cap");
-  if (!std::isfinite(c.contrast_offset)) fail("contrast offset must be finite");
-  if (c.adapt_offset && !(c.contrast_offset_step > 0 && std::isfinite(c.contrast_offset_step))) {
+  if (!(c.search.gap >= 0) || !std::isfinite(c.search.gap)) fail("gap must be finite and >= 0");
+  if (c.search.cap && !(*c.search.cap > 0 && std::isfinite(*c.search.cap))) fail("cap must be finite and > 0");
+  if (!(c.significance.threshold > 0) || !std::isfinite(c.significance.threshold))
+    fail("threshold must be finite and > 0");
+  if (c.search.cap && c.significance.threshold > *c.search.cap) fail("threshold must not exceed the cap");
+  if (!std::isfinite(c.score.contrast_offset)) fail("contrast offset must be finite");
+  if (c.phase.adapt_offset && !(c.phase.contrast_offset_step > 0 && std::isfinite(c.phase.contrast_offset_step))) {
     fail("contrast offset step must be finite and > 0");
   }
-  if (c.adapt_offset && !(c.max_contrast_offset >= c.contrast_offset && std::isfinite(c.max_contrast_offset))) {
+  if (c.phase.adapt_offset &&
+      !(c.phase.max_contrast_offset >= c.score.contrast_offset && std::isfinite(c.phase.max_contrast_offset))) {
     fail("the largest contrast offset must be finite and at least the contrast offset");
   }
   if (c.self_similarity && !std::isfinite(*c.self_similarity)) fail("self similarity must be finite");
-  if (c.max_global_rate && !std::isfinite(*c.max_global_rate)) fail("the largest global rate must be finite");
-  if (c.max_e_value && !(*c.max_e_value > 0 && std::isfinite(*c.max_e_value))) fail("E-value must be finite and > 0");
+  if (c.phase.max_global_rate && !std::isfinite(*c.phase.max_global_rate))
+    fail("the largest global rate must be finite");
+  if (c.significance.max_e_value && !(*c.significance.max_e_value > 0 && std::isfinite(*c.significance.max_e_value)))
+    fail("E-value must be finite and > 0");
   if (c.candidate_e_value &&
-      !(std::isfinite(*c.candidate_e_value) && *c.candidate_e_value > (c.max_e_value ? *c.max_e_value : 0.0))) {
+      !(std::isfinite(*c.candidate_e_value) &&
+        *c.candidate_e_value > (c.significance.max_e_value ? *c.significance.max_e_value : 0.0))) {
     fail("the candidates' E-value must be finite and above the E-value");
   }
   if (c.island_sample < 64) fail("island_sample must be >= 64");
   if (!(c.x_drop > 0) || !std::isfinite(c.x_drop)) fail("x_drop must be finite and > 0");
-  if (c.min_separation < 1) fail("min_separation must be >= 1");
+  if (c.search.min_separation < 1) fail("min_separation must be >= 1");
+  if (c.unit == align::Unit::places &&
+      !(c.frames_per_place && *c.frames_per_place > 0 && std::isfinite(*c.frames_per_place)))
+    fail("windows in places need frames_per_place, finite and > 0");
   if (c.distance != similarity::Distance::cosine && c.distance != similarity::Distance::sad &&
       c.distance != similarity::Distance::l1) {
     fail("distance must be cosine, sad or l1");
   }
 }
 
-OnlineMapper::OnlineMapper(const OnlineMapConfig& config)
-    : config_(config), offset_(config.contrast_offset), threshold_(config.threshold) {
-  validate(config_);
+OnlineMapConfig settings_in_frames(const OnlineMapConfig& config) {
+  validate(config);
+  OnlineMapConfig f = config;
+  const double scale = config.frames_per_place.value_or(1.0);
+  f.score = align::in_frames(config.score, config.unit, scale);
+  f.search = align::in_frames(config.search, config.unit, scale);
+  f.unit = align::Unit::frames;
+  return f;
 }
+
+OnlineMapper::OnlineMapper(const OnlineMapConfig& config)
+    : config_(settings_in_frames(config)),
+      offset_(config.score.contrast_offset),
+      threshold_(config.significance.threshold) {}
 
 void OnlineMapper::check_row(std::span<const float> row, std::size_t expected, const char* what) const {
   if (row.size() != expected) {
@@ -149,25 +143,25 @@ std::vector<OnlineEvent> OnlineMapper::add_descriptor(std::span<const float> des
   }
   check_row(descriptor, dim_, "descriptor");
   const std::size_t t = frames_;
-  descriptors_.resize((t + 1) * dim_);
-  float* own = descriptors_.data() + t * dim_;
-  std::copy(descriptor.begin(), descriptor.end(), own);
-  if (config_.distance == similarity::Distance::cosine) {
-    // Normalised once, so each pair is one dot product (a zero vector stays zero: distance 1 to all).
-    const float norm = std::sqrt(dot(own, own, dim_));
-    if (norm > 0) {
-      for (std::size_t k = 0; k < dim_; ++k) own[k] /= norm;
-    }
-  }
+  descriptors_.insert(descriptors_.end(), descriptor.begin(), descriptor.end());
+  // The distances of the offline similarity (similarity/distance.hpp), to the bit: S = -D.
+  if (config_.distance == similarity::Distance::cosine) norms_.push_back(similarity::squared_norm(descriptor));
   similarity_.resize(t);
   for (std::size_t j = 0; j < t; ++j) {
-    const float* other = descriptors_.data() + j * dim_;
-    if (config_.distance == similarity::Distance::cosine) {
-      similarity_[j] = dot(own, other, dim_) - 1.0F;  // -D with D = 1 - cos
-    } else {
-      const float d = sad(own, other, dim_);
-      similarity_[j] = config_.distance == similarity::Distance::sad ? -d : -d * static_cast<float>(dim_);
+    const std::span<const float> other(descriptors_.data() + j * dim_, dim_);
+    double d = 0;
+    switch (config_.distance) {
+      case similarity::Distance::cosine:
+        d = similarity::cosine_distance(descriptor, other, norms_[t], norms_[j]);
+        break;
+      case similarity::Distance::sad:
+        d = similarity::sad_distance(descriptor, other);
+        break;
+      default:
+        d = similarity::l1_distance(descriptor, other);
+        break;
     }
+    similarity_[j] = -static_cast<float>(d);
   }
   enhance(similarity_);
   fill_rows();
@@ -186,7 +180,7 @@ std::vector<OnlineEvent> OnlineMapper::add_similarity(std::span<const float> sim
 
 std::vector<OnlineEvent> OnlineMapper::add_scores(std::span<const float> scores) {
   const std::size_t t = frames_;
-  const std::size_t n = t >= config_.min_separation ? t - config_.min_separation + 1 : 0;
+  const std::size_t n = t >= config_.search.min_separation ? t - config_.search.min_separation + 1 : 0;
   check_row(scores, n, "score row");
   scores_.assign(scores.begin(), scores.end());
   fill_rows();
@@ -197,9 +191,9 @@ void OnlineMapper::enhance(std::span<const float> row) { enhance(std::vector<std
 
 void OnlineMapper::enhance(const std::vector<std::span<const float>>& rows) {
   const std::size_t t = frames_;
-  const std::size_t sep = config_.min_separation;
+  const std::size_t sep = config_.search.min_separation;
   const std::size_t n = t >= sep ? t - sep + 1 : 0;
-  const std::size_t w = config_.contrast_window;
+  const std::size_t w = config_.score.contrast_window;
   sample_lags(rows);
   scores_.assign(n, 0.0F);
   if (w == 0) {
@@ -247,7 +241,7 @@ void OnlineMapper::enhance(const std::vector<std::span<const float>>& rows) {
     }
   }
   for (auto& v : scores_) v = (rows.size() == 1 ? v : v / static_cast<float>(rows.size())) - offset_;
-  if (config_.adapt_offset && config_.max_global_rate) {  // kept only for check_scores_phase
+  if (config_.phase.adapt_offset && config_.phase.max_global_rate) {  // kept only for check_scores_phase
     for (std::size_t j = 0; j < n && phase_cells_.size() < kPhaseCells; ++j)
       phase_cells_.push_back(scores_[j] + offset_);
   }
@@ -257,10 +251,10 @@ void OnlineMapper::check_scores_phase() {
   if (phase_cells_.size() < std::max(kPhaseMinCells, 2 * phase_checked_at_)) return;
   phase_checked_at_ = phase_cells_.size();
   std::vector<float> cells(phase_cells_.size());
-  while (offset_ + config_.contrast_offset_step <= config_.max_contrast_offset + 1e-6F) {
+  while (offset_ + config_.phase.contrast_offset_step <= config_.phase.max_contrast_offset + 1e-6F) {
     for (std::size_t k = 0; k < cells.size(); ++k) cells[k] = phase_cells_[k] - offset_;
-    const double rate = significance::resampled_global_rate(cells, kPhaseTable, config_.gap);
-    if (rate <= *config_.max_global_rate) break;
+    const double rate = significance::resampled_global_rate(cells, kPhaseTable, config_.search.gap);
+    if (rate <= *config_.phase.max_global_rate) break;
     OffsetChange change;
     change.check = "scores";
     change.global_rate = rate;
@@ -270,7 +264,7 @@ void OnlineMapper::check_scores_phase() {
 
 void OnlineMapper::sample_lags(const std::vector<std::span<const float>>& rows) {
   const std::size_t t = frames_;
-  if (!config_.self_similarity || !config_.adapt_offset || t >= kScaleFrames) return;
+  if (!config_.self_similarity || !config_.phase.adapt_offset || t >= kScaleFrames) return;
   if (lag_samples_.size() != rows.size())
     lag_samples_.assign(rows.size(), std::vector<std::vector<float>>(kScaleLags + 1));
   for (std::size_t c = 0; c < rows.size(); ++c) {
@@ -302,8 +296,8 @@ void OnlineMapper::update_place_scale() {
 }
 
 void OnlineMapper::check_phase(const std::vector<std::pair<double, double>>& fitted) {
-  if (!config_.adapt_offset || config_.contrast_window == 0 || lag_samples_.empty() ||
-      offset_ + config_.contrast_offset_step > config_.max_contrast_offset + 1e-6F) {
+  if (!config_.phase.adapt_offset || config_.score.contrast_window == 0 || lag_samples_.empty() ||
+      offset_ + config_.phase.contrast_offset_step > config_.phase.max_contrast_offset + 1e-6F) {
     return;
   }
   std::vector<double> lengths;
@@ -333,20 +327,20 @@ void OnlineMapper::check_phase(const std::vector<std::pair<double, double>>& fit
 void OnlineMapper::raise_offset(OffsetChange change) {
   change.frame = frames_;
   change.from = offset_;
-  change.to = offset_ + config_.contrast_offset_step;
+  change.to = offset_ + config_.phase.contrast_offset_step;
   offset_changes_.push_back(std::move(change));
-  offset_ += config_.contrast_offset_step;
+  offset_ += config_.phase.contrast_offset_step;
   // Every live path is scored again as if the new offset had held from its start (one pair a frame): the paths
   // the linear phase let grow through chance fall away, a revisit keeps most of its score.
   for (auto [row, starts] : {std::pair(&forward_, &forward_start_), std::pair(&reverse_, &reverse_start_)}) {
     for (std::size_t j = 0; j < row->size(); ++j) {
       if ((*starts)[j] == kNoStart) continue;
       const auto pairs = static_cast<float>(frames_ - cell_i((*starts)[j]) + 1);
-      (*row)[j] -= config_.contrast_offset_step * pairs;
+      (*row)[j] -= config_.phase.contrast_offset_step * pairs;
       if ((*row)[j] <= 0) (*row)[j] = 0, (*starts)[j] = kNoStart;
     }
   }
-  for (auto& v : early_cells_) v -= config_.contrast_offset_step;  // the table as at the new offset
+  for (auto& v : early_cells_) v -= config_.phase.contrast_offset_step;  // the table as at the new offset
   next_early_fit_ = 0;
   early_fitted_ = false;
   island_heap_.clear();
@@ -354,7 +348,7 @@ void OnlineMapper::raise_offset(OffsetChange change) {
   sample_from_ = frames_ + 1;
   statistics_ = {};
   sample_changed_ = false;
-  threshold_ = config_.threshold;  // until the new sample is large enough for a fit
+  threshold_ = config_.significance.threshold;  // until the new sample is large enough for a fit
 }
 
 std::vector<OnlineEvent> OnlineMapper::add_similarities(const std::vector<std::vector<float>>& rows) {
@@ -378,7 +372,7 @@ std::vector<OnlineEvent> OnlineMapper::add_similarities(const std::vector<std::v
 void OnlineMapper::fill_rows() {
   const std::size_t t = frames_;
   const std::size_t n = scores_.size();
-  const float gap = config_.gap;
+  const float gap = config_.search.gap;
   std::swap(previous_forward_, forward_);
   std::swap(previous_reverse_, reverse_);
   std::swap(previous_forward_start_, forward_start_);
@@ -389,7 +383,7 @@ void OnlineMapper::fill_rows() {
                         const std::vector<std::uint64_t>& previous_start, bool reverse) {
     row.assign(n, 0.0F);
     start.assign(n, kNoStart);
-    align::fill_online_row(previous, scores_, row, reverse, gap, config_.cap,
+    align::fill_online_row(previous, scores_, row, reverse, gap, config_.search.cap,
                            [&](std::size_t j, align::Step step, std::size_t diagonal_at, std::size_t left_at) {
                              switch (step) {
                                case align::Step::none:
@@ -411,16 +405,16 @@ void OnlineMapper::fill_rows() {
   fill(forward_, forward_start_, previous_forward_, previous_forward_start_, false);
   reverse_.clear();
   reverse_start_.clear();
-  if (config_.reverse) fill(reverse_, reverse_start_, previous_reverse_, previous_reverse_start_, true);
+  if (config_.search.reverse) fill(reverse_, reverse_start_, previous_reverse_, previous_reverse_start_, true);
 }
 
 float OnlineMapper::confidence(float score) const {
   // With the statistics, P(revisit | E) as the offline map's alignments (significance::revisit_probability); before
   // them, the score's share of twice the threshold.
   if (const auto e = e_value(score)) {
-    return static_cast<float>(significance::revisit_probability(*e, *config_.max_e_value));
+    return static_cast<float>(significance::revisit_probability(*e, *config_.significance.max_e_value));
   }
-  const float full = config_.cap ? *config_.cap : 2 * threshold_;
+  const float full = config_.search.cap ? *config_.search.cap : 2 * threshold_;
   return std::min(1.0F, score / full);
 }
 
@@ -615,7 +609,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
       const std::vector<float>& previous = forward ? previous_forward_ : previous_reverse_;
       const std::size_t from = forward ? jb - 1 : jb + 1;  // wraps for jb = 0 forward: out of range, no diagonal
       const float diag = from < previous.size() ? previous[from] : 0.0F;
-      const float reached = config_.cap ? std::min(diag + scores_[jb], *config_.cap) : diag + scores_[jb];
+      const float reached = config_.search.cap ? std::min(diag + scores_[jb], *config_.search.cap) : diag + scores_[jb];
       matching = scores_[jb] > 0 && reached == value;
     }
     track.falling = best >= 0 && (value < track.last_value || !matching) ? track.falling + 1 : 0;
@@ -653,7 +647,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
   }
   // New tracks: cells at threshold or above, maximal within min_separation columns, and that far from every live
   // track of this direction (the diagonals beside a revisit score almost as well: they are the same revisit).
-  const std::size_t radius = config_.min_separation;
+  const std::size_t radius = config_.search.min_separation;
   for (std::size_t j = 0; j < n; ++j) {
     const float v = row[j];
     if (v < threshold_ || starts[j] == kNoStart) continue;
@@ -689,7 +683,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
     events.push_back(begin);
     // Joining the old path in its middle (forward: frames before the old one lead into it; reverse: not a U-turn).
     const bool middle =
-        forward ? track.first_j > reach : track.first_i - track.first_j > config_.min_separation + 2 * reach;
+        forward ? track.first_j > reach : track.first_i - track.first_j > config_.search.min_separation + 2 * reach;
     if (middle) add_junction(track, track.first_i, track.first_j, true, events);
     // The frames between the start and now, along the line from the start cell to this one; an alignment that
     // an ended track followed already (the same start cell) is filled only after that track's last frame.
@@ -713,13 +707,15 @@ bool OnlineMapper::near_a_track(align::Direction direction, std::uint64_t start,
   return std::any_of(tracks_.begin(), tracks_.end(), [&](const Track& track) {
     const std::size_t d = track.last_j > j ? track.last_j - j : j - track.last_j;
     // the path of a (dormant) track, or a column beside one
-    return track.direction == direction && (cell(track.first_i, track.first_j) == start || d <= config_.min_separation);
+    return track.direction == direction &&
+           (cell(track.first_i, track.first_j) == start || d <= config_.search.min_separation);
   });
 }
 
 bool OnlineMapper::near_cells(std::uint64_t a, std::uint64_t b) const {
   const auto apart = [](std::size_t x, std::size_t y) { return x > y ? x - y : y - x; };
-  return apart(cell_i(a), cell_i(b)) <= config_.min_separation && apart(cell_j(a), cell_j(b)) <= config_.min_separation;
+  return apart(cell_i(a), cell_i(b)) <= config_.search.min_separation &&
+         apart(cell_j(a), cell_j(b)) <= config_.search.min_separation;
 }
 
 OnlineMapper::Candidates::iterator OnlineMapper::near_candidate(std::uint64_t start, align::Direction direction) {
@@ -735,7 +731,7 @@ void OnlineMapper::find_candidates(align::Direction direction, std::vector<Onlin
   const bool forward = direction == align::Direction::forward;
   const std::vector<float>& row = forward ? forward_ : reverse_;
   const std::vector<std::uint64_t>& starts = forward ? forward_start_ : reverse_start_;
-  const std::size_t radius = config_.min_separation;
+  const std::size_t radius = config_.search.min_separation;
   for (std::size_t j = 0; j < row.size(); ++j) {
     const float v = row[j];
     if (v < at || v >= threshold_ || starts[j] == kNoStart || !row_peak(row, j, radius)) continue;
@@ -806,7 +802,7 @@ bool OnlineMapper::beside_a_revisit(const Island& island, align::Direction direc
   const auto it = closure_columns_.find(island.i);
   if (it == closure_columns_.end()) return false;
   for (const auto& [j, d] : it->second) {
-    if (d == direction && (j > island.j ? j - island.j : island.j - j) <= config_.min_separation) return true;
+    if (d == direction && (j > island.j ? j - island.j : island.j - j) <= config_.search.min_separation) return true;
   }
   return false;
 }
@@ -895,7 +891,7 @@ void OnlineMapper::update_islands(align::Direction direction, IslandRow& live) {
 }
 
 void OnlineMapper::fit_early(double area) {
-  const std::size_t n = frames_ + 1, sep = config_.min_separation;
+  const std::size_t n = frames_ + 1, sep = config_.search.min_separation;
   // Only a sequence of 50 places or more has a scale (place_scale.hpp); a shorter one, or a smooth one whose
   // chance alignments are few and long, gives too few independent ones for a fit.
   if (n <= config_.early_fit_frames && n >= next_early_fit_) {
@@ -910,9 +906,8 @@ void OnlineMapper::fit_early(double area) {
         at += i - sep + 1;
       }
       MapConfig c;
-      c.gap = config_.gap;
-      c.min_separation = sep;
-      c.reverse = config_.reverse;
+      c.search = config_.search;
+      c.search.min_separation = sep;
       c.threads = 1;
       // Trusted only where the offline map would trust them, in the logarithmic phase by both its checks (at its
       // own bound on the global rate, whatever the online setting): in the linear phase the mapper's own checks
@@ -928,10 +923,10 @@ void OnlineMapper::fit_early(double area) {
 void OnlineMapper::update_threshold() {
   const std::size_t tail = std::min(island_heap_.size(), islands_died_ / kTailFraction);
   const double area =
-      significance::search_area(frames_ + 1, frames_ + 1, true, config_.min_separation, config_.reverse);
-  if (config_.max_e_value && tail < kMinIslandTail && config_.early_fit_frames > 0) fit_early(area);
-  if (!config_.max_e_value || (tail < kMinIslandTail && !early_fitted_)) {
-    threshold_ = config_.threshold;
+      significance::search_area(frames_ + 1, frames_ + 1, true, config_.search.min_separation, config_.search.reverse);
+  if (config_.significance.max_e_value && tail < kMinIslandTail && config_.early_fit_frames > 0) fit_early(area);
+  if (!config_.significance.max_e_value || (tail < kMinIslandTail && !early_fitted_)) {
+    threshold_ = config_.significance.threshold;
     return;
   }
   if (tail >= kMinIslandTail && (sample_changed_ || !statistics_.valid() || early_fitted_)) {
@@ -948,21 +943,21 @@ void OnlineMapper::update_threshold() {
   }
   statistics_.area = area;
   if (!statistics_.valid()) {
-    threshold_ = config_.threshold;
+    threshold_ = config_.significance.threshold;
     return;
   }
-  const double at = statistics_.score_at(*config_.max_e_value);
-  const float cap = config_.cap ? *config_.cap : std::numeric_limits<float>::max();
+  const double at = statistics_.score_at(*config_.significance.max_e_value);
+  const float cap = config_.search.cap ? *config_.search.cap : std::numeric_limits<float>::max();
   threshold_ = static_cast<float>(std::clamp(at, 1e-3, static_cast<double>(cap)));
 }
 
 std::optional<double> OnlineMapper::e_value(float score) const {
-  if (!config_.max_e_value || !statistics_.valid()) return std::nullopt;
+  if (!config_.significance.max_e_value || !statistics_.valid()) return std::nullopt;
   return statistics_.e_value(score);
 }
 
 std::vector<OnlineEvent> OnlineMapper::step() {
-  if (config_.max_e_value && frames_ < config_.early_fit_frames) {
+  if (config_.significance.max_e_value && frames_ < config_.early_fit_frames) {
     early_cells_.insert(early_cells_.end(), scores_.begin(), scores_.end());
   } else {
     std::vector<float>().swap(early_cells_);
@@ -970,23 +965,24 @@ std::vector<OnlineEvent> OnlineMapper::step() {
   places_.add();
   std::vector<OnlineEvent> events;
   update_tracks(align::Direction::forward, events);
-  if (config_.reverse) update_tracks(align::Direction::reverse, events);
+  if (config_.search.reverse) update_tracks(align::Direction::reverse, events);
   // Candidates at this frame's statistics, as its tracks.
   find_candidates(align::Direction::forward, events);
-  if (config_.reverse) find_candidates(align::Direction::reverse, events);
+  if (config_.search.reverse) find_candidates(align::Direction::reverse, events);
   // The islands that died in this row, after its loop closures (so that a revisit's shadows stay out of the
   // sample), and the threshold of the next frame; without an E-value neither is used. A candidate whose path
   // died with them is withdrawn.
-  if (config_.max_e_value) {
+  if (config_.significance.max_e_value) {
     update_islands(align::Direction::forward, forward_islands_);
     drop_candidates(align::Direction::forward, &forward_islands_, events);
-    if (config_.reverse) {
+    if (config_.search.reverse) {
       update_islands(align::Direction::reverse, reverse_islands_);
       drop_candidates(align::Direction::reverse, &reverse_islands_, events);
     }
   }
   update_threshold();
-  if (config_.adapt_offset && config_.max_global_rate && config_.contrast_window > 0) check_scores_phase();
+  if (config_.phase.adapt_offset && config_.phase.max_global_rate && config_.score.contrast_window > 0)
+    check_scores_phase();
   ++frames_;
   return events;
 }
@@ -1007,13 +1003,13 @@ void OnlineMapper::review_closures(std::vector<OnlineEvent>& events) {
   // Every revisit judged again under the last statistics, as the offline map judges its alignments under the
   // whole sequence's: one confirmed early, when the fit had few frames, may be insignificant now (withdrawn); the
   // others' loop closures take the confidence of their revisit's best score now.
-  if (!config_.max_e_value || !statistics_.valid()) return;
+  if (!config_.significance.max_e_value || !statistics_.valid()) return;
   std::map<std::size_t, OnlineEvent> corrections;  // by revisit
   for (Closure& c : closures_) {
     const auto best = revisit_best_.find(c.revisit);
     if (c.withdrawn || best == revisit_best_.end()) continue;
     const double e = statistics_.e_value(best->second);
-    if (e <= *config_.max_e_value) {
+    if (e <= *config_.significance.max_e_value) {
       c.confidence = confidence(best->second);
       continue;
     }
@@ -1025,7 +1021,7 @@ void OnlineMapper::review_closures(std::vector<OnlineEvent>& events) {
       correction.e_value = e;
       correction.score = best->second;
       correction.reason = fmt::format("insignificant under the statistics of the whole run (E {:.3g} > {:.3g})", e,
-                                      *config_.max_e_value);
+                                      *config_.significance.max_e_value);
     }
     correction.withdrawn.emplace_back(c.i, c.j);
   }

@@ -144,7 +144,7 @@ int report(const std::exception& e) {
 
 align::AlignConfig align_config(const Options& opt) {
   mapping::MapConfig map = opt.map;
-  map.cap = opt.no_cap ? std::nullopt : std::optional<float>(opt.cap);
+  map.search.cap = opt.no_cap ? std::nullopt : std::optional<float>(opt.cap);
   return mapping::align_config(map);
 }
 
@@ -161,8 +161,8 @@ Prepared prepare(const Options& opt) {
     throw InputError(opt.descriptors, "no descriptors (empty array)");
   }
   scale::StreamingConfig streaming;
-  streaming.contrast_window = opt.map.contrast_window;
-  streaming.contrast_offset = opt.map.contrast_offset;
+  streaming.contrast_window = opt.map.score.contrast_window;
+  streaming.contrast_offset = opt.map.score.contrast_offset;
   std::unique_ptr<scale::StreamingSimilarity> similarity;
   try {
     similarity =
@@ -172,7 +172,7 @@ Prepared prepare(const Options& opt) {
   }
   scale::CandidateConfig candidates;
   candidates.neighbours = opt.neighbours;
-  candidates.exclude = opt.map.min_separation;
+  candidates.exclude = opt.map.search.min_separation;
   Prepared p;
   p.frames = descriptors.rows;
   p.scores = scale::sparse_map_scores(*similarity, opt.background, candidates);
@@ -324,16 +324,17 @@ int main(int argc, char** argv) {
   add_number(*sparse, "--neighbours", opt.neighbours, {.min = 1, .max = 1 << 20}, "candidates per frame (k)");
   add_number(*sparse, "--background", opt.background, {.max = 0, .max_exclusive = true},
              "score of every non-candidate pair (< 0)");
-  add_number(*sparse, "--contrast-window", opt.map.contrast_window, seqtopo::cli::kAtLeastOne,
+  add_number(*sparse, "--contrast-window", opt.map.score.contrast_window, seqtopo::cli::kAtLeastOne,
              "contrast enhancement window [frames]");
-  add_number(*sparse, "--contrast-offset", opt.map.contrast_offset, seqtopo::cli::kAnyFinite,
+  add_number(*sparse, "--contrast-offset", opt.map.score.contrast_offset, seqtopo::cli::kAnyFinite,
              "subtracted after enhancement [standard deviations]");
-  add_number(*sparse, "--gap", opt.map.gap, seqtopo::cli::kPositive, "gap penalty, both sequences");
-  opt.cap = opt.map.cap.value_or(opt.cap);
+  add_number(*sparse, "--gap", opt.map.search.gap, seqtopo::cli::kPositive, "gap penalty, both sequences");
+  opt.cap = opt.map.search.cap.value_or(opt.cap);
   add_number(*sparse, "--cap", opt.cap, seqtopo::cli::kPositive, "cap on the cumulative score");
   sparse->add_flag("--no-cap", opt.no_cap, "classical Smith-Waterman, no cap");
-  add_number(*sparse, "--threshold", opt.map.threshold, seqtopo::cli::kPositive, "minimum alignment score");
-  add_number(*sparse, "--min-separation", opt.map.min_separation, seqtopo::cli::kAtLeastOne,
+  add_number(*sparse, "--threshold", opt.map.significance.threshold, seqtopo::cli::kPositive,
+             "minimum alignment score");
+  add_number(*sparse, "--min-separation", opt.map.search.min_separation, seqtopo::cli::kAtLeastOne,
              "pairs closer in time never count [frames]");
   add_number(*sparse, "--threads", opt.threads, {.min = 1, .max = 2},
              "rank 0: threads for the two passes' fills (1 or 2)");

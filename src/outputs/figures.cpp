@@ -25,7 +25,7 @@ plot::MatrixFigureConfig map_similarity_figure(const pipeline::MapRun& run, std:
   c.rows = c.cols = n;
   c.row_label = "image i";
   c.column_label = "image j";
-  const bool contrast = run.streamed() || run.map_config.contrast_window > 0;
+  const bool contrast = run.streamed() || run.map_config.score.contrast_window > 0;
   c.title = contrast ? fmt::format("Contrast-enhanced similarity of {} images", n)
                      : fmt::format("Similarity S = 1 - kappa D of {} images", n);
   c.value_label = contrast ? "score [sd]" : "similarity S";

@@ -149,16 +149,16 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
   html.heading("Parameters");
   const std::vector<std::pair<std::string, std::string>> parameters{
       {"descriptor", pipeline::descriptor_names(r.settings.descriptors)},
-      {"gap", fmt::format("{}", config.gap)},
-      {"cap", config.cap ? fmt::format("{}", *config.cap) : "none"},
-      {"threshold", fmt::format("{}", config.threshold)},
+      {"gap", fmt::format("{}", config.search.gap)},
+      {"cap", config.search.cap ? fmt::format("{}", *config.search.cap) : "none"},
+      {"threshold", fmt::format("{}", config.significance.threshold)},
       {"minimum confidence (in the map)", fmt::format("{}", config.min_confidence)},
       {"posterior band [frames] / tolerance [map frames]",
        fmt::format("{} / {}", config.posterior_band, config.tolerance)},
-      {"offset [sd]", fmt::format("{}", config.contrast_offset)},
-      {"enhancement window [frames]", std::to_string(config.contrast_window)},
+      {"offset [sd]", fmt::format("{}", config.score.contrast_offset)},
+      {"enhancement window [frames]", std::to_string(config.score.contrast_window)},
       {"score window [frames]", std::to_string(config.score_window)},
-      {"reverse pass", config.reverse ? "yes" : "no"}};
+      {"reverse pass", config.search.reverse ? "yes" : "no"}};
   html.key_values(parameters);
   data["parameters"] = parameters;
 

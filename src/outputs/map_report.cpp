@@ -376,8 +376,8 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   html.heading("Similarity matrix and alignments");
   const DrawnMatrix drawn(run);  // what similarity.png draws
   const std::string what = run.streamed() ? "Contrast-enhanced similarity (streamed: block maxima)"
-                                          : (run.map_config.contrast_window > 0 ? "Contrast-enhanced similarity"
-                                                                                : "Similarity S = 1 - kappa D") +
+                                          : (run.map_config.score.contrast_window > 0 ? "Contrast-enhanced similarity"
+                                                                                      : "Similarity S = 1 - kappa D") +
                                                 (drawn.block() > 1 ? std::string(" (block maxima)") : std::string());
   html.raw(detail::matrix_view_markup(
       what +
@@ -390,7 +390,7 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
            : std::string())));
   html.raw("<div id=\"alignment-table\"></div>\n");
   data["matrix"] = detail::matrix_json(drawn.cells(), n, n, "image i", "image j",
-                                       run.streamed() || run.map_config.contrast_window > 0 ? "score [sd]" : "S");
+                                       run.streamed() || run.map_config.score.contrast_window > 0 ? "score [sd]" : "S");
   nlohmann::json alignments = nlohmann::json::array();
   for (std::size_t k = 0; k < result.alignments.size(); ++k) {
     alignments.push_back(
@@ -476,12 +476,12 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
                     {{"contrast enhancement", d.contrast_window > 0 ? fmt::format("window {} frames, offset {:.2f} sd",
                                                                                   d.contrast_window, d.contrast_offset)
                                                                     : "off"},
-                     {"gap", fmt::format("{}", c.gap)},
+                     {"gap", fmt::format("{}", c.search.gap)},
                      {"cap", d.cap ? fmt::format("{:.1f}{}", *d.cap, origin) : "none"},
                      {"score a revisit needs", fmt::format("{:.1f}{}", d.score_threshold, origin)},
                      {"min separation [frames]", std::to_string(d.min_separation)},
-                     {"reverse pass", c.reverse ? "yes" : "no"},
-                     {"pruning: min retained fraction", fmt::format("{}", c.pruning.min_retained_fraction)}});
+                     {"reverse pass", c.search.reverse ? "yes" : "no"},
+                     {"pruning: min retained fraction", fmt::format("{}", c.labels.pruning.min_retained_fraction)}});
   html.key_values(parameters);
 
   html.heading("Static figures (the PNG and SVG files, for papers)");

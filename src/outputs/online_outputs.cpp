@@ -39,7 +39,8 @@ void write_online_map_outputs(const pipeline::OnlineMapRun& run, const mapping::
                                       {"max", quantile(run.frame_seconds, 1.0)}}},
                                     {"events", run.event_counts}};
   nlohmann::ordered_json significance = {
-      {"max_e_value", config.max_e_value ? nlohmann::ordered_json(*config.max_e_value) : nlohmann::ordered_json()},
+      {"max_e_value", config.significance.max_e_value ? nlohmann::ordered_json(*config.significance.max_e_value)
+                                                      : nlohmann::ordered_json()},
       {"threshold", formats::json_number(run.threshold)}};
   const auto& st = run.statistics;
   if (st.valid()) {

@@ -122,7 +122,7 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
     // What the figure and the baselines see: the fused enhanced scores, before the offset (and, for the baselines,
     // each descriptor's own similarity).
     localize::LocalizeConfig unshifted = config;
-    unshifted.contrast_offset = 0;
+    unshifted.score.contrast_offset = 0;
     run.similarity = localize::fused_score_matrix(similarities, unshifted, result.descriptor_weights);
     for (std::size_t d = 0; d < similarities.size(); ++d) {
       run.descriptor_similarities.emplace_back(descriptor_name(run.settings.descriptors[d]),
@@ -133,7 +133,7 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
   run.maps = run.similarity.cols;
   for (std::size_t k = 0; k < result.alignments.size(); ++k) {
     const double e = result.e_values[k];
-    if (std::isfinite(e) ? e <= 1.0 : result.alignments[k].score >= config.threshold) {
+    if (std::isfinite(e) ? e <= 1.0 : result.alignments[k].score >= config.significance.threshold) {
       run.alignments.push_back(result.alignments[k]);
       run.e_values.push_back(e);
     }
@@ -340,7 +340,7 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
   } else {
     // As offline: the fused enhanced scores before the offset, with the weights the localizer ended with.
     localize::LocalizeConfig unshifted = config;
-    unshifted.contrast_offset = 0;
+    unshifted.score.contrast_offset = 0;
     run.descriptor_weights = localizer.weights();
     run.similarity = localize::fused_score_matrix(seen, unshifted, run.descriptor_weights);
   }

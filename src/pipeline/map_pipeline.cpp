@@ -40,7 +40,7 @@ void say(const MapObserver& observer, const std::string& text) {
 // The timing and the one progress line of the map stage, the same for every path.
 void report_map(MapRun& run, const MapObserver& observer) {
   const auto& d = run.result.decisions;
-  if (run.map_config.place_units) {
+  if (run.map_config.unit == align::Unit::places) {
     say(observer, fmt::format("      {:.2f} frames per place{}: contrast window {} frames, min separation {} frames",
                               d.frames_per_place, d.frames_per_place_estimated ? " (estimated)" : "", d.contrast_window,
                               d.min_separation));
@@ -50,8 +50,8 @@ void report_map(MapRun& run, const MapObserver& observer) {
     say(observer,
         fmt::format("      significance: lambda {:.3g}, K {:.3g} (from {} chance alignments); E <= {} needs a "
                     "score of {:.2f}{}, cap {:.2f}, contrast offset {:.2f}; {} removed",
-                    d.statistics.lambda, d.statistics.k, d.statistics.fitted, run.map_config.max_e_value.value_or(0),
-                    d.score_threshold,
+                    d.statistics.lambda, d.statistics.k, d.statistics.fitted,
+                    run.map_config.significance.max_e_value.value_or(0), d.score_threshold,
                     d.odometry_chance_agreement < 1
                         ? fmt::format(" where the odometry agrees (as {:.3g} of chance alignments do)",
                                       d.odometry_chance_agreement)
@@ -84,7 +84,8 @@ void record_sessions(std::span<const SequenceInput> inputs, const std::vector<st
 // one's first.
 mapping::MapConfig map_config_of(const MapSettings& settings, const MapRun& run) {
   mapping::MapConfig config = settings.map;
-  for (std::size_t k = 1; k < run.sessions.size(); ++k) config.topology.session_starts.push_back(run.sessions[k].begin);
+  for (std::size_t k = 1; k < run.sessions.size(); ++k)
+    config.graph.topology.session_starts.push_back(run.sessions[k].begin);
   return config;
 }
 
@@ -205,7 +206,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
       throw InputError(inputs.front().path.string(), e.what());  // e.g. an all-zero descriptor has no direction
     }
   };
-  if (config.place_units && !config.frames_per_place) {
+  if ((config.unit == align::Unit::places) && !config.frames_per_place) {
     place = mapping::place_scale(odometry, [&] {
       make_streamed(0);
       const auto& raw = *streamed;
@@ -215,7 +216,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
     config.frames_per_place = place->frames_per_place;
   }
   const mapping::MapConfig framed = mapping::settings_in_frames(config, config.frames_per_place.value_or(1.0));
-  make_streamed(framed.contrast_window);
+  make_streamed(framed.score.contrast_window);
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
   // --sparse: the contrast-enhanced score at each frame's nearest neighbours (FAISS), the background elsewhere.
   std::optional<scale::SparseScores> candidates;
@@ -223,7 +224,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
     scale::CandidateConfig cc;
     cc.neighbours = request.sparse.neighbours.value_or(SparseOptions::kDefaultNeighbours);
     cc.diagonal_reach = request.sparse.diagonal_reach.value_or(0);
-    cc.exclude = framed.min_separation;
+    cc.exclude = framed.search.min_separation;
     scale::CandidateStats stats;
     candidates = scale::sparse_map_scores(*streamed, request.sparse.background, cc, &stats);
     run.sparse_pairs = stats.pairs;
@@ -247,8 +248,8 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
           entries.push_back({static_cast<std::uint32_t>(i), cols[k], values[k] - offset});
       }
       const scale::SparseScores shifted(n, n, candidates->background(), std::move(entries));
-      return config.reverse ? scale::sparse_local_alignments_both(shifted, engine, settings.map.threads)
-                            : scale::sparse_local_alignments(shifted, engine);
+      return config.search.reverse ? scale::sparse_local_alignments_both(shifted, engine, settings.map.threads)
+                                   : scale::sparse_local_alignments(shifted, engine);
     };
   }
   clock.begin(candidates ? " (sparse engine on the candidates)" : " (fast engine)");
@@ -343,7 +344,7 @@ void trajectory_and_accuracy(const MapSettings& settings, const std::function<Ma
       std::vector<std::pair<std::string, const SimilarityMatrix*>> sources;
       for (std::size_t k = 0; k < run.matrices.size(); ++k)
         sources.emplace_back(run.descriptor_names[k], &run.matrices[k]);
-      if (run.matrices.size() > 1 || settings.map.contrast_window > 0) {
+      if (run.matrices.size() > 1 || settings.map.score.contrast_window > 0) {
         sources.emplace_back("seqtopo's fused scores", &run.result.scores);
       }
       clock.begin(fmt::format(" on {} matri{}", sources.size(), sources.size() == 1 ? "x" : "ces"));

@@ -47,27 +47,32 @@ MapEngine engine_with_flags(std::optional<MapEngine> engine, bool streaming, boo
   return flag;
 }
 
+void apply_section_overrides(align::ScoreSettings& score, align::SearchSettings& search,
+                             align::SignificanceSettings& significance, const MapOverrides& o) {
+  if (o.contrast_window) score.contrast_window = *o.contrast_window;
+  if (o.contrast_offset) score.contrast_offset = *o.contrast_offset;
+  if (o.gap) search.gap = *o.gap;
+  if (o.no_cap) search.cap.reset();
+  if (o.cap) search.cap = *o.cap;
+  if (o.min_separation) search.min_separation = *o.min_separation;
+  if (o.reverse) search.reverse = *o.reverse;
+  if (o.no_e_value) significance.max_e_value.reset();
+  if (o.e_value) significance.max_e_value = *o.e_value;
+  if (o.threshold) significance.threshold = *o.threshold;
+}
+
 MapSettings apply_overrides(MapSettings s, const MapOverrides& o) {
   apply_descriptor_overrides(o.described, s.descriptors, s.detect_panoramas, s.similarity);
   if (o.described.threads) s.map.threads = *o.described.threads;
-  if (o.gap) s.map.gap = *o.gap;
-  if (o.threshold) s.map.threshold = *o.threshold;
+  apply_section_overrides(s.map.score, s.map.search, s.map.significance, o);
   if (o.no_cap || o.cap) s.map.cap_from_statistics = false;  // an explicit cap is the cap
-  if (o.no_cap) s.map.cap.reset();
-  if (o.cap) s.map.cap = *o.cap;
   if (o.cap_factor) s.map.cap_factor = static_cast<float>(*o.cap_factor);
-  if (o.no_e_value) s.map.max_e_value.reset();
-  if (o.e_value) s.map.max_e_value = *o.e_value;
   if (o.frames_per_place) s.map.frames_per_place = *o.frames_per_place;
   if (o.alignment_set) s.map.alignment_set = *o.alignment_set;
-  if (o.no_odometry_gate) s.map.odometry_gate.reset();
-  if (o.odometry_gate) s.map.odometry_gate = *o.odometry_gate;
-  if (o.min_separation) s.map.min_separation = *o.min_separation;
-  if (o.contrast_window) s.map.contrast_window = *o.contrast_window;
-  if (o.contrast_offset) s.map.contrast_offset = *o.contrast_offset;
-  if (o.reverse) s.map.reverse = *o.reverse;
-  if (o.graph_cleanup) s.map.clean_graph = *o.graph_cleanup;
-  if (o.odometry_evidence) s.map.odometry_evidence = *o.odometry_evidence;
+  if (o.no_odometry_gate) s.map.odometry.gate.reset();
+  if (o.odometry_gate) s.map.odometry.gate = *o.odometry_gate;
+  if (o.graph_cleanup) s.map.graph.clean = *o.graph_cleanup;
+  if (o.odometry_evidence) s.map.odometry.evidence = *o.odometry_evidence;
   return s;
 }
 
@@ -87,7 +92,7 @@ std::optional<InputError> streaming_obstacle(const MapRequest& request, InputKin
   if (s.map.alignment_set == align::AlignmentSet::locally_optimal) {
     return InputError("--alignment-set", "locally-optimal keeps the N x N scores; streaming never holds them");
   }
-  if (s.map.contrast_window == 0) {
+  if (s.map.score.contrast_window == 0) {
     return InputError("--contrast-window",
                       "0 aligns the raw S = 1 - kappa D, whose kappa needs the whole distance matrix; streaming "
                       "aligns contrast-enhanced scores (window >= 1)");

@@ -294,9 +294,9 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   const SequenceInput& input = request.sessions.front().input;
   MapMemoryInput in;
   in.images = images;
-  in.contrast_window = s.map.contrast_window;
+  in.contrast_window = s.map.score.contrast_window;
   in.fast_engine = s.map.engine == mapping::MapConfig::Engine::fast;
-  in.reverse = s.map.reverse;
+  in.reverse = s.map.search.reverse;
   const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
   in.threads = s.map.threads == 0 ? cores : s.map.threads;
   if (!in.fast_engine && s.map.threads == 0) in.threads = 1;  // the exact engine's passes: concurrent only if > 1
@@ -305,7 +305,7 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   in.neighbours = request.sparse.neighbours.value_or(SparseOptions::kDefaultNeighbours);
   const bool odometry = std::any_of(request.sessions.begin(), request.sessions.end(),
                                     [](const SessionSource& session) { return !session.odometry.empty(); });
-  in.place_from_similarity = s.map.place_units && !s.map.frames_per_place && !odometry;
+  in.place_from_similarity = (s.map.unit == align::Unit::places) && !s.map.frames_per_place && !odometry;
   // The run decodes images or at least encodes its figures: the codecs' libraries (~80 MB resident) are part
   // of the process it will be.
   image::codecs::load();

@@ -90,16 +90,11 @@ std::vector<std::vector<float>> OnlineImageRows::add(const RgbImage& image) {
 }
 
 void apply_overrides(mapping::OnlineMapConfig& c, const MapOverrides& o) {
-  if (o.gap) c.gap = *o.gap;
-  if (o.threshold) c.threshold = *o.threshold;
-  if (o.e_value) c.max_e_value = *o.e_value;
-  if (o.no_e_value) c.max_e_value.reset();
-  if (o.cap) c.cap = *o.cap;
-  if (o.no_cap) c.cap.reset();
-  if (o.min_separation) c.min_separation = *o.min_separation;
-  if (o.contrast_window) c.contrast_window = *o.contrast_window;
-  if (o.contrast_offset) c.contrast_offset = *o.contrast_offset;
-  if (o.reverse) c.reverse = *o.reverse;
+  apply_section_overrides(c.score, c.search, c.significance, o);
+  if (o.frames_per_place) {
+    c.unit = align::Unit::places;
+    c.frames_per_place = *o.frames_per_place;
+  }
 }
 
 OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFrameCallback& on_frame) {
@@ -220,7 +215,7 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
     // Image paths from a stream are the frames as given (--every thins files, folders and videos).
     const auto same_place = same_place_truth(*truth, request.truth.radius, run.frames, from_stream ? 1 : input.every);
     const auto has_partner = evaluation::images_with_earlier_partner(
-        run.frames, same_place.same_place, same_place.earlier_partners, config.min_separation);
+        run.frames, same_place.same_place, same_place.earlier_partners, config.search.min_separation);
     run.metrics =
         evaluation::evaluate_loop_closures(online_scored_pairs(run.loop_closures), has_partner, same_place.same_place);
   }

@@ -19,21 +19,21 @@ MapSettings map_preset(std::string_view name) {
   s.detect_panoramas = false;  // the paper compares its panoramas by joint histograms alone
   s.similarity.distance = Distance::chi2;
   s.paper_trajectory = true;
-  s.map.contrast_window = 0;                                             // the paper aligns S = 1 - kappa D as it is
-  s.map.pruning.rank = mapping::PruningConfig::Rank::length_then_score;  // "the longest matching subsequence"
+  s.map.score.contrast_window = 0;  // the paper aligns S = 1 - kappa D as it is
+  s.map.labels.pruning.rank = mapping::PruningConfig::Rank::length_then_score;  // "the longest matching subsequence"
   // Raw S lives on another scale than enhanced scores; these were tuned on the corridor with kappa auto
   // (bench/tune_map.cpp): F1 0.872, AUC 0.773.
-  s.map.gap = 0.3F;
-  s.map.cap = 8.0F;
-  s.map.threshold = 3.0F;
+  s.map.search.gap = 0.3F;
+  s.map.search.cap = 8.0F;
+  s.map.significance.threshold = 3.0F;
   // The paper: a fixed score threshold, windows and separations in frames, the offset as given.
-  s.map.max_e_value.reset();
-  s.map.place_units = false;
-  s.map.adapt_offset = false;
+  s.map.significance.max_e_value.reset();
+  s.map.unit = align::Unit::frames;
+  s.map.phase.adapt_offset = false;
   s.map.min_revisit_places = 0;
-  s.map.odometry_gate.reset();  // odometry only draws the picture (paper IV-D)
-  s.map.labelling = mapping::MapConfig::Labelling::pruned_transitive;
-  s.map.clean_graph = false;  // the paper reads the map from the labels as they are
+  s.map.odometry.gate.reset();  // odometry only draws the picture (paper IV-D)
+  s.map.labels.method = mapping::LabelSettings::Method::pruned_transitive;
+  s.map.graph.clean = false;  // the paper reads the map from the labels as they are
   return s;
 }
 

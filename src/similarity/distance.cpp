@@ -64,6 +64,13 @@ double cosine_distance(std::span<const float> a, std::span<const float> b) {
                                  detail::lane_sum_squares(b.data(), b.size()));
 }
 
+double squared_norm(std::span<const float> a) { return detail::lane_sum_squares(a.data(), a.size()); }
+
+double cosine_distance(std::span<const float> a, std::span<const float> b, double norm2_a, double norm2_b) {
+  check_lengths(a, b);
+  return detail::cosine_from_dot(detail::dense_dot(a.data(), b.data(), a.size()), norm2_a, norm2_b);
+}
+
 double sad_distance(std::span<const float> a, std::span<const float> b) {
   check_lengths(a, b);
   return a.empty() ? 0.0 : detail::dense_l1(a.data(), b.data(), a.size()) / static_cast<double>(a.size());

@@ -36,11 +36,11 @@ double recall_at_1(const std::vector<FrameMatch>& frames) {
 
 TEST(Fusion, EqualWeightsAverageTheEnhancedRowsThenSubtractTheOffset) {
   LocalizeConfig c;
-  c.contrast_window = 7;
-  c.contrast_offset = 0.6F;
+  c.score.contrast_window = 7;
+  c.score.contrast_offset = 0.6F;
   const std::vector<SimilarityMatrix> ss{planted(2.0, 1), planted(0.5, 2)};
   LocalizeConfig unshifted = c;
-  unshifted.contrast_offset = 0;
+  unshifted.score.contrast_offset = 0;
   const SimilarityMatrix a = score_matrix(ss[0], unshifted), b = score_matrix(ss[1], unshifted);
   const SimilarityMatrix fused = fused_score_matrix(ss, c);
   for (std::size_t k = 0; k < fused.values.size(); ++k) {

@@ -30,9 +30,9 @@ std::size_t distance(std::size_t a, std::size_t b) { return a > b ? a - b : b - 
 LocalizeConfig plain_config() {
   LocalizeConfig c;
   c.enhance = false;
-  c.contrast_offset = 0.6F;
-  c.gap = 0.5F;
-  c.threshold = 3.0F;
+  c.score.contrast_offset = 0.6F;
+  c.search.gap = 0.5F;
+  c.significance.threshold = 3.0F;
   return c;
 }
 
@@ -66,7 +66,7 @@ TEST(Localize, RecoversSlowerQueryWithRepeatedMapFrames) {
   for (std::size_t q = 0; q < nq; ++q) s(q, truth(q)) = 1.0F;
   // Every repeated map frame costs a query gap, so the gap penalty must stay below what a matched frame gains.
   auto config = plain_config();
-  config.gap = 0.2F;
+  config.search.gap = 0.2F;
   const auto r = localize_sequence(s, config);
   for (std::size_t q = 0; q < nq; ++q) {
     if ((q < 2 || q + 2 >= nq) && !r.frames[q].covered) continue;
@@ -87,7 +87,7 @@ TEST(Localize, RecoversQueryDrivenTheOtherWay) {
     EXPECT_EQ(r.frames[q].direction, align::Direction::reverse) << q;
   }
   auto no_reverse = plain_config();
-  no_reverse.reverse = false;
+  no_reverse.search.reverse = false;
   const auto f = localize_sequence(s, no_reverse);
   std::size_t right = 0;
   for (std::size_t q = 0; q < nq; ++q) right += f.frames[q].covered && f.frames[q].map == 90 - q ? 1 : 0;
@@ -140,7 +140,8 @@ TEST(Localize, BridgesAShortBadStretch) {
     if (q < 35 || q >= 40) s(q, q + 10) = 1.0F;
   }
   auto config = plain_config();
-  config.contrast_offset = 0.45F;  // noise costs less, so a few frames without evidence do not break the alignment
+  config.score.contrast_offset =
+      0.45F;  // noise costs less, so a few frames without evidence do not break the alignment
   const auto r = localize_sequence(s, config);
   for (std::size_t q = 0; q < nq; ++q) {
     ASSERT_TRUE(r.frames[q].covered) << q << " confidence " << r.frames[q].confidence << " E " << r.frames[q].e_value;
@@ -159,9 +160,9 @@ TEST(Localize, EveryFrameTakesItsMostConfidentAlignmentsPosteriorGuessWithItsWin
     for (auto& v : s.values) v = u(rng);
     LocalizeConfig c;
     c.enhance = false;
-    c.contrast_offset = -0.2F;
-    c.gap = 0.7F;
-    c.threshold = 1.0F;
+    c.score.contrast_offset = -0.2F;
+    c.search.gap = 0.7F;
+    c.significance.threshold = 1.0F;
     c.score_window = rng() % 4;
     const auto r = localize_sequence(s, c);
     const auto scores = score_matrix(s, c);
@@ -170,14 +171,14 @@ TEST(Localize, EveryFrameTakesItsMostConfidentAlignmentsPosteriorGuessWithItsWin
     if (!(lambda > 0)) lambda = 1.0;
     align::PosteriorConfig pc;
     pc.lambda = lambda;
-    pc.gap_a = pc.gap_b = c.gap;
+    pc.gap_a = pc.gap_b = c.search.gap;
     pc.band = c.posterior_band;
     pc.tolerance = c.tolerance;
     std::vector<double> best(s.rows, -1.0);
     for (std::size_t k = 0; k < r.alignments.size(); ++k) {
       const double e = r.e_values[k];
-      const double real =
-          std::isfinite(e) ? 1.0 / (1.0 + e / c.even_odds_e_value) : (r.alignments[k].score >= c.threshold ? 1.0 : 0.0);
+      const double real = std::isfinite(e) ? 1.0 / (1.0 + e / *c.significance.max_e_value)
+                                           : (r.alignments[k].score >= c.significance.threshold ? 1.0 : 0.0);
       const auto source = align::ScoreSource::dense(scores.values, scores.rows, scores.cols);
       align::PosteriorConfig wide = pc;
       wide.tolerance = pc.band;
@@ -213,7 +214,7 @@ TEST(Localize, EveryFrameTakesItsMostConfidentAlignmentsPosteriorGuessWithItsWin
       for (const auto& [i, j] : a.pairs) {
         if (distance(i, q) > c.score_window) continue;
         local += scores(i, j);
-        if (started) local -= c.gap * static_cast<double>((i - pi - 1) + distance(j, pj) - 1);
+        if (started) local -= c.search.gap * static_cast<double>((i - pi - 1) + distance(j, pj) - 1);
         started = true;
         pi = i;
         pj = j;
@@ -230,8 +231,8 @@ TEST(Localize, ScoreRowIsTheWindowedZScoreMinusOffset) {
   for (auto& v : s.values) v = u(rng);
   for (std::size_t window : {0U, 1U, 5U, 100U}) {
     LocalizeConfig c;
-    c.contrast_window = window;
-    c.contrast_offset = 0.25F;
+    c.score.contrast_window = window;
+    c.score.contrast_offset = 0.25F;
     const auto out = score_matrix(s, c);
     for (std::size_t i = 0; i < s.rows; ++i) {
       for (std::size_t j = 0; j < s.cols; ++j) {
@@ -297,13 +298,13 @@ TEST(Localize, RejectsBadInput) {
   EXPECT_THROW(localize_sequence(nan), std::invalid_argument);
   EXPECT_THROW(single_frame_matches(nan), std::invalid_argument);
   LocalizeConfig c;
-  c.gap = -1.0F;
+  c.search.gap = -1.0F;
   EXPECT_THROW(localize_sequence(s, c), std::invalid_argument);
   c = {};
-  c.cap = 0.0F;
+  c.search.cap = 0.0F;
   EXPECT_THROW(localize_sequence(s, c), std::invalid_argument);
   c = {};
-  c.threshold = std::nanf("");
+  c.significance.threshold = std::nanf("");
   EXPECT_THROW(localize_sequence(s, c), std::invalid_argument);
   c = {};
   c.candidates = 0;

@@ -44,13 +44,13 @@ TEST(Online, EqualsNaiveTablesOnTheFramesSeenSoFar) {
     const auto s = random_matrix(5 + rng() % 25, 3 + rng() % 30, rng);
     LocalizeConfig c;
     c.enhance = round % 2 == 0;
-    c.contrast_offset = c.enhance ? 0.8F : -0.1F;
-    c.gap = 0.3F + 0.1F * static_cast<float>(rng() % 10);
-    if (round % 3 == 0) c.cap = 2.5F;
-    c.threshold = 1.0F;
+    c.score.contrast_offset = c.enhance ? 0.8F : -0.1F;
+    c.search.gap = 0.3F + 0.1F * static_cast<float>(rng() % 10);
+    if (round % 3 == 0) c.search.cap = 2.5F;
+    c.significance.threshold = 1.0F;
     const auto scores = score_matrix(s, c);
-    const auto fwd = naive_table(scores, s.rows, false, c.gap, c.cap);
-    const auto rev = naive_table(scores, s.rows, true, c.gap, c.cap);
+    const auto fwd = naive_table(scores, s.rows, false, c.search.gap, c.search.cap);
+    const auto rev = naive_table(scores, s.rows, true, c.search.gap, c.search.cap);
     OnlineLocalizer online(s.cols, c);
     for (std::size_t i = 0; i < s.rows; ++i) {
       const auto e = online.feed(s.row(i));
@@ -105,22 +105,23 @@ TEST(Online, BestConfidenceSoFarIsTheEnginesBestAlignmentScore) {
     const auto s = random_matrix(4 + rng() % 20, 4 + rng() % 20, rng);
     LocalizeConfig c;
     c.enhance = false;
-    c.contrast_offset = -0.15F;
-    c.gap = 0.6F;
-    c.reverse = round % 2 == 0;
-    if (round % 4 == 1) c.cap = 1.5F;
+    c.score.contrast_offset = -0.15F;
+    c.search.gap = 0.6F;
+    c.search.reverse = round % 2 == 0;
+    if (round % 4 == 1) c.search.cap = 1.5F;
     const auto scores = score_matrix(s, c);
     OnlineLocalizer online(s.cols, c);
     float best_so_far = 0;
     for (std::size_t i = 0; i < s.rows; ++i) {
       best_so_far = std::max(best_so_far, online.feed(s.row(i)).score);
       align::AlignConfig ac;
-      ac.gap_a = ac.gap_b = c.gap;
-      ac.cap = c.cap;
+      ac.gap_a = ac.gap_b = c.search.gap;
+      ac.cap = c.search.cap;
       ac.max_alignments = 1;
       const auto source =
           align::ScoreSource::dense(std::span<const float>(scores.values.data(), (i + 1) * s.cols), i + 1, s.cols);
-      const auto engine = c.reverse ? align::local_alignments_both(source, ac, 1) : align::local_alignments(source, ac);
+      const auto engine =
+          c.search.reverse ? align::local_alignments_both(source, ac, 1) : align::local_alignments(source, ac);
       const float expected = engine.empty() ? 0.0F : engine.front().score;
       EXPECT_FLOAT_EQ(best_so_far, expected) << "round " << round << " frame " << i;
     }
@@ -136,10 +137,10 @@ TEST(Online, FollowsPlantedPathsInBothDirections) {
   for (std::size_t q = 40; q < 80; ++q) s(q, 159 - q) = 1.0F;  // then backwards along map 119..80
   LocalizeConfig c;
   c.enhance = false;
-  c.contrast_offset = 0.6F;
-  c.gap = 0.5F;
-  c.threshold = 2.0F;
-  c.cap = 5.0F;  // the cap lets the forward evidence fade quickly after the turn
+  c.score.contrast_offset = 0.6F;
+  c.search.gap = 0.5F;
+  c.significance.threshold = 2.0F;
+  c.search.cap = 5.0F;  // the cap lets the forward evidence fade quickly after the turn
   OnlineLocalizer online(s.cols, c);
   for (std::size_t q = 0; q < s.rows; ++q) {
     const auto e = online.feed(s.row(q));
@@ -153,7 +154,7 @@ TEST(Online, FollowsPlantedPathsInBothDirections) {
 TEST(Online, RejectsBadInput) {
   EXPECT_THROW(OnlineLocalizer(0), std::invalid_argument);
   LocalizeConfig bad;
-  bad.gap = std::nanf("");
+  bad.search.gap = std::nanf("");
   EXPECT_THROW(OnlineLocalizer(3, bad), std::invalid_argument);
   OnlineLocalizer online(3);
   const std::vector<float> short_row{1.0F, 2.0F};

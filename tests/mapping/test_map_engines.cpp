@@ -26,11 +26,11 @@ TEST(MapEngines, FastEqualsExactOnQuantizedScores) {
     // With the significance statistics (their threshold and cap on a 1/64 grid) and with a fixed threshold.
     for (bool statistics : {true, false}) {
       MapConfig config;
-      config.contrast_window = 0;  // align S itself, so the quantized values reach the engines unchanged
-      config.place_units = false;
+      config.score.contrast_window = 0;  // align S itself, so the quantized values reach the engines unchanged
+      config.unit = align::Unit::frames;
       if (!statistics) {
-        config.max_e_value.reset();
-        config.threshold = 6;
+        config.significance.max_e_value.reset();
+        config.significance.threshold = 6;
       }
       const MapResult exact = build_map(s, config);
       config.engine = MapConfig::Engine::fast;

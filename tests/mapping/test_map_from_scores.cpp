@@ -63,7 +63,7 @@ TEST(MapFromScores, EqualsBuildMapOnTheSameScores) {
         MapConfig config;
         config.engine = engine;
         // Keeps the default offset on these white-noise scores: alignment_scores below are the scores at it.
-        config.max_global_rate.reset();
+        config.phase.max_global_rate.reset();
         const auto odometry = with_odometry ? straight_odometry(n) : std::vector<Pose2>{};
         const MapResult dense = build_map(s, config, odometry);
         const SimilarityMatrix scores = alignment_scores({s}, config);
@@ -141,15 +141,15 @@ TEST(MapFromScores, RefusesSettingsOutOfRangeNamingThem) {
   c.frames_per_place = -3.0;
   EXPECT_EQ(refused(c), "MapConfig.frames_per_place must be >= 1");
   c = {};
-  c.max_e_value = 0.0;
-  EXPECT_EQ(refused(c), "MapConfig.max_e_value must be > 0");
+  c.significance.max_e_value = 0.0;
+  EXPECT_EQ(refused(c), "MapConfig.significance.max_e_value must be > 0");
   c = {};
-  c.threshold = -1.0F;
-  c.max_e_value.reset();
-  EXPECT_EQ(refused(c), "MapConfig.threshold must be >= 0");
+  c.significance.threshold = -1.0F;
+  c.significance.max_e_value.reset();
+  EXPECT_EQ(refused(c), "MapConfig.significance.threshold must be >= 0");
   c = {};
-  c.cap = 0.0F;
-  EXPECT_EQ(refused(c), "MapConfig.cap must be > 0");
+  c.search.cap = 0.0F;
+  EXPECT_EQ(refused(c), "MapConfig.search.cap must be > 0");
   EXPECT_EQ(refused({}), "");
 }
 

@@ -233,9 +233,9 @@ TEST(OdometryGate, BuildMapDropsContradictedAlignmentsBeforePruning) {
   for (std::size_t d = 5; d < 30; ++d) s(40 + d, 40 - d) = s(40 - d, 40 + d) = 1.0F;
   for (std::size_t i = 20; i < 40; ++i) s(i, i - 20) = s(i - 20, i) = 1.0F;
   MapConfig config;
-  config.contrast_window = 0;
-  config.cap.reset();
-  config.threshold = 5;
+  config.score.contrast_window = 0;
+  config.search.cap.reset();
+  config.significance.threshold = 5;
   for (auto& v : s.values) v -= 0.3F;
   const MapResult without = build_map(s, config);
   const MapResult with = build_map(s, config, odometry);
@@ -247,7 +247,7 @@ TEST(OdometryGate, BuildMapDropsContradictedAlignmentsBeforePruning) {
   // Without the gate the copy merges images 20 apart; with it, no image shares a place with one 20 away.
   EXPECT_EQ(without.map.labels[30], without.map.labels[10]);
   EXPECT_NE(with.map.labels[30], with.map.labels[10]);
-  config.odometry_gate.reset();
+  config.odometry.gate.reset();
   EXPECT_TRUE(build_map(s, config, odometry).rejected.empty());
   EXPECT_THROW(build_map(s, config, std::span(odometry).first(10)), std::invalid_argument);
 }
@@ -309,7 +309,7 @@ TEST(OdometryGate, AgreementIsEvidenceForAWeakRevisit) {
     };
     MapConfig config;
     const MapResult with = build_map(s, config, odometry);
-    config.odometry_evidence = false;
+    config.odometry.evidence = false;
     const MapResult without = build_map(s, config, odometry);
     const double q = with.decisions.odometry_chance_agreement;
     ASSERT_GT(q, 0.0) << strength;

@@ -64,13 +64,13 @@ TEST(OnlineMapper, RowsEqualTheTextbookFillAndTheEnginesBest) {
     SimilarityMatrix s(n, n);
     for (auto& v : s.values) v = u(rng);
     OnlineMapConfig c;
-    c.min_separation = sep;
-    c.gap = 0.2F + 0.1F * static_cast<float>(rng() % 8);
-    c.cap = round % 3 == 0 ? std::optional<float>{} : std::optional<float>{1.5F + static_cast<float>(rng() % 4)};
-    c.threshold = c.cap ? std::min(*c.cap, 1.0F) : 1.0F;
-    c.max_e_value.reset();
-    const auto fwd = naive_self_table(s, sep, false, c.gap, c.cap);
-    const auto rev = naive_self_table(s, sep, true, c.gap, c.cap);
+    c.search.min_separation = sep;
+    c.search.gap = 0.2F + 0.1F * static_cast<float>(rng() % 8);
+    c.search.cap = round % 3 == 0 ? std::optional<float>{} : std::optional<float>{1.5F + static_cast<float>(rng() % 4)};
+    c.significance.threshold = c.search.cap ? std::min(*c.search.cap, 1.0F) : 1.0F;
+    c.significance.max_e_value.reset();
+    const auto fwd = naive_self_table(s, sep, false, c.search.gap, c.search.cap);
+    const auto rev = naive_self_table(s, sep, true, c.search.gap, c.search.cap);
     OnlineMapper m(c);
     float online_best_fwd = 0, online_best_rev = 0;
     for (std::size_t t = 0; t < n; ++t) {
@@ -87,8 +87,8 @@ TEST(OnlineMapper, RowsEqualTheTextbookFillAndTheEnginesBest) {
     }
     // The engine's first alignment of each pass scores the maximum of its first fill.
     align::AlignConfig ac;
-    ac.gap_a = ac.gap_b = c.gap;
-    ac.cap = c.cap;
+    ac.gap_a = ac.gap_b = c.search.gap;
+    ac.cap = c.search.cap;
     ac.self = true;
     ac.min_separation = sep;
     ac.max_alignments = 1;
@@ -130,11 +130,11 @@ Planted planted(bool link_first_two) {
 
 OnlineMapConfig planted_config() {
   OnlineMapConfig c;
-  c.min_separation = 10;
-  c.gap = 1.5F;
-  c.cap = 20.0F;        // a cap too high lets the engine bridge one revisit to the next
-  c.threshold = 12.0F;  // fixed, as the engine's (no statistics)
-  c.max_e_value.reset();
+  c.search.min_separation = 10;
+  c.search.gap = 1.5F;
+  c.search.cap = 20.0F;              // a cap too high lets the engine bridge one revisit to the next
+  c.significance.threshold = 12.0F;  // fixed, as the engine's (no statistics)
+  c.significance.max_e_value.reset();
   c.x_drop = 12.0F;
   return c;
 }
@@ -148,7 +148,7 @@ Fed feed(const Planted& p, const OnlineMapConfig& c) {
   OnlineMapper m(c);
   Fed out;
   for (std::size_t t = 0; t < p.s.rows; ++t) {
-    auto events = m.add_scores(score_row(p.s, t, c.min_separation));
+    auto events = m.add_scores(score_row(p.s, t, c.search.min_separation));
     for (const auto& e : events) {
       EXPECT_EQ(e.frame, t) << "events are returned with the frame that emitted them";
       if (e.kind == OnlineEventKind::loop_closure) {
@@ -169,11 +169,11 @@ TEST(OnlineMapper, PlantedRevisitsGiveTheOfflineEnginesLoopClosures) {
   const Fed online = feed(p, c);
   // The offline engine on the same scores, the same settings.
   align::AlignConfig ac;
-  ac.gap_a = ac.gap_b = c.gap;
-  ac.cap = c.cap;
-  ac.threshold = c.threshold;
+  ac.gap_a = ac.gap_b = c.search.gap;
+  ac.cap = c.search.cap;
+  ac.threshold = c.significance.threshold;
   ac.self = true;
-  ac.min_separation = c.min_separation;
+  ac.min_separation = c.search.min_separation;
   const auto offline =
       align::local_alignments_both(align::ScoreSource::dense(std::span<const float>(p.s.values), 180, 180), ac, 1);
   ASSERT_GE(offline.size(), 4U);
@@ -226,13 +226,13 @@ TEST(OnlineMapper, ATrackCappedInABandFollowsTheDiagonalTheFrameScoresBest) {
     for (const std::size_t d : {39U, 40U, 41U}) s(i, i - d) = s(i - d, i) = d == 40 ? 1.5F : 1.0F;
   }
   OnlineMapConfig c = planted_config();
-  c.cap = 12.0F;
-  c.threshold = 8.0F;
+  c.search.cap = 12.0F;
+  c.significance.threshold = 8.0F;
   c.x_drop = 8.0F;
   OnlineMapper m(c);
   std::vector<OnlineEvent> closures;
   for (std::size_t t = 0; t < n; ++t) {
-    for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+    for (const auto& e : m.add_scores(score_row(s, t, c.search.min_separation))) {
       if (e.kind == OnlineEventKind::loop_closure && e.direction == Direction::forward) closures.push_back(e);
     }
   }
@@ -333,10 +333,10 @@ TEST(OnlineMapper, IslandsAreTheTextbookTablesIslands) {
     const std::size_t n = 40 + 7 * seed, sep = 1 + seed % 4;
     const SimilarityMatrix s = noise_scores(n, seed, 0.6F);
     OnlineMapConfig c;
-    c.min_separation = sep;
-    c.cap = seed % 2 ? std::optional<float>{3.0F} : std::nullopt;
-    c.island_sample = 100000;  // keep every island
-    c.threshold = 2.0F;        // until the fit: revisits, whose shadows stay out of the sample
+    c.search.min_separation = sep;
+    c.search.cap = seed % 2 ? std::optional<float>{3.0F} : std::nullopt;
+    c.island_sample = 100000;         // keep every island
+    c.significance.threshold = 2.0F;  // until the fit: revisits, whose shadows stay out of the sample
     OnlineMapper m(c);
     std::vector<OnlineEvent> closures;
     for (std::size_t t = 0; t < n; ++t) {
@@ -344,7 +344,7 @@ TEST(OnlineMapper, IslandsAreTheTextbookTablesIslands) {
         if (e.kind == OnlineEventKind::loop_closure) closures.push_back(e);
       }
     }
-    const std::vector<double> expected = naive_dead_islands(s, sep, c.gap, c.cap, closures);
+    const std::vector<double> expected = naive_dead_islands(s, sep, c.search.gap, c.search.cap, closures);
     ASSERT_GT(expected.size(), 50U);
     EXPECT_EQ(m.island_scores(), expected) << "seed " << seed << ", " << closures.size() << " loop closures";
   }
@@ -356,9 +356,9 @@ TEST(OnlineMapper, ItsEValuesCountItsOwnChanceIslands) {
   constexpr std::size_t n = 300, sep = 5;
   constexpr int runs = 40;
   OnlineMapConfig c;
-  c.min_separation = sep;
-  c.gap = 1.0F;
-  c.cap.reset();
+  c.search.min_separation = sep;
+  c.search.gap = 1.0F;
+  c.search.cap.reset();
   const std::vector<double> xs = {0.5, 2.0, 8.0};
   std::vector<double> counts(xs.size(), 0.0);
   for (int r = 0; r < runs; ++r) {
@@ -369,7 +369,7 @@ TEST(OnlineMapper, ItsEValuesCountItsOwnChanceIslands) {
     ASSERT_TRUE(st.valid());
     ASSERT_EQ(st.area, significance::search_area(n, n, true, sep, true));
     // The threshold of the last frame is the score of the E-value asked for.
-    ASSERT_FLOAT_EQ(m.threshold(), static_cast<float>(st.score_at(*c.max_e_value)));
+    ASSERT_FLOAT_EQ(m.threshold(), static_cast<float>(st.score_at(*c.significance.max_e_value)));
     const std::vector<double> islands = m.island_scores();
     for (std::size_t k = 0; k < xs.size(); ++k) {
       const double score = st.score_at(xs[k]);
@@ -392,11 +392,11 @@ TEST(OnlineMapper, NoiseGivesNoRevisitAtTheDefaultEValue) {
     OnlineMapConfig c;
     OnlineMapper m(c);
     for (std::size_t t = 0; t < s.rows; ++t) {
-      for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+      for (const auto& e : m.add_scores(score_row(s, t, c.search.min_separation))) {
         if (e.kind == OnlineEventKind::revisit_begin) ++revisits;
       }
     }
-    EXPECT_LT(m.threshold(), c.threshold) << "the statistics lower the fallback threshold of 20 on noise";
+    EXPECT_LT(m.threshold(), c.significance.threshold) << "the statistics lower the fallback threshold of 20 on noise";
   }
   EXPECT_LE(revisits, 4);
   // With the fixed fallback threshold instead, the same runs at a threshold as low as the fit's report many.
@@ -404,11 +404,11 @@ TEST(OnlineMapper, NoiseGivesNoRevisitAtTheDefaultEValue) {
   for (std::uint32_t seed = 1; seed <= 20; ++seed) {
     const SimilarityMatrix s = noise_scores(400, seed, 0.7F);
     OnlineMapConfig c;
-    c.max_e_value.reset();
-    c.threshold = 3.0F;
+    c.significance.max_e_value.reset();
+    c.significance.threshold = 3.0F;
     OnlineMapper m(c);
     for (std::size_t t = 0; t < s.rows; ++t) {
-      for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+      for (const auto& e : m.add_scores(score_row(s, t, c.search.min_separation))) {
         if (e.kind == OnlineEventKind::revisit_begin) ++fixed;
       }
     }
@@ -424,11 +424,11 @@ TEST(OnlineMapper, AtTheEndEveryRevisitIsJudgedUnderTheWholeRunsStatistics) {
   for (std::uint32_t seed = 1; seed <= 20; ++seed) {
     const SimilarityMatrix s = noise_scores(400, seed, 0.7F);
     OnlineMapConfig c;
-    c.max_e_value = 0.5;
+    c.significance.max_e_value = 0.5;
     OnlineMapper m(c);
     std::map<std::size_t, float> best;  // revisit -> its score at its end
     for (std::size_t t = 0; t < s.rows; ++t) {
-      for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+      for (const auto& e : m.add_scores(score_row(s, t, c.search.min_separation))) {
         if (e.kind == OnlineEventKind::revisit_end) best[e.revisit] = e.score;
       }
     }
@@ -474,7 +474,7 @@ TEST(OnlineMapper, CandidatesComeBeforeTheRevisitsTheyConfirmAndAreResolved) {
     OnlineMapper m(c);
     std::vector<OnlineEvent> events;
     for (std::size_t t = 0; t < s.rows; ++t) {
-      const auto e = m.add_scores(score_row(s, t, c.min_separation));
+      const auto e = m.add_scores(score_row(s, t, c.search.min_separation));
       events.insert(events.end(), e.begin(), e.end());
     }
     const auto last = m.finish();
@@ -485,7 +485,7 @@ TEST(OnlineMapper, CandidatesComeBeforeTheRevisitsTheyConfirmAndAreResolved) {
         EXPECT_GE(e.score, 0.0F);
         ASSERT_TRUE(e.e_value.has_value());
         EXPECT_LE(*e.e_value, *c.candidate_e_value * 1.0001);
-        EXPECT_GT(*e.e_value, *c.max_e_value);
+        EXPECT_GT(*e.e_value, *c.significance.max_e_value);
       }
       if (e.candidate && e.kind != OnlineEventKind::revisit_candidate) ++resolved;
     }
@@ -503,7 +503,7 @@ TEST(OnlineMapper, CandidatesComeBeforeTheRevisitsTheyConfirmAndAreResolved) {
   OnlineMapper m(c);
   std::optional<OnlineEvent> candidate, begin;
   for (std::size_t t = 0; t < s.rows; ++t) {
-    for (const auto& e : m.add_scores(score_row(s, t, c.min_separation))) {
+    for (const auto& e : m.add_scores(score_row(s, t, c.search.min_separation))) {
       const bool on_it = e.i >= 450 && e.i - e.j >= 348 && e.i - e.j <= 352;
       if (e.kind == OnlineEventKind::revisit_candidate && on_it && !candidate) candidate = e;
       if (e.kind == OnlineEventKind::revisit_begin && e.i - e.j >= 340 && e.i - e.j <= 360 && !begin) begin = e;
@@ -520,8 +520,8 @@ TEST(OnlineMapper, DescriptorRowsAreTheDistances) {
   std::mt19937 rng(3);
   std::normal_distribution<float> g;
   OnlineMapConfig c;
-  c.contrast_window = 0;  // the similarity as it is: -D
-  c.min_separation = 1;
+  c.score.contrast_window = 0;  // the similarity as it is: -D
+  c.search.min_separation = 1;
   for (auto metric : {similarity::Distance::cosine, similarity::Distance::sad}) {
     c.distance = metric;
     OnlineMapper m(c);
@@ -541,6 +541,45 @@ TEST(OnlineMapper, DescriptorRowsAreTheDistances) {
   }
 }
 
+TEST(OnlineMapper, WindowsInPlacesAreTheirFramesAtTheGivenScale) {
+  // The unit is a field: 5 places of 2 frames are the 10 frames of the frame config, the window likewise, so every
+  // row and event is the same; places without a scale are refused.
+  std::mt19937 rng(11);
+  std::normal_distribution<float> g;
+  OnlineMapConfig frames;
+  frames.score.contrast_window = 6;
+  frames.search.min_separation = 10;
+  OnlineMapConfig places = frames;
+  places.unit = align::Unit::places;
+  places.frames_per_place = 2.0;
+  places.score.contrast_window = 3;
+  places.search.min_separation = 5;
+  OnlineMapper a(frames), b(places);
+  EXPECT_EQ(b.config().search.min_separation, 10U);
+  EXPECT_EQ(b.config().score.contrast_window, 6U);
+  std::vector<std::vector<float>> route;
+  for (int t = 0; t < 60; ++t) {
+    std::vector<float> d(16);
+    for (auto& v : d) v = g(rng);
+    route.push_back(d);
+  }
+  for (int t = 0; t < 120; ++t) {
+    auto d = route[static_cast<std::size_t>(t % 60)];
+    for (auto& v : d) v += 0.3F * g(rng);
+    const auto ea = a.add_descriptor(d);
+    const auto eb = b.add_descriptor(d);
+    ASSERT_EQ(ea.size(), eb.size()) << t;
+    ASSERT_TRUE(
+        std::equal(a.forward_row().begin(), a.forward_row().end(), b.forward_row().begin(), b.forward_row().end()))
+        << t;
+  }
+  EXPECT_FALSE(a.loop_closures().empty());
+  EXPECT_EQ(a.loop_closures().size(), b.loop_closures().size());
+  OnlineMapConfig no_scale = places;
+  no_scale.frames_per_place.reset();
+  EXPECT_THROW(OnlineMapper{no_scale}, std::invalid_argument);
+}
+
 TEST(OnlineMapper, RefusesBadFrames) {
   OnlineMapper m;
   EXPECT_THROW(m.add_scores(std::vector<float>{1.0F}), std::invalid_argument);  // frame 0 has no scores
@@ -549,11 +588,11 @@ TEST(OnlineMapper, RefusesBadFrames) {
   EXPECT_THROW(m.add_descriptor(std::vector<float>{1, NAN, 3}), std::invalid_argument);
   EXPECT_THROW(m.add_similarity(std::vector<float>{0.5F}), std::invalid_argument);  // after descriptors
   OnlineMapConfig bad;
-  bad.threshold = 50;  // above the cap
+  bad.significance.threshold = 50;  // above the cap
   EXPECT_THROW(OnlineMapper{bad}, std::invalid_argument);
   for (const double e : {0.0, -1.0, static_cast<double>(NAN)}) {
     OnlineMapConfig no_e;
-    no_e.max_e_value = e;
+    no_e.significance.max_e_value = e;
     EXPECT_THROW(OnlineMapper{no_e}, std::invalid_argument) << e;
   }
   OnlineMapConfig tiny;
@@ -607,13 +646,13 @@ TEST(OnlineMapper, ScoresInTheLinearPhaseRaiseTheOffset) {
     EXPECT_EQ(adapted.changes[0].check, "scores");
     EXPECT_GT(adapted.changes[0].global_rate, -0.1);
     EXPECT_LT(adapted.changes[0].frame, 100U) << "2,048 scores are in by frame 73";
-    EXPECT_GT(adapted.offset, c.contrast_offset);
-    EXPECT_FLOAT_EQ(adapted.changes[0].to - adapted.changes[0].from, c.contrast_offset_step);
+    EXPECT_GT(adapted.offset, c.score.contrast_offset);
+    EXPECT_FLOAT_EQ(adapted.changes[0].to - adapted.changes[0].from, c.phase.contrast_offset_step);
     with += adapted.closures;
-    c.adapt_offset = false;
+    c.phase.adapt_offset = false;
     const NoiseRun fixed = map_noise(frames, c);
     EXPECT_TRUE(fixed.changes.empty());
-    EXPECT_FLOAT_EQ(fixed.offset, c.contrast_offset);
+    EXPECT_FLOAT_EQ(fixed.offset, c.score.contrast_offset);
     without += fixed.closures;
   }
   // A chance revisit at E = 0.01 may still come (one run of the six here, 11 loop closures).
@@ -628,7 +667,7 @@ TEST(OnlineMapper, ChanceIslandsInTheLinearPhaseRaiseTheOffset) {
   for (std::uint32_t seed = 1; seed <= 6; ++seed) {
     const auto frames = noise_descriptors(300, 0.0, seed);
     OnlineMapConfig c;
-    c.max_global_rate.reset();
+    c.phase.max_global_rate.reset();
     const NoiseRun adapted = map_noise(frames, c);
     ASSERT_FALSE(adapted.changes.empty()) << "seed " << seed;
     const auto& change = adapted.changes[0];
@@ -636,7 +675,7 @@ TEST(OnlineMapper, ChanceIslandsInTheLinearPhaseRaiseTheOffset) {
     EXPECT_GT(change.chance_length, change.bound);
     EXPECT_NEAR(change.frames_per_place, 1.0, 0.2) << "white noise: a place a frame";
     with += adapted.closures;
-    c.adapt_offset = false;
+    c.phase.adapt_offset = false;
     without += map_noise(frames, c).closures;
   }
   EXPECT_LE(10 * with, without);
@@ -646,11 +685,11 @@ TEST(OnlineMapper, ChanceIslandsInTheLinearPhaseRaiseTheOffset) {
 // leaves the offset alone.
 TEST(OnlineMapper, TheLogarithmicPhaseKeepsTheOffset) {
   OnlineMapConfig c;
-  c.contrast_offset = 1.0F;
+  c.score.contrast_offset = 1.0F;
   for (std::uint32_t seed = 1; seed <= 4; ++seed) {
     const NoiseRun run = map_noise(noise_descriptors(300, 0.0, seed), c);
     EXPECT_TRUE(run.changes.empty()) << "seed " << seed;
-    EXPECT_FLOAT_EQ(run.offset, c.contrast_offset);
+    EXPECT_FLOAT_EQ(run.offset, c.score.contrast_offset);
     EXPECT_EQ(run.closures, 0U) << "seed " << seed;
   }
 }
@@ -674,20 +713,20 @@ TEST(OnlineMapper, AShortRunIsFittedOnItsTableUntilTheIslandsSuffice) {
         }
       }
     }
-    EXPECT_EQ(m.contrast_offset(), c.contrast_offset) << "the logarithmic phase";
+    EXPECT_EQ(m.contrast_offset(), c.score.contrast_offset) << "the logarithmic phase";
     return at;
   };
   OnlineMapConfig c;
-  c.contrast_offset = 1.0F;  // white noise's logarithmic phase (TheLogarithmicPhaseKeepsTheOffset)
+  c.score.contrast_offset = 1.0F;  // white noise's logarithmic phase (TheLogarithmicPhaseKeepsTheOffset)
   OnlineMapper early(c);
   const auto with = first_begin(c, early);
   ASSERT_TRUE(with.has_value());
   EXPECT_LE(*with, 80U + 10U) << "reported within 10 frames of the revisit's start";
   ASSERT_TRUE(early.statistics().valid());
   EXPECT_TRUE(early.statistics_from_table()) << "130 frames leave too few dead islands";
-  EXPECT_EQ(early.statistics().area, significance::search_area(130, 130, true, c.min_separation, true));
-  EXPECT_FLOAT_EQ(early.threshold(), static_cast<float>(early.statistics().score_at(*c.max_e_value)));
-  EXPECT_LT(early.threshold(), c.threshold);
+  EXPECT_EQ(early.statistics().area, significance::search_area(130, 130, true, c.search.min_separation, true));
+  EXPECT_FLOAT_EQ(early.threshold(), static_cast<float>(early.statistics().score_at(*c.significance.max_e_value)));
+  EXPECT_LT(early.threshold(), c.significance.threshold);
   // Every loop closure on the planted diagonal; a few may run past its ends, where the path began or ended on
   // chance cells (docs/online.md).
   std::size_t on = 0, inside = 0;
@@ -704,7 +743,7 @@ TEST(OnlineMapper, AShortRunIsFittedOnItsTableUntilTheIslandsSuffice) {
   OnlineMapper fixed(c);
   const auto without = first_begin(c, fixed);
   EXPECT_FALSE(fixed.statistics().valid());
-  EXPECT_EQ(fixed.threshold(), c.threshold);
+  EXPECT_EQ(fixed.threshold(), c.significance.threshold);
   ASSERT_TRUE(without.has_value());
   EXPECT_GT(*without, *with + 5) << "the fallback threshold of 20 takes longer to reach";
 }
@@ -716,8 +755,8 @@ TEST(OnlineMapper, TheEarlyFitKeepsItsEValueOnNoise) {
   SEQTOPO_SKIP_UNDER_SANITIZERS("many noise sequences");
   for (const double e : {0.01, 0.1}) {
     OnlineMapConfig c;
-    c.contrast_offset = 1.0F;
-    c.max_e_value = e;
+    c.score.contrast_offset = 1.0F;
+    c.significance.max_e_value = e;
     c.candidate_e_value.reset();
     std::size_t begins = 0, fitted = 0;
     constexpr int runs = 100;

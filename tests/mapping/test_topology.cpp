@@ -103,10 +103,10 @@ TEST(Topology, FigureEightFromSimilarityMatrix) {
   }
   for (auto [i, j] : revisit_pairs()) s(i, j) = s(j, i) = 1.0F;
   MapConfig config;
-  config.contrast_window = 0;  // align the hand-made S as it is
-  config.min_separation = 5;
-  config.cap = 5.0F;
-  config.threshold = 4.0F;
+  config.score.contrast_window = 0;  // align the hand-made S as it is
+  config.search.min_separation = 5;
+  config.search.cap = 5.0F;
+  config.significance.threshold = 4.0F;
   const auto result = build_map(s, config);
   ASSERT_FALSE(result.alignments.empty());
   EXPECT_EQ(result.alignments.front().pairs, revisit_pairs());
@@ -126,8 +126,8 @@ TEST(Topology, CorridorWalkedBackIsAReverseRevisitWithoutJunctionAtTheTurn) {
   for (std::size_t i = 0; i < n; ++i) s(i, i) = 1.0F;
   for (std::size_t k = 0; k < 20; ++k) s(40 + k, 19 - k) = s(19 - k, 40 + k) = 1.0F;
   MapConfig config;
-  config.contrast_window = 0;
-  config.min_separation = 5;
+  config.score.contrast_window = 0;
+  config.search.min_separation = 5;
   const auto result = build_map(s, config);
   ASSERT_FALSE(result.alignments.empty());
   EXPECT_EQ(result.alignments.front().direction, align::Direction::reverse);
@@ -150,13 +150,13 @@ TEST(Topology, FigureEightThroughContrastEnhancement) {
   }
   for (auto [i, j] : revisit_pairs()) s(i, j) = s(j, i) = 1.5F;
   MapConfig config;
-  ASSERT_GT(config.contrast_window, 0U) << "the default pipeline enhances contrast";
-  config.min_separation = 5;
+  ASSERT_GT(config.score.contrast_window, 0U) << "the default pipeline enhances contrast";
+  config.search.min_separation = 5;
   // Uniform noise exceeds half a standard deviation in a third of the cells, which lets an alignment
   // grow into it by a frame or two at each end; rewarding only cells above one deviation keeps this
   // small world's revisit exact.
-  config.contrast_offset = 1.0F;
-  config.threshold = 4.0F;
+  config.score.contrast_offset = 1.0F;
+  config.significance.threshold = 4.0F;
   const auto result = build_map(s, config);
   expect_figure_eight(result.map);
 }

@@ -57,12 +57,12 @@ TEST(SeqtopoMpi, TwoRanksWriteTheAlignmentsOfOneProcess) {
   const auto read = io::read_npy_matrix<float>(descriptors);
   const mapping::MapConfig map;
   scale::StreamingConfig streaming;
-  streaming.contrast_window = map.contrast_window;
-  streaming.contrast_offset = map.contrast_offset;
+  streaming.contrast_window = map.score.contrast_window;
+  streaming.contrast_offset = map.score.contrast_offset;
   const scale::StreamingSimilarity similarity(read.values, read.rows, read.cols, streaming);
   scale::CandidateConfig candidates;
   candidates.neighbours = 10;
-  candidates.exclude = map.min_separation;
+  candidates.exclude = map.search.min_separation;
   const auto scores = scale::sparse_map_scores(similarity, -1.0F, candidates);
   const auto expected = scale::sparse_local_alignments_both(scores, mapping::align_config(map), 2);
   EXPECT_EQ(two_json, formats::alignments_to_json(expected).dump(1) + "\n");

@@ -34,7 +34,7 @@ TEST(Calibration, OnNoiseTheEValuesCountTheChanceAlignmentsAndTheDefaultReportsN
     ASSERT_TRUE(defaults.decisions.statistics.valid()) << seed;
     for (double e : defaults.e_values) reported += e <= 0.01 ? 1 : 0;
     // E-value 3: about three chance alignments that good in each sequence.
-    config.max_e_value = 3.0;
+    config.significance.max_e_value = 3.0;
     const auto loose = mapping::build_map(s, config);
     for (double e : loose.e_values) permissive += e <= 3.0 ? 1 : 0;
   }
@@ -54,9 +54,9 @@ TEST(Calibration, OnShortNoiseTheScoresGlobalRateRaisesTheOffset) {
       const auto s = cosine_similarity({.frames = frames, .dim = 128, .seed = static_cast<std::uint64_t>(seed)});
       mapping::MapConfig config;
       const auto checked = mapping::build_map(s, config);
-      raised += checked.decisions.contrast_offset > config.contrast_offset ? 1 : 0;
+      raised += checked.decisions.contrast_offset > config.score.contrast_offset ? 1 : 0;
       for (double e : checked.e_values) with += e <= 0.01 ? 1 : 0;
-      config.max_global_rate.reset();
+      config.phase.max_global_rate.reset();
       const auto unchecked = mapping::build_map(s, config);
       for (double e : unchecked.e_values) without += e <= 0.01 ? 1 : 0;
     }
@@ -87,7 +87,7 @@ TEST(Calibration, OnALongNoiseSequenceTheEValuesCountTheWholeSearch) {
     };
     mapping::MapConfig config;
     config.min_revisit_places = 0;
-    config.max_e_value = e_value;
+    config.significance.max_e_value = e_value;
     config.frames_per_place = 1.0;
     config.engine = mapping::MapConfig::Engine::fast;
     const auto r = mapping::build_map_from_enhanced(align::ScoreSource::function(n, n, noise), config);
@@ -118,7 +118,7 @@ TEST(Calibration, OnShortSmoothNoiseThePredictiveEValuesCountTheChanceAlignments
                                       .seed = static_cast<std::uint64_t>(seed)});
     mapping::MapConfig config;
     config.min_revisit_places = 0;  // count every chance alignment, short ones included
-    config.max_e_value = 3.0;
+    config.significance.max_e_value = 3.0;
     const auto r = mapping::build_map(s, config);
     ASSERT_TRUE(r.decisions.statistics.valid()) << seed;
     significance::ScoreStatistics exact_lambda = r.decisions.statistics;

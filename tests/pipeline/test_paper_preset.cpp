@@ -13,17 +13,17 @@ TEST(PaperPreset, IsThePapersPipeline) {
   const MapSettings s = map_preset("paper");
   EXPECT_EQ(s.descriptors, std::vector<Descriptor>{Descriptor::joint_histogram});
   EXPECT_EQ(s.similarity.distance, Distance::chi2);
-  EXPECT_EQ(s.map.contrast_window, 0U);  // S = 1 - kappa D, no enhancement
-  EXPECT_FALSE(s.map.max_e_value.has_value());
-  EXPECT_FALSE(s.map.place_units);
-  EXPECT_EQ(s.map.labelling, mapping::MapConfig::Labelling::pruned_transitive);
-  EXPECT_EQ(s.map.pruning.rank, mapping::PruningConfig::Rank::length_then_score);
-  EXPECT_FALSE(s.map.odometry_gate.has_value());
-  EXPECT_FALSE(s.map.clean_graph);
+  EXPECT_EQ(s.map.score.contrast_window, 0U);  // S = 1 - kappa D, no enhancement
+  EXPECT_FALSE(s.map.significance.max_e_value.has_value());
+  EXPECT_EQ(s.map.unit, align::Unit::frames);
+  EXPECT_EQ(s.map.labels.method, mapping::LabelSettings::Method::pruned_transitive);
+  EXPECT_EQ(s.map.labels.pruning.rank, mapping::PruningConfig::Rank::length_then_score);
+  EXPECT_FALSE(s.map.odometry.gate.has_value());
+  EXPECT_FALSE(s.map.graph.clean);
   // and the default is not that pipeline
   const MapSettings d = map_preset("default");
-  EXPECT_TRUE(d.map.odometry_gate.has_value());
-  EXPECT_TRUE(d.map.clean_graph);
+  EXPECT_TRUE(d.map.odometry.gate.has_value());
+  EXPECT_TRUE(d.map.graph.clean);
 }
 
 // A corridor walked out and back (81 images), with a true reverse revisit and a forward copy 20 images apart that
@@ -48,7 +48,7 @@ TEST(PaperPreset, OdometryNeverChangesTheMap) {
   EXPECT_EQ(with.map.labels[30], with.map.labels[10]);  // the copy the gate would have dropped is in the map
 
   mapping::MapConfig gated = paper;
-  gated.odometry_gate = mapping::OdometryGate{};
+  gated.odometry.gate = mapping::OdometryGate{};
   const mapping::MapResult vetoed = mapping::build_map(s, gated, odometry);
   ASSERT_EQ(vetoed.rejected.size(), 1U);
   EXPECT_NE(vetoed.map.labels[30], vetoed.map.labels[10]);

@@ -36,7 +36,7 @@ struct Recorded {
 Recorded run_with_threads(unsigned threads, bool reverse) {
   MapSettings settings;
   settings.map.threads = threads;
-  settings.map.reverse = reverse;
+  settings.map.search.reverse = reverse;
   Recorded r;
   MapObserver observer;
   observer.stage = [&r](const StageEvent& e) {

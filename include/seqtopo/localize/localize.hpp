@@ -32,7 +32,7 @@
 // it; past the alignment's ends the band follows the revisit the alignment's maximum stopped short of. The
 // frame's confidence that this map frame is right is
 //   confidence = P(revisit | E) * posterior,
-// P(revisit | E) = 1 / (1 + E / even_odds_e_value) the probability that the alignment is real
+// P(revisit | E) = 1 / (1 + E / significance.max_e_value) the probability that the alignment is real
 // (significance::revisit_probability), and the posterior the probability that the revisit passes there (given
 // that the row is on the alignment, between its first and last pair), with lambda from the fit. Without a
 // fit (a search too small for one, or one with too few chance alignments) P(revisit | E) is replaced by 1 for
@@ -52,23 +52,24 @@
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/align/settings.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/significance/score_statistics.hpp"
 
 namespace seqtopo::localize {
 
 struct LocalizeConfig {
-  // Row contrast enhancement (similarity/contrast_enhancement.hpp): z-score against +-contrast_window map
-  // frames (0 = the whole row; see score_matrix).
-  std::size_t contrast_window = 10;
-  bool enhance = true;            // false: the similarity is used as given (minus contrast_offset)
-  float contrast_offset = 0.75F;  // subtracted after enhancement [standard deviations]
-  float gap = 2.0F;               // gap penalty, both directions [score units]
-  std::optional<float> cap;       // upper bound on the cumulative score (mapping paper); nullopt = none
-  // Alignments scoring below this count as chance when the statistics cannot be fitted (see above); the online
-  // localizer's minimum confidence.
-  float threshold = 10.0F;
-  bool reverse = true;  // also search the map driven backwards
+  // The sections the map shares (align/settings.hpp), with localization's defaults. Row contrast enhancement
+  // (similarity/contrast_enhancement.hpp): z-score against +-score.contrast_window map frames (0 = the whole row;
+  // see score_matrix), minus score.contrast_offset. The search has no self pairs (search.min_separation 0). Below
+  // significance.threshold an alignment counts as chance when the statistics cannot be fitted (see above), and it
+  // is the online localizer's minimum confidence. significance.max_e_value is the E-value at which an alignment is
+  // as likely a revisit as chance (significance::revisit_probability): the map's cut (mapping::MapConfig's), so a
+  // localization is as sure as the map would be of the same alignment; it must be set. Windows count map frames.
+  align::ScoreSettings score{.contrast_window = 10, .contrast_offset = 0.75F};
+  align::SearchSettings search{.gap = 2.0F, .cap = std::nullopt, .reverse = true, .min_separation = 0};
+  align::SignificanceSettings significance{.max_e_value = 0.01, .threshold = 10.0F};
+  bool enhance = true;  // false: the similarity is used as given (minus score.contrast_offset)
   // Alignments found, best first: the real ones and a sample of chance ones for the statistics (as the map's fit).
   std::size_t max_alignments = 300;
   std::size_t score_window = 10;   // [query frames] half-width of the per-frame score window
@@ -78,11 +79,7 @@ struct LocalizeConfig {
   // a guess within +-tolerance of the truth, what the evaluation counts as right (seqtopo localize --tolerance).
   std::size_t tolerance = 2;
   double min_confidence = 0.5;  // a frame's guess below this confidence is "not in the map"
-  // The E-value at which an alignment is as likely a revisit as chance (significance::revisit_probability): the
-  // map's cut (mapping::MapConfig::max_e_value), so a localization is as sure as the map would be of the same
-  // alignment.
-  double even_odds_e_value = 0.01;
-  unsigned threads = 1;  // forward and reverse passes in parallel when > 1; result does not depend on it
+  unsigned threads = 1;         // forward and reverse passes in parallel when > 1; result does not depend on it
 };
 
 struct FrameMatch {
@@ -129,14 +126,14 @@ void fused_score_row(std::span<const float* const> rows, std::size_t cols, const
                      float* scratch, std::span<const double> weights = {});
 
 // The weight of each descriptor in the fusion, by how much it scores the revisits the descriptors find alone. Each
-// is localized alone; the pairs of the alignments at E <= even_odds_e_value / D (a test per descriptor) are the
+// is localized alone; the pairs of the alignments at E <= significance.max_e_value / D (a test per descriptor) are the
 // revisits seen. A descriptor's weight is its mean enhanced score on them above its mean over the whole matrix:
 // the shift a revisit gives its scores, whose noise is 1 after enhancement, so the weighted sum is the matched
 // filter of the descriptors' evidence (a descriptor that barely sees the revisit adds its noise almost unweighted
 // in an equal average: Nordland's joint histogram, R@1 0.06 alone, took the fusion from the patch's 0.993 to
 // 0.968). Weight 0, as the map's blind-descriptor rule (mapping::MapConfig::drop_blind_descriptors), for a
-// descriptor that finds nothing alone at E <= even_odds_e_value and whose shift is within 3 standard errors of 0.
-// Equal weights (all 1) with one matrix, without enhancement, or when no descriptor alone sees a revisit.
+// descriptor that finds nothing alone at E <= significance.max_e_value and whose shift is within 3 standard errors of
+// 0. Equal weights (all 1) with one matrix, without enhancement, or when no descriptor alone sees a revisit.
 std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> query_x_map,
                                        const LocalizeConfig& config = {});
 

@@ -12,6 +12,7 @@
 #include "seqtopo/align/local_alignment.hpp"
 #include "seqtopo/align/locally_optimal.hpp"
 #include "seqtopo/align/score_source.hpp"
+#include "seqtopo/align/settings.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 #include "seqtopo/mapping/consistent_labels.hpp"
 #include "seqtopo/mapping/odometry_gate.hpp"
@@ -22,52 +23,71 @@
 
 namespace seqtopo::mapping {
 
+// The labels of the images (offline only): which alignments' pairs become one place.
+struct LabelSettings {
+  // consistent: one labelling from all alignments (consistent_labels.hpp), each place holding at most
+  // max_visit_span [places] of one pass; pruned_transitive: the paper's per-column pruning (pruning.hpp) and
+  // transitive labels (place_labels.hpp).
+  enum class Method { consistent, pruned_transitive };
+  Method method = Method::consistent;
+  double max_visit_span = 2;  // [places]
+  PruningConfig pruning;
+};
+
+// The odometry, when build_map is given one (offline only).
+struct OdometrySettings {
+  // Alignments the gate contradicts are dropped before the labels. Chosen on the simulated worlds
+  // (bench/worlds.sh); the real sequences in the README have no odometry.
+  std::optional<OdometryGate> gate = OdometryGate{};
+  // With the gate and the significance statistics: agreement with the odometry is evidence of its own. A chance
+  // alignment agrees with probability q, estimated on the statistics' run (its chance alignments, E > 1, that
+  // pass the gate: (passed + 1) / (tested + 2), from at least 20). Scores and agreement being independent under
+  // chance, an alignment that agrees has E-value E x q / L, L = exp(-r^2 / 2) the relative likelihood of its
+  // agreement r (odometry_agreement: 0 perfect, 1 at the gate's edge) for a true revisit whose odometry error is
+  // Gaussian with the gate's allowance as its deviation; at most E. So the engine looks down to the score of
+  // max_e_value / q, and each alignment the gate keeps reports that E-value and stays only when it is at most
+  // max_e_value. An alignment at the edge of the allowance gains least: look-alike places a few metres apart
+  // (parallel corridors) agree with an odometry that has drifted that far.
+  bool evidence = true;
+};
+
+// The place graph before its topology is read (offline only).
+struct GraphSettings {
+  // Clean-up (graph_cleanup.hpp: overhangs, tips, bubbles, redundant edges), with thresholds of
+  // min_revisit_places and the alignments' own lengths.
+  bool clean = true;
+  TopologyConfig topology;
+};
+
 struct MapConfig {
-  // Local contrast enhancement before alignment (similarity/contrast_enhancement.hpp): the aligned
-  // score is 0.5 (E + E^T) - contrast_offset, in standard deviations of each row's neighbourhood.
-  // contrast_window = 0 aligns the raw S = 1 - kappa D, as the paper does.
-  std::size_t contrast_window = 10;  // [places] (frames when place_units is false)
-  float contrast_offset = 0.5F;      // [standard deviations]; the smallest tried, see adapt_offset
-  float gap = 1.5F;                  // penalty per skipped image, both sequences [score units]
+  // The shared sections (align/settings.hpp). Contrast enhancement: the aligned score is 0.5 (E + E^T) -
+  // contrast_offset, in standard deviations of each row's neighbourhood; contrast_window = 0 aligns the raw
+  // S = 1 - kappa D, as the paper does. The offset is the smallest tried: with phase.adapt_offset it is raised
+  // until chance alignments stay short. Two checks (docs/significance.md): the chance alignments' median length
+  // (at most max(4, ln(area)) places), and the global alignment rate of a table drawn from the scores (at most
+  // phase.max_global_rate a step), which sees the phase in sequences too short for the lengths.
+  align::ScoreSettings score;
+  align::PhaseSettings phase;
+  align::SearchSettings search;  // the cap below replaces search.cap when cap_from_statistics applies
+  align::SignificanceSettings significance;
+  // Windows and separations in places: each place spans frames_per_place images (place_scale.hpp), estimated
+  // from the similarity when nullopt. Unit::frames counts them in frames, as the paper does.
+  align::Unit unit = align::Unit::places;
+  std::optional<double> frames_per_place;
   // Hubness correction of every similarity before its contrast enhancement (similarity/hubness.hpp): a pair
   // counts by how much more alike its frames are than each frame is to its hubness_neighbours most similar frames
   // elsewhere in the sequence, so frames that resemble much of it (dark tunnels, bare walls) stop standing out of
-  // the ordinary frames around them. [places] (frames when place_units is false); 0: off. With contrast
-  // enhancement only. Off by default: with low-information masking it adds little and costs Nordland summer +
-  // winter 91 of its 1,780 loop closures at 10 places (docs/significance.md, "Trust").
+  // the ordinary frames around them. [unit]; 0: off. With contrast enhancement only. Off by default: with
+  // low-information masking it adds little and costs Nordland summer + winter 91 of its 1,780 loop closures at
+  // 10 places (docs/significance.md, "Trust").
   double hubness_neighbours = 0;
-  // Cap on the cumulative score (paper IV-B). With significance (max_e_value set) and cap_from_statistics,
-  // the cap is cap_factor times the score a significant alignment must reach, so the stretch of non-matching
-  // images that separates two revisits follows the sequence's own statistics; else this fixed value.
-  std::optional<float> cap = 40.0F;
+  // With significance (significance.max_e_value set) and cap_from_statistics, the cap is cap_factor times the
+  // score a significant alignment must reach, so the stretch of non-matching images that separates two revisits
+  // follows the sequence's own statistics; else search.cap.
   bool cap_from_statistics = true;
   float cap_factor = 3.0F;
-  // Significance (significance/score_statistics.hpp): an alignment is a revisit when its E-value, the number
-  // of alignments this good expected by chance in this sequence, is at most max_e_value. nullopt: the paper's
-  // fixed score threshold below.
-  std::optional<double> max_e_value = 0.01;
-  // Minimum alignment score for a revisit without significance (max_e_value nullopt), or when the sequence is
-  // too short for the statistics to be fitted.
-  float threshold = 20.0F;
   // Shorter revisits are dropped [places].
   double min_revisit_places = 3;
-  // The offset is raised (in steps of contrast_offset_step, up to max_contrast_offset) until chance
-  // alignments on the sequence's own scores stay short (the logarithmic phase of local alignment scores,
-  // Arratia & Waterman 1994): below it, the best chance alignment grows with the sequence's length and no
-  // threshold separates revisits from chance.
-  // Two checks (docs/significance.md): the chance alignments' median length (at most max(4, ln(area)) places),
-  // and the global alignment rate of a table drawn from the scores (significance/alignment_phase.hpp: at most
-  // max_global_rate a step; unset: not checked), which sees the phase in sequences too short for the lengths.
-  bool adapt_offset = true;
-  float contrast_offset_step = 0.25F;
-  float max_contrast_offset = 3.0F;
-  std::optional<float> max_global_rate = -0.1F;
-  std::size_t min_separation = 10;  // [places] pairs closer than this in time never count
-  // Windows and separations in places: each place spans frames_per_place images (place_scale.hpp), estimated
-  // from the similarity when nullopt. place_units false counts them in frames, as the paper does.
-  bool place_units = true;
-  std::optional<double> frames_per_place;
-  bool reverse = true;  // also look for paths revisited in the opposite direction
   // exact: the scalar reference engine (align/smith_waterman.hpp, a float table of N x N cells);
   // fast: the vectorized linear-memory engine (align/fast_alignment.hpp) on scores quantized to
   // 1/512 of a unit with the default cap: the same alignments as the exact engine on those scores.
@@ -78,30 +98,10 @@ struct MapConfig {
   // Schmidt and Sellers (the float implementation whatever the engine: one float and one byte per cell).
   // The significance statistics are fitted on the non-intersecting set in both cases (docs/alignment_sets.md).
   align::AlignmentSet alignment_set = align::AlignmentSet::non_intersecting;
-  // Applied when odometry is given to build_map: alignments it contradicts are dropped before pruning.
-  // Chosen on the simulated worlds (bench/worlds.sh); the real sequences in the README have no odometry.
-  std::optional<OdometryGate> odometry_gate = OdometryGate{};
-  // With the gate and the significance statistics: agreement with the odometry is evidence of its own. A chance
-  // alignment agrees with probability q, estimated on the statistics' run (its chance alignments, E > 1, that
-  // pass the gate: (passed + 1) / (tested + 2), from at least 20). Scores and agreement being independent under
-  // chance, an alignment that agrees has E-value E x q / L, L = exp(-r^2 / 2) the relative likelihood of its
-  // agreement r (odometry_agreement: 0 perfect, 1 at the gate's edge) for a true revisit whose odometry error is
-  // Gaussian with the gate's allowance as its deviation; at most E. So the engine looks down to the score of
-  // max_e_value / q, and each alignment the gate keeps reports that E-value and stays only when it is at most
-  // max_e_value. An alignment at the edge of the allowance gains least: look-alike places a few metres apart
-  // (parallel corridors) agree with an odometry that has drifted that far.
-  bool odometry_evidence = true;
-  // consistent: one labelling from all alignments (consistent_labels.hpp), each place holding at most
-  // max_visit_span [places] of one pass; pruned_transitive: the paper's per-column pruning (pruning.hpp) and
-  // transitive labels (place_labels.hpp).
-  enum class Labelling { consistent, pruned_transitive };
-  Labelling labelling = Labelling::consistent;
-  double max_visit_span = 2;  // [places]
-  PruningConfig pruning;
-  // Clean-up of the place graph before its topology is read (graph_cleanup.hpp: overhangs, tips, bubbles,
-  // redundant edges), with thresholds of min_revisit_places and the alignments' own lengths.
-  bool clean_graph = true;
-  TopologyConfig topology;
+  // The offline-only sections.
+  OdometrySettings odometry;
+  LabelSettings labels;
+  GraphSettings graph;
   unsigned threads = 2;
   // Declumped alignments found for the statistics' fit (significance/score_statistics.hpp).
   std::size_t fit_alignments = 300;
@@ -182,11 +182,12 @@ struct MapResult {
 };
 
 // The pipeline, from the similarity matrices of one sequence:
-//  1. frames per place (place_scale.hpp) estimated from the similarities, unless given or place_units is off;
+//  1. frames per place (place_scale.hpp) estimated from the similarities, unless given or the unit is frames;
 //     windows and separations are converted to frames;
 //  2. each matrix contrast-enhanced on its own (so their scales need not agree) and the enhanced scores
 //     averaged (enhanced_scores); without contrast enhancement the raw matrices are averaged;
-//  3. with significance (max_e_value): the statistics' run (the best fit_alignments declumped alignments of
+//  3. with significance (significance.max_e_value): the statistics' run (the best fit_alignments declumped alignments
+//  of
 //     the scores minus the offset, fast engine) fits lambda and K (significance/score_statistics.hpp) and
 //     checks the phase: while chance alignments grow with the sequence the offset is raised; the cap and the
 //     score a revisit needs follow from the fit (MapDecisions);
@@ -195,7 +196,7 @@ struct MapResult {
 //     odometry_evidence), revisits shorter than min_revisit_places dropped; the odometry gate;
 //  5. consistent labels (or per-column pruning and transitive labels), the graph clean-up, topology.
 // Throws std::invalid_argument for a non-square or empty matrix, odometry of another length, or a config that
-// check_map_config refuses. `odometry` (one pose per image, or empty) feeds config.odometry_gate.
+// check_map_config refuses. `odometry` (one pose per image, or empty) feeds config.odometry.gate.
 // Throws std::invalid_argument naming the first setting out of its range (the command line's limits: a
 // negative gap or threshold, an E-value, cap or frames per place that is not positive, ...).
 void check_map_config(const MapConfig& config);
@@ -229,7 +230,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
 MapResult build_map_from_scores(const align::ScoreSource& scores, const MapConfig& config = {},
                                 std::span<const Pose2> odometry = {});
 
-// The engine settings of the config's gap, cap, threshold and min_separation (in frames: place_units is not
+// The engine settings of the config's gap, cap, threshold and min_separation (in frames: the unit is not
 // applied), self alignment.
 align::AlignConfig align_config(const MapConfig& config);
 
@@ -252,7 +253,7 @@ TableFit fit_table_statistics(const align::ScoreSource& scores, const MapConfig&
 // The topology settings of step 5 for a config in frames (the clean-up's transitive reduction and junction regions).
 TopologyConfig topology_settings(const MapConfig& config);
 
-// The config with its windows and separations converted from places to frames (unchanged without place_units).
+// The config with its windows and separations converted from places to frames (unchanged in Unit::frames).
 MapConfig settings_in_frames(const MapConfig& config, double frames_per_place);
 
 // The mean of estimate_frames_per_place over the matrices that have a scale (not found when none has).

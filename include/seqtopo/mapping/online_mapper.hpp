@@ -87,6 +87,7 @@
 #include <vector>
 
 #include "seqtopo/align/local_alignment.hpp"
+#include "seqtopo/align/settings.hpp"
 #include "seqtopo/core/disjoint_sets.hpp"
 #include "seqtopo/significance/score_statistics.hpp"
 #include "seqtopo/similarity/distance.hpp"
@@ -96,44 +97,42 @@ namespace seqtopo::mapping {
 struct OnlineMapConfig {
   // How add_descriptor compares two descriptors (cosine for descriptors.npy rows, sad for patch thumbnails).
   similarity::Distance distance = similarity::Distance::cosine;
-  std::size_t contrast_window = 10;  // w [frames]; 0: S aligned as it is (no enhancement, no offset)
-  float contrast_offset = 0.5F;      // [standard deviations] (the offline default); the first tried, see below
-  // The logarithmic phase is checked twice (docs/online.md), and where the chance paths grow with the sequence
-  // (the linear phase: no threshold keeps them out) the offset is raised by contrast_offset_step for the frames
-  // that follow (up to max_contrast_offset), live paths are rescored and the islands sampled anew:
+  // The sections the offline map shares (align/settings.hpp), with its defaults. score.contrast_window = 0: S
+  // aligned as it is (no enhancement, no offset). The contrast offset is the first tried: the logarithmic phase
+  // is checked twice (docs/online.md), and where the chance paths grow with the sequence (the linear phase: no
+  // threshold keeps them out) phase.adapt_offset raises it by contrast_offset_step for the frames that follow (up
+  // to max_contrast_offset), live paths are rescored and the islands sampled anew:
   //  * the scores: the global alignment rate of a table drawn from the first scores
-  //    (significance/alignment_phase.hpp) must not exceed max_global_rate, checked from 2,048 scores on;
+  //    (significance/alignment_phase.hpp) must not exceed phase.max_global_rate, checked from 2,048 scores on.
+  //    Measured at the default offset: white-noise descriptors -0.08 to 0; the corridor, Nordland, the synthetic
+  //    route and smooth noise -0.19 to -0.35 (docs/online.md);
   //  * the islands: after each fit, their median length in places (the frames from an island's start to its best
   //    cell, over the frames per place estimated from the similarities so far, place_scale.hpp) must stay within
   //    max(4, ln(area in places)), the offline map's bound for its chance alignments; checked once a scale is
   //    found.
-  // Only for the scores the mapper enhances itself (not add_scores).
-  bool adapt_offset = true;
-  float contrast_offset_step = 0.25F;
-  float max_contrast_offset = 3.0F;
-  // The scores' global alignment rate above this [score units a step] is the linear phase (unset: not checked).
-  // Measured at the default offset: white-noise descriptors -0.08 to 0; the corridor, Nordland, the synthetic
-  // route and smooth noise -0.19 to -0.35 (docs/online.md).
-  std::optional<float> max_global_rate = -0.1F;
+  // The phase is checked only for the scores the mapper enhances itself (not add_scores). A track's peak must
+  // reach the score of significance.max_e_value (unset: significance.threshold always, as before the statistics
+  // can be fitted).
+  align::ScoreSettings score;
+  align::PhaseSettings phase;
+  align::SearchSettings search;
+  align::SignificanceSettings significance;
+  // What score.contrast_window and search.min_separation count. The online mapper estimates no scale before it
+  // aligns, so Unit::places needs frames_per_place (the offline map's decisions.frames_per_place, or the user's).
+  align::Unit unit = align::Unit::frames;
+  std::optional<double> frames_per_place;
   // S(t, t) of the similarity rows, which they do not hold (0 for S = -distance: add_descriptor's and the image
   // rows'); unset: unknown, and the place scale is not estimated (islands are measured in frames).
   std::optional<float> self_similarity = 0.0F;
-  float gap = 1.5F;
-  std::optional<float> cap = 40.0F;
-  // A track's peak must reach the score of this E-value (unset: `threshold` always).
-  std::optional<double> max_e_value = 0.01;
-  // A revisit candidate's score must reach the score of this E-value (unset: no candidates); above max_e_value,
-  // and unused without it.
+  // A revisit candidate's score must reach the score of this E-value (unset: no candidates); above
+  // significance.max_e_value, and unused without it.
   std::optional<double> candidate_e_value = 1.0;
-  float threshold = 20.0F;  // [score units] without max_e_value, or before the statistics can be fitted
   // Until the dead islands suffice for a fit (a few hundred frames), the statistics are fitted as the offline map
   // fits them (mapping::fit_table_statistics: the declumped alignments of the table so far, kept in memory while
   // the run has at most this many frames), again each time the frames grow by an eighth; 0: never, `threshold`
   // until the islands suffice. A short run (the bundled corridor's 84 frames) then reports at its own E-value.
   std::size_t early_fit_frames = 1024;
-  std::size_t island_sample = 512;  // the best chance islands kept for the fit
-  std::size_t min_separation = 10;  // [frames] pairs closer in time are never scored
-  bool reverse = true;
+  std::size_t island_sample = 512;     // the best chance islands kept for the fit
   std::size_t reach = 3;               // [frames] peaks and track continuation
   float x_drop = 20.0F;                // a track sleeps this far below its best [score units]
   std::size_t min_revisit_frames = 5;  // shorter tracks are withdrawn
@@ -142,6 +141,9 @@ struct OnlineMapConfig {
 
 // Throws std::invalid_argument naming the setting.
 void validate(const OnlineMapConfig& config);
+// The config with its windows and separations in frames (Unit::frames; unchanged when they are). Throws as
+// validate does.
+OnlineMapConfig settings_in_frames(const OnlineMapConfig& config);
 
 enum class OnlineEventKind {
   loop_closure,
@@ -297,7 +299,8 @@ class OnlineMapper {
   OnlineMapConfig config_;
   std::size_t frames_ = 0;
   std::size_t dim_ = 0;
-  std::vector<float> descriptors_;  // frames_ x dim_ (normalised for cosine)
+  std::vector<float> descriptors_;  // frames_ x dim_
+  std::vector<double> norms_;       // their squared norms (cosine)
   std::vector<float> similarity_;   // S of the current frame (t values)
   // The last w + 1 rows of S (ring, by frame modulo w + 1) and the per-column running sums over them.
   std::vector<std::vector<std::vector<float>>> recent_;  // per similarity

@@ -97,6 +97,9 @@ struct MapOverrides {
   std::optional<bool> odometry_evidence = {};
 };
 MapSettings apply_overrides(MapSettings preset, const MapOverrides& overrides);
+// The part of them the shared sections take (align/settings.hpp): the offline map's, and map --online's.
+void apply_section_overrides(align::ScoreSettings& score, align::SearchSettings& search,
+                             align::SignificanceSettings& significance, const MapOverrides& overrides);
 
 // Why `request` cannot run streamed, as the error its engine option earns (subject: the option that stands in the
 // way), or nullopt when it can. Only what the user chose stands in the way: descriptors not asked for are adapted

@@ -85,8 +85,9 @@ struct OnlineMapRun {
 };
 
 // The map's options the online mapper reads, applied to `config` as the offline map applies them to its preset
-// (apply_overrides, map_request.hpp): gap, threshold, cap, e_value, min_separation, contrast window and offset,
-// reverse. min_separation and the contrast window are in frames here (the online map has no place scale).
+// (apply_overrides, map_request.hpp): the shared sections (gap, threshold, cap, e_value, min_separation, contrast
+// window and offset, reverse) and frames_per_place. min_separation and the contrast window count frames unless
+// frames_per_place is given: the online map estimates no place scale before it aligns.
 void apply_overrides(mapping::OnlineMapConfig& config, const MapOverrides& overrides);
 
 // Called after each frame with its events (possibly none), and once after the last frame with finish()'s.

@@ -24,6 +24,11 @@ double chi2_distance(std::span<const float> a, std::span<const float> b);
 double l1_distance(std::span<const float> a, std::span<const float> b);
 double cosine_distance(std::span<const float> a, std::span<const float> b);
 double sad_distance(std::span<const float> a, std::span<const float> b);
+// A vector's squared norm, summed as cosine_distance sums it, and the cosine distance of two vectors whose squared
+// norms are known: cosine_distance's value exactly, without their sums again (a frame against every earlier frame of
+// its sequence: mapping/online_mapper.hpp).
+double squared_norm(std::span<const float> a);
+double cosine_distance(std::span<const float> a, std::span<const float> b, double norm2_a, double norm2_b);
 // One entry point for the dense form; throws std::invalid_argument when the lengths differ.
 double distance(Distance metric, std::span<const float> a, std::span<const float> b);
 
