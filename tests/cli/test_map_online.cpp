@@ -246,6 +246,26 @@ TEST(MapOnline, WhiteNoiseRaisesTheOffsetAndGivesNoLoopClosure) {
   }
 }
 
+// The online map counts frames unless it is given a scale: with --frames-per-place F its windows and separations are
+// places, as the offline map's (5 places of 2 frames are the 10 frames of the frame run); auto is refused.
+TEST(MapOnline, FramesPerPlaceMakesTheWindowsPlaces) {
+  const seqtopo::test_support::TempDir dir;
+  const fs::path data = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  const std::string base = "map " + data.string() + " --online --no-offline-outputs --out ";
+  const auto places =
+      run_cli(base + (dir.path / "places").string() + " --frames-per-place 2 --min-separation 5 --contrast-window 6");
+  ASSERT_EQ(places.status, 0) << places.err;
+  const auto frames = run_cli(base + (dir.path / "frames").string() + " --min-separation 10 --contrast-window 12");
+  ASSERT_EQ(frames.status, 0) << frames.err;
+  const std::string closures = read_text(dir.path / "places" / "online_loop_closures.csv");
+  EXPECT_GT(lines_of(closures).size(), 10U);
+  EXPECT_EQ(closures, read_text(dir.path / "frames" / "online_loop_closures.csv"));
+  EXPECT_EQ(read_text(dir.path / "places" / "events.jsonl"), read_text(dir.path / "frames" / "events.jsonl"));
+  const auto automatic = run_cli(base + (dir.path / "auto").string() + " --frames-per-place auto");
+  EXPECT_NE(automatic.status, 0);
+  EXPECT_NE(automatic.err.find("--frames-per-place auto"), std::string::npos) << automatic.err;
+}
+
 TEST(MapOnline, BadInputGivesOneLine) {
   const seqtopo::test_support::TempDir dir;
   const std::string out = " --out " + (dir.path / "out").string();
