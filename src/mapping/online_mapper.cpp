@@ -120,6 +120,8 @@ OnlineMapConfig settings_in_frames(const OnlineMapConfig& config) {
 
 OnlineMapper::OnlineMapper(const OnlineMapConfig& config)
     : config_(settings_in_frames(config)),
+      contrast_(config_.score.contrast_window),
+      sample_(config_.island_sample),
       offset_(config.score.contrast_offset),
       threshold_(config.significance.threshold) {}
 
@@ -193,54 +195,10 @@ void OnlineMapper::enhance(const std::vector<std::span<const float>>& rows) {
   const std::size_t t = frames_;
   const std::size_t sep = config_.search.min_separation;
   const std::size_t n = t >= sep ? t - sep + 1 : 0;
-  const std::size_t w = config_.score.contrast_window;
   sample_lags(rows);
-  scores_.assign(n, 0.0F);
-  if (w == 0) {
-    for (const auto& row : rows) {
-      for (std::size_t j = 0; j < n; ++j) scores_[j] += row[j] / static_cast<float>(rows.size());
-    }
-    return;
-  }
-  if (recent_.size() != rows.size()) recent_.assign(rows.size(), std::vector<std::vector<float>>(w + 1));
-  // Each similarity is enhanced on its own and the enhanced scores averaged, as the offline fusion does
-  // (mapping::enhanced_scores), so their scales need not agree.
-  std::vector<float> enhanced(n);
-  for (std::size_t c = 0; c < rows.size(); ++c) {
-    const auto row = rows[c];
-    // The row's window sums from prefix sums in double (O(t) whatever the window).
-    std::vector<double>& prefix = column_sum_;  // reused buffers
-    std::vector<double>& prefix2 = column_sum2_;
-    prefix.assign(t + 1, 0.0);
-    prefix2.assign(t + 1, 0.0);
-    for (std::size_t j = 0; j < t; ++j) {
-      prefix[j + 1] = prefix[j] + row[j];
-      prefix2[j + 1] = prefix2[j] + static_cast<double>(row[j]) * row[j];
-    }
-    for (std::size_t j = 0; j < n; ++j) {
-      const std::size_t lo = j >= w ? j - w : 0;
-      const std::size_t hi = std::min(t - 1, j + w);
-      enhanced[j] = similarity::contrast_score(row[j], prefix[hi + 1] - prefix[lo], prefix2[hi + 1] - prefix2[lo],
-                                               static_cast<double>(hi - lo + 1));
-    }
-    // The column's last w + 1 values S(t', j), t' = t - w .. t (rows that have column j: t' > j).
-    auto& ring = recent_[c];
-    ring[t % (w + 1)].assign(row.begin(), row.end());
-    const std::size_t oldest = t >= w ? t - w : 0;
-    for (std::size_t j = 0; j < n; ++j) {
-      double sum = 0, sum2 = 0;
-      std::size_t count = 0;
-      for (std::size_t r = std::max(oldest, j + 1); r <= t; ++r) {
-        const float v = ring[r % (w + 1)][j];
-        sum += v;
-        sum2 += static_cast<double>(v) * v;
-        ++count;
-      }
-      const float column = similarity::contrast_score(row[j], sum, sum2, static_cast<double>(count));
-      scores_[j] += 0.5F * (enhanced[j] + column);
-    }
-  }
-  for (auto& v : scores_) v = (rows.size() == 1 ? v : v / static_cast<float>(rows.size())) - offset_;
+  contrast_.add(rows, n, scores_);
+  if (contrast_.window() == 0) return;  // S aligned as it is: no offset
+  for (auto& v : scores_) v -= offset_;
   if (config_.phase.adapt_offset && config_.phase.max_global_rate) {  // kept only for check_scores_phase
     for (std::size_t j = 0; j < n && phase_cells_.size() < kPhaseCells; ++j)
       phase_cells_.push_back(scores_[j] + offset_);
@@ -343,8 +301,7 @@ void OnlineMapper::raise_offset(OffsetChange change) {
   for (auto& v : early_cells_) v -= config_.phase.contrast_offset_step;  // the table as at the new offset
   next_early_fit_ = 0;
   early_fitted_ = false;
-  island_heap_.clear();
-  islands_died_ = 0;
+  sample_.clear();
   sample_from_ = frames_ + 1;
   statistics_ = {};
   sample_changed_ = false;
@@ -755,7 +712,8 @@ void OnlineMapper::find_candidates(align::Direction direction, std::vector<Onlin
   }
 }
 
-void OnlineMapper::drop_candidates(align::Direction direction, IslandRow* live, std::vector<OnlineEvent>& events) {
+void OnlineMapper::drop_candidates(align::Direction direction, const significance::IslandRow* live,
+                                   std::vector<OnlineEvent>& events) {
   const bool at_finish = live == nullptr;
   for (auto it = candidates_.begin(); it != candidates_.end();) {
     if (it->first.second != direction || (live && live->find(it->first.first) != nullptr)) {
@@ -793,12 +751,11 @@ void OnlineMapper::drop_candidates(align::Direction direction, IslandRow* live, 
 
 std::vector<double> OnlineMapper::island_scores() const {
   std::vector<double> out;
-  for (const auto& island : island_heap_) out.push_back(island.first);
-  std::sort(out.begin(), out.end(), std::greater<>());
+  for (const auto& island : sample_.best()) out.push_back(island.first);
   return out;
 }
 
-bool OnlineMapper::beside_a_revisit(const Island& island, align::Direction direction) const {
+bool OnlineMapper::beside_a_revisit(const significance::Island& island, align::Direction direction) const {
   const auto it = closure_columns_.find(island.i);
   if (it == closure_columns_.end()) return false;
   for (const auto& [j, d] : it->second) {
@@ -807,87 +764,14 @@ bool OnlineMapper::beside_a_revisit(const Island& island, align::Direction direc
   return false;
 }
 
-std::size_t OnlineMapper::IslandRow::slot(std::uint64_t start) const {
-  std::uint64_t x = start * 0x9E3779B97F4A7C15ULL;  // Fibonacci hashing: the high bits mix every bit of the key
-  x ^= x >> 29U;
-  return static_cast<std::size_t>(x) & (slots_.size() - 1);
-}
-
-OnlineMapper::Island* OnlineMapper::IslandRow::find(std::uint64_t start) {
-  if (slots_.empty()) return nullptr;
-  for (std::size_t s = slot(start);; s = (s + 1) & (slots_.size() - 1)) {
-    const std::uint32_t at = slots_[s];
-    if (at == 0) return nullptr;
-    if (islands[at - 1].first == start) return &islands[at - 1].second;
-  }
-}
-
-OnlineMapper::Island& OnlineMapper::IslandRow::add(std::uint64_t start, const Island& island) {
-  islands.emplace_back(start, island);
-  std::size_t s = slot(start);
-  while (slots_[s] != 0) s = (s + 1) & (slots_.size() - 1);
-  slots_[s] = static_cast<std::uint32_t>(islands.size());
-  used_.push_back(s);
-  return islands.back().second;
-}
-
-void OnlineMapper::IslandRow::clear(std::size_t bound) {
-  islands.clear();
-  if (slots_.size() < 2 * bound) {
-    std::size_t size = 16;
-    while (size < 2 * bound) size *= 2;
-    slots_.assign(size, 0);
-  } else {
-    for (const std::size_t s : used_) slots_[s] = 0;
-  }
-  used_.clear();
-}
-
-void OnlineMapper::update_islands(align::Direction direction, IslandRow& live) {
+void OnlineMapper::update_islands(align::Direction direction, significance::OnlineIslands& islands) {
   const bool forward = direction == align::Direction::forward;
-  const std::vector<float>& row = forward ? forward_ : reverse_;
-  const std::vector<std::uint64_t>& starts = forward ? forward_start_ : reverse_start_;
-  // Each start's best cell of the row, the first of equal ones; a run of cells of one start is looked up once.
-  next_islands_.clear(row.size());
-  Island* run = nullptr;
-  for (std::size_t j = 0; j < row.size(); ++j) {
-    if (row[j] <= 0) {
-      run = nullptr;
-      continue;
-    }
-    if (run == nullptr || starts[j] != starts[j - 1]) {
-      run = next_islands_.find(starts[j]);
-      if (run == nullptr) {
-        run = &next_islands_.add(starts[j], Island{row[j], frames_, j});
-        continue;
-      }
-    }
-    if (row[j] > run->best) *run = {row[j], frames_, j};
-  }
-  // An island no cell of this row carries has died: its score is final (cells only descend from the row before
-  // and from their own row).
-  const std::size_t keep = config_.island_sample;
-  for (const auto& [start, island] : live.islands) {
-    if (Island* next = next_islands_.find(start); next != nullptr) {
-      if (island.best >= next->best) *next = island;
-      continue;
-    }
-    if (cell_i(start) < sample_from_ || beside_a_revisit(island, direction)) continue;
-    ++islands_died_;
-    const std::pair<double, double> score{island.best, static_cast<double>(island.i - cell_i(start) + 1)};
-    if (island_heap_.size() < keep) {
-      island_heap_.push_back(score);
-      std::push_heap(island_heap_.begin(), island_heap_.end(), std::greater<>());
-    } else if (score > island_heap_.front()) {
-      std::pop_heap(island_heap_.begin(), island_heap_.end(), std::greater<>());
-      island_heap_.back() = score;
-      std::push_heap(island_heap_.begin(), island_heap_.end(), std::greater<>());
-    } else {
-      continue;
-    }
-    sample_changed_ = true;
-  }
-  std::swap(live, next_islands_);
+  islands.advance(forward ? forward_ : reverse_, forward ? forward_start_ : reverse_start_, frames_,
+                  [&](std::uint64_t start, const significance::Island& island) {
+                    if (cell_i(start) < sample_from_ || beside_a_revisit(island, direction)) return;
+                    const double length = static_cast<double>(island.i - cell_i(start) + 1);
+                    if (sample_.offer({island.best, length})) sample_changed_ = true;
+                  });
 }
 
 void OnlineMapper::fit_early(double area) {
@@ -921,7 +805,7 @@ void OnlineMapper::fit_early(double area) {
 }
 
 void OnlineMapper::update_threshold() {
-  const std::size_t tail = std::min(island_heap_.size(), islands_died_ / kTailFraction);
+  const std::size_t tail = std::min(sample_.size(), sample_.offered() / kTailFraction);
   const double area =
       significance::search_area(frames_ + 1, frames_ + 1, true, config_.search.min_separation, config_.search.reverse);
   if (config_.significance.max_e_value && tail < kMinIslandTail && config_.early_fit_frames > 0) fit_early(area);
@@ -932,8 +816,7 @@ void OnlineMapper::update_threshold() {
   if (tail >= kMinIslandTail && (sample_changed_ || !statistics_.valid() || early_fitted_)) {
     early_fitted_ = false;
     // The best `tail` islands, best first: their scores for the fit, their lengths for the phase check.
-    std::vector<std::pair<double, double>> sample = island_heap_;
-    std::sort(sample.begin(), sample.end(), std::greater<>());
+    std::vector<std::pair<double, double>> sample = sample_.best();
     sample.resize(tail);
     std::vector<double> scores(tail);
     for (std::size_t r = 0; r < tail; ++r) scores[r] = sample[r].first;
@@ -974,10 +857,10 @@ std::vector<OnlineEvent> OnlineMapper::step() {
   // died with them is withdrawn.
   if (config_.significance.max_e_value) {
     update_islands(align::Direction::forward, forward_islands_);
-    drop_candidates(align::Direction::forward, &forward_islands_, events);
+    drop_candidates(align::Direction::forward, &forward_islands_.live(), events);
     if (config_.search.reverse) {
       update_islands(align::Direction::reverse, reverse_islands_);
-      drop_candidates(align::Direction::reverse, &reverse_islands_, events);
+      drop_candidates(align::Direction::reverse, &reverse_islands_.live(), events);
     }
   }
   update_threshold();

@@ -4,12 +4,9 @@
 //
 // Definition. Frame t is compared with every earlier frame j (its descriptor's distance D(t, j), cosine or
 // SAD as the offline path uses for that descriptor, S = -D: the contrast enhancement below removes kappa).
-// The score of the pair is causal contrast enhancement of S minus an offset,
-//   s(t, j) = 0.5 (z_row(t, j) + z_col(t, j)) - offset,
-// z_row the z-score of S(t, j) among S(t, j - w .. j + w) (clipped to the past, j' < t), z_col its z-score
-// among S(t - w .. t, j) (the column's last w + 1 values: the offline symmetric form 0.5 (E + E^T) with its
-// window one-sided, because the later rows are not known yet). Pairs closer than min_separation frames are
-// never scored. The forward and reverse Smith-Waterman recurrences of the offline engine
+// The score of the pair is the causal contrast enhancement of S (mapping/causal_contrast.hpp: the offline
+// symmetric form 0.5 (E + E^T) with the column's window one-sided) minus an offset. Pairs closer than min_separation
+// frames are never scored. The forward and reverse Smith-Waterman recurrences of the offline engine
 // (align/smith_waterman.hpp, its self search with min_separation, gap and cap) then get one new row each:
 //   F(t, j) = min(cap, max(0, F(t-1, j-1) + s(t, j), F(t-1, j) - gap, F(t, j-1) - gap))
 //   R(t, j) = min(cap, max(0, R(t-1, j+1) + s(t, j), R(t-1, j) - gap, R(t, j+1) - gap))
@@ -89,6 +86,8 @@
 #include "seqtopo/align/local_alignment.hpp"
 #include "seqtopo/align/settings.hpp"
 #include "seqtopo/core/disjoint_sets.hpp"
+#include "seqtopo/mapping/causal_contrast.hpp"
+#include "seqtopo/significance/online_islands.hpp"
 #include "seqtopo/significance/score_statistics.hpp"
 #include "seqtopo/similarity/distance.hpp"
 
@@ -269,32 +268,14 @@ class OnlineMapper {
   void add_junction(const Track& track, std::size_t i, std::size_t j, bool joining, std::vector<OnlineEvent>& events);
   float confidence(float score) const;
   std::optional<double> e_value(float score) const;
-  struct Island {
-    float best = 0;
-    std::size_t i = 0, j = 0;  // the cell of its best value (the first reached)
-  };
-  // The islands a row carries, in the order the row first reaches them, indexed by start cell (open addressing).
-  // A row holds runs of cells of one start: one probe per run, into tables kept from row to row, costs a fraction
-  // of a hash map's lookup and node allocation per cell.
-  class IslandRow {
-   public:
-    std::vector<std::pair<std::uint64_t, Island>> islands;
-    Island* find(std::uint64_t start);
-    Island& add(std::uint64_t start, const Island& island);  // a start not in the row yet
-    void clear(std::size_t bound);                           // empty, for at most `bound` islands
-
-   private:
-    std::size_t slot(std::uint64_t start) const;
-    std::vector<std::uint32_t> slots_;  // index + 1 into islands, 0: empty; a power of two of at least 2 x bound
-    std::vector<std::size_t> used_;     // the slots filled
-  };
-  void update_islands(align::Direction direction, IslandRow& live);
-  bool beside_a_revisit(const Island& island, align::Direction direction) const;
+  void update_islands(align::Direction direction, significance::OnlineIslands& islands);
+  bool beside_a_revisit(const significance::Island& island, align::Direction direction) const;
   void update_threshold();
   void find_candidates(align::Direction direction, std::vector<OnlineEvent>& events);
   // Withdraws the candidates of `direction` whose path no cell of the newest row carries (`live`: the row's islands);
   // every one with nullptr (the run ended).
-  void drop_candidates(align::Direction direction, IslandRow* live, std::vector<OnlineEvent>& events);
+  void drop_candidates(align::Direction direction, const significance::IslandRow* live,
+                       std::vector<OnlineEvent>& events);
 
   OnlineMapConfig config_;
   std::size_t frames_ = 0;
@@ -302,10 +283,8 @@ class OnlineMapper {
   std::vector<float> descriptors_;  // frames_ x dim_
   std::vector<double> norms_;       // their squared norms (cosine)
   std::vector<float> similarity_;   // S of the current frame (t values)
-  // The last w + 1 rows of S (ring, by frame modulo w + 1) and the per-column running sums over them.
-  std::vector<std::vector<std::vector<float>>> recent_;  // per similarity
+  CausalContrast contrast_;         // the enhanced rows (without the offset)
   std::size_t channels_ = 0;
-  std::vector<double> column_sum_, column_sum2_;
   std::vector<float> scores_;  // s(t, j), j <= t - min_separation
   std::vector<float> forward_, reverse_, previous_forward_, previous_reverse_;
   // Start cell (frame, column) of the path attaining each cell, for the same rows.
@@ -326,13 +305,12 @@ class OnlineMapper {
   std::map<std::uint64_t, std::size_t> ended_starts_;  // start cell of an ended track -> its last frame
   // Islands: the best value so far of each start cell in the newest row, per table; the sample of dead islands'
   // scores (a min-heap of at most island_sample values) and the fit.
-  IslandRow forward_islands_, reverse_islands_, next_islands_;
+  significance::OnlineIslands forward_islands_, reverse_islands_;
   // The columns of the loop closures emitted at each frame (withdrawn ones too), with their direction: islands
   // beside them are the revisit's shadows, not chance.
   std::unordered_map<std::size_t, std::vector<std::pair<std::size_t, align::Direction>>> closure_columns_;
   // The sample: (score, length in frames) of the best dead islands, a min-heap by score.
-  std::vector<std::pair<double, double>> island_heap_;
-  std::size_t islands_died_ = 0;
+  significance::BestIslands sample_;
   std::size_t sample_from_ = 0;  // islands that started before this frame stay out (an earlier offset's)
   float offset_ = 0;
   std::vector<OffsetChange> offset_changes_;
