@@ -11,6 +11,7 @@
 #include <string>
 
 #include "median.hpp"
+#include "seqtopo/align/capped_cell.hpp"
 #include "seqtopo/align/online_row.hpp"
 #include "seqtopo/mapping/map_builder.hpp"
 #include "seqtopo/mapping/place_scale.hpp"
@@ -566,8 +567,7 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
       const std::vector<float>& previous = forward ? previous_forward_ : previous_reverse_;
       const std::size_t from = forward ? jb - 1 : jb + 1;  // wraps for jb = 0 forward: out of range, no diagonal
       const float diag = from < previous.size() ? previous[from] : 0.0F;
-      const float reached = config_.search.cap ? std::min(diag + scores_[jb], *config_.search.cap) : diag + scores_[jb];
-      matching = scores_[jb] > 0 && reached == value;
+      matching = scores_[jb] > 0 && align::capped(diag + scores_[jb], config_.search.cap) == value;
     }
     track.falling = best >= 0 && (value < track.last_value || !matching) ? track.falling + 1 : 0;
     if (best < 0 || value < threshold_ || value < track.best - config_.x_drop ||

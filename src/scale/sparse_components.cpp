@@ -326,10 +326,8 @@ std::uint64_t first_max_key(const SparseScores& s, const AlignConfig& config, co
       const std::size_t c = fwd ? c0 + tb : c1 - tb;
       float v = 0.0F;
       if (!self || (r >= c && r - c >= config.min_separation)) {
-        if (used[(r - r0) * cols + tb] == 0) v = std::max(v, prev[tb] + s.at(r, c));
-        v = std::max(v, prev[tb + 1] - config.gap_a);
-        v = std::max(v, cur[tb] - config.gap_b);
-        if (config.cap) v = std::min(v, *config.cap);
+        const float step = used[(r - r0) * cols + tb] == 0 ? prev[tb] + s.at(r, c) : 0.0F;  // 0: forbidden
+        v = align::capped_cell(step, prev[tb + 1], cur[tb], config.gap_a, config.gap_b, config.cap);
       }
       cur[tb + 1] = v;
       if (v == target) {
