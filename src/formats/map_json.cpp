@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "seqtopo/formats/alignment_json.hpp"
+#include "seqtopo/formats/decision_notes.hpp"
 
 namespace seqtopo::formats {
 namespace {
@@ -24,7 +25,7 @@ nlohmann::json alignment_list(const mapping::MapResult& result) {
   return list;
 }
 
-nlohmann::json significance_json(const mapping::MapResult& result) {
+nlohmann::json significance_json(const mapping::MapResult& result, std::span<const std::string> descriptor_names) {
   const auto& d = result.decisions;
   nlohmann::json j = {{"frames_per_place", d.frames_per_place},
                       {"frames_per_place_estimated", d.frames_per_place_estimated},
@@ -34,7 +35,7 @@ nlohmann::json significance_json(const mapping::MapResult& result) {
                       {"contrast_offset", d.contrast_offset},
                       {"cap", d.cap ? nlohmann::json(*d.cap) : nlohmann::json(nullptr)},
                       {"score_threshold", d.score_threshold},
-                      {"notes", d.notes}};
+                      {"notes", decision_notes(d, descriptor_names)}};
   if (!d.blind_descriptors.empty()) j["blind_descriptors"] = d.blind_descriptors;
   if (!d.low_information_frames.empty()) j["low_information_frames"] = d.low_information_frames;
   if (d.statistics.valid()) {
@@ -105,7 +106,7 @@ std::string map_json(const mapping::MapResult& result, std::span<const MapSessio
   return document.dump(1) + "\n";
 }
 
-std::string alignments_json(const mapping::MapResult& result) {
+std::string alignments_json(const mapping::MapResult& result, std::span<const std::string> descriptor_names) {
   nlohmann::json insignificant = alignments_to_json(result.insignificant)["alignments"];
   for (std::size_t k = 0; k < insignificant.size() && k < result.insignificant_e_values.size(); ++k) {
     insignificant[k]["e_value"] = number_or_null(result.insignificant_e_values[k]);
@@ -117,7 +118,7 @@ std::string alignments_json(const mapping::MapResult& result) {
   return nlohmann::json{{"alignments", alignment_list(result)},
                         {"rejected_by_odometry", std::move(rejected)},
                         {"insignificant", std::move(insignificant)},
-                        {"significance", significance_json(result)}}
+                        {"significance", significance_json(result, descriptor_names)}}
              .dump(1) +
          "\n";
 }

@@ -491,14 +491,6 @@ void check_map_config(const MapConfig& c) {
 
 namespace {
 
-// The note for similarity k (0-based) of `count` left out as blind, named when the config names it.
-std::string blind_descriptor_note(std::size_t k, std::size_t count, std::string_view name) {
-  return fmt::format(
-      "descriptor {} of {}{} sees no revisit (none on its own, nor higher scores than chance on the pairs another "
-      "maps): left out of the fusion",
-      k + 1, count, name.empty() ? std::string() : fmt::format(" ({})", name));
-}
-
 // MapConfig::drop_blind_descriptors: the similarities that see no revisit (ascending; empty when the check does not
 // apply or none is blind). Blind: its own map has no loop closure, another's has one at E <= max_e_value / D
 // (choosing among D descriptors is a test each, Bonferroni: a chance alignment of one descriptor on a sequence
@@ -617,23 +609,11 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   const double seconds_scores = seconds_since(start);
   MapResult result = build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols),
                                              c, odometry, {}, masked_frames);
-  if (repeats > 0) {
-    result.decisions.notes.push_back(
-        fmt::format("{} frames in tandem repeats of appearance (they resemble frames one and two periods away within "
-                    "the self-alignment band: identical doors, shelves) carry no evidence of a revisit",
-                    repeats));
-  }
+  result.decisions.tandem_repeat_frames = repeats;
+  result.decisions.similarities = similarities.size();
   result.decisions.blind_descriptors = blind;
-  for (auto k = blind.rbegin(); k != blind.rend(); ++k) {  // first in the notes, in the descriptors' order
-    result.decisions.notes.insert(
-        result.decisions.notes.begin(),
-        blind_descriptor_note(*k, similarities.size(),
-                              *k < config.descriptor_names.size() ? config.descriptor_names[*k] : std::string_view()));
-  }
   result.decisions.frames_per_place_estimated = estimate;
-  if (scale && !scale->found) {
-    result.decisions.notes.insert(result.decisions.notes.begin(), kNoPlaceScaleNote);
-  }
+  result.decisions.place_scale_missing = scale && !scale->found;
   // What was aligned: the enhanced scores minus the offset the run chose (or S itself without enhancement).
   if (framed.score.contrast_window > 0) {
     for (auto& v : enhanced.values) v -= result.decisions.contrast_offset;
@@ -689,30 +669,18 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     const double area_places = significance::search_area(n, n, true, c.search.min_separation, c.search.reverse) /
                                (d.frames_per_place * d.frames_per_place);
     FitRun fit;
+    const double bound = c.phase.max_global_rate.value_or(0.0F);
     while (true) {
       fit = fit_looking_further(detail::soft_masked(minus(enhanced, offset), masked), c, d.frames_per_place);
       const auto [short_chance, logarithmic] = phase_checks(fit, c, area_places);
       if (logarithmic || !fit.statistics.valid() || !c.phase.adapt_offset || c.score.contrast_window == 0 ||
           offset + c.phase.contrast_offset_step > c.phase.max_contrast_offset + 1e-6F) {
-        if (!logarithmic && fit.statistics.valid()) {
-          d.notes.push_back(
-              short_chance ? fmt::format("the scores' global alignment rate stays at {:.3f} a step even at contrast "
-                                         "offset {:.2f}: revisits may be overestimated",
-                                         fit.global_rate, offset)
-                           : fmt::format("chance alignments stay long ({:.1f} places) even at contrast offset {:.2f}: "
-                                         "revisits may be overestimated",
-                                         fit.chance_length, offset));
-        }
+        if (!logarithmic && fit.statistics.valid())
+          d.linear_phase.push_back({offset, short_chance, fit.global_rate, bound, fit.chance_length, std::nullopt});
         break;
       }
-      d.notes.push_back(
-          short_chance
-              ? fmt::format("contrast offset {:.2f}: the scores' global alignment rate is {:.3f} a step, above {:.2f} "
-                            "(linear phase); raised to {:.2f}",
-                            offset, fit.global_rate, *c.phase.max_global_rate, offset + c.phase.contrast_offset_step)
-              : fmt::format("contrast offset {:.2f}: chance alignments grow with the sequence ({:.1f} places, "
-                            "linear phase); raised to {:.2f}",
-                            offset, fit.chance_length, offset + c.phase.contrast_offset_step));
+      d.linear_phase.push_back(
+          {offset, short_chance, fit.global_rate, bound, fit.chance_length, offset + c.phase.contrast_offset_step});
       offset += c.phase.contrast_offset_step;
     }
     d.statistics = fit.statistics;
@@ -756,10 +724,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       // The fixed threshold and cap were chosen for one frame per place; scores grow with the frames per place.
       engine.threshold = static_cast<float>(c.significance.threshold * d.frames_per_place);
       if (c.search.cap) engine.cap = static_cast<float>(*c.search.cap * d.frames_per_place);
-      d.notes.push_back(fmt::format(
-          "too few chance alignments ({}) to fit the significance statistics: a fixed threshold of {:.4g} and cap "
-          "{} apply",
-          fit.fitted, engine.threshold, engine.cap ? fmt::format("{:.4g}", *engine.cap) : "none"));
+      d.unfitted_chance_alignments = fit.fitted;
     }
   }
   d.contrast_offset = offset;
@@ -795,11 +760,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     for (auto& a : result.alignments) {
       a = significance::trim_chance_ends(a, scores, c.search.gap, c.search.gap, d.chance_mean, max_tail_gain);
     }
-    const std::size_t trimmed = before - pair_count(result.alignments);
-    if (trimmed > 0) {
-      d.notes.push_back(
-          fmt::format("{} aligned pairs at alignments' ends more likely chance than revisit trimmed off", trimmed));
-    }
+    d.trimmed_chance_end_pairs = before - pair_count(result.alignments);
   }
   if (c.significance.max_e_value && engine.cap) {
     select_alignments(result, realign_in_bands(result.alignments, scores, engine, c.search.gap,
@@ -808,7 +769,6 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   if (!low_information.empty()) {
     select_alignments(result, detail::through_masked_frames(result.alignments, masked));
     d.low_information_frames.assign(low_information.begin(), low_information.end());
-    d.notes.insert(d.notes.begin(), detail::low_information_note(masked));
   }
   // Most significant first: capped scores tie at the cap, their paths' scores do not. Pruning and labels
   // then prefer the strongest of overlapping alignments (parallel shadows of one revisit, crossing chances).
@@ -847,11 +807,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     }
     const std::size_t before = pair_count(result.alignments);
     result.alignments = trim_to_odometry(result.alignments, odometry, *c.odometry.gate);
-    const std::size_t trimmed = before - pair_count(result.alignments);
-    if (trimmed > 0) {
-      d.notes.push_back(
-          fmt::format("odometry: {} aligned pairs past the places where two paths part trimmed off", trimmed));
-    }
+    d.trimmed_odometry_pairs = before - pair_count(result.alignments);
   }
   result.seconds_align = seconds_since(start);
 

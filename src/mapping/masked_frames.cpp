@@ -1,7 +1,5 @@
 #include "masked_frames.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -97,18 +95,6 @@ void posteriors_through_masked(const align::LocalAlignment& a, const std::vector
     }
     t = u;
   }
-}
-
-std::string low_information_note(const std::vector<bool>& masked) {
-  std::size_t frames = 0, stretches = 0;
-  for (std::size_t k = 0; k < masked.size(); ++k) {
-    frames += masked[k] ? 1 : 0;
-    stretches += masked[k] && (k == 0 || !masked[k - 1]) ? 1 : 0;
-  }
-  return fmt::format(
-      "{} frame{} of little information (dark or near-uniform) in {} stretch{}: no evidence of a "
-      "revisit (soft-masked), their loop closures only where a revisit runs through them",
-      frames, frames == 1 ? "" : "s", stretches, stretches == 1 ? "" : "es");
 }
 
 }  // namespace seqtopo::mapping::detail

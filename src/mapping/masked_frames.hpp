@@ -34,7 +34,4 @@ std::vector<std::size_t> through_masked_frames(std::vector<align::LocalAlignment
 void posteriors_through_masked(const align::LocalAlignment& alignment, const std::vector<bool>& masked,
                                std::size_t tolerance, std::vector<double>& posteriors);
 
-// The note for the map's decisions: how many frames in how many stretches.
-std::string low_information_note(const std::vector<bool>& masked);
-
 }  // namespace seqtopo::mapping::detail

@@ -244,7 +244,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out, co
                             [&run] { return encode_map_figures(run); });
 
   out.write("map.json", formats::map_json(result, run.sessions));
-  out.write("alignments.json", formats::alignments_json(result));
+  out.write("alignments.json", formats::alignments_json(result, run.descriptor_names));
   out.write("loop_closures.csv", formats::loop_closures_csv(result));
   if (!run.streamed() && writes_matrices(map.labels.size(), options.matrices)) {
     out.write_pieces("similarity.npy", {io::npy_header(run.matrices.front()), io::npy_body(run.matrices.front())});

@@ -12,6 +12,7 @@
 
 #include "figures.hpp"
 #include "report_data.hpp"
+#include "seqtopo/formats/decision_notes.hpp"
 #include "seqtopo/outputs/map_outputs.hpp"
 #include "seqtopo/report/html_report.hpp"
 
@@ -322,7 +323,8 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
 
   // What the significance statistics decided, and what the filter removed.
   const auto& d = result.decisions;
-  if (d.statistics.valid() || !d.notes.empty() || !result.insignificant.empty()) {
+  const std::vector<std::string> notes = formats::decision_notes(d, run.descriptor_names);
+  if (d.statistics.valid() || !notes.empty() || !result.insignificant.empty()) {
     html.heading("Significance: what was kept and what was removed");
     std::vector<std::pair<std::string, std::string>> facts{
         {"frames per place",
@@ -352,7 +354,7 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
                          fmt::format("{}: {}", f.size(), stretches));
     }
     html.key_values(facts);
-    for (const auto& note : d.notes) html.paragraph(note);
+    for (const auto& note : notes) html.paragraph(note);
     if (!result.insignificant.empty()) {
       constexpr std::size_t kListed = 20;
       std::vector<std::vector<std::string>> rows;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/formats/decision_notes.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -45,7 +46,7 @@ void report_map(MapRun& run, const MapObserver& observer) {
                               d.frames_per_place, d.frames_per_place_estimated ? " (estimated)" : "", d.contrast_window,
                               d.min_separation));
   }
-  for (const auto& note : d.notes) say(observer, "      " + note);
+  for (const auto& note : formats::decision_notes(d, run.descriptor_names)) say(observer, "      " + note);
   if (d.statistics.valid()) {
     say(observer,
         fmt::format("      significance: lambda {:.3g}, K {:.3g} (from {} chance alignments); E <= {} needs a "
@@ -142,7 +143,6 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
       entropy.size() == n ? significance::low_information_frames(entropy) : std::vector<std::size_t>{};
   mapping::MapConfig map_config = map_config_of(settings, run);
   map_config.alignment_progress = clock.alignment_progress();
-  map_config.descriptor_names = run.descriptor_names;
   run.result = mapping::build_map(run.matrices, map_config, odometry, low_information);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
@@ -256,9 +256,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   config.alignment_progress = clock.alignment_progress();
   run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run);
   run.result.decisions.frames_per_place_estimated = place.has_value();
-  if (place && !place->found) {
-    run.result.decisions.notes.insert(run.result.decisions.notes.begin(), mapping::kNoPlaceScaleNote);
-  }
+  run.result.decisions.place_scale_missing = place && !place->found;
   report_map(run, observer);
   clock.end({{"alignment (similarity streamed)", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 
@@ -544,7 +542,6 @@ MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<
   clock.begin();
   mapping::MapConfig config = settings.map;
   config.alignment_progress = clock.alignment_progress();
-  config.descriptor_names = run.descriptor_names;
   run.result = mapping::build_map(run.matrices, config, odometry);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});

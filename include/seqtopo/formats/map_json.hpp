@@ -19,8 +19,9 @@ struct MapSession {
 // every image].
 std::string map_json(const mapping::MapResult& result, std::span<const MapSession> sessions = {});
 // {"alignments": [... with "kept", "path_score", "e_value"], "rejected_by_odometry": [...], "insignificant": [...],
-//  "significance": {...}} (INTERFACE.md)
-std::string alignments_json(const mapping::MapResult& result);
+//  "significance": {...}} (INTERFACE.md); `descriptor_names` name a descriptor left out in its notes
+// (decision_notes.hpp).
+std::string alignments_json(const mapping::MapResult& result, std::span<const std::string> descriptor_names = {});
 // i,j,score,e_value for every retained pair after pruning (e_value empty without statistics).
 std::string loop_closures_csv(const mapping::MapResult& result);
 

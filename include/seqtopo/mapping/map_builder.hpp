@@ -123,8 +123,6 @@ struct MapConfig {
   // map alone that still scores the revisit stays (decisions.blind_descriptors, a note).
   bool drop_blind_descriptors = true;
   std::size_t max_blind_check_frames = 8000;
-  // The names of build_map's similarities, for its notes (a descriptor left out is named); empty: by number.
-  std::vector<std::string> descriptor_names;
   // Frames of little information given to build_map (dark or near-uniform images: significance/low_information.hpp)
   // carry no evidence of a revisit, as a sequence search soft-masks low-complexity regions: with contrast
   // enhancement their enhanced scores are capped at the contrast offset (aligned, at most 0), so an alignment
@@ -152,11 +150,31 @@ struct MapDecisions {
   double chance_length = 0;                  // median length of the fitted chance alignments [places]
   // odometry_evidence: the probability q that a chance alignment agrees with the odometry (1: not used).
   double odometry_chance_agreement = 1;
+  std::size_t similarities = 1;  // how many build_map fused (1 for the other entry points)
   // drop_blind_descriptors: the similarities (indices into build_map's list) left out of the fusion.
   std::vector<std::size_t> blind_descriptors;
   // mask_low_information: the frames taken out as carrying no evidence (sorted).
   std::vector<std::size_t> low_information_frames;
-  std::vector<std::string> notes;  // what was adapted and why, one line each
+  // What was adapted and why, as facts (formats/decision_notes.hpp says them in words, one line each):
+  bool place_scale_missing = false;  // the scale was estimated but none found: windows count frames
+  // Each contrast offset the statistics' run found in the linear phase, in order: raised to the next (adapt_offset),
+  // or the last tried, kept although its revisits may be overestimated.
+  struct LinearPhase {
+    float offset = 0;
+    bool by_global_rate = false;     // the scores' global alignment rate above max_global_rate (else chance alignments
+                                     // grew long)
+    double global_rate = 0;          // [score units a step]
+    double bound = 0;                // the phase's max_global_rate (0 when unset)
+    double chance_length = 0;        // [places]
+    std::optional<float> raised_to;  // unset: kept
+  };
+  std::vector<LinearPhase> linear_phase;
+  // Too few chance alignments to fit the statistics: how many (the fixed threshold and cap applied are
+  // score_threshold and cap).
+  std::optional<std::size_t> unfitted_chance_alignments;
+  std::size_t trimmed_chance_end_pairs = 0;  // aligned pairs at ends more likely chance than revisit, trimmed off
+  std::size_t trimmed_odometry_pairs = 0;    // aligned pairs past where two paths part (the odometry), trimmed off
+  std::size_t tandem_repeat_frames = 0;      // frames masked as tandem repeats of appearance (beyond the dark ones)
 };
 
 struct MapResult {

@@ -32,11 +32,6 @@ struct PlaceScale {
   bool found = false;           // false: too short a sequence, or no decay to a flat background
 };
 
-// What a map run reports when no scale was found.
-inline constexpr const char* kNoPlaceScaleNote =
-    "no place scale: the similarity keeps falling with the lag (a drifting sequence) or the sequence is short; "
-    "windows and separations count frames";
-
 inline constexpr std::size_t kPlaceScaleFrames = 100000;
 
 // `similarity` is a square self-similarity (higher = more similar; any scale). Throws std::invalid_argument on
