@@ -130,10 +130,10 @@ void fused_score_row(std::span<const float* const> rows, std::size_t cols, const
 // revisits seen. A descriptor's weight is its mean enhanced score on them above its mean over the whole matrix:
 // the shift a revisit gives its scores, whose noise is 1 after enhancement, so the weighted sum is the matched
 // filter of the descriptors' evidence (a descriptor that barely sees the revisit adds its noise almost unweighted
-// in an equal average: Nordland's joint histogram, R@1 0.06 alone, took the fusion from the patch's 0.993 to
-// 0.968). Weight 0, as the map's blind-descriptor rule (mapping::MapConfig::drop_blind_descriptors), for a
-// descriptor that finds nothing alone at E <= significance.max_e_value and whose shift is within 3 standard errors of
-// 0. Equal weights (all 1) with one matrix, without enhancement, or when no descriptor alone sees a revisit.
+// in an equal average: docs/localization-nordland.md). Weight 0, as the map's blind-descriptor rule
+// (mapping::MapConfig::drop_blind_descriptors), for a descriptor that finds nothing alone at E <=
+// significance.max_e_value and whose shift is within 3 standard errors of 0. Equal weights (all 1) with one matrix,
+// without enhancement, or when no descriptor alone sees a revisit.
 std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> query_x_map,
                                        const LocalizeConfig& config = {});
 

@@ -78,8 +78,7 @@ struct MapConfig {
   // counts by how much more alike its frames are than each frame is to its hubness_neighbours most similar frames
   // elsewhere in the sequence, so frames that resemble much of it (dark tunnels, bare walls) stop standing out of
   // the ordinary frames around them. [unit]; 0: off. With contrast enhancement only. Off by default: with
-  // low-information masking it adds little and costs Nordland summer + winter 91 of its 1,780 loop closures at
-  // 10 places (docs/significance.md, "Trust").
+  // low-information masking it adds little and costs real revisits (docs/significance.md, "Trust").
   double hubness_neighbours = 0;
   // With significance (significance.max_e_value set) and cap_from_statistics, the cap is cap_factor times the
   // score a significant alignment must reach, so the stretch of non-matching images that separates two revisits
@@ -118,9 +117,9 @@ struct MapConfig {
   // max_blind_check_frames frames: each descriptor is mapped alone first, and one that is blind is left out of
   // the fusion: its own map has no loop closure, another's has one at E <= max_e_value / D, and on that map's
   // pairs its enhanced scores are no higher than on its chance cells (within 3 standard errors). Its scores would
-  // be noise averaged into the others' evidence (the corridor with its second lap 40 % darker, where the joint
-  // histogram's absolute colour bins see no revisit: F1 0.646 fused, 0.872 without it); a descriptor too weak to
-  // map alone that still scores the revisit stays (decisions.blind_descriptors, a note).
+  // be noise averaged into the others' evidence (the joint histogram's absolute colour bins on a lap recorded darker:
+  // docs/significance.md); a descriptor too weak to map alone that still scores the revisit stays
+  // (decisions.blind_descriptors).
   bool drop_blind_descriptors = true;
   std::size_t max_blind_check_frames = 8000;
   // Frames of little information given to build_map (dark or near-uniform images: significance/low_information.hpp)

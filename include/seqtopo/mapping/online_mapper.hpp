@@ -102,9 +102,8 @@ struct OnlineMapConfig {
   // threshold keeps them out) phase.adapt_offset raises it by contrast_offset_step for the frames that follow (up
   // to max_contrast_offset), live paths are rescored and the islands sampled anew:
   //  * the scores: the global alignment rate of a table drawn from the first scores
-  //    (significance/alignment_phase.hpp) must not exceed phase.max_global_rate, checked from 2,048 scores on.
-  //    Measured at the default offset: white-noise descriptors -0.08 to 0; the corridor, Nordland, the synthetic
-  //    route and smooth noise -0.19 to -0.35 (docs/online.md);
+  //    (significance/alignment_phase.hpp) must not exceed phase.max_global_rate, checked from 2,048 scores on
+  //    (the rates of noise and of real sequences: docs/online.md);
   //  * the islands: after each fit, their median length in places (the frames from an island's start to its best
   //    cell, over the frames per place estimated from the similarities so far, place_scale.hpp) must stay within
   //    max(4, ln(area in places)), the offline map's bound for its chance alignments; checked once a scale is
