@@ -24,10 +24,11 @@ namespace fs = std::filesystem;
 void add_online_options(CLI::App& app, bool& online, bool& no_offline_outputs, std::optional<double>& candidate_e_value,
                         bool& no_candidates) {
   app.add_flag("--online", online,
-               "map while the frames arrive, one at a time in order (image folder, video, descriptors.npy, "
-               "similarity.npy, or image paths on stdin with INPUT -): events.jsonl flushed after every frame, a line "
-               "per event on stdout, then the offline map's outputs (docs/online.md); --min-separation and "
-               "--contrast-window count frames");
+               "map while the frames arrive, one at a time in order (image folders, videos, descriptors.npy, one "
+               "similarity.npy, or image paths on stdin with INPUT -; several inputs are the sessions of one map): "
+               "events.jsonl flushed after every frame, a line per event on stdout, then the offline map's outputs "
+               "(docs/online.md); --min-separation and --contrast-window count frames, or places with "
+               "--frames-per-place F");
   app.add_flag("--no-offline-outputs", no_offline_outputs,
                "with --online: write only the online files (events.jsonl, online_loop_closures.csv, online.json), "
                "not the offline map of the whole sequence");
@@ -38,15 +39,9 @@ void add_online_options(CLI::App& app, bool& online, bool& no_offline_outputs, s
 }
 
 void run_map_online(const OnlineCliOptions& o) {
-  if (o.inputs.size() != 1) {
-    throw InputError("--online", fmt::format("maps one input (a folder, video, descriptors.npy, similarity.npy or - "
-                                             "for image paths on stdin), got {}",
-                                             o.inputs.size()));
-  }
   pipeline::OnlineMapRequest request;
-  const std::string& input = o.inputs.front();
   const auto kind = option_value("--input-kind", [&] { return pipeline::parse_input_kind(o.input_kind); });
-  request.input = pipeline::SequenceInput(fs::path(input), kind, o.every);
+  for (const auto& input : o.inputs) request.sessions.emplace_back(fs::path(input), kind, o.every);
   request.paths = &std::cin;
   auto& c = request.config;
   pipeline::apply_overrides(c, o.set);
@@ -56,9 +51,12 @@ void run_map_online(const OnlineCliOptions& o) {
     mapping::validate(c);
     return 0;
   });
-  if (input != "-") pipeline::resolve_input_kind(request.input);  // InputError naming a missing input
   std::vector<fs::path> inputs;
-  if (input != "-") inputs.emplace_back(input);
+  for (const auto& session : request.sessions) {
+    if (session.path == "-") continue;
+    pipeline::resolve_input_kind(session);  // InputError naming a missing input
+    inputs.push_back(session.path);
+  }
   if (!o.ground_truth.empty()) inputs.emplace_back(o.ground_truth);
   io::OutputDirectory out(o.out, {.inputs = inputs, .command = "seqtopo map --online"});
   const fs::path live = out.staged("events.jsonl");

@@ -38,6 +38,10 @@ void write_online_map_outputs(const pipeline::OnlineMapRun& run, const mapping::
                                       {"p99", quantile(run.frame_seconds, 0.99)},
                                       {"max", quantile(run.frame_seconds, 1.0)}}},
                                     {"events", run.event_counts}};
+  if (run.sessions.size() > 1) {  // as map.json: the frames [begin, end) of each input
+    auto& sessions = summary["sessions"] = nlohmann::ordered_json::array();
+    for (const auto& x : run.sessions) sessions.push_back({{"input", x.input}, {"begin", x.begin}, {"end", x.end}});
+  }
   nlohmann::ordered_json significance = {
       {"max_e_value", config.significance.max_e_value ? nlohmann::ordered_json(*config.significance.max_e_value)
                                                       : nlohmann::ordered_json()},

@@ -97,49 +97,92 @@ void apply_overrides(mapping::OnlineMapConfig& c, const MapOverrides& o) {
   }
 }
 
+namespace {
+
+// What a session's frames are fed as: images (folders, videos, paths on a stream), descriptor rows, or similarity
+// rows. Sessions of one run are fed alike.
+enum class FeedKind { images, descriptors, similarity };
+
+FeedKind feed_kind(InputKind kind, const std::string& subject) {
+  switch (kind) {
+    case InputKind::images:
+    case InputKind::video:
+      return FeedKind::images;
+    case InputKind::descriptors:
+      return FeedKind::descriptors;
+    case InputKind::similarity:
+      return FeedKind::similarity;
+    case InputKind::bag:
+      throw InputError(subject,
+                       "--online reads image folders, videos, descriptors.npy, similarity.npy or image "
+                       "paths on stdin (-), not bags");
+    default:
+      throw InputError(subject, "unsupported input for --online");
+  }
+}
+
+}  // namespace
+
 OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFrameCallback& on_frame) {
   const auto start = std::chrono::steady_clock::now();
   OnlineMapRun run;
-  const SequenceInput& input = request.input;
+  if (request.sessions.empty()) throw InputError("--online", "no input given");
+  const bool from_stream = request.sessions.front().path == "-";
+  if (request.sessions.size() > 1) {
+    for (const auto& session : request.sessions) {
+      if (session.path == "-") throw InputError("-", "image paths on stdin are one input alone, not a session");
+    }
+  }
   // The ground truth is read (its format recognized and parsed) before the first frame; its size is checked at the
   // end, when the number of frames is known.
   std::optional<GroundTruthFile> truth;
   if (!request.truth.same_place.empty())
     truth = read_ground_truth(request.truth.same_place.string(), {}, request.truth.radius);
-  const bool from_stream = input.path == "-";
-  run.kind = from_stream ? InputKind::images : resolve_input_kind(input);
-  mapping::OnlineMapConfig config = request.config;
-  const std::string subject = input.path.string();
-  switch (run.kind) {
-    case InputKind::bag:
-      throw InputError(subject,
-                       "--online reads image folders, videos, descriptors.npy, similarity.npy or image "
-                       "paths on stdin (-), not bags");
-    case InputKind::descriptors:
-      config.distance = similarity::Distance::cosine;
-      break;
-    case InputKind::images:
-    case InputKind::video:
-      config.distance = similarity::Distance::sad;
-      break;
-    default:
-      break;
+  // Every session's kind before the first frame: sessions are fed alike (images, descriptor rows, or one
+  // similarity).
+  std::vector<InputKind> kinds;
+  for (const auto& session : request.sessions)
+    kinds.push_back(from_stream ? InputKind::images : resolve_input_kind(session));
+  const FeedKind feed = feed_kind(kinds.front(), request.sessions.front().path.string());
+  for (std::size_t k = 1; k < kinds.size(); ++k) {
+    const std::string subject = request.sessions[k].path.string();
+    if (feed_kind(kinds[k], subject) != feed) {
+      throw InputError(subject, fmt::format("is {}, the first session {}: the sessions of one online map are of one "
+                                            "kind (images and videos, or descriptors.npy)",
+                                            input_kind_name(kinds[k]), input_kind_name(kinds.front())));
+    }
+    if (feed == FeedKind::similarity) {
+      throw InputError(subject, "a similarity.npy is one session alone (its rows compare its own frames only)");
+    }
   }
+  run.kind = kinds.front();
+  mapping::OnlineMapConfig config = request.config;
+  if (feed == FeedKind::descriptors) config.distance = similarity::Distance::cosine;
+  if (feed == FeedKind::images) config.distance = similarity::Distance::sad;
   // A matrix input is read whole; a similarity's own diagonal is S(t, t), which its rows below leave out (the place
   // scale needs it: mapping::OnlineMapConfig::self_similarity).
-  std::optional<DenseMatrix<float>> matrix;
-  if (run.kind == InputKind::descriptors || run.kind == InputKind::similarity) {
-    if (run.kind == InputKind::similarity) refuse_every_for_similarity(input);
-    matrix = read_input_rows(input);
-    if (matrix->rows == 0 || matrix->cols == 0) throw InputError(subject, "holds no row");
-    if (run.kind == InputKind::similarity) {
-      if (matrix->rows != matrix->cols) {
+  std::vector<DenseMatrix<float>> matrices;
+  if (feed != FeedKind::images) {
+    for (const auto& session : request.sessions) {
+      const std::string subject = session.path.string();
+      if (feed == FeedKind::similarity) refuse_every_for_similarity(session);
+      DenseMatrix<float> matrix = read_input_rows(session);
+      if (matrix.rows == 0 || matrix.cols == 0) throw InputError(subject, "holds no row");
+      if (!matrices.empty() && matrix.cols != matrices.front().cols) {
         throw InputError(subject,
-                         fmt::format("a similarity matrix must be square, got {} x {}", matrix->rows, matrix->cols));
+                         fmt::format("has {} dimensions, the first session {}", matrix.cols, matrices.front().cols));
+      }
+      matrices.push_back(std::move(matrix));
+    }
+    if (feed == FeedKind::similarity) {
+      const DenseMatrix<float>& m = matrices.front();
+      if (m.rows != m.cols) {
+        throw InputError(request.sessions.front().path.string(),
+                         fmt::format("a similarity matrix must be square, got {} x {}", m.rows, m.cols));
       }
       std::vector<float> diagonal;  // finite values only (a non-finite one is refused with its row below)
-      for (std::size_t t = 0; t < matrix->rows; ++t) {
-        if (std::isfinite((*matrix)(t, t))) diagonal.push_back((*matrix)(t, t));
+      for (std::size_t t = 0; t < m.rows; ++t) {
+        if (std::isfinite(m(t, t))) diagonal.push_back(m(t, t));
       }
       if (!diagonal.empty()) {
         const auto middle = diagonal.begin() + static_cast<std::ptrdiff_t>(diagonal.size() / 2);
@@ -163,49 +206,53 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
       return m.add_similarities(rows);
     });
   };
-  if (from_stream) {
-    if (request.paths == nullptr) throw std::invalid_argument("run_online_map: input '-' needs a stream of paths");
-    // Bounded lines: binary data on stdin (/dev/zero) is an error, not a line that grows without end.
-    while (const auto line = read_bounded_line(*request.paths, "stdin")) {
-      if (line->empty()) continue;
-      const fs::path file(*line);
-      const RgbImage image = image::load_image(file);  // InputError naming the file
-      run.image_files.push_back(file);
-      add_image(file.filename().string(), image, file.string());
-    }
-    if (run.frame_names.empty()) throw InputError("stdin", "no image path was given (one path per line)");
-  } else if (run.kind == InputKind::images) {
-    const ImageListing listing = list_input_images(input);
-    for (const auto& file : listing.files) {
-      const RgbImage image = image::load_image(file);
-      run.image_files.push_back(file);
-      add_image(image_name(input.path, file, input.recursive), image, file.string());
-    }
-  } else if (run.kind == InputKind::video) {
-    const auto read =
-        image::for_each_video_frame(input.path, input.every, [&](std::size_t index, const RgbImage& image) {
-          add_image(fmt::format("frame {}", index), image, fmt::format("{}: frame {}", subject, index));
-        });
-    if (std::string warning = image::video_ended_early(input.path, read); !warning.empty()) {
-      run.warnings.push_back(std::move(warning));
-    }
-  } else if (run.kind == InputKind::descriptors || run.kind == InputKind::similarity) {
-    const DenseMatrix<float>& rows = *matrix;
-    const bool similarity = run.kind == InputKind::similarity;
-    for (std::size_t t = 0; t < rows.rows; ++t) {
-      const auto row = rows.row(t);
-      for (float v : row) {
-        if (!std::isfinite(v)) throw InputError(subject, fmt::format("row {} has a non-finite value", t));
+  for (std::size_t k = 0; k < request.sessions.size(); ++k) {
+    const SequenceInput& input = request.sessions[k];
+    const std::string subject = input.path.string();
+    const std::size_t begin = run.frame_names.size();
+    if (from_stream) {
+      if (request.paths == nullptr) throw std::invalid_argument("run_online_map: input '-' needs a stream of paths");
+      // Bounded lines: binary data on stdin (/dev/zero) is an error, not a line that grows without end.
+      while (const auto line = read_bounded_line(*request.paths, "stdin")) {
+        if (line->empty()) continue;
+        const fs::path file(*line);
+        const RgbImage image = image::load_image(file);  // InputError naming the file
+        run.image_files.push_back(file);
+        add_image(file.filename().string(), image, file.string());
       }
-      feeder.frame(fmt::format("row {}", t), [&](mapping::OnlineMapper& m) {
-        return similarity ? m.add_similarity(row.first(t)) : m.add_descriptor(row);
-      });
+      if (run.frame_names.empty()) throw InputError("stdin", "no image path was given (one path per line)");
+    } else if (kinds[k] == InputKind::images) {
+      const ImageListing listing = list_input_images(input);
+      for (const auto& file : listing.files) {
+        const RgbImage image = image::load_image(file);
+        run.image_files.push_back(file);
+        add_image(image_name(input.path, file, input.recursive), image, file.string());
+      }
+    } else if (kinds[k] == InputKind::video) {
+      const auto read =
+          image::for_each_video_frame(input.path, input.every, [&](std::size_t index, const RgbImage& image) {
+            add_image(fmt::format("frame {}", index), image, fmt::format("{}: frame {}", subject, index));
+          });
+      if (std::string warning = image::video_ended_early(input.path, read); !warning.empty()) {
+        run.warnings.push_back(std::move(warning));
+      }
+    } else {
+      const DenseMatrix<float>& rows = matrices[k];
+      const bool similarity = feed == FeedKind::similarity;
+      for (std::size_t t = 0; t < rows.rows; ++t) {
+        const auto row = rows.row(t);
+        for (float v : row) {
+          if (!std::isfinite(v)) throw InputError(subject, fmt::format("row {} has a non-finite value", t));
+        }
+        feeder.frame(fmt::format("row {}", t), [&](mapping::OnlineMapper& m) {
+          return similarity ? m.add_similarity(row.first(t)) : m.add_descriptor(row);
+        });
+      }
     }
-  } else {
-    throw InputError(subject, "unsupported input for --online");
+    run.sessions.push_back({from_stream ? "stdin" : subject, begin, run.frame_names.size()});
   }
   if (run.frame_names.size() < 2) {
-    throw InputError(from_stream ? "stdin" : subject,
+    throw InputError(from_stream ? "stdin" : request.sessions.front().path.string(),
                      fmt::format("needs at least 2 images, got {}", run.frame_names.size()));
   }
   feeder.finish();
@@ -213,7 +260,8 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
   for (const auto& e : run.events) ++run.event_counts[std::string(mapping::to_string(e.kind))];
   if (truth) {
     // Image paths from a stream are the frames as given (--every thins files, folders and videos).
-    const auto same_place = same_place_truth(*truth, request.truth.radius, run.frames, from_stream ? 1 : input.every);
+    const auto same_place =
+        same_place_truth(*truth, request.truth.radius, run.frames, from_stream ? 1 : request.sessions.front().every);
     const auto has_partner = evaluation::images_with_earlier_partner(
         run.frames, same_place.same_place, same_place.earlier_partners, config.search.min_separation);
     run.metrics =
@@ -223,13 +271,15 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
     MapRequest offline;
     offline.settings.similarity.threads = request.threads;
     offline.settings.map.threads = std::max(1U, request.threads);
-    SessionSource session{input};
-    if (from_stream) {
-      // The files the stream named, in its order: the offline map reads the frames the online run read.
-      session.input = SequenceInput("stdin", InputKind::images);
-      session.input.listing = std::make_shared<const ImageListing>(ImageListing{run.image_files, {}});
+    for (const auto& input : request.sessions) {
+      SessionSource session{input};
+      if (from_stream) {
+        // The files the stream named, in its order: the offline map reads the frames the online run read.
+        session.input = SequenceInput("stdin", InputKind::images);
+        session.input.listing = std::make_shared<const ImageListing>(ImageListing{run.image_files, {}});
+      }
+      offline.sessions.push_back(std::move(session));
     }
-    offline.sessions = {std::move(session)};
     offline.truth.same_place = request.truth.same_place;
     offline.truth.radius = request.truth.radius;
     run.offline = MapJob(std::move(offline)).run();

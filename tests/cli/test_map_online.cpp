@@ -266,10 +266,40 @@ TEST(MapOnline, FramesPerPlaceMakesTheWindowsPlaces) {
   EXPECT_NE(automatic.err.find("--frames-per-place auto"), std::string::npos) << automatic.err;
 }
 
+// Several inputs are the sessions of one map: the corridor's two laps given as two folders are its frames in one
+// folder, online and offline (byte for byte online), and both summaries list the sessions.
+TEST(MapOnline, SeveralInputsAreTheSessionsOfOneMap) {
+  const seqtopo::test_support::TempDir dir;
+  const auto images = corridor();
+  fs::create_directories(dir.path / "lap1");
+  fs::create_directories(dir.path / "lap2");
+  for (std::size_t k = 0; k < images.size(); ++k) {
+    fs::copy_file(images[k], dir.path / (k < 40 ? "lap1" : "lap2") / images[k].filename());
+  }
+  const fs::path data = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  const std::string truth = " --ground-truth " + (data / "ground_truth.bmp").string();
+  const auto two = run_cli("map " + (dir.path / "lap1").string() + " " + (dir.path / "lap2").string() + " --online" +
+                           truth + " --out " + (dir.path / "two").string());
+  ASSERT_EQ(two.status, 0) << two.err;
+  const auto one = run_cli("map " + data.string() + " --online" + truth + " --out " + (dir.path / "one").string());
+  ASSERT_EQ(one.status, 0) << one.err;
+  for (const char* name : {"online_loop_closures.csv", "events.jsonl", "loop_closures.csv"}) {
+    EXPECT_EQ(read_text(dir.path / "two" / name), read_text(dir.path / "one" / name)) << name;
+  }
+  const auto summary = nlohmann::json::parse(read_text(dir.path / "two" / "online.json"));
+  ASSERT_EQ(summary["sessions"].size(), 2U);
+  EXPECT_EQ(summary["sessions"][1]["begin"], 40);
+  EXPECT_EQ(summary["sessions"][1]["end"], 84);
+  EXPECT_EQ(summary["metrics"]["f1"], summary["offline_metrics"]["f1"]);
+  const auto map = nlohmann::json::parse(read_text(dir.path / "two" / "map.json"));
+  EXPECT_EQ(map["sessions"].size(), 2U);
+  EXPECT_FALSE(nlohmann::json::parse(read_text(dir.path / "one" / "online.json")).contains("sessions"));
+}
+
 TEST(MapOnline, BadInputGivesOneLine) {
   const seqtopo::test_support::TempDir dir;
   const std::string out = " --out " + (dir.path / "out").string();
-  expect_clean_error(run_cli("map a b --online" + out), "--online");
+  expect_clean_error(run_cli("map a b --online" + out), "a");  // every session must exist
   expect_clean_error(run_cli("map a --online --e-value 0" + out), "--e-value");
   expect_clean_error(run_cli("map " + (dir.path / "missing").string() + " --online" + out),
                      (dir.path / "missing").string());
@@ -291,8 +321,15 @@ TEST(MapOnline, BadInputGivesOneLine) {
   EXPECT_NE(mixed.status, 0);
   EXPECT_NE(mixed.err.find(small.string()), std::string::npos) << mixed.err;
   EXPECT_EQ(mixed.err.find("seqtopo-online"), std::string::npos) << mixed.err;
-  // The offline map's options are refused, not ignored.
+  // Sessions are of one kind; image paths on stdin are one input alone.
   const std::string folder = images[0].parent_path().string();
+  const fs::path rows = dir.path / "descriptors.npy";
+  seqtopo::io::write_npy(rows, seqtopo::DenseMatrix<float>(5, 3, 1.0F));
+  expect_clean_error(run_cli("map " + folder + " " + rows.string() + " --online" + out),
+                     rows.string() + ": is descriptors, the first session images");
+  expect_clean_error(run_cli("map - " + folder + " --online" + out, path_lines({images[0]})),
+                     "-: image paths on stdin");
+  // The offline map's options are refused, not ignored.
   const auto odometry = dir.path / "odometry.csv";
   std::ofstream(odometry) << "index,x,y,theta\n";
   const auto ignored = run_cli("map " + folder + " --online --odometry " + odometry.string() + " --preset paper" + out);

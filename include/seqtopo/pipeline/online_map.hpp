@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "seqtopo/evaluation/loop_closure_metrics.hpp"
+#include "seqtopo/formats/map_json.hpp"
 #include "seqtopo/mapping/online_mapper.hpp"
 #include "seqtopo/pipeline/map_pipeline.hpp"
 #include "seqtopo/pipeline/map_request.hpp"
@@ -47,7 +48,9 @@ class OnlineImageRows {
 };
 
 struct OnlineMapRequest {
-  SequenceInput input;              // path "-": image paths read from `paths`
+  // The inputs, fed one after the other as the sessions of one map (one input is a list of one), all images and
+  // videos, or all descriptors.npy of one width; a similarity.npy or "-" (image paths read from `paths`) alone.
+  std::vector<SequenceInput> sessions;
   std::istream* paths = nullptr;    // for "-"
   mapping::OnlineMapConfig config;  // `distance` is set from the input (sad for images, cosine for npy rows)
   SimilarityConfig similarity;      // the patch thumbnail's settings
@@ -63,6 +66,7 @@ struct OnlineMapRequest {
 struct OnlineMapRun {
   InputKind kind = InputKind::automatic;
   std::vector<std::string> frame_names;
+  std::vector<formats::MapSession> sessions;              // each input's frames [begin, end), in order
   std::vector<std::filesystem::path> image_files;         // images read (folder or stream), in order
   std::vector<mapping::OnlineEvent> events;               // every event, in order, finish() included
   std::vector<mapping::OnlineLoopClosure> loop_closures;  // standing at the end
