@@ -118,7 +118,7 @@ void Progress::begin(std::string_view name) {
   }
   ++stage_;
   running_ = true;
-  stage_start_ = Clock::now();
+  stage_start_ = unit_start_ = Clock::now();
   done_ = total_ = 0;
   unit_.clear();
   if (style_ == ProgressStyle::lines) print_locked(stage_label_locked());
@@ -131,7 +131,10 @@ void Progress::advance(std::size_t done, std::size_t total, std::string_view uni
   const bool first = unit_.empty() && done_ == 0 && total_ == 0;
   done_ = done;
   total_ = total;
-  if (unit_ != unit) unit_ = unit;
+  if (unit_ != unit) {  // a step of its own (a stage may count several in turn): its rate from now
+    unit_ = unit;
+    unit_start_ = Clock::now();
+  }
   if (first && style_ == ProgressStyle::bar) draw_bar_locked();
 }
 
@@ -220,7 +223,8 @@ std::string Progress::status_locked(bool for_bar) const {
     return fmt::format("running, {:.0f} s", seconds);
   }
   const double fraction = std::min(1.0, static_cast<double>(done_) / static_cast<double>(total_));
-  const double rate = seconds > 0 ? static_cast<double>(done_) / seconds : 0;
+  const double counting = std::chrono::duration<double>(Clock::now() - unit_start_).count();
+  const double rate = counting > 0 ? static_cast<double>(done_) / counting : 0;
   const double eta = rate > 0 ? static_cast<double>(total_ - std::min(done_, total_)) / rate : 0;
   if (for_bar) {
     return fmt::format("{:3.0f}%  {}/{} {}  {}  ETA {}  ({:.0f} s)", 100 * fraction, done_, total_, unit_,
@@ -243,7 +247,8 @@ void Progress::draw_bar_locked() {
   std::string text;
   if (total_ > 0 && done_ > 0) {
     const double fraction = std::min(1.0, static_cast<double>(done_) / static_cast<double>(total_));
-    const double rate = seconds > 0 ? static_cast<double>(done_) / seconds : 0;
+    const double counting = std::chrono::duration<double>(Clock::now() - unit_start_).count();
+    const double rate = counting > 0 ? static_cast<double>(done_) / counting : 0;
     const double eta = rate > 0 ? static_cast<double>(total_ - std::min(done_, total_)) / rate : 0;
     text = fit_bar(
         {command_, stage_label_locked(), fraction, done_, total_, unit_, rate_text(rate), duration_text(eta), seconds},

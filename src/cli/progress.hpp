@@ -98,6 +98,7 @@ class Progress {
   bool paused_ = false;
   bool bar_shown_ = false;
   Clock::time_point stage_start_, last_output_;
+  Clock::time_point unit_start_;  // when the stage began counting its current unit: the rate and ETA are of it
   std::size_t done_ = 0, total_ = 0;
   std::string unit_;
 };

@@ -302,7 +302,8 @@ double chance_agreement(const FitRun& fit, std::span<const Pose2> odometry, cons
 
 }  // namespace
 
-SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similarities, std::size_t contrast_window) {
+SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similarities, std::size_t contrast_window,
+                                 const std::function<void(std::size_t, std::size_t)>& told) {
   if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
   const std::size_t n = similarities.front().rows;
   for (const auto& s : similarities) {
@@ -313,15 +314,22 @@ SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similariti
                                   " (descriptors, one row per image, need seqtopo.similarity first)");
     }
   }
+  const std::size_t count_total = similarities.size();
+  if (told) told(0, count_total);
   if (similarities.size() == 1) {
-    return contrast_window == 0 ? similarities.front()
-                                : similarity::enhance_contrast_symmetric(similarities.front(), contrast_window, 0.0F);
+    SimilarityMatrix e = contrast_window == 0
+                             ? similarities.front()
+                             : similarity::enhance_contrast_symmetric(similarities.front(), contrast_window, 0.0F);
+    if (told) told(1, 1);
+    return e;
   }
   SimilarityMatrix sum(n, n, 0.0F);
-  for (const auto& s : similarities) {
+  for (std::size_t d = 0; d < similarities.size(); ++d) {
+    const SimilarityMatrix& s = similarities[d];
     const SimilarityMatrix e =
         contrast_window == 0 ? s : similarity::enhance_contrast_symmetric(s, contrast_window, 0.0F);
     for (std::size_t k = 0; k < sum.values.size(); ++k) sum.values[k] += e.values[k];
+    if (told) told(d + 1, count_total);
   }
   const auto count = static_cast<float>(similarities.size());
   for (auto& v : sum.values) v = v / count;
@@ -511,10 +519,14 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
   const double strict = *c.significance.max_e_value / static_cast<double>(similarities.size());
   std::vector<std::size_t> unseeing;
   std::vector<std::pair<std::size_t, std::size_t>> seen;  // the pairs of the maps that see at `strict`
+  MapConfig quiet = c;  // each map alone tells nothing of its own steps: the check's progress is the maps done
+  quiet.progress = {};
+  if (c.progress) c.progress("descriptors mapped alone", 0, similarities.size());
   for (std::size_t k = 0; k < similarities.size(); ++k) {
     const SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
-    const MapResult alone =
-        build_map_from_enhanced(align::ScoreSource::dense(e.values, e.rows, e.cols), c, odometry, {}, low_information);
+    const MapResult alone = build_map_from_enhanced(align::ScoreSource::dense(e.values, e.rows, e.cols), quiet,
+                                                    odometry, {}, low_information);
+    if (c.progress) c.progress("descriptors mapped alone", k + 1, similarities.size());
     if (alone.pruning.pairs.empty()) unseeing.push_back(k);
     bool sees = false;
     for (const auto& p : alone.pruning.pairs) sees |= alone.e_values[p.alignment] <= strict;
@@ -586,7 +598,11 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   for (std::size_t k = 0; k < source.size() && !blind.empty(); ++k) {
     if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(source[k]);
   }
-  SimilarityMatrix enhanced = enhanced_scores(blind.empty() ? source : seeing, framed.score.contrast_window);
+  const auto told_enhanced = [&c](std::size_t done, std::size_t total) {
+    if (c.progress) c.progress("similarities enhanced", done, total);
+  };
+  SimilarityMatrix enhanced =
+      enhanced_scores(blind.empty() ? source : seeing, framed.score.contrast_window, told_enhanced);
   // Tandem repeats of appearance (significance/tandem_repeats.hpp) are masked as the dark frames are.
   std::vector<bool> masked_all = masked;
   std::size_t repeats = 0;
@@ -670,11 +686,21 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
                                (d.frames_per_place * d.frames_per_place);
     FitRun fit;
     const double bound = c.phase.max_global_rate.value_or(0.0F);
+    // One fit per offset tried, of at most this many (the progress' total; the loop ends at the first in the
+    // logarithmic phase).
+    const bool adapting = c.phase.adapt_offset && c.score.contrast_window > 0;
+    const std::size_t fits =
+        adapting ? 1 + static_cast<std::size_t>(std::max(
+                           0.0F, (c.phase.max_contrast_offset - offset) / c.phase.contrast_offset_step + 1e-6F))
+                 : 1;
+    std::size_t fitted = 0;
     while (true) {
       fit = fit_looking_further(detail::soft_masked(minus(enhanced, offset), masked), c, d.frames_per_place);
+      if (c.progress) c.progress("statistics' fits", std::min(++fitted, fits), fits);
       const auto [short_chance, logarithmic] = phase_checks(fit, c, area_places);
       if (logarithmic || !fit.statistics.valid() || !c.phase.adapt_offset || c.score.contrast_window == 0 ||
           offset + c.phase.contrast_offset_step > c.phase.max_contrast_offset + 1e-6F) {
+        if (c.progress) c.progress("statistics' fits", fits, fits);
         if (!logarithmic && fit.statistics.valid())
           d.linear_phase.push_back({offset, short_chance, fit.global_rate, bound, fit.chance_length, std::nullopt});
         break;
@@ -733,14 +759,20 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
 
   const auto searched =
       static_cast<std::size_t>(significance::search_area(n, n, true, c.search.min_separation, c.search.reverse));
+  std::function<void(std::size_t, std::size_t)> told_cells;
+  if (c.progress) {
+    told_cells = [progress = c.progress](std::size_t done, std::size_t total) {
+      progress("cells aligned", done, total);
+    };
+  }
   const align::ScoreSource scores =
-      told_progress(detail::soft_masked(minus(enhanced, offset), masked), searched, c.alignment_progress);
+      told_progress(detail::soft_masked(minus(enhanced, offset), masked), searched, told_cells);
   auto found = run_alignment ? run_alignment(engine, offset)
                : c.alignment_set == align::AlignmentSet::locally_optimal
                    ? (c.search.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
                                        : align::locally_optimal_alignments(scores, engine))
                    : run_engine(scores, engine, c.engine, c.search.reverse, c.threads);
-  if (c.alignment_progress && searched > 1) c.alignment_progress(searched, searched);
+  if (told_cells && searched > 1) told_cells(searched, searched);
   for (auto& a : found) {
     const double path = align::path_score(a, scores, c.search.gap, c.search.gap);
     const double e = d.statistics.valid() ? d.statistics.e_value(path) : std::nan("");

@@ -142,7 +142,7 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   const std::vector<std::size_t> low_information =
       entropy.size() == n ? significance::low_information_frames(entropy) : std::vector<std::size_t>{};
   mapping::MapConfig map_config = map_config_of(settings, run);
-  map_config.alignment_progress = clock.alignment_progress();
+  map_config.progress = clock.map_progress();
   run.result = mapping::build_map(run.matrices, map_config, odometry, low_information);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
@@ -253,7 +253,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
     };
   }
   clock.begin(candidates ? " (sparse engine on the candidates)" : " (fast engine)");
-  config.alignment_progress = clock.alignment_progress();
+  config.progress = clock.map_progress();
   run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run);
   run.result.decisions.frames_per_place_estimated = place.has_value();
   run.result.decisions.place_scale_missing = place && !place->found;
@@ -541,7 +541,7 @@ MapRun map_similarities(std::vector<SimilarityMatrix> similarities, std::vector<
                    stage_names(false, true, !run.odometry.empty(), any_truth, static_cast<bool>(truth.same_place)));
   clock.begin();
   mapping::MapConfig config = settings.map;
-  config.alignment_progress = clock.alignment_progress();
+  config.progress = clock.map_progress();
   run.result = mapping::build_map(run.matrices, config, odometry);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});

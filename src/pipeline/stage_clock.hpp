@@ -70,13 +70,13 @@ class StageClock {
       advance(done, total, what == "matrix" ? "cells of the matrix" : "images described");
     };
   }
-  // For MapConfig::alignment_progress: the cells the alignment's passes have read (told from the forward and reverse
-  // passes' threads, passed on one at a time).
-  std::function<void(std::size_t, std::size_t)> alignment_progress() {
+  // For MapConfig::progress: each step's own counts (similarities enhanced, descriptors mapped alone, statistics'
+  // fits, cells aligned; the cells told from the alignment passes' threads, passed on one at a time).
+  std::function<void(std::string_view, std::size_t, std::size_t)> map_progress() {
     if (!observer_.stage) return {};
-    return [this](std::size_t done, std::size_t total) {
+    return [this](std::string_view what, std::size_t done, std::size_t total) {
       const std::lock_guard<std::mutex> lock(advance_mutex_);
-      advance(done, total, "cells aligned");
+      advance(done, total, what);
     };
   }
 

@@ -3,6 +3,7 @@
 // in the similarity stage (it showed a spinner).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <string>
 #include <vector>
@@ -33,7 +34,7 @@ struct Recorded {
   std::vector<std::size_t> done, total;
 };
 
-Recorded run_with_threads(unsigned threads, bool reverse) {
+Recorded run_with_threads(unsigned threads, bool reverse, std::vector<SimilarityMatrix> matrices = {}) {
   MapSettings settings;
   settings.map.threads = threads;
   settings.map.search.reverse = reverse;
@@ -46,7 +47,7 @@ Recorded run_with_threads(unsigned threads, bool reverse) {
     r.done.push_back(e.done);
     r.total.push_back(e.total);
   };
-  std::vector<SimilarityMatrix> matrices{two_drives(400)};
+  if (matrices.empty()) matrices.push_back(two_drives(400));
   map_similarities(std::move(matrices), {}, settings, {}, {}, observer);
   return r;
 }
@@ -85,6 +86,41 @@ TEST(StageProgress, TheAlignmentCountsTheCellsItsPassesRead) {
       }
     }
   }
+}
+
+// Before its cells, the alignment stage counts its other steps, each in its own unit and each to its whole, in the
+// order they run: the blind check's maps of each descriptor alone, the contrast enhancement of the similarities
+// fused, the statistics' fits (one per offset tried).
+TEST(StageProgress, EveryStepOfTheAlignmentStageCountsToItsWhole) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> noise(0.0F, 1.0F);
+  SimilarityMatrix blind(400, 400, 0.0F);
+  for (std::size_t i = 0; i < 400; ++i) {
+    for (std::size_t j = 0; j <= i; ++j) blind(i, j) = blind(j, i) = i == j ? 1.0F : noise(rng);
+  }
+  const Recorded r = run_with_threads(1, true, {two_drives(400), blind});
+  std::vector<std::string> order;                         // the units in the order they first appear
+  std::vector<std::pair<std::size_t, std::size_t>> last;  // each unit's last (done, total)
+  for (std::size_t k = 0; k < r.kinds.size(); ++k) {
+    if (r.kinds[k] != StageEvent::Kind::advance) continue;
+    if (order.empty() || order.back() != r.units[k]) {
+      ASSERT_EQ(std::count(order.begin(), order.end(), r.units[k]), 0) << r.units[k] << " told again after another";
+      order.push_back(r.units[k]);
+      last.emplace_back();
+    }
+    EXPECT_LE(r.done[k], r.total[k]) << r.units[k];
+    EXPECT_GE(r.done[k], last.back().first) << r.units[k] << ": never backwards";
+    last.back() = {r.done[k], r.total[k]};
+  }
+  const std::vector<std::string> expected{"descriptors mapped alone", "similarities enhanced", "statistics' fits",
+                                          "cells aligned"};
+  EXPECT_EQ(order, expected);
+  ASSERT_EQ(last.size(), expected.size());
+  EXPECT_EQ(last[0], std::make_pair(std::size_t{2}, std::size_t{2}));
+  EXPECT_EQ(last[1].first, last[1].second);  // both similarities, or the one left when the blind is out
+  EXPECT_GE(last[2].second, 1U);
+  EXPECT_EQ(last[2].first, last[2].second);
+  EXPECT_EQ(last[3].first, last[3].second);
 }
 
 }  // namespace

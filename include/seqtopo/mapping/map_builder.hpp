@@ -129,9 +129,11 @@ struct MapConfig {
   // stays one revisit); inside the stretch its pairs lie on the straight line between the evidence on either side,
   // and a masked end is cut off. false: every frame is aligned as it scores.
   bool mask_low_information = true;
-  // Not a setting: told the main alignment's progress, as the cells its passes have read of those they search
-  // (forward, and reverse when on), from the passes' threads. Empty: nobody is told.
-  std::function<void(std::size_t cells_done, std::size_t cells_total)> alignment_progress = {};
+  // Not a setting: told the run's progress as (what, done, total), each step counting its own units: "similarities
+  // enhanced" (of those fused), "descriptors mapped alone" (the blind check), "statistics' fits" (one per contrast
+  // offset tried, of those that could be), "cells aligned" (the main alignment's passes, forward and reverse, told
+  // from their threads). Empty: nobody is told.
+  std::function<void(std::string_view what, std::size_t done, std::size_t total)> progress = {};
 };
 
 // What a map run decided from the sequence itself (the settings in frames, the statistics), for the report.
@@ -276,8 +278,10 @@ MapConfig settings_in_frames(const MapConfig& config, double frames_per_place);
 // The mean of estimate_frames_per_place over the matrices that have a scale (not found when none has).
 PlaceScale frames_per_place(const std::vector<SimilarityMatrix>& similarities);
 
-// Step 2: the fused contrast-enhanced scores without the offset (S itself when contrast_window is 0).
-SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similarities, std::size_t contrast_window);
+// Step 2: the fused contrast-enhanced scores without the offset (S itself when contrast_window is 0); `told`
+// (when set) after each similarity, with how many are done of how many.
+SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similarities, std::size_t contrast_window,
+                                 const std::function<void(std::size_t done, std::size_t total)>& told = {});
 // The same minus config.contrast_offset (no place units: config's window in frames).
 SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config);
 
