@@ -27,11 +27,21 @@ ScoreSource::ScoreSource(std::size_t rows, std::size_t cols, RowReader reader, C
 }
 
 ScoreSource ScoreSource::dense(std::span<const float> values, std::size_t rows, std::size_t cols) {
-  return dense_source(values, rows, cols);
+  ScoreSource source = dense_source(values, rows, cols);
+  source.in_memory_ = true;
+  return source;
 }
 
 ScoreSource ScoreSource::dense(std::span<const double> values, std::size_t rows, std::size_t cols) {
-  return dense_source(values, rows, cols);
+  ScoreSource source = dense_source(values, rows, cols);
+  source.in_memory_ = true;
+  return source;
+}
+
+ScoreSource ScoreSource::derived(RowReader reader, CellReader cell) const {
+  ScoreSource source(rows_, cols_, std::move(reader), std::move(cell));
+  source.in_memory_ = in_memory_;
+  return source;
 }
 
 ScoreSource ScoreSource::function(std::size_t rows, std::size_t cols,

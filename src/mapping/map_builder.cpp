@@ -58,8 +58,7 @@ using detail::median;
 // `source` minus a constant, read a row segment at a time.
 align::ScoreSource minus(const align::ScoreSource& source, float offset) {
   if (offset == 0.0F) return source;
-  return align::ScoreSource(
-      source.rows(), source.cols(),
+  return source.derived(
       [source, offset](std::size_t i, std::size_t b, std::size_t e, align::Score* out) {
         source.read_row(i, b, e, out);
         for (std::size_t k = 0; k < e - b; ++k) out[k] -= offset;
@@ -142,31 +141,41 @@ std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scor
                                                   std::vector<float>& cell_sample) {
   const std::size_t n = scores.rows();
   const bool whole = n <= 2 * kFitBlock;
-  // A sequence this short is fitted whole, from a copy in memory when the source is not (a streamed source
+  // A sequence this short is fitted whole: where it is when it is in memory, else from a copy (a streamed source
   // recomputes its tiles for every alignment's traceback and declumping).
+  const bool in_place = whole && scores.in_memory();
   const std::size_t size = whole ? n : kFitBlock, blocks = whole ? 1 : kFitBlocks;
   area = static_cast<double>(blocks) *
          significance::search_area(size, size, true, c.search.min_separation, c.search.reverse);
   if (!whole) engine.max_alignments = (engine.max_alignments + blocks - 1) / blocks;
   std::vector<align::LocalAlignment> all;
-  std::vector<align::Score> block(size * size);
+  std::vector<align::Score> block(in_place ? size : size * size);  // in place: one row at a time
   const double block_cells = significance::search_area(size, size, true, c.search.min_separation, false);
   const auto phase_stride =
       std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(blocks) * block_cells / kPhaseCells));
   double sum = 0;  // of the cells off the self band, for their mean
   std::size_t cells = 0;
+  std::size_t to_sample = 0;  // cells until the next sampled one: cells % phase_stride == 0, without a division
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t start = blocks == 1 ? 0 : (n - size) * b / (blocks - 1);
-    for (std::size_t i = 0; i < size; ++i) scores.read_row(start + i, start, start + size, block.data() + i * size);
+    if (!in_place) {
+      for (std::size_t i = 0; i < size; ++i) scores.read_row(start + i, start, start + size, block.data() + i * size);
+    }
     for (std::size_t i = c.search.min_separation; i < size; ++i) {
+      const align::Score* row = block.data() + (in_place ? 0 : i * size);
+      if (in_place) scores.read_row(i, 0, i + 1 - c.search.min_separation, block.data());
       for (std::size_t j = 0; j + c.search.min_separation <= i; ++j) {
-        sum += block[i * size + j];
+        sum += row[j];
         // Every stride-th cell, about kPhaseCells of the blocks' (the same cells whatever the thread count).
-        if (cells++ % phase_stride == 0) cell_sample.push_back(block[i * size + j]);
+        if (to_sample-- == 0) {
+          cell_sample.push_back(row[j]);
+          to_sample = phase_stride - 1;
+        }
+        ++cells;
       }
     }
-    auto found = run_engine(align::ScoreSource::dense(block, size, size), engine, MapConfig::Engine::fast,
-                            c.search.reverse, c.threads);
+    auto found = run_engine(in_place ? scores : align::ScoreSource::dense(block, size, size), engine,
+                            MapConfig::Engine::fast, c.search.reverse, c.threads);
     for (auto& a : found) {
       a.a_begin += start;
       a.a_end += start;
@@ -199,9 +208,8 @@ align::ScoreSource told_progress(align::ScoreSource source, std::size_t total,
     }
     if (done >= before + step) progress(done, total);
   };
-  const std::size_t rows = source.rows(), cols = source.cols();
-  const align::ScoreSource::CellReader cell = source.cell_reader();
-  return align::ScoreSource(rows, cols, std::move(read), cell);
+  align::ScoreSource::CellReader cell = source.cell_reader();
+  return source.derived(std::move(read), std::move(cell));
 }
 
 FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, double frames_per_place,
@@ -302,6 +310,27 @@ double chance_agreement(const FitRun& fit, std::span<const Pose2> odometry, cons
 
 }  // namespace
 
+namespace {
+
+// The mean of `count` enhanced matrices, next(d) giving the d-th: summed in the first one's storage as a sum
+// started at zero would be, ((0 + e_0) + e_1 + ...) / count, so that no N x N sum is allocated beside them.
+SimilarityMatrix mean_of(std::size_t count, const std::function<SimilarityMatrix(std::size_t)>& next,
+                         const std::function<void(std::size_t, std::size_t)>& told) {
+  SimilarityMatrix sum = next(0);
+  for (auto& v : sum.values) v = 0.0F + v;
+  if (told) told(1, count);
+  for (std::size_t d = 1; d < count; ++d) {
+    const SimilarityMatrix e = next(d);
+    for (std::size_t k = 0; k < sum.values.size(); ++k) sum.values[k] += e.values[k];
+    if (told) told(d + 1, count);
+  }
+  const auto n = static_cast<float>(count);
+  for (auto& v : sum.values) v = v / n;
+  return sum;
+}
+
+}  // namespace
+
 SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similarities, std::size_t contrast_window,
                                  const std::function<void(std::size_t, std::size_t)>& told) {
   if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
@@ -316,24 +345,16 @@ SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similariti
   }
   const std::size_t count_total = similarities.size();
   if (told) told(0, count_total);
+  const auto enhanced = [&](std::size_t d) {
+    return contrast_window == 0 ? similarities[d]
+                                : similarity::enhance_contrast_symmetric(similarities[d], contrast_window, 0.0F);
+  };
   if (similarities.size() == 1) {
-    SimilarityMatrix e = contrast_window == 0
-                             ? similarities.front()
-                             : similarity::enhance_contrast_symmetric(similarities.front(), contrast_window, 0.0F);
+    SimilarityMatrix e = enhanced(0);
     if (told) told(1, 1);
     return e;
   }
-  SimilarityMatrix sum(n, n, 0.0F);
-  for (std::size_t d = 0; d < similarities.size(); ++d) {
-    const SimilarityMatrix& s = similarities[d];
-    const SimilarityMatrix e =
-        contrast_window == 0 ? s : similarity::enhance_contrast_symmetric(s, contrast_window, 0.0F);
-    for (std::size_t k = 0; k < sum.values.size(); ++k) sum.values[k] += e.values[k];
-    if (told) told(d + 1, count_total);
-  }
-  const auto count = static_cast<float>(similarities.size());
-  for (auto& v : sum.values) v = v / count;
-  return sum;
+  return mean_of(count_total, enhanced, told);
 }
 
 SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config) {
@@ -507,10 +528,13 @@ namespace {
 // keeps a descriptor too weak to map alone that still adds evidence (a simulated figure-eight: the joint
 // histogram alone finds nothing, but scores the panorama signature's pairs 0.63 above its chance cells, t = 11,
 // and the fusion maps better than either).
+// The check enhances each similarity; it leaves them in `enhanced` (one per similarity, or none when the check
+// does not apply), for the fusion not to enhance them again.
 std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& similarities, const MapConfig& c,
                                            std::size_t contrast_window, std::span<const Pose2> odometry,
                                            const std::vector<bool>& masked,
-                                           std::span<const std::size_t> low_information) {
+                                           std::span<const std::size_t> low_information,
+                                           std::vector<SimilarityMatrix>& enhanced) {
   const std::size_t n = similarities.front().rows;
   if (!c.drop_blind_descriptors || similarities.size() < 2 || !c.significance.max_e_value || contrast_window == 0 ||
       n > c.max_blind_check_frames) {
@@ -521,9 +545,13 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
   std::vector<std::pair<std::size_t, std::size_t>> seen;  // the pairs of the maps that see at `strict`
   MapConfig quiet = c;  // each map alone tells nothing of its own steps: the check's progress is the maps done
   quiet.progress = {};
+  // One pass at a time: the exact engine's N x N table of one direction, not two, beside the similarities
+  // enhanced so far (the peak stays the fused map's).
+  quiet.threads = 1;
   if (c.progress) c.progress("descriptors mapped alone", 0, similarities.size());
   for (std::size_t k = 0; k < similarities.size(); ++k) {
-    const SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
+    const SimilarityMatrix& e =
+        enhanced.emplace_back(similarity::enhance_contrast_symmetric(similarities[k], contrast_window, 0.0F));
     const MapResult alone = build_map_from_enhanced(align::ScoreSource::dense(e.values, e.rows, e.cols), quiet,
                                                     odometry, {}, low_information);
     if (c.progress) c.progress("descriptors mapped alone", k + 1, similarities.size());
@@ -537,9 +565,10 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
   if (seen.size() < 2 || unseeing.size() == similarities.size()) return {};
   std::vector<std::size_t> blind;
   for (std::size_t k : unseeing) {
-    // Enhanced again rather than kept from the loop above: one N x N table at a time.
-    SimilarityMatrix e = enhanced_scores({similarities[k]}, contrast_window);
-    detail::soft_mask(e, masked, c.score.contrast_offset);  // as the map's alignment sees them
+    // The scores as the map's alignment sees them: soft-masked (detail::soft_mask).
+    const auto e = [&, &scores = enhanced[k], ceiling = c.score.contrast_offset](std::size_t i, std::size_t j) {
+      return !masked.empty() && (masked[i] || masked[j]) ? std::min(scores(i, j), ceiling) : scores(i, j);
+    };
     double chance = 0;
     std::size_t cells = 0;
     for (std::size_t i = c.search.min_separation; i < n; ++i) {
@@ -592,17 +621,34 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   const std::vector<SimilarityMatrix>& source = hub_k > 0 ? corrected : similarities;
   const std::vector<std::size_t> low_information =
       framed.score.contrast_window > 0 ? flagged(masked) : std::vector<std::size_t>{};
+  std::vector<SimilarityMatrix> each;  // each similarity enhanced, when the blind check has done it
   const std::vector<std::size_t> blind =
-      blind_descriptors(source, c, framed.score.contrast_window, odometry, masked, low_information);
-  std::vector<SimilarityMatrix> seeing;  // a copy only when some are left out
-  for (std::size_t k = 0; k < source.size() && !blind.empty(); ++k) {
-    if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(source[k]);
-  }
+      blind_descriptors(source, c, framed.score.contrast_window, odometry, masked, low_information, each);
   const auto told_enhanced = [&c](std::size_t done, std::size_t total) {
     if (c.progress) c.progress("similarities enhanced", done, total);
   };
-  SimilarityMatrix enhanced =
-      enhanced_scores(blind.empty() ? source : seeing, framed.score.contrast_window, told_enhanced);
+  SimilarityMatrix enhanced;
+  if (!each.empty()) {
+    std::vector<SimilarityMatrix> seeing;  // fused as enhanced_scores fuses them
+    for (std::size_t k = 0; k < each.size(); ++k) {
+      if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(std::move(each[k]));
+    }
+    each.clear();
+    told_enhanced(0, seeing.size());
+    if (seeing.size() == 1) {
+      enhanced = std::move(seeing.front());
+      told_enhanced(1, 1);
+    } else {
+      enhanced = mean_of(
+          seeing.size(), [&](std::size_t d) { return std::move(seeing[d]); }, told_enhanced);
+    }
+  } else {
+    std::vector<SimilarityMatrix> seeing;  // a copy only when some are left out
+    for (std::size_t k = 0; k < source.size() && !blind.empty(); ++k) {
+      if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(source[k]);
+    }
+    enhanced = enhanced_scores(blind.empty() ? source : seeing, framed.score.contrast_window, told_enhanced);
+  }
   // Tandem repeats of appearance (significance/tandem_repeats.hpp) are masked as the dark frames are.
   std::vector<bool> masked_all = masked;
   std::size_t repeats = 0;

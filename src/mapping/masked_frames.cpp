@@ -7,12 +7,19 @@ namespace seqtopo::mapping::detail {
 
 align::ScoreSource soft_masked(const align::ScoreSource& scores, const std::vector<bool>& masked) {
   if (std::find(masked.begin(), masked.end(), true) == masked.end()) return scores;
-  return align::ScoreSource(
-      scores.rows(), scores.cols(),
-      [scores, masked](std::size_t i, std::size_t b, std::size_t e, align::Score* out) {
+  std::vector<std::size_t> frames;  // the masked ones, ascending: a row visits only those in its segment
+  for (std::size_t f = 0; f < masked.size(); ++f) {
+    if (masked[f]) frames.push_back(f);
+  }
+  return scores.derived(
+      [scores, masked, frames](std::size_t i, std::size_t b, std::size_t e, align::Score* out) {
         scores.read_row(i, b, e, out);
-        for (std::size_t k = 0; k < e - b; ++k) {
-          if (masked[i] || masked[b + k]) out[k] = std::min(out[k], 0.0F);
+        if (masked[i]) {
+          for (std::size_t k = 0; k < e - b; ++k) out[k] = std::min(out[k], 0.0F);
+          return;
+        }
+        for (auto f = std::lower_bound(frames.begin(), frames.end(), b); f != frames.end() && *f < e; ++f) {
+          out[*f - b] = std::min(out[*f - b], 0.0F);
         }
       },
       [scores, masked](std::size_t i, std::size_t j) {

@@ -29,6 +29,9 @@ class ScoreSource {
   static ScoreSource dense(std::span<const double> values, std::size_t rows, std::size_t cols);
   // Any callable; it must be safe to call from two threads at once (forward and reverse passes).
   static ScoreSource function(std::size_t rows, std::size_t cols, std::function<Score(std::size_t, std::size_t)> score);
+  // The same rows and columns read through another reader, one that changes each cell of this source cheaply
+  // (an offset, a mask): in memory when this source is.
+  ScoreSource derived(RowReader reader, CellReader cell = {}) const;
 
   std::size_t rows() const { return rows_; }
   std::size_t cols() const { return cols_; }
@@ -38,12 +41,16 @@ class ScoreSource {
   // score(i, j): the cell reader when there is one, else a row segment of one cell.
   Score at(std::size_t i, std::size_t j) const;
   const CellReader& cell_reader() const { return cell_; }
+  // Whether a row segment is read from memory (a dense matrix, or one derived from it) rather than computed: a
+  // caller that would copy the scores to read them more than once can read them where they are.
+  bool in_memory() const { return in_memory_; }
 
  private:
   std::size_t rows_;
   std::size_t cols_;
   RowReader reader_;
   CellReader cell_;
+  bool in_memory_ = false;
 };
 
 }  // namespace seqtopo::align
