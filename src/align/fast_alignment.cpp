@@ -22,7 +22,9 @@
 #include <future>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -228,6 +230,8 @@ class RowScores {
   // blocks over the strip). For int8, nullptr if a score is outside [-128, 127].
   virtual const void* striped(std::size_t i, std::size_t lo, std::size_t a, std::size_t b, bool bytes,
                               Scratch& scratch) const = 0;
+  // Whether striped() uses the scratch (a fill's strips allocate it only then).
+  virtual bool uses_scratch() const { return true; }
 };
 
 class SourceRows final : public RowScores {
@@ -272,53 +276,75 @@ class SourceRows final : public RowScores {
 };
 
 // One precomputed row per letter of A's alphabet (a query profile over B, in pass column order), and for
-// the striped fill the same rows in the striped layouts of both widths (whole units over [1, n]).
+// the striped fill the same rows in the striped layouts of both widths (whole units over [1, n]). Each of
+// the three is built on its first use: a fill that stays in int8 lanes needs only the int8 layout, and
+// the other two would be most of the memory a score-only fill touches (fresh pages, faulted in per call).
 class LetterRows final : public RowScores {
  public:
   LetterRows(const LetterScores& letters, Direction direction, float scale, const Kernels& kernels)
-      : a_(letters.a), stride_(letters.b.size() + 1 + kRowPadding) {
-    const std::size_t n = letters.b.size(), k = letters.alphabet;
-    std::vector<Step> matrix(k * k);  // quantized once: the same steps as quantizing every cell's score
-    for (std::size_t x = 0; x < k * k; ++x) matrix[x] = quantize_one(letters.matrix[x], scale);
-    profile_.assign(k * stride_, 0);
-    for (std::size_t x = 0; x < k; ++x) {
-      const Step* scores = matrix.data() + x * k;
-      Step* out = profile_.data() + x * stride_;
-      for (std::size_t j = 1; j <= n; ++j) {
-        out[j] = scores[letters.b[direction == Direction::forward ? j - 1 : n - j]];
-      }
-    }
+      : a_(letters.a),
+        b_(letters.b),
+        reverse_(direction == Direction::reverse),
+        letters_(letters.alphabet),
+        stride_(letters.b.size() + 1 + kRowPadding),
+        kernels_(kernels),
+        matrix_(letters.alphabet * letters.alphabet) {
+    // quantized once: the same steps as quantizing every cell's score
+    for (std::size_t x = 0; x < matrix_.size(); ++x) matrix_[x] = quantize_one(letters.matrix[x], scale);
     if (kernels.striped16) {
-      striped_stride_ = (n + kernels.unit() - 1) / kernels.unit() * kernels.unit();
-      striped16_.assign(k * striped_stride_, 0);
-      striped8_.assign(k * striped_stride_, 0);
-      for (std::size_t x = 0; x < k; ++x) {
-        stripe(profile_.data() + x * stride_, 1, 1, n, kernels.lanes16, striped16_.data() + x * striped_stride_,
-               kernels.stripe16);
-        stripe(profile_.data() + x * stride_, 1, 1, n, kernels.lanes8, striped8_.data() + x * striped_stride_,
-               kernels.stripe8);
-      }
-      fits_int8_ = fits_int8(matrix.data(), matrix.size());
+      striped_stride_ = (b_.size() + kernels.unit() - 1) / kernels.unit() * kernels.unit();
+      fits_int8_ = fits_int8(matrix_.data(), matrix_.size());
     }
   }
   const Step* row(std::size_t i, std::size_t, std::size_t, Step*, float*) const override {
+    std::call_once(profile_once_, [this] {
+      profile_.assign(letters_ * stride_, 0);
+      for (std::size_t x = 0; x < letters_; ++x) natural_row(x, profile_.data() + x * stride_);
+    });
     return profile_.data() + a_[i - 1] * stride_;
   }
   // Strips start at a block boundary of both layouts, so a strip's row is a piece of the whole row's.
   const void* striped(std::size_t i, std::size_t lo, std::size_t, std::size_t, bool bytes, Scratch&) const override {
     const std::size_t at = a_[i - 1] * striped_stride_ + (lo - 1);
-    if (bytes) return fits_int8_ ? striped8_.data() + at : nullptr;
+    if (bytes) {
+      if (!fits_int8_) return nullptr;
+      std::call_once(striped8_once_, [this] { build_striped(kernels_.lanes8, striped8_, kernels_.stripe8); });
+      return striped8_.data() + at;
+    }
+    std::call_once(striped16_once_, [this] { build_striped(kernels_.lanes16, striped16_, kernels_.stripe16); });
     return striped16_.data() + at;
   }
+  bool uses_scratch() const override { return false; }
 
  private:
-  std::span<const std::uint8_t> a_;
-  std::size_t stride_;
-  std::vector<Step> profile_;
+  // The scores of letter x against B in pass column order: out[j] for j in [1, n].
+  void natural_row(std::size_t x, Step* out) const {
+    const std::size_t n = b_.size();
+    const Step* scores = matrix_.data() + x * letters_;
+    for (std::size_t j = 1; j <= n; ++j) out[j] = scores[b_[reverse_ ? n - j : j - 1]];
+  }
+  // Every letter's row in one striped layout (padding past n: 0), through one natural row.
+  template <typename T, typename BlockStriper>
+  void build_striped(std::size_t lanes, std::vector<T>& out, BlockStriper block_striper) const {
+    out.assign(letters_ * striped_stride_, 0);
+    std::vector<Step> natural(stride_, 0);
+    for (std::size_t x = 0; x < letters_; ++x) {
+      natural_row(x, natural.data());
+      stripe(natural.data(), 1, 1, b_.size(), lanes, out.data() + x * striped_stride_, block_striper);
+    }
+  }
+
+  std::span<const std::uint8_t> a_, b_;
+  bool reverse_;
+  std::size_t letters_, stride_;
+  Kernels kernels_;
+  std::vector<Step> matrix_;
   std::size_t striped_stride_ = 0;
   bool fits_int8_ = false;
-  std::vector<std::int16_t> striped16_;
-  std::vector<std::int8_t> striped8_;
+  mutable std::once_flag profile_once_, striped8_once_, striped16_once_;
+  mutable std::vector<Step> profile_;
+  mutable std::vector<std::int16_t> striped16_;
+  mutable std::vector<std::int8_t> striped8_;
 };
 
 void validate_letters(const LetterScores& s) {
@@ -531,14 +557,14 @@ class FastPass {
           ring_(ring),
           edges_(edges),
           best_(best),
-          scratch_(pass.n_),
+          scratch_(pass.scores_.uses_scratch() ? pass.n_ : 0),
           rows8_(2 * padded_, static_cast<std::int8_t>(-detail::kInt8Offset)),  // H = 0
           tiles_(padded_ / kTile, 0) {
       if (bytes_) {
-        scratch_.striped8.assign(padded_, 0);
+        if (pass.scores_.uses_scratch()) scratch_.striped8.assign(padded_, 0);
       } else {  // gaps beyond int8: int16 from the start
         rows16_.assign(2 * padded_, 0);
-        scratch_.striped16.assign(padded_, 0);
+        if (pass.scores_.uses_scratch()) scratch_.striped16.assign(padded_, 0);
       }
     }
 
@@ -643,7 +669,7 @@ class FastPass {
       for (std::size_t rel = 0; rel < width_; ++rel) {
         rows16_[at + detail::striped_index(rel, pass_.kernels_.lanes16)] = natural[rel];
       }
-      scratch_.striped16.assign(padded_, 0);
+      if (pass_.scores_.uses_scratch()) scratch_.striped16.assign(padded_, 0);
       bytes_ = false;
     }
 

@@ -257,6 +257,43 @@ TEST(FastAlignment, LetterScoresEqualTheirScoreSource) {
   }
 }
 
+// Letters wide enough for several strips, at scales that keep the fill in int8 lanes (1) or move it to
+// int16 lanes within the first rows (16, 64): the profile's layouts are built on first use, by whichever
+// strip asks first, and int16 rows read the int8 layout when the scores fit it.
+TEST(FastAlignment, LetterScoresAcrossStripsAndWidths) {
+  std::mt19937 rng(31);
+  for (int case_id = 0; case_id < 6; ++case_id) {
+    const std::size_t k = 20;
+    std::uniform_int_distribution<int> letter(0, static_cast<int>(k) - 1);
+    std::vector<std::uint8_t> a(150 + static_cast<std::size_t>(case_id) * 40),
+        b(2100 + static_cast<std::size_t>(case_id) * 333);
+    for (auto& x : a) x = static_cast<std::uint8_t>(letter(rng));
+    for (auto& x : b) x = static_cast<std::uint8_t>(letter(rng));
+    for (std::size_t y = 0; y < b.size(); y += 97)
+      std::copy(a.begin(), a.begin() + 40, b.begin() + static_cast<std::ptrdiff_t>(y / 2));
+    std::vector<float> matrix(k * k);
+    std::uniform_int_distribution<int> mismatch(-4, -1);
+    for (std::size_t x = 0; x < k; ++x) {
+      for (std::size_t y = 0; y < k; ++y) matrix[x * k + y] = x == y ? 5.0F : static_cast<float>(mismatch(rng));
+    }
+    const align::LetterScores letters{a, b, matrix, k};
+    AlignConfig c;
+    c.gap_a = c.gap_b = static_cast<float>(2 + case_id % 3);
+    c.max_alignments = 5;
+    c.direction = case_id % 2 == 0 ? Direction::forward : Direction::reverse;
+    const float scale = case_id < 2 ? 1.0F : (case_id < 4 ? 16.0F : 64.0F);
+    const auto want = scalar_on_quantized(letters.source(), c, scale);
+    for (Isa isa : isas()) {
+      for (unsigned threads : {1U, 3U}) {
+        expect_same(align::fast_local_alignments(letters, c, {scale, threads, isa}), want,
+                    describe(case_id, c, scale, isa, threads));
+        EXPECT_EQ(align::fast_best_score(letters, c, {scale, threads, isa}), want.empty() ? 0.0F : want.front().score)
+            << describe(case_id, c, scale, isa, threads);
+      }
+    }
+  }
+}
+
 TEST(FastAlignment, BestScoreIsTheFirstAlignmentsScore) {
   std::mt19937 rng(13);
   for (int case_id = 0; case_id < 300; ++case_id) {
