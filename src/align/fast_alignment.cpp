@@ -232,6 +232,8 @@ class RowScores {
                               Scratch& scratch) const = 0;
   // Whether striped() uses the scratch (a fill's strips allocate it only then).
   virtual bool uses_scratch() const { return true; }
+  // Whether every score fits int8: int16 rows then read the int8 layout (StripedJob::score8).
+  virtual bool int8_scores() const { return false; }
 };
 
 class SourceRows final : public RowScores {
@@ -277,8 +279,9 @@ class SourceRows final : public RowScores {
 
 // One precomputed row per letter of A's alphabet (a query profile over B, in pass column order), and for
 // the striped fill the same rows in the striped layouts of both widths (whole units over [1, n]). Each of
-// the three is built on its first use: a fill that stays in int8 lanes needs only the int8 layout, and
-// the other two would be most of the memory a score-only fill touches (fresh pages, faulted in per call).
+// the three is built on its first use: a fill needs only the int8 layout if the scores fit int8 (int16
+// rows widen them as they load them), and the other two would be most of the memory a score-only fill
+// touches (fresh pages, faulted in per call).
 class LetterRows final : public RowScores {
  public:
   LetterRows(const LetterScores& letters, Direction direction, float scale, const Kernels& kernels)
@@ -315,6 +318,7 @@ class LetterRows final : public RowScores {
     return striped16_.data() + at;
   }
   bool uses_scratch() const override { return false; }
+  bool int8_scores() const override { return fits_int8_; }
 
  private:
   // The scores of letter x against B in pass column order: out[j] for j in [1, n].
@@ -609,7 +613,8 @@ class FastPass {
         if (!bytes_) {
           job.prev = rows16_.data() + prev_ * padded_;
           job.cur = rows16_.data() + (1 - prev_) * padded_;
-          job.score = p.scores_.striped(i, lo_, a, b, false, scratch_);
+          job.score8 = p.scores_.int8_scores();
+          job.score = p.scores_.striped(i, lo_, a, b, job.score8, scratch_);
           v = p.kernels_.striped16(job);
           p.check_overflow(v);
         }

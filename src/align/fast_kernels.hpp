@@ -74,6 +74,9 @@ struct StripedJob {
   std::int16_t* tile_max;
   std::int16_t* columns = nullptr;
   struct CarryHint* carry = nullptr;  // kept from row to row by the caller (speed only; 8 steps if not set)
+  // int16 kernels: score holds int8 scores in the int8 striped layout of the same strip (twice the lanes
+  // per block), widened as they are loaded: a profile of scores that fit int8 needs no int16 copy.
+  bool score8 = false;
 };
 
 // How many vectors of a block the kernel's lazy-F pass writes without testing whether they improve:

@@ -35,10 +35,11 @@ struct StripedGaps {
 // the row above and from F inside its own tile. F starts at 0, which is as good as -inf since every
 // H >= 0, and stays >= 0 (floor_sub), so H = max(min(cap, T), F) needs no separate max with 0; without
 // a cap below kMax the min is saturation's already. diag_left[n] is a rep. best[n] gets each block's
-// maximum so far.
-template <class W, bool kMasked, bool kCapped, int N>
+// maximum so far. score[n] is block n's vector 0 of scores: in its own layout (vector s at s x lanes), or
+// with kScore8 (int16 lanes only) in the int8 layout (vector s at s x 2 lanes, widened on loading).
+template <class W, bool kMasked, bool kCapped, int N, bool kScore8>
 [[gnu::target(SEQTOPO_STRIPED_ISA), gnu::always_inline]] inline void first_pass(
-    const typename W::E* prev, typename W::E* cur, const typename W::E* score, const typename W::E* mask,
+    const typename W::E* prev, typename W::E* cur, const void* const* score, const typename W::E* mask,
     const int* diag_left, const StripedGaps<W>& g, typename W::V* best) {
   using V = typename W::V;
   constexpr std::size_t L = W::kLanes, S = kTileSide, B = L * S;
@@ -52,7 +53,13 @@ template <class W, bool kMasked, bool kCapped, int N>
     for (int n = 0; n < N; ++n) {
       const std::size_t at = n * B + s * L;
       const V up = W::load(prev + at);
-      const V t = W::max(W::adds(diag[n], W::load(score + at)), W::subs(up, g.gap_a));
+      V sc;
+      if constexpr (kScore8) {
+        sc = W::widen_scores(static_cast<const std::int8_t*>(score[n]) + s * 2 * L);
+      } else {
+        sc = W::load(static_cast<const typename W::E*>(score[n]) + s * L);
+      }
+      const V t = W::max(W::adds(diag[n], sc), W::subs(up, g.gap_a));
       V h;
       if constexpr (kMasked) {
         h = W::min(W::max(t, f[n]), W::load(mask + s * L));
@@ -167,14 +174,22 @@ template <class W>
 // The row: pass 1 over every touched block (independent of each other, so the out-of-order core overlaps
 // their serial F chains), then pass 2 block by block from left to right (each needs the final last
 // column of the block on its left), with the tiles' maxima and right columns.
-template <class W>
-[[gnu::target(SEQTOPO_STRIPED_ISA)]] std::int16_t striped_row(const StripedJob& job) {
+template <class W, bool kScore8>
+[[gnu::target(SEQTOPO_STRIPED_ISA)]] std::int16_t striped_row_of(const StripedJob& job) {
   using E = typename W::E;
   using V = typename W::V;
   constexpr std::size_t L = W::kLanes, S = kTileSide, B = L * S;
   const E* const prev = static_cast<const E*>(job.prev);
   E* const cur = static_cast<E*>(job.cur);
-  const E* const score = static_cast<const E*>(job.score);
+  // Block k's scores: block k of the row's own layout, or (kScore8) half k % 2 of the int8 layout's
+  // block k / 2, which holds the same tiles in twice the lanes.
+  auto score_of = [&job](std::size_t k) -> const void* {
+    if constexpr (kScore8) {
+      return static_cast<const std::int8_t*>(job.score) + k / 2 * 2 * B + k % 2 * L;
+    } else {
+      return static_cast<const E*>(job.score) + k * B;
+    }
+  };
   StripedGaps<W> g;
   const long gap_b = std::min<int>(job.gap_b, W::kStep), tile_gap = static_cast<long>(S) * gap_b;
   g.gap_a = W::set1(std::min<int>(job.gap_a, W::kStep));
@@ -211,21 +226,22 @@ template <class W>
     // rep(H(i - 1, b0 - 1)): the last lane of the block on the left (rep(0) if it was not touched)
     const int diag_left[2] = {k == 0 ? std::min<int>(job.diag_left, W::kMax) - W::kOffset : prev[k * B - 1],
                               prev[(k + 1) * B - 1]};
+    const void* const score[2] = {score_of(k), score_of(k + 1)};
     V best[2];
     int blocks = 1;
     if (masked(k)) {
-      first_pass<W, true, true, 1>(prev + k * B, cur + k * B, score + k * B, mask_of(k), diag_left, g, best);
+      first_pass<W, true, true, 1, kScore8>(prev + k * B, cur + k * B, score, mask_of(k), diag_left, g, best);
     } else if (k + 1 < end && !masked(k + 1)) {
       blocks = 2;
       if (capped) {
-        first_pass<W, false, true, 2>(prev + k * B, cur + k * B, score + k * B, nullptr, diag_left, g, best);
+        first_pass<W, false, true, 2, kScore8>(prev + k * B, cur + k * B, score, nullptr, diag_left, g, best);
       } else {
-        first_pass<W, false, false, 2>(prev + k * B, cur + k * B, score + k * B, nullptr, diag_left, g, best);
+        first_pass<W, false, false, 2, kScore8>(prev + k * B, cur + k * B, score, nullptr, diag_left, g, best);
       }
     } else if (capped) {
-      first_pass<W, false, true, 1>(prev + k * B, cur + k * B, score + k * B, nullptr, diag_left, g, best);
+      first_pass<W, false, true, 1, kScore8>(prev + k * B, cur + k * B, score, nullptr, diag_left, g, best);
     } else {
-      first_pass<W, false, false, 1>(prev + k * B, cur + k * B, score + k * B, nullptr, diag_left, g, best);
+      first_pass<W, false, false, 1, kScore8>(prev + k * B, cur + k * B, score, nullptr, diag_left, g, best);
     }
     for (int n = 0; n < blocks; ++n, ++k) {
       row_best = W::max(row_best, best[n]);
@@ -276,4 +292,13 @@ template <class W>
     }
   }
   return static_cast<std::int16_t>(W::hmax(row_best));
+}
+
+// The row, with the scores in the layout job.score8 says (int8 scores only reach int16 lanes).
+template <class W>
+[[gnu::target(SEQTOPO_STRIPED_ISA)]] std::int16_t striped_row(const StripedJob& job) {
+  if constexpr (sizeof(typename W::E) == 2) {
+    if (job.score8) return striped_row_of<W, true>(job);
+  }
+  return striped_row_of<W, false>(job);
 }

@@ -33,7 +33,8 @@ SEQTOPO_SSE41 int hmax16(__m128i v) {
 //    into lanes < K;
 //  * select(m, a, b), any(m), lane_index() (lane numbers, for comparisons with small ints);
 //  * widen_store(out, x), widen_max(acc, x): int16 values H of the lanes (stored, or maxed into acc);
-//    hmax(x): the largest H.
+//    hmax(x): the largest H;
+//  * int16 lanes only: widen_scores(p), kLanes int8 scores at p sign-extended to int16.
 
 struct Sse41x16 {
   using E = std::int16_t;
@@ -65,6 +66,9 @@ struct Sse41x16 {
   SEQTOPO_SSE41 void widen_store(std::int16_t* out, V v) { store(out, v); }
   SEQTOPO_SSE41 void widen_max(std::int16_t* acc, V v) { store(acc, max(load(acc), v)); }
   SEQTOPO_SSE41 int hmax(V v) { return hmax16(v); }
+  SEQTOPO_SSE41 V widen_scores(const std::int8_t* p) {
+    return _mm_cvtepi8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
+  }
 };
 
 struct Sse41x8 {
@@ -144,6 +148,9 @@ struct Avx2x16 {
   SEQTOPO_AVX2 void widen_max(std::int16_t* acc, V v) { store(acc, max(load(acc), v)); }
   SEQTOPO_AVX2 int hmax(V v) {
     return hmax16(_mm_max_epi16(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1)));
+  }
+  SEQTOPO_AVX2 V widen_scores(const std::int8_t* p) {
+    return _mm256_cvtepi8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
   }
 };
 

@@ -162,10 +162,12 @@ std::vector<std::vector<Step>> reference(const StripCase& c) {
 }
 
 // Runs the striped kernel on the case and checks every row, up to the first that an int8 kernel may not
-// take exactly (the fill would redo it in int16 and go on in int16). Counts the rows checked.
+// take exactly (the fill would redo it in int16 and go on in int16). Counts the rows checked. With score8
+// (int16 rows), the scores are given in the int8 layout (StripedJob::score8), up to the first row whose
+// scores do not fit int8.
 template <typename E>
-void check_striped(const StripCase& c, const StripedIsa& isa, bool bytes, const std::string& what,
-                   std::size_t& checked) {
+void check_striped(const StripCase& c, const StripedIsa& isa, bool bytes, const std::string& what, std::size_t& checked,
+                   bool score8 = false) {
   const std::size_t lanes = bytes ? isa.lanes8 : isa.lanes16, block = kTileSide * lanes;
   const std::size_t padded = (c.width + block - 1) / block * block, tiles = padded / kTileSide;
   const bool exact8 = c.cap < align::detail::kInt8Limit;
@@ -173,6 +175,8 @@ void check_striped(const StripCase& c, const StripedIsa& isa, bool bytes, const 
   const int offset = bytes ? align::detail::kInt8Offset : 0;  // int8 rows hold H - 128
   const auto want = reference(c);
   std::vector<E> rows(2 * padded, static_cast<E>(-offset)), score(padded, 0);
+  const std::size_t block8 = kTileSide * isa.lanes8;
+  std::vector<std::int8_t> scores8(score8 ? (c.width + block8 - 1) / block8 * block8 : 0, 0);
   std::vector<Step> tile_max(tiles, 0), want_tiles(tiles, 0),
       columns(tiles + 1, 0);  // 0 as the fill starts: untouched blocks write nothing
   int running = 0;
@@ -186,6 +190,13 @@ void check_striped(const StripCase& c, const StripedIsa& isa, bool bytes, const 
     const auto [low, high] = std::minmax_element(c.scores[i].begin() + static_cast<std::ptrdiff_t>(rlo),
                                                  c.scores[i].begin() + static_cast<std::ptrdiff_t>(rhi));
     if (bytes && (*low < -128 || *high > 127)) return;
+    if (score8) {
+      const auto [all_low, all_high] = std::minmax_element(c.scores[i].begin(), c.scores[i].end());
+      if (*all_low < -128 || *all_high > 127) return;
+      for (std::size_t rel = 0; rel < c.width; ++rel) {
+        scores8[striped_index(rel, isa.lanes8)] = static_cast<std::int8_t>(c.scores[i][rel]);
+      }
+    }
     StripedJob job{rows.data() + prev * padded,
                    rows.data() + (1 - prev) * padded,
                    score.data(),
@@ -199,6 +210,10 @@ void check_striped(const StripCase& c, const StripedIsa& isa, bool bytes, const 
                    c.cap,
                    tile_max.data(),
                    columns.data()};
+    if (score8) {
+      job.score = scores8.data();
+      job.score8 = true;
+    }
     if (bytes && !exact8 && std::max(c.left[i], c.left[i - 1]) >= align::detail::kInt8Limit) return;
     const Step got_max = bytes ? isa.striped8(job) : isa.striped16(job);
     if (bytes && !exact8 && got_max >= align::detail::kInt8Limit) return;
@@ -235,7 +250,7 @@ TEST(FastStriped, KernelsEqualTheScalarRowKernel) {
   std::mt19937 rng(2026);
   const std::size_t widths[] = {1,   2,   7,   8,   15,  16,  17,   31,   32,   33,   63,   64,   65,
                                 255, 256, 257, 511, 512, 513, 1023, 1024, 1025, 1100, 2047, 2048, 2049};
-  std::size_t cases = 0, rows16 = 0, rows8 = 0, rows8_high = 0;
+  std::size_t cases = 0, rows16 = 0, rows16_score8 = 0, rows8 = 0, rows8_high = 0;
   for (int round = 0; round < 8; ++round) {
     for (std::size_t width : widths) {
       const std::size_t rows = 1 + rng() % 70;
@@ -253,6 +268,7 @@ TEST(FastStriped, KernelsEqualTheScalarRowKernel) {
             if (c.cap > 127) rows8_high += checked;  // values past signed int8
           } else {
             check_striped<std::int16_t>(c, isa, false, what, rows16);
+            check_striped<std::int16_t>(c, isa, false, what + ", int8 scores", rows16_score8, true);
           }
           if (::testing::Test::HasFailure()) return;
           ++cases;
@@ -265,8 +281,10 @@ TEST(FastStriped, KernelsEqualTheScalarRowKernel) {
     EXPECT_GT(rows16, 5000U);
     EXPECT_GT(rows8, 2500U);
     EXPECT_GT(rows8_high, 500U);
+    EXPECT_GT(rows16_score8, 2500U);
   }
-  std::printf("rows checked: int16 %zu, int8 %zu (%zu with a cap beyond 127)\n", rows16, rows8, rows8_high);
+  std::printf("rows checked: int16 %zu (%zu from int8 scores), int8 %zu (%zu with a cap beyond 127)\n", rows16,
+              rows16_score8, rows8, rows8_high);
 }
 
 // F that must travel: one cell at the cap (or a high value) at the strip's left, mismatches everywhere,
