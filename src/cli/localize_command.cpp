@@ -154,6 +154,31 @@ void run(LocalizeOptions o) {
   }
   pipeline::apply_descriptor_overrides(described, request.settings.descriptors, request.settings.detect_panoramas,
                                        request.settings.similarity);
+  // The report's thumbnails are made while the similarity reads the images (offline, image folders, a map of one
+  // session), so that the report need not decode them again. A listing that fails is left to the run to report.
+  std::optional<outputs::ThumbnailCollector> query_thumbnails, map_thumbnails;
+  const auto images_in = [](const pipeline::SequenceInput& input) -> std::optional<std::size_t> {
+    try {
+      if (pipeline::resolve_input_kind(input) != pipeline::InputKind::images) return std::nullopt;
+      return input.frames.empty() ? pipeline::list_input_images(input).files.size() : input.frames.size();
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+  };
+  if (!o.online && !request.similarity_file && request.map.size() == 1) {
+    if (const auto frames = images_in(request.query)) {
+      query_thumbnails.emplace(outputs::report_thumbnail_side(*frames));
+      request.settings.similarity.on_image = [&](std::size_t i, const RgbImage& image) {
+        query_thumbnails->add(i, image);
+      };
+    }
+    if (const auto frames = images_in(request.map.front())) {
+      map_thumbnails.emplace(outputs::report_thumbnail_side(*frames));
+      request.settings.similarity.on_column_image = [&](std::size_t i, const RgbImage& image) {
+        map_thumbnails->add(i, image);
+      };
+    }
+  }
   // Checked (and staged beside) before the work: an output folder that cannot be replaced costs no time.
   std::vector<fs::path> inputs{o.map_path, o.query_path, o.gt_map_poses};
   if (truth_source && truth_source->format != pipeline::GroundTruthFormat::same_index) inputs.emplace_back(o.gt);
@@ -203,7 +228,11 @@ void run(LocalizeOptions o) {
   r.timings.emplace_back("files and figures", progress.end());
   progress.begin("report");
   const auto report =
-      outputs::write_localize_report(r, out, {.seconds_before = progress.elapsed(), .command_line = command_line()});
+      outputs::write_localize_report(r, out,
+                                     {.seconds_before = progress.elapsed(),
+                                      .command_line = command_line(),
+                                      .thumbnails = query_thumbnails ? &query_thumbnails->jpegs() : nullptr,
+                                      .column_thumbnails = map_thumbnails ? &map_thumbnails->jpegs() : nullptr});
   progress.end();
   if (!report.warning.empty()) progress.line("warning: " + report.warning);
   out.commit();

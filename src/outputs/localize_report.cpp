@@ -133,8 +133,9 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
                    {"confidence", {{"key", "confidence"}, {"label", confidence_label(r)}}},
                    {"fields", std::move(fields)},
                    {"rows", std::move(rows)}};
-  data["sequences"] = {{"rows", detail::sequence_json(r.query_input, r.queries, wanted_q, "query frame")},
-                       {"cols", detail::sequence_json(r.map_input, r.maps, wanted_m, "map frame")}};
+  data["sequences"] = {
+      {"rows", detail::sequence_json(r.query_input, r.queries, wanted_q, "query frame", options.thumbnails)},
+      {"cols", detail::sequence_json(r.map_input, r.maps, wanted_m, "map frame", options.column_thumbnails)}};
   if (data["sequences"]["rows"]["note"] != "") {
     html.paragraph("Images: " + data["sequences"]["rows"]["note"].get<std::string>() + ".");
   }

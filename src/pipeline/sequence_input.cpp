@@ -98,7 +98,13 @@ namespace {
 
 // Why an entry with an image extension cannot be read as a file, or "" when it is a regular file (the check
 // every file named by the user goes through, core/text_file.hpp).
-std::string unreadable_reason(const fs::directory_entry& entry) { return special_file_reason(entry.path()); }
+std::string unreadable_reason(const fs::directory_entry& entry) {
+  // The type the folder listing gave: a regular file needs no system call to be told one (a folder of 10^4
+  // images is 2 x 10^4 stat calls otherwise).
+  std::error_code ec;
+  if (entry.symlink_status(ec).type() == fs::file_type::regular && !ec) return {};
+  return special_file_reason(entry.path());
+}
 
 bool hidden_or_truth(const std::string& name) {
   return name.empty() || name[0] == '.' || lower(name).rfind("ground_truth", 0) == 0;

@@ -731,7 +731,9 @@ std::vector<SimilarityResult> run(std::span<const SequenceInput> inputs_a, std::
   Described da = describe_all(a, ds, c);
   std::optional<Described> db;
   if (two) {
-    db = describe_all(b, ds, c);
+    SimilarityConfig columns = c;
+    columns.on_image = c.on_column_image;
+    db = describe_all(b, ds, columns);
     check_same_size(da, a.front().input.path.string(), *db, b.front().input.path.string(), ds);
   }
   const double seconds_descriptors = seconds_since(t0);

@@ -22,6 +22,8 @@ struct ReportOptions {
   // JPEG thumbnails of the images, one per image (ThumbnailCollector), made while the run read them; empty: the
   // report decodes the images again.
   const std::vector<std::string>* thumbnails = nullptr;
+  // localize: the map's (the columns'); `thumbnails` are the query's.
+  const std::vector<std::string>* column_thumbnails = nullptr;
 };
 
 // The side of the report's image thumbnails [pixels]: larger sequences get smaller ones, so that the page

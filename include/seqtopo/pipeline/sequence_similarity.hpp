@@ -56,6 +56,9 @@ struct SimilarityConfig {
   // Image folders: called with each image as it is decoded (its row in the session, the image), from the
   // worker threads, so that what else needs the pixels (the report's thumbnails) need not decode them again.
   std::function<void(std::size_t, const RgbImage&)> on_image;
+  // The same for the columns' images when two sequences are compared (compute_similarities(a, b, ...): on_image
+  // sees a's, this b's).
+  std::function<void(std::size_t, const RgbImage&)> on_column_image;
 };
 
 // The user's choice of descriptors and of their comparison, by the options `map` and `localize` share
