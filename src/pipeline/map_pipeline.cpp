@@ -218,6 +218,13 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   const mapping::MapConfig framed = mapping::settings_in_frames(config, config.frames_per_place.value_or(1.0));
   make_streamed(framed.score.contrast_window);
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
+  // Dark or near-uniform images carry no evidence of a revisit, as in the dense map (with contrast enhancement).
+  std::vector<std::size_t> low_information;
+  if (config.mask_low_information && framed.score.contrast_window > 0 && described.frame_entropy.size() == n) {
+    low_information = significance::low_information_frames(described.frame_entropy);
+  }
+  std::vector<bool> masked(n, false);
+  for (std::size_t f : low_information) masked[f] = true;
   // --sparse: the contrast-enhanced score at each frame's nearest neighbours (FAISS), the background elsewhere.
   std::optional<scale::SparseScores> candidates;
   if (request.engine == MapEngine::sparse) {
@@ -244,8 +251,11 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
       for (std::size_t i = 0; i < n; ++i) {
         const auto cols = candidates->row_columns(i);
         const auto values = candidates->row_values(i);
-        for (std::size_t k = 0; k < cols.size(); ++k)
-          entries.push_back({static_cast<std::uint32_t>(i), cols[k], values[k] - offset});
+        for (std::size_t k = 0; k < cols.size(); ++k) {
+          const float v = values[k] - offset;  // soft-masked as the dense scores are
+          entries.push_back(
+              {static_cast<std::uint32_t>(i), cols[k], masked[i] || masked[cols[k]] ? std::min(v, 0.0F) : v});
+        }
       }
       const scale::SparseScores shifted(n, n, candidates->background(), std::move(entries));
       return config.search.reverse ? scale::sparse_local_alignments_both(shifted, engine, settings.map.threads)
@@ -254,7 +264,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   }
   clock.begin(candidates ? " (sparse engine on the candidates)" : " (fast engine)");
   config.progress = clock.map_progress();
-  run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run);
+  run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run, low_information);
   run.result.decisions.frames_per_place_estimated = place.has_value();
   run.result.decisions.place_scale_missing = place && !place->found;
   report_map(run, observer);

@@ -798,6 +798,7 @@ DescriptorResult compute_descriptors(std::span<const SequenceInput> inputs, cons
   r.descriptors = std::move(described.sets[0].dense);
   if (r.descriptors.empty()) throw InputError(s.input.path.string(), "no images");
   r.descriptor = d;
+  if (described.entropy.size() == described.names.size()) r.frame_entropy = std::move(described.entropy);
   r.frame_names = std::move(described.names);
   r.session_rows = std::move(described.session_rows);
   r.seconds_descriptors = seconds_since(t0);

@@ -136,11 +136,10 @@ StreamingSimilarity::StreamingSimilarity(std::span<const float> descriptors, std
     const float* x = descriptors.data() + i * dim;
     double norm2 = 0;
     for (std::size_t t = 0; t < dim; ++t) norm2 += static_cast<double>(x[t]) * x[t];
-    if (!(norm2 > 0) || !std::isfinite(norm2)) {
-      throw std::invalid_argument("descriptor " + std::to_string(i) +
-                                  " is zero or not finite (cosine needs a direction)");
-    }
-    const double inv = 1.0 / std::sqrt(norm2);
+    if (!std::isfinite(norm2)) throw std::invalid_argument("descriptor " + std::to_string(i) + " is not finite");
+    // A zero descriptor (a uniform image's patch: a tunnel, a covered lens) has no direction: it stays zero, cosine 0
+    // with every frame, itself included; such frames are masked as of little information (significance/).
+    const double inv = norm2 > 0 ? 1.0 / std::sqrt(norm2) : 0.0;
     for (std::size_t t = 0; t < dim; ++t) {
       const auto v = static_cast<float>(x[t] * inv);
       normalized_[i * dim + t] = v;

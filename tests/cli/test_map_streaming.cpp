@@ -14,7 +14,9 @@
 #include "common/cli_run.hpp"
 #include "common/sanitizers.hpp"
 #include "common/temp_dir.hpp"
+#include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
+#include "seqtopo/plot/png.hpp"
 #include "seqtopo/scale/streaming_similarity.hpp"
 
 namespace {
@@ -200,6 +202,42 @@ TEST_F(MapStreaming, ImageFolderWithOneVectorDescriptor) {
   const auto map = nlohmann::json::parse(read_file(fs::path(path("out")) / "map.json"));
   EXPECT_EQ(map.at("images").get<int>(), 84);
   EXPECT_FALSE(map.at("alignments").empty());
+}
+
+// Dark frames carry no evidence of a revisit whatever the engine: the corridor with 20 black frames after each
+// lap, streamed and sparse, lists the frames the dense map masks (alignments.json's low_information_frames) and says
+// so.
+TEST_F(MapStreaming, DarkFramesAreMaskedAsInTheDenseMap) {
+  const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  const fs::path frames = dir_.path / "frames";
+  fs::create_directories(frames);
+  const auto probe = seqtopo::image::load_image(corridor / "1.jpg");
+  const seqtopo::RgbImage black(probe.width, probe.height, 0);
+  int k = 0;
+  const auto add = [&](const seqtopo::RgbImage& image) {
+    seqtopo::plot::write_png(frames / (std::to_string(++k) + ".png"), image);
+  };
+  for (int lap = 0; lap < 2; ++lap) {
+    for (int f = lap == 0 ? 1 : 41; f <= (lap == 0 ? 40 : 84); ++f) {
+      add(seqtopo::image::load_image(corridor / (std::to_string(f) + ".jpg")));
+    }
+    for (int d = 0; d < 20; ++d) add(black);
+  }
+  const auto low_information = [&](const std::string& engine) {
+    const fs::path out = dir_.path / engine;
+    const auto r = run_cli("map " + frames.string() + " --descriptor patch --metric cosine --engine " + engine +
+                           " --out " + out.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("little information"), std::string::npos) << engine << ": " << r.err;
+    const auto significance = nlohmann::json::parse(read_file(out / "alignments.json")).at("significance");
+    return significance.value("low_information_frames", std::vector<std::size_t>{});
+  };
+  const auto dense = low_information("exact");
+  ASSERT_EQ(dense.size(), 40U);  // the black frames: 40-59 and 104-123
+  EXPECT_EQ(dense.front(), 40U);
+  EXPECT_EQ(dense.back(), 123U);
+  EXPECT_EQ(low_information("streaming"), dense);
+  EXPECT_EQ(low_information("sparse"), dense);
 }
 
 // Without --descriptor / --metric, images stream the nearest vector descriptor (patch, by cosine), and say so:

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <thread>
 #include <vector>
@@ -128,13 +129,33 @@ TEST(StreamingSimilarity, SelfAlignmentsEqualTheDensePath) {
   EXPECT_EQ(got, expected);
 }
 
+// A zero descriptor (a uniform image's patch) stays zero: cosine 0 with every frame, itself included, in the tiles
+// as cell by cell.
+TEST(StreamingSimilarity, AZeroDescriptorHasCosineZeroWithEveryFrame) {
+  auto x = walk_descriptors(40, 5, 7);
+  for (std::size_t t = 0; t < 5; ++t) x[17 * 5 + t] = 0.0F;
+  StreamingConfig config;
+  config.tile = 8;
+  const StreamingSimilarity s(x, 40, 5, config);
+  const auto source = s.source();
+  std::vector<float> row(40);
+  for (std::size_t j = 0; j < 40; ++j) EXPECT_EQ(s.cosine(17, j), 0.0F) << j;
+  for (std::size_t i = 0; i < 40; ++i) {
+    source.read_row(i, 0, 40, row.data());
+    for (std::size_t j = 0; j < 40; ++j) {
+      ASSERT_TRUE(std::isfinite(row[j])) << i << ", " << j;
+      EXPECT_EQ(row[j], s.score(i, j)) << i << ", " << j;
+    }
+  }
+}
+
 TEST(StreamingSimilarity, RejectsBadInput) {
   const std::vector<float> x(10, 1.0F);
   EXPECT_THROW(StreamingSimilarity(x, 3, 3), std::invalid_argument);
   EXPECT_THROW(StreamingSimilarity(x, 10, 0), std::invalid_argument);
-  std::vector<float> zero(10, 1.0F);
-  zero[4] = 0.0F;
-  EXPECT_THROW(StreamingSimilarity(zero, 10, 1), std::invalid_argument);
+  std::vector<float> infinite(10, 1.0F);
+  infinite[4] = std::numeric_limits<float>::infinity();
+  EXPECT_THROW(StreamingSimilarity(infinite, 10, 1), std::invalid_argument);
   StreamingConfig bad;
   bad.tile = 0;
   EXPECT_THROW(StreamingSimilarity(x, 5, 2, bad), std::invalid_argument);

@@ -239,8 +239,9 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
 // `enhanced`): it gets the engine settings and the offset the scores it must align are `enhanced` minus, and
 // returns their alignments best first. The sparse mode aligns its candidate cells this way (pipeline).
 using AlignmentRun = std::function<std::vector<align::LocalAlignment>(const align::AlignConfig& engine, float offset)>;
-// `low_information` (sorted frame indices, build_map's) are the frames whose scores the caller soft-masked: their
-// pairs are placed between the evidence on either side and cut at the alignments' ends.
+// `low_information` (sorted frame indices, build_map's) are frames of little information: their scores are
+// soft-masked (a `run_alignment` must mask the scores it aligns alike), their pairs placed between the evidence on
+// either side and cut at the alignments' ends.
 MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config = {},
                                   std::span<const Pose2> odometry = {}, const AlignmentRun& run_alignment = {},
                                   std::span<const std::size_t> low_information = {});

@@ -130,6 +130,7 @@ struct DescriptorResult {
   Descriptor descriptor = Descriptor::npy;  // the one used (npy for a descriptors.npy input)
   std::vector<std::string> frame_names;     // as in SimilarityResult
   std::vector<std::size_t> session_rows;    // as in SimilarityResult
+  std::vector<double> frame_entropy;        // as in SimilarityResult
   double seconds_descriptors = 0;
 };
 DescriptorResult compute_descriptors(const SequenceInput& input, const SimilarityConfig& config = {});

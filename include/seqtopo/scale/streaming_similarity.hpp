@@ -43,8 +43,8 @@ struct StreamingStats {
 
 class StreamingSimilarity {
  public:
-  // descriptors: n x dim, row-major (copied and normalised). Throws std::invalid_argument on a size
-  // mismatch, dim = 0, a zero or non-finite descriptor, or tile = 0.
+  // descriptors: n x dim, row-major (copied and normalised; a zero one stays zero: cosine 0 with every frame).
+  // Throws std::invalid_argument on a size mismatch, dim = 0, a non-finite descriptor, or tile = 0.
   StreamingSimilarity(std::span<const float> descriptors, std::size_t n, std::size_t dim, StreamingConfig config = {});
   ~StreamingSimilarity();
   StreamingSimilarity(const StreamingSimilarity&) = delete;
