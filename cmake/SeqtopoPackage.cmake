@@ -21,6 +21,8 @@ set(seqtopo_package_of_nlohmann_json::nlohmann_json "find_dependency(nlohmann_js
 set(seqtopo_package_of_Eigen3::Eigen "find_dependency(Eigen3 NO_MODULE)")
 set(seqtopo_package_of_Ceres::ceres "find_dependency(Ceres)")
 set(seqtopo_package_of_OpenSSL::Crypto "find_dependency(OpenSSL COMPONENTS Crypto)")
+set(seqtopo_package_of_PNG::PNG "find_dependency(PNG)")
+set(seqtopo_package_of_JPEG::JPEG "find_dependency(JPEG)")
 foreach(opencv opencv_core opencv_imgproc)
   set(seqtopo_package_of_${opencv} "find_dependency(OpenCV COMPONENTS core imgproc imgcodecs videoio)")
 endforeach()

@@ -17,7 +17,7 @@ esac
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libopencv-dev libeigen3-dev libceres-dev libtbb-dev
+  libopencv-dev libpng-dev libjpeg-dev libeigen3-dev libceres-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev zlib1g-dev libfaiss-dev
   # The map's topology.svg (graphviz's dot) and the report's interactive views (D3, inlined into report.html).
   graphviz libjs-d3

@@ -2,13 +2,17 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "plugin/codec_table.hpp"
+#include "png_jpeg.hpp"
 
 namespace seqtopo::image::codecs {
 
@@ -104,33 +108,33 @@ const CodecTable& table() {
   return *plugin.table;
 }
 
-std::vector<std::uint8_t> encode(const char* extension, const cv::Mat& image, int jpeg_quality) {
-  std::vector<std::uint8_t> out;
-  if (!table().encode(extension, &image, jpeg_quality, &out)) {
-    throw std::runtime_error(std::string("image codecs: cannot encode ") + extension);
-  }
-  return out;
-}
-
 }  // namespace
 
 void load() { (void)table(); }
 
 cv::Mat decode(std::span<const std::uint8_t> bytes) {
   cv::Mat out;
+  if (direct::decode(bytes, direct::Mode::unchanged, out) != direct::Outcome::unhandled) return out;
   if (!table().decode(bytes.data(), bytes.size(), &out)) out.release();
   return out;
 }
 
 cv::Mat read_grey(const fs::path& path) {
   cv::Mat out;
+  std::ifstream in(path, std::ios::binary);
+  if (in) {
+    const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.bad() && direct::decode(bytes, direct::Mode::grey, out) == direct::Outcome::decoded) return out;
+  }
   if (!table().read_grey(path.c_str(), &out)) out.release();
   return out;
 }
 
-std::vector<std::uint8_t> encode_png(const cv::Mat& image) { return encode(".png", image, 0); }
+std::vector<std::uint8_t> encode_png(const cv::Mat& image) { return direct::encode_png(image); }
 
-std::vector<std::uint8_t> encode_jpeg(const cv::Mat& image, int quality) { return encode(".jpg", image, quality); }
+std::vector<std::uint8_t> encode_jpeg(const cv::Mat& image, int quality) {
+  return direct::encode_jpeg(image, std::clamp(quality, 1, 100));
+}
 
 Video::Video(const fs::path& path) : handle_(table().video_open(path.c_str())) {}
 

@@ -306,9 +306,9 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   const bool odometry = std::any_of(request.sessions.begin(), request.sessions.end(),
                                     [](const SessionSource& session) { return !session.odometry.empty(); });
   in.place_from_similarity = (s.map.unit == align::Unit::places) && !s.map.frames_per_place && !odometry;
-  // The run decodes images or at least encodes its figures: the codecs' libraries (~80 MB resident) are part
-  // of the process it will be.
-  image::codecs::load();
+  // A video's run opens OpenCV's codecs plugin, whose libraries (~80 MB resident) are part of the process it
+  // will be. PNG and JPEG (frames, figures) need no plugin; a folder of other formats opens it later, unmeasured.
+  if (kind == InputKind::video) image::codecs::load();
   in.base_bytes = resident_bytes();
   const std::filesystem::path& truth = request.truth.same_place;
   in.baseline = !truth.empty() && !in.streaming;

@@ -2,7 +2,10 @@
 // OpenCV's image and video codecs, loaded when first needed. Debian's imgcodecs and videoio bring about 250
 // shared libraries with them (GDAL, GDCM, GStreamer, FFmpeg, ...): linked into a program they cost every start
 // of it 0.3 s in the dynamic loader (a second under AddressSanitizer), `--help` as much as a map. So they live
-// in a plugin, libseqtopo_codecs.so (src/image/plugin/), which the first decode, encode or video opens.
+// in a plugin, libseqtopo_codecs.so (src/image/plugin/). PNG and JPEG, met at every run (frames, the figures
+// of every map), are decoded and encoded by libpng and libjpeg-turbo linked in (src/image/png_jpeg.cpp): the
+// same pixels as OpenCV's decoders, which make the same library calls. The plugin opens at the first other
+// format, PNG or JPEG variant left to OpenCV (CMYK, a grey read of an Exif image), or video.
 //
 // The plugin is looked for in this order: the file $SEQTOPO_CODECS names (then nowhere else); beside the
 // program or shared library holding this code, and beside the running program (the Python package, the
@@ -28,7 +31,8 @@ cv::Mat decode(std::span<const std::uint8_t> bytes);
 // The file read as 8-bit grey; empty when it cannot be read as an image.
 cv::Mat read_grey(const std::filesystem::path& path);
 
-// PNG, and JPEG of quality 1-100, of an 8-bit grey or BGR image. Throws std::runtime_error when OpenCV cannot.
+// PNG, and JPEG of quality 1-100, of an 8-bit grey or BGR image (deterministic bytes, readable by OpenCV).
+// Throws std::runtime_error for another image or when the library fails.
 std::vector<std::uint8_t> encode_png(const cv::Mat& image);
 std::vector<std::uint8_t> encode_jpeg(const cv::Mat& image, int quality);
 
