@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -306,9 +307,20 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   const bool odometry = std::any_of(request.sessions.begin(), request.sessions.end(),
                                     [](const SessionSource& session) { return !session.odometry.empty(); });
   in.place_from_similarity = (s.map.unit == align::Unit::places) && !s.map.frames_per_place && !odometry;
-  // A video's run opens OpenCV's codecs plugin, whose libraries (~80 MB resident) are part of the process it
-  // will be. PNG and JPEG (frames, figures) need no plugin; a folder of other formats opens it later, unmeasured.
-  if (kind == InputKind::video) image::codecs::load();
+  // A video's run, or a folder of images other than PNG and JPEG, opens OpenCV's codecs plugin, whose libraries
+  // (~80 MB resident) are part of the process it will be. PNG and JPEG (frames, figures) need no plugin.
+  const auto png_or_jpeg = [](const std::filesystem::path& file) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+  };
+  bool plugin = kind == InputKind::video;
+  for (const auto& session : request.sessions) {
+    if (plugin || kind != InputKind::images) break;
+    const auto files = list_input_images(session.input).files;
+    plugin = !std::all_of(files.begin(), files.end(), png_or_jpeg);
+  }
+  if (plugin) image::codecs::load();
   in.base_bytes = resident_bytes();
   const std::filesystem::path& truth = request.truth.same_place;
   in.baseline = !truth.empty() && !in.streaming;
