@@ -4,12 +4,25 @@ Slow (a CMake build of the module), so it runs only when SEQTOPO_TEST_PIP=1 (its
 SEQTOPO_CMAKE_BUILD_DIR, when set, keeps the CMake build folder between runs."""
 
 import os
+import random
+import struct
 import subprocess
 import venv
 
 import pytest
 
 from conftest import SOURCE_DIR
+
+
+def write_bmp(path, width, height, bgr):
+    """A 24-bit BMP of width x height pixels, bgr row by row from the top (BMP stores rows bottom-up, padded to 4)."""
+    row = width * 3
+    pad = (4 - row % 4) % 4
+    pixels = b"".join(bgr[y * row:(y + 1) * row] + b"\0" * pad for y in reversed(range(height)))
+    header = struct.pack("<2sIHHI", b"BM", 54 + len(pixels), 0, 0, 54)
+    info = struct.pack("<IiiHHIIiiII", 40, width, height, 1, 24, 0, len(pixels), 2835, 2835, 0, 0)
+    path.write_bytes(header + info + pixels)
+
 
 pytestmark = pytest.mark.skipif(os.environ.get("SEQTOPO_TEST_PIP") != "1", reason="set SEQTOPO_TEST_PIP=1")
 
@@ -76,10 +89,14 @@ def test_pip_install_from_source_tree(tmp_path):
     module = subprocess.run([str(python), "-m", "seqtopo", "align", "--help"], capture_output=True, text=True, env=env,
                             cwd=tmp_path)
     assert module.returncode == 0 and "Usage: seqtopo align" in module.stdout, module
-    # It decodes the images and encodes the figures with the codecs plugin installed beside it (seqtopo/bin/), not
-    # the one in the build folder.
-    corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
-    mapped = subprocess.run([str(command), "map", str(corridor), "--out", str(tmp_path / "corridor")],
+    # Images other than PNG and JPEG are decoded by the codecs plugin installed beside it (seqtopo/bin/), not the
+    # one in the build folder: a folder of BMP frames (PNG and JPEG need no plugin).
+    frames = tmp_path / "bmp"
+    frames.mkdir()
+    rng = random.Random(5)
+    for k in range(30):
+        write_bmp(frames / f"{k:02d}.bmp", 32, 24, bytes(rng.randrange(256) for _ in range(32 * 24 * 3)))
+    mapped = subprocess.run([str(command), "map", str(frames), "--out", str(tmp_path / "bmp-map")],
                             capture_output=True, text=True, env=dict(env, LD_DEBUG="files"), cwd=tmp_path)
     assert mapped.returncode == 0, mapped.stderr[-3000:]
     opened = [line for line in mapped.stderr.splitlines() if "file=" in line and "libseqtopo_codecs.so" in line]

@@ -289,7 +289,8 @@ std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> ss, con
   std::vector<bool> sees_alone(ss.size(), false);
   std::vector<std::pair<std::size_t, std::size_t>> seen;  // the pairs of the alignments found at `strict`
   for (std::size_t d = 0; d < ss.size(); ++d) {
-    const LocalizeResult alone = localize_sequence(ss[d], c);
+    // Its alignments and their E-values: the frames' answers (posteriors) are not needed here.
+    const LocalizeResult alone = search_scores(score_matrix(ss[d], c), c);
     if (!alone.statistics.valid()) continue;
     for (std::size_t k = 0; k < alone.alignments.size(); ++k) {
       sees_alone[d] = sees_alone[d] || alone.e_values[k] <= *c.significance.max_e_value;
