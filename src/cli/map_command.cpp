@@ -258,10 +258,15 @@ void run(MapOptions o) {
   }
   const double setup_seconds = progress.elapsed();
   const auto line = [&progress](std::string_view text) { progress.line(text); };
-  // The report's thumbnails are made while the similarity stage reads the images (one image folder).
+  // The report's thumbnails are made while the similarity stage reads the images (image folders).
   std::optional<outputs::ThumbnailCollector> thumbnails;
-  if (job.sessions().size() == 1 && job.input_kind() == pipeline::InputKind::images && job.sessions()[0].frames)
-    thumbnails.emplace(outputs::report_thumbnail_side(*job.sessions()[0].frames));
+  if (job.input_kind() == pipeline::InputKind::images) {
+    std::vector<std::size_t> frames;
+    for (const auto& session : job.sessions()) {
+      if (session.frames) frames.push_back(*session.frames);
+    }
+    if (frames.size() == job.sessions().size()) thumbnails.emplace(frames);
+  }
   pipeline::MapObserver observer{
       .progress = line, .stage = progress.observer(), .later_stages = {"files and figures", "report"}};
   if (thumbnails)

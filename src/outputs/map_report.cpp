@@ -161,7 +161,8 @@ nlohmann::json topology_json(const mapping::TopologicalMap& map) {
 }
 
 // The thumbnails of several sessions, one after the other in the run's image order.
-nlohmann::json sessions_json(const pipeline::MapRun& run, const std::vector<std::size_t>& wanted) {
+nlohmann::json sessions_json(const pipeline::MapRun& run, const std::vector<std::size_t>& wanted,
+                             const std::vector<std::string>* jpegs) {
   nlohmann::json names = nlohmann::json::array(), thumbs = nlohmann::json::array();
   std::string note;
   int side = 0;
@@ -171,7 +172,13 @@ nlohmann::json sessions_json(const pipeline::MapRun& run, const std::vector<std:
     for (auto w : wanted) {
       if (w >= session.begin && w < session.end) local.push_back(w - session.begin);
     }
-    const auto part = detail::sequence_json(run.session_inputs[k], session.end - session.begin, local, "image");
+    std::vector<std::string> own;  // the session's thumbnails made while the run read its images, if any
+    if (jpegs != nullptr && jpegs->size() >= session.end) {
+      own.assign(jpegs->begin() + static_cast<std::ptrdiff_t>(session.begin),
+                 jpegs->begin() + static_cast<std::ptrdiff_t>(session.end));
+    }
+    const auto part = detail::sequence_json(run.session_inputs[k], session.end - session.begin, local, "image",
+                                            own.empty() ? nullptr : &own);
     for (const auto& name : part["names"])
       names.push_back(fmt::format("session {}: {}", k + 1, name.get<std::string>()));
     for (const auto& t : part["thumbnails"]) thumbs.push_back(t);
@@ -408,7 +415,7 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
   }
   for (const auto& p : result.pruning.pairs) wanted.push_back(p.i), wanted.push_back(p.j);
   data["sequences"] = {{"rows", run.session_inputs.size() > 1 && run.session_inputs.size() == run.sessions.size()
-                                    ? sessions_json(run, wanted)
+                                    ? sessions_json(run, wanted, options.thumbnails)
                                     : detail::sequence_json(run.sequence, n, wanted, "image", options.thumbnails)},
                        {"cols", "rows"}};
   if (data["sequences"]["rows"]["note"] != "") {

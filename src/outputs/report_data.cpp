@@ -301,8 +301,16 @@ std::string matrix_view_markup(const std::string& help) {
 
 namespace seqtopo::outputs {
 
+ThumbnailCollector::ThumbnailCollector(const std::vector<std::size_t>& session_frames) {
+  std::size_t end = 0;
+  for (std::size_t frames : session_frames) sides_.emplace_back(end += frames, report_thumbnail_side(frames));
+}
+
 void ThumbnailCollector::add(std::size_t index, const RgbImage& image) {
-  std::string jpeg = plot::encode_jpeg(plot::shrink(image, side_), 75);
+  const auto session =
+      std::upper_bound(sides_.begin(), sides_.end(), index, [](std::size_t i, const auto& s) { return i < s.first; });
+  if (session == sides_.end()) return;  // past the sessions announced: the report decodes it
+  std::string jpeg = plot::encode_jpeg(plot::shrink(image, session->second), 75);
   const std::lock_guard lock(mutex_);
   if (jpegs_.size() <= index) jpegs_.resize(index + 1);
   jpegs_[index] = std::move(jpeg);

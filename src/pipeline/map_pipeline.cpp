@@ -119,7 +119,7 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
   auto config = settings.similarity;
   if (!config.note && observer.progress) config.note = observer.progress;
   if (!config.progress) config.progress = clock.similarity_progress();
-  if (observer.on_image && inputs.size() == 1 && kind == InputKind::images) config.on_image = observer.on_image;
+  if (observer.on_image && kind == InputKind::images) config.on_image = observer.on_image;
   // Every descriptor from one pass over the images.
   run.similarities = compute_similarities(inputs, descriptors, config);
   record_sessions(inputs, run.similarities.front().session_rows, run);

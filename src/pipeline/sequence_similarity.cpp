@@ -637,7 +637,13 @@ Described describe_all(const std::vector<Source>& sources, Descriptors ds, const
   all.sets.resize(ds.size());
   std::string first_input;
   for (const auto& s : sources) {
-    Described one = describe(s, ds, c);
+    SimilarityConfig session = c;  // on_image counts the rows of all the sessions
+    if (c.on_image) {
+      session.on_image = [&c, first = all.names.size()](std::size_t i, const RgbImage& image) {
+        c.on_image(first + i, image);
+      };
+    }
+    Described one = describe(s, ds, session);
     if (!all.size) {
       all.size = one.size;
       first_input = s.input.path.string();

@@ -181,6 +181,31 @@ TEST_F(MapCommand, ReportThumbnailsFromTheRunAreTheDecodedImages) {
   }
 }
 
+// The same with several sessions: each session's images, in the run's order, at its own thumbnail side.
+TEST_F(MapCommand, ReportThumbnailsOfSessionsFromTheRunAreEachSessionsImages) {
+  const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  const fs::path lap1 = dir_.path / "lap1", lap2 = dir_.path / "lap2";
+  fs::create_directories(lap1);
+  fs::create_directories(lap2);
+  for (int k = 1; k <= 84; ++k) {
+    const std::string name = std::to_string(k) + ".jpg";
+    fs::create_symlink(corridor / name, (k <= 40 ? lap1 : lap2) / name);
+  }
+  const fs::path out = dir_.path / "out";
+  const auto r = run_cli("map " + lap1.string() + " " + lap2.string() + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = read_file(out / "report.html");
+  std::size_t at = 0;
+  for (int k = 1; k <= 84; ++k) {
+    const auto image = seqtopo::image::load_image(corridor / (std::to_string(k) + ".jpg"));
+    const int side = seqtopo::outputs::report_thumbnail_side(k <= 40 ? 40 : 44);
+    const std::string uri = "data:image/jpeg;base64," +
+                            seqtopo::report::base64(seqtopo::plot::encode_jpeg(seqtopo::plot::shrink(image, side), 75));
+    at = html.find(uri, at);
+    ASSERT_NE(at, std::string::npos) << k;
+  }
+}
+
 TEST_F(MapCommand, BadInputsGiveOneLineAndNoOutput) {
   const fs::path out = dir_.path / "out";
   seqtopo::io::write_npy(dir_.path / "rect.npy", seqtopo::DenseMatrix<float>(3, 4, 0.5F));

@@ -53,8 +53,9 @@ struct SimilarityConfig {
   std::function<void(std::string_view, std::size_t, std::size_t)> progress;
   std::function<void(std::string_view)> note;
   std::size_t note_memory_above = std::size_t{64} << 20U;  // [bytes] estimates below this are not reported
-  // Image folders: called with each image as it is decoded (its row in the session, the image), from the
-  // worker threads, so that what else needs the pixels (the report's thumbnails) need not decode them again.
+  // Image folders: called with each image as it is decoded (its row, counted over the sessions one after the
+  // other, and the image), from the worker threads, so that what else needs the pixels (the report's thumbnails)
+  // need not decode them again.
   std::function<void(std::size_t, const RgbImage&)> on_image;
   // The same for the columns' images when two sequences are compared (compute_similarities(a, b, ...): on_image
   // sees a's, this b's).
