@@ -226,21 +226,31 @@ TEST(FastAlignment, LongPlateausAndFarReachingUpdatesAcrossTiles) {
   }
 }
 
+// Random sequences of na and nb letters of k, and a substitution matrix: 5 on the diagonal, a whole number in
+// [lowest_mismatch, -1] elsewhere.
+struct RandomLetters {
+  std::vector<std::uint8_t> a, b;
+  std::vector<float> matrix;
+};
+RandomLetters random_letters(std::mt19937& rng, std::size_t k, std::size_t na, std::size_t nb, int lowest_mismatch) {
+  RandomLetters p{std::vector<std::uint8_t>(na), std::vector<std::uint8_t>(nb), std::vector<float>(k * k)};
+  std::uniform_int_distribution<int> letter(0, static_cast<int>(k) - 1);
+  for (auto& x : p.a) x = static_cast<std::uint8_t>(letter(rng));
+  for (auto& x : p.b) x = static_cast<std::uint8_t>(letter(rng));
+  std::uniform_int_distribution<int> mismatch(lowest_mismatch, -1);
+  for (std::size_t x = 0; x < k; ++x) {
+    for (std::size_t y = 0; y < k; ++y) p.matrix[x * k + y] = x == y ? 5.0F : static_cast<float>(mismatch(rng));
+  }
+  return p;
+}
+
 TEST(FastAlignment, LetterScoresEqualTheirScoreSource) {
   std::mt19937 rng(9);
   for (int case_id = 0; case_id < 24; ++case_id) {
     const std::size_t k = 4 + static_cast<std::size_t>(case_id % 17);
-    std::uniform_int_distribution<int> letter(0, static_cast<int>(k) - 1);
-    std::vector<std::uint8_t> a(50 + static_cast<std::size_t>(case_id) * 13),
-        b(40 + static_cast<std::size_t>(case_id) * 17);
-    for (auto& x : a) x = static_cast<std::uint8_t>(letter(rng));
-    for (auto& x : b) x = static_cast<std::uint8_t>(letter(rng));
-    std::vector<float> matrix(k * k);
-    std::uniform_int_distribution<int> mismatch(-5, -1);
-    for (std::size_t x = 0; x < k; ++x) {
-      for (std::size_t y = 0; y < k; ++y) matrix[x * k + y] = x == y ? 5.0F : static_cast<float>(mismatch(rng));
-    }
-    const align::LetterScores letters{a, b, matrix, k};
+    const RandomLetters p = random_letters(rng, k, 50 + static_cast<std::size_t>(case_id) * 13,
+                                           40 + static_cast<std::size_t>(case_id) * 17, -5);
+    const align::LetterScores letters{p.a, p.b, p.matrix, k};
     AlignConfig c;
     c.gap_a = c.gap_b = static_cast<float>(1 + case_id % 4);
     c.max_alignments = 10;
@@ -264,19 +274,11 @@ TEST(FastAlignment, LetterScoresAcrossStripsAndWidths) {
   std::mt19937 rng(31);
   for (int case_id = 0; case_id < 6; ++case_id) {
     const std::size_t k = 20;
-    std::uniform_int_distribution<int> letter(0, static_cast<int>(k) - 1);
-    std::vector<std::uint8_t> a(150 + static_cast<std::size_t>(case_id) * 40),
-        b(2100 + static_cast<std::size_t>(case_id) * 333);
-    for (auto& x : a) x = static_cast<std::uint8_t>(letter(rng));
-    for (auto& x : b) x = static_cast<std::uint8_t>(letter(rng));
-    for (std::size_t y = 0; y < b.size(); y += 97)
-      std::copy(a.begin(), a.begin() + 40, b.begin() + static_cast<std::ptrdiff_t>(y / 2));
-    std::vector<float> matrix(k * k);
-    std::uniform_int_distribution<int> mismatch(-4, -1);
-    for (std::size_t x = 0; x < k; ++x) {
-      for (std::size_t y = 0; y < k; ++y) matrix[x * k + y] = x == y ? 5.0F : static_cast<float>(mismatch(rng));
-    }
-    const align::LetterScores letters{a, b, matrix, k};
+    RandomLetters p = random_letters(rng, k, 150 + static_cast<std::size_t>(case_id) * 40,
+                                     2100 + static_cast<std::size_t>(case_id) * 333, -4);
+    for (std::size_t y = 0; y < p.b.size(); y += 97)
+      std::copy(p.a.begin(), p.a.begin() + 40, p.b.begin() + static_cast<std::ptrdiff_t>(y / 2));
+    const align::LetterScores letters{p.a, p.b, p.matrix, k};
     AlignConfig c;
     c.gap_a = c.gap_b = static_cast<float>(2 + case_id % 3);
     c.max_alignments = 5;
