@@ -21,7 +21,7 @@ if ! [[ "$seconds" =~ ^[1-9][0-9]*$ ]]; then
 fi
 start=$SECONDS
 build=build/fuzz
-harnesses=(npy csv odometry_csv places_csv fasta strings_file config_file)
+harnesses=(npy csv odometry_csv places_csv fasta strings_file config_file png_jpeg)
 
 generator=()
 if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi

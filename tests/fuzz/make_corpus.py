@@ -8,6 +8,7 @@ Usage: make_corpus.py OUT
 import pathlib
 import struct
 import sys
+import zlib
 
 
 def npy(descr, shape, values, version=1, fortran=False):
@@ -27,6 +28,19 @@ def npy_header(header, data=b"\0" * 96):
     total = (10 + len(header) + 1 + 63) // 64 * 64
     text = (header + " " * (total - 10 - len(header) - 1) + "\n").encode()
     return b"\x93NUMPY\x01\x00" + struct.pack("<H", len(text)) + text + data
+
+
+def png(width, height, colour_type, depth, pixels):
+    """A PNG of one IDAT chunk: `pixels` rows of packed samples, each row behind filter byte 0."""
+    channels = {0: 1, 2: 3, 4: 2, 6: 4}[colour_type]
+    row = (width * channels * depth + 7) // 8
+    raw = b"".join(b"\0" + pixels[y * row:(y + 1) * row] for y in range(height))
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+
+    header = struct.pack(">IIBBBBB", width, height, depth, colour_type, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
 
 
 def seeds():
@@ -82,6 +96,16 @@ def seeds():
         "positions": b"p0\tab\t1.5\t-2\np1\tba\t0\t0\tkitchen\r\n",
         "repeated": b"p0\ta\np0\tb\n",
         "bad_number": b"p0\ta\tx\t1\n",
+    }
+    corridor = pathlib.Path(__file__).resolve().parents[2] / "data" / "rtabmap-corridor"
+    yield "png_jpeg", {
+        "grey_8": png(4, 3, 0, 8, bytes(range(12))),
+        "rgb_8": png(3, 2, 2, 8, bytes(range(18))),
+        "rgba_16": png(2, 2, 6, 16, bytes(range(32))),
+        "grey_1": png(9, 2, 0, 1, bytes([0b10101010, 0b10000000, 0b01010101, 0b00000000])),
+        "truncated": png(4, 3, 0, 8, bytes(range(12)))[:-20],
+        "corridor_jpeg": (corridor / "1.jpg").read_bytes(),
+        "jpeg_cut": (corridor / "2.jpg").read_bytes()[:400],
     }
     yield "config_file", {
         "yaml": b"---\n# map options\ngap: 1.5\nkappa: 3  # comment\nout: 'my out'\nname: \"q\"\n",
