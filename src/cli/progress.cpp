@@ -205,7 +205,7 @@ void Progress::tick() {
     if (style_ == ProgressStyle::bar) {
       draw_bar_locked();
     } else if (Clock::now() - last_output_ >= kLineInterval) {
-      print_locked(stage_label_locked() + ": " + status_locked(false));
+      print_locked(stage_label_locked() + ": " + status_locked());
     }
   }
 }
@@ -215,23 +215,25 @@ std::string Progress::stage_label_locked() const {
   return fmt::format("[{}/{}] {}", stage_, names_.size(), name);
 }
 
-// "45% (1620/3600 images described), 310/s, ETA 6 s", or "still running, 4 s" without counts.
-std::string Progress::status_locked(bool for_bar) const {
+Progress::Counts Progress::counts_locked() const {
+  Counts c;
+  c.fraction = std::min(1.0, static_cast<double>(done_) / static_cast<double>(total_));
+  const double counting = std::chrono::duration<double>(Clock::now() - unit_start_).count();
+  c.rate = counting > 0 ? static_cast<double>(done_) / counting : 0;
+  c.eta = c.rate > 0 ? static_cast<double>(total_ - std::min(done_, total_)) / c.rate : 0;
+  return c;
+}
+
+// "45% (1620/3600 images described), 310/s, ETA 6 s", or "running, 4 s" without counts.
+std::string Progress::status_locked() const {
   const double seconds = std::chrono::duration<double>(Clock::now() - stage_start_).count();
   if (total_ == 0 || done_ == 0) {
     if (done_ > 0) return fmt::format("{} {}, {:.0f} s", done_, unit_, seconds);
     return fmt::format("running, {:.0f} s", seconds);
   }
-  const double fraction = std::min(1.0, static_cast<double>(done_) / static_cast<double>(total_));
-  const double counting = std::chrono::duration<double>(Clock::now() - unit_start_).count();
-  const double rate = counting > 0 ? static_cast<double>(done_) / counting : 0;
-  const double eta = rate > 0 ? static_cast<double>(total_ - std::min(done_, total_)) / rate : 0;
-  if (for_bar) {
-    return fmt::format("{:3.0f}%  {}/{} {}  {}  ETA {}  ({:.0f} s)", 100 * fraction, done_, total_, unit_,
-                       rate_text(rate), duration_text(eta), seconds);
-  }
-  return fmt::format("{:.0f}% ({}/{} {}), {}, ETA {}", 100 * fraction, done_, total_, unit_, rate_text(rate),
-                     duration_text(eta));
+  const Counts c = counts_locked();
+  return fmt::format("{:.0f}% ({}/{} {}), {}, ETA {}", 100 * c.fraction, done_, total_, unit_, rate_text(c.rate),
+                     duration_text(c.eta));
 }
 
 void Progress::clear_bar_locked() {
@@ -246,19 +248,16 @@ void Progress::draw_bar_locked() {
   const double seconds = std::chrono::duration<double>(Clock::now() - stage_start_).count();
   std::string text;
   if (total_ > 0 && done_ > 0) {
-    const double fraction = std::min(1.0, static_cast<double>(done_) / static_cast<double>(total_));
-    const double counting = std::chrono::duration<double>(Clock::now() - unit_start_).count();
-    const double rate = counting > 0 ? static_cast<double>(done_) / counting : 0;
-    const double eta = rate > 0 ? static_cast<double>(total_ - std::min(done_, total_)) / rate : 0;
-    text = fit_bar(
-        {command_, stage_label_locked(), fraction, done_, total_, unit_, rate_text(rate), duration_text(eta), seconds},
-        columns);
+    const Counts c = counts_locked();
+    text = fit_bar({command_, stage_label_locked(), c.fraction, done_, total_, unit_, rate_text(c.rate),
+                    duration_text(c.eta), seconds},
+                   columns);
   } else {
     // no counts: a spinner shows that the stage is alive
     static constexpr char kSpin[] = {'|', '/', '-', '\\'};
     const auto ticks = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - stage_start_).count() /
                        kBarInterval.count();
-    text = command_ + ": " + stage_label_locked() + " " + std::string(1, kSpin[ticks % 4]) + " " + status_locked(true);
+    text = command_ + ": " + stage_label_locked() + " " + std::string(1, kSpin[ticks % 4]) + " " + status_locked();
     if (static_cast<int>(text.size()) >= columns) text.resize(static_cast<std::size_t>(std::max(1, columns - 1)));
   }
   out_ << "\r\x1b[2K" << text << std::flush;

@@ -78,7 +78,12 @@ class Progress {
   void clear_bar_locked();
   void draw_bar_locked();
   void print_locked(const std::string& text);
-  std::string status_locked(bool for_bar) const;
+  // The fraction done, the rate of the current unit [a second] and the time left [s]; with counts (total_ > 0).
+  struct Counts {
+    double fraction = 0, rate = 0, eta = 0;
+  };
+  Counts counts_locked() const;
+  std::string status_locked() const;
   std::string stage_label_locked() const;
 
   std::string command_;
