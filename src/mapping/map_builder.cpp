@@ -312,11 +312,31 @@ double chance_agreement(const FitRun& fit, std::span<const Pose2> odometry, cons
 
 namespace {
 
-// The mean of `count` enhanced matrices, next(d) giving the d-th: summed in the first one's storage as a sum
-// started at zero would be, ((0 + e_0) + e_1 + ...) / count, so that no N x N sum is allocated beside them.
-SimilarityMatrix mean_of(std::size_t count, const std::function<SimilarityMatrix(std::size_t)>& next,
-                         const std::function<void(std::size_t, std::size_t)>& told) {
+// Throws std::invalid_argument unless the similarities are square and of one size.
+void check_similarities(const std::vector<SimilarityMatrix>& similarities) {
+  if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
+  const std::size_t n = similarities.front().rows;
+  for (const auto& s : similarities) {
+    if (!s.square() || s.rows != n) {
+      throw std::invalid_argument("similarity matrix must be square and " + std::to_string(n) + " x " +
+                                  std::to_string(n) + ", got " + std::to_string(s.rows) + " x " +
+                                  std::to_string(s.cols) +
+                                  " (descriptors, one row per image, need seqtopo.similarity first)");
+    }
+  }
+}
+
+// The fusion of `count` enhanced matrices, next(d) giving the d-th: one is itself; several their mean, summed in
+// the first one's storage as a sum started at zero would be, ((0 + e_0) + e_1 + ...) / count, so that no N x N sum
+// is allocated beside them. `told` (when set) after each, with how many are done of how many.
+SimilarityMatrix fused(std::size_t count, const std::function<SimilarityMatrix(std::size_t)>& next,
+                       const std::function<void(std::size_t, std::size_t)>& told) {
+  if (told) told(0, count);
   SimilarityMatrix sum = next(0);
+  if (count == 1) {
+    if (told) told(1, 1);
+    return sum;
+  }
   for (auto& v : sum.values) v = 0.0F + v;
   if (told) told(1, count);
   for (std::size_t d = 1; d < count; ++d) {
@@ -329,32 +349,18 @@ SimilarityMatrix mean_of(std::size_t count, const std::function<SimilarityMatrix
   return sum;
 }
 
+// One similarity contrast-enhanced (itself when the window is 0), before the offset.
+SimilarityMatrix enhanced_one(const SimilarityMatrix& s, std::size_t contrast_window) {
+  return contrast_window == 0 ? s : similarity::enhance_contrast_symmetric(s, contrast_window, 0.0F);
+}
+
 }  // namespace
 
 SimilarityMatrix enhanced_scores(const std::vector<SimilarityMatrix>& similarities, std::size_t contrast_window,
                                  const std::function<void(std::size_t, std::size_t)>& told) {
-  if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
-  const std::size_t n = similarities.front().rows;
-  for (const auto& s : similarities) {
-    if (!s.square() || s.rows != n) {
-      throw std::invalid_argument("similarity matrix must be square and " + std::to_string(n) + " x " +
-                                  std::to_string(n) + ", got " + std::to_string(s.rows) + " x " +
-                                  std::to_string(s.cols) +
-                                  " (descriptors, one row per image, need seqtopo.similarity first)");
-    }
-  }
-  const std::size_t count_total = similarities.size();
-  if (told) told(0, count_total);
-  const auto enhanced = [&](std::size_t d) {
-    return contrast_window == 0 ? similarities[d]
-                                : similarity::enhance_contrast_symmetric(similarities[d], contrast_window, 0.0F);
-  };
-  if (similarities.size() == 1) {
-    SimilarityMatrix e = enhanced(0);
-    if (told) told(1, 1);
-    return e;
-  }
-  return mean_of(count_total, enhanced, told);
+  check_similarities(similarities);
+  return fused(
+      similarities.size(), [&](std::size_t d) { return enhanced_one(similarities[d], contrast_window); }, told);
 }
 
 SimilarityMatrix alignment_scores(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config) {
@@ -550,8 +556,7 @@ std::vector<std::size_t> blind_descriptors(const std::vector<SimilarityMatrix>& 
   quiet.threads = 1;
   if (c.progress) c.progress("descriptors mapped alone", 0, similarities.size());
   for (std::size_t k = 0; k < similarities.size(); ++k) {
-    const SimilarityMatrix& e =
-        enhanced.emplace_back(similarity::enhance_contrast_symmetric(similarities[k], contrast_window, 0.0F));
+    const SimilarityMatrix& e = enhanced.emplace_back(enhanced_one(similarities[k], contrast_window));
     const MapResult alone = build_map_from_enhanced(align::ScoreSource::dense(e.values, e.rows, e.cols), quiet,
                                                     odometry, {}, low_information);
     if (c.progress) c.progress("descriptors mapped alone", k + 1, similarities.size());
@@ -598,6 +603,7 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   const auto start = std::chrono::steady_clock::now();
   if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
   check_map_config(config);
+  check_similarities(similarities);
   MapConfig c = config;
   const bool estimate = (config.unit == align::Unit::places) && !config.frames_per_place;
   std::optional<PlaceScale> scale;
@@ -627,28 +633,18 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   const auto told_enhanced = [&c](std::size_t done, std::size_t total) {
     if (c.progress) c.progress("similarities enhanced", done, total);
   };
-  SimilarityMatrix enhanced;
-  if (!each.empty()) {
-    std::vector<SimilarityMatrix> seeing;  // fused as enhanced_scores fuses them
-    for (std::size_t k = 0; k < each.size(); ++k) {
-      if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(std::move(each[k]));
-    }
-    each.clear();
-    told_enhanced(0, seeing.size());
-    if (seeing.size() == 1) {
-      enhanced = std::move(seeing.front());
-      told_enhanced(1, 1);
-    } else {
-      enhanced = mean_of(
-          seeing.size(), [&](std::size_t d) { return std::move(seeing[d]); }, told_enhanced);
-    }
-  } else {
-    std::vector<SimilarityMatrix> seeing;  // a copy only when some are left out
-    for (std::size_t k = 0; k < source.size() && !blind.empty(); ++k) {
-      if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(source[k]);
-    }
-    enhanced = enhanced_scores(blind.empty() ? source : seeing, framed.score.contrast_window, told_enhanced);
+  std::vector<std::size_t> seeing;  // the similarities fused: those not blind
+  for (std::size_t k = 0; k < source.size(); ++k) {
+    if (!std::binary_search(blind.begin(), blind.end(), k)) seeing.push_back(k);
   }
+  SimilarityMatrix enhanced = fused(
+      seeing.size(),
+      [&](std::size_t d) {
+        const std::size_t k = seeing[d];
+        return each.empty() ? enhanced_one(source[k], framed.score.contrast_window) : std::move(each[k]);
+      },
+      told_enhanced);
+  each.clear();
   // Tandem repeats of appearance (significance/tandem_repeats.hpp) are masked as the dark frames are.
   std::vector<bool> masked_all = masked;
   std::size_t repeats = 0;
@@ -702,7 +698,7 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
 
 MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config,
                                   std::span<const Pose2> odometry, const AlignmentRun& run_alignment,
-                                  std::span<const std::size_t> low_information) {
+                                  std::span<const std::size_t> low_information_given) {
   const std::size_t n = enhanced.rows();
   if (n == 0 || enhanced.cols() != n) {
     throw std::invalid_argument("score source must be square and non-empty, got " + std::to_string(n) + " x " +
@@ -725,7 +721,11 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   float offset = c.score.contrast_window > 0 ? c.score.contrast_offset : 0.0F;
   align::AlignConfig engine = align_config(c);
 
-  // Frames of little information carry no evidence of a revisit, in the statistics' fit as in the alignment.
+  // Frames of little information carry no evidence of a revisit (with contrast enhancement, unless
+  // mask_low_information is off), in the statistics' fit as in the alignment.
+  const std::span<const std::size_t> low_information = config.mask_low_information && c.score.contrast_window > 0
+                                                           ? low_information_given
+                                                           : std::span<const std::size_t>{};
   const std::vector<bool> masked = low_information.empty() ? std::vector<bool>{} : frame_flags(n, low_information);
   if (c.significance.max_e_value) {
     const double area_places = significance::search_area(n, n, true, c.search.min_separation, c.search.reverse) /
@@ -813,7 +813,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   }
   const align::ScoreSource scores =
       told_progress(detail::soft_masked(minus(enhanced, offset), masked), searched, told_cells);
-  auto found = run_alignment ? run_alignment(engine, offset)
+  auto found = run_alignment ? run_alignment(engine, offset, masked)
                : c.alignment_set == align::AlignmentSet::locally_optimal
                    ? (c.search.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
                                        : align::locally_optimal_alignments(scores, engine))

@@ -108,6 +108,12 @@ std::string odometry_name(const MapRequest& request) {
   throw InputError(input.path.string(), why);
 }
 
+// Dark or near-uniform images carry no evidence of a revisit (significance/low_information.hpp): those of the n
+// frames' grey-level entropies (none when the frames are not images).
+std::vector<std::size_t> low_information_of(const std::vector<double>& entropy, std::size_t n) {
+  return entropy.size() == n ? significance::low_information_frames(entropy) : std::vector<std::size_t>{};
+}
+
 // Stages 1 and 2 with the N x N matrices: one similarity matrix per descriptor, fused and aligned.
 void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs, InputKind kind,
                const std::vector<Pose2>& odometry, const MapObserver& observer, StageClock& clock, MapRun& run) {
@@ -137,13 +143,10 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
 
   clock.begin();
   check_odometry(odometry, n, odometry_name(request));
-  // Dark or near-uniform images carry no evidence of a revisit (significance/low_information.hpp).
-  const std::vector<double>& entropy = run.similarities.front().frame_entropy;
-  const std::vector<std::size_t> low_information =
-      entropy.size() == n ? significance::low_information_frames(entropy) : std::vector<std::size_t>{};
   mapping::MapConfig map_config = map_config_of(settings, run);
   map_config.progress = clock.map_progress();
-  run.result = mapping::build_map(run.matrices, map_config, odometry, low_information);
+  run.result = mapping::build_map(run.matrices, map_config, odometry,
+                                  low_information_of(run.similarities.front().frame_entropy, n));
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 }
@@ -218,13 +221,6 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   const mapping::MapConfig framed = mapping::settings_in_frames(config, config.frames_per_place.value_or(1.0));
   make_streamed(framed.score.contrast_window);
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
-  // Dark or near-uniform images carry no evidence of a revisit, as in the dense map (with contrast enhancement).
-  std::vector<std::size_t> low_information;
-  if (config.mask_low_information && framed.score.contrast_window > 0 && described.frame_entropy.size() == n) {
-    low_information = significance::low_information_frames(described.frame_entropy);
-  }
-  std::vector<bool> masked(n, false);
-  for (std::size_t f : low_information) masked[f] = true;
   // --sparse: the contrast-enhanced score at each frame's nearest neighbours (FAISS), the background elsewhere.
   std::optional<scale::SparseScores> candidates;
   if (request.engine == MapEngine::sparse) {
@@ -245,7 +241,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   // streamed scores, mapping::build_map_from_enhanced).
   mapping::AlignmentRun sparse_run;
   if (candidates) {
-    sparse_run = [&](const align::AlignConfig& engine, float offset) {
+    sparse_run = [&](const align::AlignConfig& engine, float offset, const std::vector<bool>& masked) {
       std::vector<scale::SparseEntry> entries;
       entries.reserve(candidates->entries());
       for (std::size_t i = 0; i < n; ++i) {
@@ -253,8 +249,8 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
         const auto values = candidates->row_values(i);
         for (std::size_t k = 0; k < cols.size(); ++k) {
           const float v = values[k] - offset;  // soft-masked as the dense scores are
-          entries.push_back(
-              {static_cast<std::uint32_t>(i), cols[k], masked[i] || masked[cols[k]] ? std::min(v, 0.0F) : v});
+          entries.push_back({static_cast<std::uint32_t>(i), cols[k],
+                             !masked.empty() && (masked[i] || masked[cols[k]]) ? std::min(v, 0.0F) : v});
         }
       }
       const scale::SparseScores shifted(n, n, candidates->background(), std::move(entries));
@@ -264,7 +260,8 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   }
   clock.begin(candidates ? " (sparse engine on the candidates)" : " (fast engine)");
   config.progress = clock.map_progress();
-  run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run, low_information);
+  run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run,
+                                                low_information_of(described.frame_entropy, n));
   run.result.decisions.frames_per_place_estimated = place.has_value();
   run.result.decisions.place_scale_missing = place && !place->found;
   report_map(run, observer);

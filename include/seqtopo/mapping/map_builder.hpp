@@ -236,12 +236,14 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
 // exact engine fills an N x N table whatever the source; a source that is not held in memory wants
 // Engine::fast (1/8 byte per cell, docs/engine.md). seconds_align includes the reads of `enhanced`.
 // `run_alignment`, when given, replaces the engine of step 4 (the statistics' run of step 3 stays the fast engine on
-// `enhanced`): it gets the engine settings and the offset the scores it must align are `enhanced` minus, and
-// returns their alignments best first. The sparse mode aligns its candidate cells this way (pipeline).
-using AlignmentRun = std::function<std::vector<align::LocalAlignment>(const align::AlignConfig& engine, float offset)>;
-// `low_information` (sorted frame indices, build_map's) are frames of little information: their scores are
-// soft-masked (a `run_alignment` must mask the scores it aligns alike), their pairs placed between the evidence on
-// either side and cut at the alignments' ends.
+// `enhanced`): it gets the engine settings, the offset the scores it must align are `enhanced` minus, and the
+// frames whose scores it must soft-mask (at most 0 once shifted; empty: none), and returns their alignments best
+// first. The sparse mode aligns its candidate cells this way (pipeline).
+using AlignmentRun = std::function<std::vector<align::LocalAlignment>(const align::AlignConfig& engine, float offset,
+                                                                      const std::vector<bool>& masked)>;
+// `low_information` (sorted frame indices, build_map's) are frames of little information: with contrast
+// enhancement and mask_low_information (build_map's rule) their scores are soft-masked, their pairs placed between
+// the evidence on either side and cut at the alignments' ends.
 MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config = {},
                                   std::span<const Pose2> odometry = {}, const AlignmentRun& run_alignment = {},
                                   std::span<const std::size_t> low_information = {});
