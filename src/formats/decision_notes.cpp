@@ -4,6 +4,18 @@
 
 namespace seqtopo::formats {
 
+std::vector<std::pair<std::size_t, std::size_t>> frame_stretches(std::span<const std::size_t> sorted) {
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
+  for (const std::size_t f : sorted) {
+    if (runs.empty() || f != runs.back().second + 1) {
+      runs.emplace_back(f, f);
+    } else {
+      runs.back().second = f;
+    }
+  }
+  return runs;
+}
+
 std::vector<std::string> decision_notes(const mapping::MapDecisions& d, std::span<const std::string> names) {
   std::vector<std::string> notes;
   if (d.place_scale_missing) {
@@ -19,8 +31,7 @@ std::vector<std::string> decision_notes(const mapping::MapDecisions& d, std::spa
   }
   if (!d.low_information_frames.empty()) {
     const auto& f = d.low_information_frames;  // sorted
-    std::size_t stretches = 0;
-    for (std::size_t k = 0; k < f.size(); ++k) stretches += k == 0 || f[k] != f[k - 1] + 1 ? 1 : 0;
+    const std::size_t stretches = frame_stretches(f).size();
     notes.push_back(
         fmt::format("{} frame{} of little information (dark or near-uniform) in {} stretch{}: no evidence of a "
                     "revisit (soft-masked), their loop closures only where a revisit runs through them",

@@ -349,16 +349,12 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
     if (!d.low_information_frames.empty()) {
       // Stretches, as a person reads them: first-last images of each run of masked frames.
       std::string stretches;
-      const auto& f = d.low_information_frames;
-      for (std::size_t k = 0; k < f.size();) {
-        std::size_t e = k;
-        while (e + 1 < f.size() && f[e + 1] == f[e] + 1) ++e;
-        stretches +=
-            (stretches.empty() ? "" : ", ") + (e == k ? std::to_string(f[k]) : fmt::format("{}-{}", f[k], f[e]));
-        k = e + 1;
+      for (const auto& [first, last] : formats::frame_stretches(d.low_information_frames)) {
+        stretches += (stretches.empty() ? "" : ", ") +
+                     (first == last ? std::to_string(first) : fmt::format("{}-{}", first, last));
       }
       facts.emplace_back("images of little information (masked: no evidence of a revisit)",
-                         fmt::format("{}: {}", f.size(), stretches));
+                         fmt::format("{}: {}", d.low_information_frames.size(), stretches));
     }
     html.key_values(facts);
     for (const auto& note : notes) html.paragraph(note);

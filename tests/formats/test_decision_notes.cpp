@@ -56,6 +56,26 @@ TEST(DecisionNotes, EachFactIsOneLineInTheRunsOrder) {
 }
 
 // A map of two descriptors, one of them noise: its note names the noise, in either order.
+// Stretches of masked frames against a brute force: a frame starts a stretch when the one before it is not masked,
+// ends one when the one after it is not.
+TEST(DecisionNotes, FrameStretchesAreTheRunsOfConsecutiveFrames) {
+  EXPECT_TRUE(seqtopo::formats::frame_stretches({}).empty());
+  std::mt19937 rng(4);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<bool> masked(40);
+    for (std::size_t f = 0; f < masked.size(); ++f) masked[f] = rng() % 3 == 0;
+    std::vector<std::size_t> sorted;
+    std::vector<std::pair<std::size_t, std::size_t>> want;
+    for (std::size_t f = 0; f < masked.size(); ++f) {
+      if (!masked[f]) continue;
+      sorted.push_back(f);
+      if (f == 0 || !masked[f - 1]) want.emplace_back(f, f);
+      if (f + 1 == masked.size() || !masked[f + 1]) want.back().second = f;
+    }
+    EXPECT_EQ(seqtopo::formats::frame_stretches(sorted), want) << trial;
+  }
+}
+
 TEST(DecisionNotes, ABlindDescriptorOfARealMapIsNamed) {
   const auto descriptor = [](unsigned seed, float strength) {
     std::mt19937 rng(seed);
