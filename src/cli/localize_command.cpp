@@ -167,13 +167,13 @@ void run(LocalizeOptions o) {
   };
   if (!o.online && !request.similarity_file && request.map.size() == 1) {
     if (const auto frames = images_in(request.query)) {
-      query_thumbnails.emplace(outputs::report_thumbnail_side(*frames));
+      query_thumbnails.emplace(std::vector{*frames});
       request.settings.similarity.on_image = [&](std::size_t i, const RgbImage& image) {
         query_thumbnails->add(i, image);
       };
     }
     if (const auto frames = images_in(request.map.front())) {
-      map_thumbnails.emplace(outputs::report_thumbnail_side(*frames));
+      map_thumbnails.emplace(std::vector{*frames});
       request.settings.similarity.on_column_image = [&](std::size_t i, const RgbImage& image) {
         map_thumbnails->add(i, image);
       };

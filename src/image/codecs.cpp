@@ -13,6 +13,7 @@
 
 #include "plugin/codec_table.hpp"
 #include "png_jpeg.hpp"
+#include "seqtopo/core/lower_case.hpp"
 
 namespace seqtopo::image::codecs {
 
@@ -111,6 +112,11 @@ const CodecTable& table() {
 }  // namespace
 
 void load() { (void)table(); }
+
+bool read_without_plugin(const fs::path& file) {
+  const std::string ext = lower_case(file.extension().string());
+  return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+}
 
 cv::Mat decode(std::span<const std::uint8_t> bytes) {
   cv::Mat out;

@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/lower_case.hpp"
 #include "seqtopo/core/text_file.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
 #include "seqtopo/formats/places_csv.hpp"
@@ -50,11 +51,6 @@ std::vector<T> thinned(std::vector<T> all, std::size_t step) {
 
 // Through the bounded reader: /dev/zero or a FIFO as the ground truth is refused, not read forever.
 std::string read_bytes(const fs::path& path) { return read_text_file(path, "ground-truth file"); }
-
-std::string lower(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 // A CSV's first line with content decides: `query,map` or two fields is a pairs list, anything else poses.
 bool csv_is_pairs(std::string_view text) {
@@ -115,7 +111,7 @@ std::string_view ground_truth_format_name(GroundTruthFormat format) {
 }
 
 bool is_same_place_matrix_file(const fs::path& file) {
-  const std::string ext = lower(file.extension().string());
+  const std::string ext = lower_case(file.extension().string());
   if (ext == ".npy") {
     try {
       io::read_npy_header(file);
@@ -151,7 +147,7 @@ GroundTruthFile read_ground_truth(const std::string& spec, std::span<const std::
     throw InputError(spec, "no such file");
   }
   if (fs::is_directory(path)) throw InputError(spec, "is a folder, not a ground-truth file");
-  const std::string ext = lower(path.extension().string());
+  const std::string ext = lower_case(path.extension().string());
   if (ext == ".npy") {
     const std::string bytes = read_bytes(path);
     if (formats::npy_holds_objects(bytes)) {

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -309,16 +308,11 @@ MapMemoryInput map_memory_input(const MapRequest& request, InputKind kind, std::
   in.place_from_similarity = (s.map.unit == align::Unit::places) && !s.map.frames_per_place && !odometry;
   // A video's run, or a folder of images other than PNG and JPEG, opens OpenCV's codecs plugin, whose libraries
   // (~80 MB resident) are part of the process it will be. PNG and JPEG (frames, figures) need no plugin.
-  const auto png_or_jpeg = [](const std::filesystem::path& file) {
-    std::string ext = file.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
-  };
   bool plugin = kind == InputKind::video;
   for (const auto& session : request.sessions) {
     if (plugin || kind != InputKind::images) break;
     const auto files = list_input_images(session.input).files;
-    plugin = !std::all_of(files.begin(), files.end(), png_or_jpeg);
+    plugin = !std::all_of(files.begin(), files.end(), image::codecs::read_without_plugin);
   }
   if (plugin) image::codecs::load();
   in.base_bytes = resident_bytes();

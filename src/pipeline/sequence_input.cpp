@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/lower_case.hpp"
 #include "seqtopo/core/text_file.hpp"
 #include "seqtopo/image/image_io.hpp"
 #include "seqtopo/io/npy.hpp"
@@ -47,15 +48,10 @@ std::string_view input_kind_name(InputKind kind) {
 
 namespace {
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 bool is_image_extension(const fs::path& p) {
   static const char* const known[] = {".png",  ".jpg", ".jpeg", ".bmp", ".tif", ".tiff",
                                       ".webp", ".pgm", ".ppm",  ".pnm", ".jp2"};
-  const std::string ext = lower(p.extension().string());
+  const std::string ext = lower_case(p.extension().string());
   return std::any_of(std::begin(known), std::end(known), [&](const char* k) { return ext == k; });
 }
 
@@ -75,12 +71,12 @@ InputKind resolve_input_kind(const SequenceInput& input) {
   if (!fs::is_directory(status) && !fs::is_regular_file(status)) {
     throw InputError(input.path.string(), special_file_reason(input.path) + ", not an input file");
   }
-  const std::string ext = lower(input.path.extension().string());
+  const std::string ext = lower_case(input.path.extension().string());
   if (fs::is_directory(status)) {
     // A ROS 2 bag folder: metadata.yaml beside its .db3 or .mcap storage files.
     if (fs::exists(input.path / "metadata.yaml", ec)) {
       for (const auto& entry : fs::directory_iterator(input.path, ec)) {
-        const std::string e = lower(entry.path().extension().string());
+        const std::string e = lower_case(entry.path().extension().string());
         if (e == ".db3" || e == ".mcap") return InputKind::bag;
       }
     }
@@ -88,8 +84,8 @@ InputKind resolve_input_kind(const SequenceInput& input) {
   }
   if (ext == ".bag" || ext == ".db3" || ext == ".mcap") return InputKind::bag;
   if (ext == ".npy") {
-    return lower(input.path.filename().string()).find("similarity") != std::string::npos ? InputKind::similarity
-                                                                                         : InputKind::descriptors;
+    return lower_case(input.path.filename().string()).find("similarity") != std::string::npos ? InputKind::similarity
+                                                                                              : InputKind::descriptors;
   }
   return InputKind::video;
 }
@@ -107,7 +103,7 @@ std::string unreadable_reason(const fs::directory_entry& entry) {
 }
 
 bool hidden_or_truth(const std::string& name) {
-  return name.empty() || name[0] == '.' || lower(name).rfind("ground_truth", 0) == 0;
+  return name.empty() || name[0] == '.' || lower_case(name).rfind("ground_truth", 0) == 0;
 }
 
 // Natural order of relative paths, folder name by folder name.

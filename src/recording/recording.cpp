@@ -13,6 +13,7 @@
 
 #include "backend.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/core/lower_case.hpp"
 #include "seqtopo/core/text_file.hpp"
 #include "seqtopo/image/image_io.hpp"
 
@@ -34,12 +35,7 @@ std::string_view bag_format_name(BagFormat format) {
 
 namespace {
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
-std::string extension(const fs::path& p) { return lower(p.extension().string()); }
+std::string extension(const fs::path& p) { return lower_case(p.extension().string()); }
 
 // The storage files of a ROS 2 bag folder with extension `ext`, in natural order (glibc's strverscmp:
 // run_2.db3 before run_10.db3), for a folder without metadata.yaml.

@@ -25,6 +25,10 @@ namespace seqtopo::image::codecs {
 // throws std::runtime_error when it cannot be loaded.
 void load();
 
+// Whether an image file is read without the plugin, told by its name: PNG and JPEG (.png, .jpg, .jpeg in any case).
+// Other formats open it (and an unusual PNG or JPEG may still be left to it).
+bool read_without_plugin(const std::filesystem::path& file);
+
 // The image as stored (OpenCV's IMREAD_UNCHANGED); empty when OpenCV cannot decode the bytes.
 cv::Mat decode(std::span<const std::uint8_t> bytes);
 

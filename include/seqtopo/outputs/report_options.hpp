@@ -2,7 +2,6 @@
 // What a report is told about the run around it, and what it says back.
 #include <cstddef>
 #include <functional>
-#include <limits>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -41,9 +40,8 @@ inline int report_thumbnail_side(std::size_t frames) {
 // quality 75, at its index.
 class ThumbnailCollector {
  public:
-  explicit ThumbnailCollector(int side) : sides_{{std::numeric_limits<std::size_t>::max(), side}} {}
-  // Several sessions' images, counted one session after the other: each session's at the side the report gives a
-  // sequence of its length (report_thumbnail_side).
+  // The images of sessions of these lengths (one sequence: one session), counted one session after the other: each
+  // session's at the side the report gives a sequence of its length (report_thumbnail_side).
   explicit ThumbnailCollector(const std::vector<std::size_t>& session_frames);
   void add(std::size_t index, const RgbImage& image);
   const std::vector<std::string>& jpegs() const { return jpegs_; }
