@@ -11,11 +11,10 @@
 #include <vector>
 
 #include "common/cli_run.hpp"
+#include "common/corridor_laps.hpp"
+#include "common/report_thumbnail.hpp"
 #include "common/temp_dir.hpp"
-#include "seqtopo/image/image_io.hpp"
 #include "seqtopo/outputs/report_options.hpp"
-#include "seqtopo/plot/png.hpp"
-#include "seqtopo/report/html_report.hpp"
 
 namespace {
 
@@ -118,23 +117,15 @@ TEST_F(LocalizeCli, WritesMatchesMetricsAndReport) {
 // The report's thumbnails are made while the run reads the images (outputs::ThumbnailCollector, the query's through
 // SimilarityConfig::on_image and the map's through on_column_image): each sequence's own images, in order.
 TEST_F(LocalizeCli, ReportThumbnailsFromTheRunAreEachSequencesImages) {
-  const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
-  const fs::path query = dir_.path / "query", map = dir_.path / "map";
-  fs::create_directories(query);
-  fs::create_directories(map);
-  for (int k = 1; k <= 84; ++k) {  // the first lap (1-40) the map, the second (41-84) the query
-    const std::string name = std::to_string(k) + ".jpg";
-    fs::create_symlink(corridor / name, (k <= 40 ? map : query) / name);
-  }
+  const fs::path corridor = seqtopo::test_support::corridor_folder();
+  // The first lap (1-40) the map, the second (41-84) the query.
+  const auto [map, query] = seqtopo::test_support::corridor_laps(dir_.path);
   const fs::path out = dir_.path / "out";
   const auto r = localize("--map " + map.string() + " --query " + query.string() + " --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string html = read_file(out / "report.html");
   const auto uri = [](const fs::path& file, std::size_t frames) {
-    const auto image = seqtopo::image::load_image(file);
-    return "data:image/jpeg;base64," +
-           seqtopo::report::base64(seqtopo::plot::encode_jpeg(
-               seqtopo::plot::shrink(image, seqtopo::outputs::report_thumbnail_side(frames)), 75));
+    return seqtopo::test_support::thumbnail_uri(file, seqtopo::outputs::report_thumbnail_side(frames));
   };
   // The page's data lists the map's thumbnails ("cols"), then the query's ("rows"): each in its sequence's order.
   std::size_t at = 0;

@@ -13,6 +13,8 @@
 #include <utility>
 
 #include "common/cli_run.hpp"
+#include "common/corridor_laps.hpp"
+#include "common/report_thumbnail.hpp"
 #include "common/sanitizers.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/version.hpp"
@@ -173,35 +175,24 @@ TEST_F(MapCommand, ReportThumbnailsFromTheRunAreTheDecodedImages) {
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string html = read_file(out / "report.html");
   for (int k = 1; k <= 84; ++k) {
-    const auto image = seqtopo::image::load_image(corridor / (std::to_string(k) + ".jpg"));
-    const std::string uri =
-        "data:image/jpeg;base64," + seqtopo::report::base64(seqtopo::plot::encode_jpeg(
-                                        seqtopo::plot::shrink(image, seqtopo::outputs::report_thumbnail_side(84)), 75));
+    const std::string uri = seqtopo::test_support::thumbnail_uri(corridor / (std::to_string(k) + ".jpg"),
+                                                                 seqtopo::outputs::report_thumbnail_side(84));
     EXPECT_NE(html.find(uri), std::string::npos) << k;
   }
 }
 
 // The same with several sessions: each session's images, in the run's order, at its own thumbnail side.
 TEST_F(MapCommand, ReportThumbnailsOfSessionsFromTheRunAreEachSessionsImages) {
-  const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
-  const fs::path lap1 = dir_.path / "lap1", lap2 = dir_.path / "lap2";
-  fs::create_directories(lap1);
-  fs::create_directories(lap2);
-  for (int k = 1; k <= 84; ++k) {
-    const std::string name = std::to_string(k) + ".jpg";
-    fs::create_symlink(corridor / name, (k <= 40 ? lap1 : lap2) / name);
-  }
+  const fs::path corridor = seqtopo::test_support::corridor_folder();
+  const auto [lap1, lap2] = seqtopo::test_support::corridor_laps(dir_.path);
   const fs::path out = dir_.path / "out";
   const auto r = run_cli("map " + lap1.string() + " " + lap2.string() + " --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string html = read_file(out / "report.html");
   std::size_t at = 0;
   for (int k = 1; k <= 84; ++k) {
-    const auto image = seqtopo::image::load_image(corridor / (std::to_string(k) + ".jpg"));
     const int side = seqtopo::outputs::report_thumbnail_side(k <= 40 ? 40 : 44);
-    const std::string uri = "data:image/jpeg;base64," +
-                            seqtopo::report::base64(seqtopo::plot::encode_jpeg(seqtopo::plot::shrink(image, side), 75));
-    at = html.find(uri, at);
+    at = html.find(seqtopo::test_support::thumbnail_uri(corridor / (std::to_string(k) + ".jpg"), side), at);
     ASSERT_NE(at, std::string::npos) << k;
   }
 }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/cli_run.hpp"
+#include "common/corridor_laps.hpp"
 #include "common/sanitizers.hpp"
 #include "common/temp_dir.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
@@ -270,13 +271,8 @@ TEST(MapOnline, FramesPerPlaceMakesTheWindowsPlaces) {
 // folder, online and offline (byte for byte online), and both summaries list the sessions.
 TEST(MapOnline, SeveralInputsAreTheSessionsOfOneMap) {
   const seqtopo::test_support::TempDir dir;
-  const auto images = corridor();
-  fs::create_directories(dir.path / "lap1");
-  fs::create_directories(dir.path / "lap2");
-  for (std::size_t k = 0; k < images.size(); ++k) {
-    fs::copy_file(images[k], dir.path / (k < 40 ? "lap1" : "lap2") / images[k].filename());
-  }
-  const fs::path data = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
+  seqtopo::test_support::corridor_laps(dir.path);
+  const fs::path data = seqtopo::test_support::corridor_folder();
   const std::string truth = " --ground-truth " + (data / "ground_truth.bmp").string();
   const auto two = run_cli("map " + (dir.path / "lap1").string() + " " + (dir.path / "lap2").string() + " --online" +
                            truth + " --out " + (dir.path / "two").string());
