@@ -98,6 +98,7 @@ std::string map_json(const mapping::MapResult& result, std::span<const MapSessio
     for (std::size_t k = 0; k < sessions.size(); ++k) {
       const auto& s = sessions[k];
       list.push_back({{"input", s.input}, {"begin", s.begin}, {"end", s.end}});
+      if (s.gap > 0) list.back()["break"] = {{"gap", s.gap}, {"median_interval", s.median_interval}};
       for (std::size_t i = s.begin; i < s.end && i < of_image.size(); ++i) of_image[i] = k;
     }
     document["sessions"] = list;

@@ -243,7 +243,7 @@ void write_map_outputs(const pipeline::MapRun& run, io::OutputDirectory& out, co
   auto figures = std::async(run.map_config.threads > 1 ? std::launch::async : std::launch::deferred,
                             [&run] { return encode_map_figures(run); });
 
-  out.write("map.json", formats::map_json(result, run.sessions));
+  out.write("map.json", formats::map_json(result, run.map_sessions()));
   out.write("alignments.json", formats::alignments_json(result, run.descriptor_names));
   out.write("loop_closures.csv", formats::loop_closures_csv(result));
   if (!run.streamed() && writes_matrices(map.labels.size(), options.matrices)) {

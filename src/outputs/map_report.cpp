@@ -356,6 +356,14 @@ ReportResult write_map_report(const pipeline::MapRun& run, io::OutputDirectory& 
       facts.emplace_back("images of little information (masked: no evidence of a revisit)",
                          fmt::format("{}: {}", d.low_information_frames.size(), stretches));
     }
+    if (!run.session_breaks.empty()) {
+      std::string breaks;
+      for (const auto& b : run.session_breaks) {
+        breaks +=
+            fmt::format("{}before image {} ({:.3g} s without a frame)", breaks.empty() ? "" : ", ", b.frame, b.gap);
+      }
+      facts.emplace_back("session breaks found (no topological edge across them)", breaks);
+    }
     html.key_values(facts);
     for (const auto& note : notes) html.paragraph(note);
     if (!result.insignificant.empty()) {

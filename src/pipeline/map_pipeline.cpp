@@ -81,13 +81,46 @@ void record_sessions(std::span<const SequenceInput> inputs, const std::vector<st
   }
 }
 
-// The map settings with the sessions' boundaries: no topological edge from one session's last image to the next
-// one's first.
+// The map settings with the sessions' boundaries and the breaks found inside them: no topological edge from one
+// session's last image to the next one's first.
 mapping::MapConfig map_config_of(const MapSettings& settings, const MapRun& run) {
   mapping::MapConfig config = settings.map;
-  for (std::size_t k = 1; k < run.sessions.size(); ++k)
-    config.graph.topology.session_starts.push_back(run.sessions[k].begin);
+  auto& starts = config.graph.topology.session_starts;
+  for (std::size_t k = 1; k < run.sessions.size(); ++k) starts.push_back(run.sessions[k].begin);
+  for (const auto& b : run.session_breaks) starts.push_back(b.frame);
+  std::sort(starts.begin(), starts.end());
   return config;
+}
+
+// Session breaks inside the inputs (timeline/session_breaks.hpp): a long gap in a session's frame times where the
+// frames either side do not look like neighbours by any of `similarities` (the raw similarity of two frames, one
+// per descriptor); `masked` frames (sorted) carry no evidence. Fills run.session_breaks and says what it found.
+void find_session_breaks(const std::vector<std::vector<double>>& times,
+                         const std::vector<timeline::Similarity>& similarities, const std::vector<std::size_t>& masked,
+                         const MapObserver& observer, MapRun& run) {
+  const auto skip = [&masked](std::size_t f) { return std::binary_search(masked.begin(), masked.end(), f); };
+  for (std::size_t k = 0; k < run.sessions.size() && k < times.size(); ++k) {
+    const auto& session = run.sessions[k];
+    if (times[k].size() != session.end - session.begin) continue;
+    std::vector<timeline::TimeGap> gaps;
+    try {
+      gaps = timeline::time_gaps(times[k]);
+    } catch (const std::invalid_argument&) {
+      continue;  // times out of order (prepare_session checked those it reads): no evidence of a break
+    }
+    for (auto gap : gaps) {
+      gap.frame += session.begin;
+      const bool neighbours = std::any_of(similarities.begin(), similarities.end(), [&](const auto& similarity) {
+        return timeline::looks_like_neighbours(similarity, gap.frame - 1, gap.frame, session.begin, session.end, skip);
+      });
+      say(observer, fmt::format("      {:.3g} s without a frame before image {} (the recording's median interval "
+                                "{:.3g} s){}",
+                                gap.gap, gap.frame, gap.median_interval,
+                                neighbours ? ", but the images either side look like neighbours: one session"
+                                           : ": a session break (no topological edge across it)"));
+      if (!neighbours) run.session_breaks.push_back(gap);
+    }
+  }
 }
 
 // The odometry file named in errors (one session's; several sessions' odometry is checked session by session).
@@ -116,7 +149,8 @@ std::vector<std::size_t> low_information_of(const std::vector<double>& entropy, 
 
 // Stages 1 and 2 with the N x N matrices: one similarity matrix per descriptor, fused and aligned.
 void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs, InputKind kind,
-               const std::vector<Pose2>& odometry, const MapObserver& observer, StageClock& clock, MapRun& run) {
+               const std::vector<Pose2>& odometry, const std::vector<std::vector<double>>& times,
+               const MapObserver& observer, StageClock& clock, MapRun& run) {
   const MapSettings& settings = request.settings;
   auto descriptors = settings.descriptors;
   // A descriptors.npy or similarity.npy input is one matrix, whatever descriptors were asked for.
@@ -143,10 +177,13 @@ void map_dense(const MapRequest& request, std::span<const SequenceInput> inputs,
 
   clock.begin();
   check_odometry(odometry, n, odometry_name(request));
+  const auto masked = low_information_of(run.similarities.front().frame_entropy, n);
+  std::vector<timeline::Similarity> similarities;
+  for (const auto& m : run.matrices) similarities.emplace_back([&m](std::size_t i, std::size_t j) { return m(i, j); });
+  find_session_breaks(times, similarities, masked, observer, run);
   mapping::MapConfig map_config = map_config_of(settings, run);
   map_config.progress = clock.map_progress();
-  run.result = mapping::build_map(run.matrices, map_config, odometry,
-                                  low_information_of(run.similarities.front().frame_entropy, n));
+  run.result = mapping::build_map(run.matrices, map_config, odometry, masked);
   report_map(run, observer);
   clock.end({{"alignment", run.result.seconds_align}, {"pruning + labels + topology", 0}});
 }
@@ -180,7 +217,8 @@ plot::MatrixOverview sparse_overview(const scale::SparseScores& scores, float of
 // The streamed replacement of stages 1 and 2: descriptors, then the map on scores computed when the engine
 // reads them. Leaves run.result.scores empty and fills run.overview for similarity.png.
 void map_streamed(const MapRequest& request, std::span<const SequenceInput> inputs, const std::vector<Pose2>& odometry,
-                  const MapObserver& observer, StageClock& clock, MapRun& run) {
+                  const std::vector<std::vector<double>>& times, const MapObserver& observer, StageClock& clock,
+                  MapRun& run) {
   const MapSettings& settings = request.settings;
   clock.begin(" (--streaming: the similarity is computed on the fly, never N x N)");
   auto similarity_config = settings.similarity;
@@ -220,6 +258,11 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   }
   const mapping::MapConfig framed = mapping::settings_in_frames(config, config.frames_per_place.value_or(1.0));
   make_streamed(framed.score.contrast_window);
+  const auto masked = low_information_of(described.frame_entropy, n);
+  const auto& cosines = *streamed;
+  find_session_breaks(times, {[&cosines](std::size_t i, std::size_t j) { return cosines.cosine(i, j); }}, masked,
+                      observer, run);
+  config.graph.topology.session_starts = map_config_of(settings, run).graph.topology.session_starts;
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
   // --sparse: the contrast-enhanced score at each frame's nearest neighbours (FAISS), the background elsewhere.
   std::optional<scale::SparseScores> candidates;
@@ -260,8 +303,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   }
   clock.begin(candidates ? " (sparse engine on the candidates)" : " (fast engine)");
   config.progress = clock.map_progress();
-  run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run,
-                                                low_information_of(described.frame_entropy, n));
+  run.result = mapping::build_map_from_enhanced(streamed->source(), config, odometry, sparse_run, masked);
   run.result.decisions.frames_per_place_estimated = place.has_value();
   run.result.decisions.place_scale_missing = place && !place->found;
   report_map(run, observer);
@@ -488,10 +530,12 @@ MapRun MapJob::run(const MapObserver& observer) const {
   const bool any_truth = !files.same_place.empty() || !files.places.empty() || poses;
   StageClock clock(observer, run,
                    stage_names(run.streamed(), false, !odometry_.empty(), any_truth, !files.same_place.empty()));
+  std::vector<std::vector<double>> times;
+  for (const auto& s : sessions_) times.push_back(s.times);
   if (run.streamed()) {
-    map_streamed(request_, inputs_, odometry_, observer, clock, run);
+    map_streamed(request_, inputs_, odometry_, times, observer, clock, run);
   } else {
-    map_dense(request_, inputs_, kind_, odometry_, observer, clock, run);
+    map_dense(request_, inputs_, kind_, odometry_, times, observer, clock, run);
   }
   const std::size_t n = run.result.map.labels.size();
   std::function<MapTruth()> load_truth;
@@ -521,6 +565,19 @@ MapRun MapJob::run(const MapObserver& observer) const {
 
 std::size_t MapJob::truth_every() const {
   return inputs_.size() == 1 && inputs_.front().frames.empty() ? inputs_.front().every : std::size_t{1};
+}
+
+std::vector<formats::MapSession> MapRun::map_sessions() const {
+  std::vector<formats::MapSession> out;
+  for (const auto& session : sessions) {
+    out.push_back(session);
+    for (const auto& b : session_breaks) {
+      if (b.frame <= session.begin || b.frame >= session.end) continue;
+      out.back().end = b.frame;
+      out.push_back({session.input, b.frame, session.end, b.gap, b.median_interval});
+    }
+  }
+  return out;
 }
 
 MapRun map_sequence(const MapRequest& request, const MapObserver& observer) { return MapJob(request).run(observer); }

@@ -138,11 +138,11 @@ PreparedSession prepare_session(const SessionSource& source) {
   }
 #endif
 
-  if (!timed.empty()) {
-    std::vector<double> times;
+  std::vector<double> times;  // the frames' times (after every), where the recording has them
 #ifdef SEQTOPO_HAVE_RECORDING
-    if (bag) times = every_kth(bag->image_times(image_topic), input.every);
+  if (bag) times = every_kth(bag->image_times(image_topic), input.every);
 #endif
+  if (!timed.empty()) {
     if (kind != InputKind::bag) {
       const auto t = frame_times(input, source.times);
       if (!t) {
@@ -170,6 +170,14 @@ PreparedSession prepare_session(const SessionSource& source) {
   } else if (!poses.empty() && input.every > 1) {
     poses = every_kth(poses, input.every);  // a per-frame file covers every frame of the video, folder or array
   }
+  if (times.empty() && kind == InputKind::images) {
+    // Only to find session breaks: a folder whose names are not times (or not increasing ones) has none.
+    try {
+      if (auto t = frame_times(input, source.times)) times = std::move(*t);
+    } catch (const InputError&) {
+      if (!source.times.empty()) throw;  // a times file the user gave must be right
+    }
+  }
   if (!poses.empty() && count && poses.size() != *count) {
     throw InputError(s.odometry_subject, fmt::format("has {} poses, the sequence has {} images", poses.size(), *count));
   }
@@ -193,6 +201,8 @@ PreparedSession prepare_session(const SessionSource& source) {
   }
   s.odometry = std::move(poses);
   s.frames = count;
+  // Frames kept one per D metres are uneven in time by design: their intervals say nothing of a cut.
+  if (!source.every_metres && count && times.size() == *count) s.times = std::move(times);
   return s;
 }
 

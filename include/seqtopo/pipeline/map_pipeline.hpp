@@ -38,6 +38,7 @@
 #include "seqtopo/pipeline/sequence_similarity.hpp"
 #include "seqtopo/pipeline/session_input.hpp"
 #include "seqtopo/plot/matrix_overview.hpp"
+#include "seqtopo/timeline/session_breaks.hpp"
 
 namespace seqtopo::pipeline {
 
@@ -62,6 +63,12 @@ struct MapRun {
   std::vector<SequenceInput> session_inputs;
   // The session of every image: [begin, end) of each input, in order (one for a single input).
   std::vector<formats::MapSession> sessions;
+  // Breaks found inside the inputs (a long gap in their frames' times with frames either side unlike neighbours:
+  // timeline/session_breaks.hpp), each the first frame of a new session of the map; `frame` counts over the
+  // sessions.
+  std::vector<timeline::TimeGap> session_breaks;
+  // `sessions` split at `session_breaks`: the map's sessions (map.json).
+  std::vector<formats::MapSession> map_sessions() const;
   mapping::MapConfig map_config;
   bool paper_trajectory = false;
   std::vector<SimilarityResult> similarities;  // one per descriptor (kappa, names, timings)

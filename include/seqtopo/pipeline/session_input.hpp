@@ -40,7 +40,10 @@ struct PreparedSession {
   std::vector<Pose2> odometry;        // one per kept frame, or empty
   std::string odometry_subject;       // where the odometry came from (file, or bag:topic), for errors and reports
   std::optional<std::size_t> frames;  // number of kept frames, when known without decoding
-  std::vector<std::string> notes;     // what was done ("odometry from /odom, 812 poses matched to 2520 images")
+  // The kept frames' times [s] (times.txt, names that are times, a bag's stamps), or empty: a long gap in them
+  // may be a session break (timeline/session_breaks.hpp). None with --every-metres (uneven by design).
+  std::vector<double> times;
+  std::vector<std::string> notes;  // what was done ("odometry from /odom, 812 poses matched to 2520 images")
 };
 
 // Reads what a session needs before any image is described: the frame count, the odometry and its match to
