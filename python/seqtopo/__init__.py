@@ -444,8 +444,10 @@ class MapRun:
     """Everything one :func:`map_sequence` computed: the map (``.map``, a :class:`MapResult`), the accuracy
     against the ground truth (``.metrics``, and the SeqSLAM-style ``.baseline`` on the same matrices),
     ``.topology`` and ``.trajectory_errors`` (with places or poses), ``.timings`` (stage, seconds: consecutive
-    parts of the run), ``.engine`` (the engine that ran: ``"exact"``, ``"fast"``, ``"streaming"`` or ``"sparse"``).
-    :func:`write_report` writes it as ``seqtopo map`` does."""
+    parts of the run), ``.engine`` (the engine that ran: ``"exact"``, ``"fast"``, ``"streaming"`` or ``"sparse"``),
+    ``.sessions`` (``{"input", "begin", "end"}`` of each session, the inputs' and those begun at a break found
+    inside one, which also has ``"break": {"gap", "median_interval"}``). :func:`write_report` writes it as
+    ``seqtopo map`` does."""
 
     def __init__(self, raw):
         self._raw = raw
@@ -459,6 +461,7 @@ class MapRun:
         self.input = raw.input
         self.preset = raw.preset
         self.engine = raw.engine
+        self.sessions = list(raw.sessions)
 
     def __repr__(self) -> str:
         m = self.map

@@ -603,6 +603,21 @@ void bind_map_run(py::module_& m) {
                                return out;
                              })
       .def_readonly("descriptor_names", &pipeline::MapRun::descriptor_names)
+      .def_property_readonly("sessions",
+                             [](const pipeline::MapRun& r) {
+                               py::list out;
+                               for (const auto& s : r.map_sessions()) {
+                                 py::dict d;
+                                 d["input"] = s.input;
+                                 d["begin"] = s.begin;
+                                 d["end"] = s.end;
+                                 if (s.gap > 0)
+                                   d["break"] =
+                                       py::dict(py::arg("gap") = s.gap, py::arg("median_interval") = s.median_interval);
+                                 out.append(std::move(d));
+                               }
+                               return out;
+                             })
       .def_readonly("input", &pipeline::MapRun::input)
       .def_readonly("preset", &pipeline::MapRun::preset)
       .def_property_readonly("engine",

@@ -402,8 +402,28 @@ def test_map_sequence_of_sessions_equals_cli(cli, tmp_path):
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
     written = json.loads((tmp_path / "cli" / "map.json").read_text())
     assert [(x["begin"], x["end"]) for x in written["sessions"]] == [(0, 40), (40, 84)]
+    assert run.sessions == written["sessions"]
     with pytest.raises(ValueError, match="path: no input"):
         seqtopo.map_sequence([])
+
+
+def test_a_break_inside_one_folder_is_a_session_from_python_as_from_the_cli(cli, tmp_path):
+    # The corridor's frames 1-60 then 20-84, their names jumping from 60 to 1000 (a gap in their times): a session
+    # break before image 60 for both front ends, and the same files.
+    folder = tmp_path / "cut"
+    folder.mkdir()
+    corridor = SOURCE_DIR / "data" / "rtabmap-corridor"
+    for k, frame in enumerate(list(range(1, 61)) + list(range(20, 85))):
+        name = k + 1 if k < 60 else 1000 + k
+        (folder / f"{name}.jpg").symlink_to(corridor / f"{frame}.jpg")
+    result = run_cli(cli, "map", folder, "--out", tmp_path / "cli")
+    assert "before image 60 " in result.stderr and "a session break" in result.stderr, result.stderr
+    run = seqtopo.map_sequence(str(folder))
+    seqtopo.write_report(run, tmp_path / "py")
+    for name in ("map.json", "alignments.json", "loop_closures.csv"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert [(s["begin"], s["end"]) for s in run.sessions] == [(0, 60), (60, 125)]
+    assert run.sessions[1]["break"]["gap"] > 100 and "break" not in run.sessions[0]
 
 
 def test_localize_sequences_default_descriptors_equal_cli(cli, tmp_path):
