@@ -11,7 +11,7 @@
 //
 //   auto gaps = timeline::time_gaps(times);                         // candidate breaks, by time
 //   for (auto& g : gaps)
-//     if (!timeline::looks_like_neighbours(n, similarity, g.frame - 1, g.frame, 0, n)) ... a break before g.frame
+//     if (!timeline::looks_like_neighbours(similarity, g.frame - 1, g.frame, 0, n)) ... a break before g.frame
 #include <cstddef>
 #include <functional>
 #include <span>
@@ -46,7 +46,7 @@ struct TimeGap {
 // frames or a median interval of zero. Throws std::invalid_argument when a time is not finite or times decrease.
 std::vector<TimeGap> time_gaps(std::span<const double> times, const SessionBreakConfig& config = {});
 
-// How alike frames a and b of n are, as the share of the other frames that each is less alike to than to the
+// How alike frames a and b are, as the share of the other frames that each is less alike to than to the
 // other (the lower of a's and b's shares): 1 for mutual nearest neighbours, about one half for two unrelated
 // frames. The other frames are those of [begin, end) (a sample of config.rank_columns of them, evenly spread),
 // a and b left out.
