@@ -32,7 +32,8 @@ py::dict event_dict(const OnlineEvent& e) {
   d["i"] = e.i;
   d["j"] = e.j;
   d["revisit"] = e.revisit;
-  if (e.kind != OnlineEventKind::place_merge) d["direction"] = std::string(align::to_string(e.direction));
+  if (e.kind != OnlineEventKind::place_merge && e.kind != OnlineEventKind::session_break)
+    d["direction"] = std::string(align::to_string(e.direction));
   if (e.candidate) d["candidate"] = *e.candidate;
   if (e.kind == OnlineEventKind::loop_closure || e.kind == OnlineEventKind::revisit_begin ||
       e.kind == OnlineEventKind::revisit_end || e.kind == OnlineEventKind::revisit_candidate) {
@@ -71,6 +72,10 @@ py::dict event_dict(const OnlineEvent& e) {
       d["reason"] = e.reason;
       break;
     }
+    case OnlineEventKind::session_break:
+      d["gap"] = e.gap;
+      d["median_interval"] = e.median_interval;
+      break;
   }
   return d;
 }

@@ -88,6 +88,12 @@ std::string online_event_json(const OnlineEvent& e) {
       j["withdrawn"] = std::move(withdrawn);
       break;
     }
+    case OnlineEventKind::session_break:
+      j["i"] = e.i;
+      j["j"] = e.j;
+      j["gap"] = e.gap;
+      j["median_interval"] = e.median_interval;
+      break;
   }
   return j.dump();
 }
@@ -117,6 +123,11 @@ std::string online_event_summary(const OnlineEvent& e) {
       if (e.candidate) return fmt::format("frame {}: correction, {}", e.frame, e.reason);
       return fmt::format("frame {}: correction, {} loop closure(s) of revisit {} withdrawn: {}", e.frame,
                          e.withdrawn.size(), e.revisit, e.reason);
+    case OnlineEventKind::session_break:
+      return fmt::format(
+          "frame {}: session break before frame {} ({:.3g} s without a frame, the recording's median "
+          "interval {:.3g} s, and the frames either side unlike neighbours)",
+          e.frame, e.i, e.gap, e.median_interval);
   }
   return {};
 }

@@ -68,6 +68,8 @@ std::string_view to_string(OnlineEventKind kind) {
       return "correction";
     case OnlineEventKind::revisit_candidate:
       return "revisit_candidate";
+    case OnlineEventKind::session_break:
+      return "session_break";
   }
   return "?";
 }

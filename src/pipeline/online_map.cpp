@@ -17,7 +17,9 @@
 #include "seqtopo/image/patch_thumbnail.hpp"
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
+#include "seqtopo/pipeline/session_input.hpp"
 #include "seqtopo/similarity/distance.hpp"
+#include "seqtopo/timeline/session_breaks.hpp"
 
 namespace seqtopo::pipeline {
 namespace {
@@ -193,6 +195,10 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
   }
   Feeder feeder(config, run, on_frame);
   OnlineImageRows image_rows(request.similarity);
+  // Session breaks inside an image folder with times (timeline/session_breaks.hpp), as the frames arrive.
+  timeline::OnlineBreakFinder breaks;
+  std::vector<double> session_times;  // the current session's frame times, or empty
+  std::size_t session_begin = 0;      // its first frame
   // `where`: the file, or the video and the frame, named by an error of the image's size.
   auto add_image = [&](std::string name, const RgbImage& image, const std::string& where) {
     // The descriptors are the frame's own work too: they are timed with it.
@@ -203,13 +209,41 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
       } catch (const std::invalid_argument& e) {
         throw InputError(where, e.what());
       }
-      return m.add_similarities(rows);
+      const std::size_t t = m.frames();
+      const std::size_t k = t - session_begin;
+      const auto gap =
+          breaks.add(k < session_times.size() ? std::optional<double>(session_times[k]) : std::nullopt, rows);
+      std::vector<OnlineEvent> events = m.add_similarities(rows);
+      if (gap && gap->session_break) {
+        OnlineEvent e;
+        e.kind = mapping::OnlineEventKind::session_break;
+        e.frame = t;
+        e.i = t;
+        e.j = t - 1;
+        e.gap = gap->gap.gap;
+        e.median_interval = gap->gap.median_interval;
+        events.insert(events.begin(), e);
+      }
+      return events;
     });
   };
   for (std::size_t k = 0; k < request.sessions.size(); ++k) {
     const SequenceInput& input = request.sessions[k];
     const std::string subject = input.path.string();
     const std::size_t begin = run.frame_names.size();
+    breaks.start_session();
+    session_begin = begin;
+    session_times.clear();
+    if (!from_stream && kinds[k] == InputKind::images) {
+      try {  // only to find session breaks: names that are not times (or not increasing ones) give none
+        if (auto t = frame_times(input, {})) session_times = std::move(*t);
+        timeline::time_gaps(session_times);  // throws on times that are not a recording's own
+      } catch (const InputError&) {
+        session_times.clear();
+      } catch (const std::invalid_argument&) {
+        session_times.clear();
+      }
+    }
     if (from_stream) {
       if (request.paths == nullptr) throw std::invalid_argument("run_online_map: input '-' needs a stream of paths");
       // Bounded lines: binary data on stdin (/dev/zero) is an error, not a line that grows without end.

@@ -77,4 +77,91 @@ bool looks_like_neighbours(const Similarity& similarity, std::size_t a, std::siz
   return neighbour_rank(similarity, a, b, begin, end, config) >= std::max(ranks[at], config.min_neighbour_rank);
 }
 
+void OnlineBreakFinder::start_session() {
+  begin_ = frames_;
+  last_time_.reset();
+  lower_ = {};
+  upper_ = {};
+  previous_.clear();
+  step_ranks_.clear();
+}
+
+double OnlineBreakFinder::median_interval() const {
+  // The upper median, as time_gaps reads it: lower_ holds the lower half (one more on an odd count).
+  return lower_.size() == upper_.size() ? upper_.top() : lower_.top();
+}
+
+void OnlineBreakFinder::add_interval(double interval) {
+  if (lower_.empty() || interval <= lower_.top()) {
+    lower_.push(interval);
+  } else {
+    upper_.push(interval);
+  }
+  if (lower_.size() > upper_.size() + 1) {
+    upper_.push(lower_.top());
+    lower_.pop();
+  } else if (upper_.size() > lower_.size()) {
+    lower_.push(upper_.top());
+    upper_.pop();
+  }
+}
+
+std::optional<OnlineBreakFinder::Gap> OnlineBreakFinder::add(std::optional<double> time,
+                                                             const std::vector<std::vector<float>>& rows) {
+  for (const auto& row : rows) {
+    if (row.size() != frames_) {
+      throw std::invalid_argument("a row of " + std::to_string(row.size()) + " similarities for frame " +
+                                  std::to_string(frames_));
+    }
+  }
+  if (time && !std::isfinite(*time)) {
+    throw std::invalid_argument("frame time " + std::to_string(frames_) + " is not finite");
+  }
+  if (time && last_time_ && *time < *last_time_) {
+    throw std::invalid_argument("frame times decrease at frame " + std::to_string(frames_));
+  }
+  const std::size_t t = frames_++;
+  // The step (t - 1, t) ranked, by each descriptor, against the session's frames before both.
+  std::vector<double> ranks;
+  if (t > begin_ + 1 && previous_.size() == rows.size()) {
+    const std::size_t others = t - 1 - begin_;
+    for (std::size_t d = 0; d < rows.size(); ++d) {
+      const float s = rows[d][t - 1];
+      std::size_t below_t = 0, below_previous = 0;
+      for (std::size_t j = begin_; j + 1 < t; ++j) {
+        below_t += rows[d][j] < s ? 1 : 0;
+        below_previous += previous_[d][j] < s ? 1 : 0;
+      }
+      ranks.push_back(static_cast<double>(std::min(below_t, below_previous)) / static_cast<double>(others));
+    }
+  }
+  std::optional<Gap> gap;
+  if (time && last_time_) {
+    const double interval = *time - *last_time_;
+    // By the intervals before this one (at least two), as time_gaps rules on the whole recording.
+    if (lower_.size() + upper_.size() >= 2) {
+      const double median = median_interval();
+      if (median > 0 && interval >= config_.gap_factor * median && interval >= config_.min_gap) {
+        bool neighbours = false;
+        for (std::size_t d = 0; d < ranks.size() && d < step_ranks_.size(); ++d) {
+          std::vector<double> own = step_ranks_[d];
+          if (own.empty()) continue;
+          std::sort(own.begin(), own.end());
+          const auto at = static_cast<std::size_t>(config_.neighbour_quantile * static_cast<double>(own.size() - 1));
+          neighbours = neighbours || ranks[d] >= std::max(own[at], config_.min_neighbour_rank);
+        }
+        gap = Gap{{t, interval, median}, !neighbours};
+      }
+    }
+    add_interval(interval);
+  }
+  if (time) last_time_ = time;
+  if (!gap) {  // a gap's step is not one of the recording's own
+    if (step_ranks_.size() < ranks.size()) step_ranks_.resize(ranks.size());
+    for (std::size_t d = 0; d < ranks.size(); ++d) step_ranks_[d].push_back(ranks[d]);
+  }
+  previous_ = rows;
+  return gap;
+}
+
 }  // namespace seqtopo::timeline

@@ -1,12 +1,13 @@
 // A break inside one input is a session break (timeline/session_breaks.hpp), end to end: two recordings in one
-// folder map as the two given as sessions; a cut inside a walk is found at its frame; a pause (a gap in time where
-// the frames either side are neighbours) is one session; a continuous walk (the corridor, the simulator's worlds at
-// several seeds) has no break.
+// folder map as the two given as sessions; a cut inside a walk is found at its frame, offline and online (an event);
+// a pause (a gap in time where the frames either side are neighbours) is one session; a continuous walk (the
+// corridor, the simulator's worlds at several seeds) has no break.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -57,6 +58,23 @@ Mapped map(const std::string& inputs, const fs::path& out) {
   const auto r = run_cli("map " + inputs + " --out " + out.string() + " --threads 1");
   EXPECT_EQ(r.status, 0) << r.err;
   return {nlohmann::json::parse(read_file(out / "map.json")), r.err};
+}
+
+// The frames of the session_break events of `seqtopo map INPUT --online` (events.jsonl).
+std::vector<std::size_t> online_breaks(const fs::path& input, const fs::path& out) {
+  const auto r = run_cli("map " + input.string() + " --online --no-offline-outputs --out " + out.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::vector<std::size_t> frames;
+  std::istringstream lines(read_file(out / "events.jsonl"));
+  for (std::string line; std::getline(lines, line);) {
+    const auto e = nlohmann::json::parse(line);
+    if (e["event"] == "session_break") {
+      EXPECT_EQ(e["i"].get<std::size_t>(), e["frame"].get<std::size_t>());
+      EXPECT_GT(e["gap"].get<double>(), 10 * e["median_interval"].get<double>());
+      frames.push_back(e["frame"].get<std::size_t>());
+    }
+  }
+  return frames;
 }
 
 void expect_same_topology(const nlohmann::json& a, const nlohmann::json& b) {
@@ -115,6 +133,9 @@ TEST(SessionBreaks, ACutInsideAWalkIsFoundAtItsFrameAPauseIsNot) {
     EXPECT_FALSE(pause.map.contains("sessions"));
     const Mapped plain = map(folder(dir.path / ("plain" + tag), {{0, w}}).string(), dir.path / ("out-plain" + tag));
     expect_same_topology(pause.map, plain.map);
+    // Online, as the frames arrive: the cut is an event at its frame, the pause none.
+    EXPECT_EQ(online_breaks(dir.path / ("cut" + tag), dir.path / ("online-cut" + tag)), std::vector<std::size_t>{160});
+    EXPECT_EQ(online_breaks(dir.path / ("pause" + tag), dir.path / ("online-pause" + tag)), std::vector<std::size_t>{});
   }
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -170,6 +171,86 @@ TEST(LooksLikeNeighbours, WhereNeighboursAreHardlyAlikeItTakesMoreThanChance) {
     taken += neighbours;
   }
   EXPECT_LT(taken, 35U);  // about 20 of 199 expected
+}
+
+// The rows a frame brings online: its similarity to every earlier frame.
+std::vector<std::vector<float>> rows_of(const Walk& w, std::size_t t) {
+  std::vector<float> row(t);
+  for (std::size_t j = 0; j < t; ++j) row[j] = static_cast<float>(w(t, j));
+  return {row};
+}
+
+TEST(OnlineBreakFinder, GapsByTheIntervalsBeforeAgainstTheRuleReadDirectly) {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 100; ++trial) {
+    const std::size_t n = 3 + rng() % 80;
+    std::vector<double> times{0};
+    std::exponential_distribution<double> step(1.0);
+    std::bernoulli_distribution jump(0.05);
+    while (times.size() < n) times.push_back(times.back() + (jump(rng) ? 40 * step(rng) : step(rng)));
+    OnlineBreakFinder finder;
+    finder.start_session();
+    for (std::size_t t = 0; t < n; ++t) {
+      // Rows of one value: no step ranks above 0, so every gap is a break.
+      const auto gap = finder.add(times[t], {std::vector<float>(t, 0.0F)});
+      std::optional<double> expected;
+      if (t >= 3) {
+        std::vector<double> before;
+        for (std::size_t k = 1; k < t; ++k) before.push_back(times[k] - times[k - 1]);
+        std::sort(before.begin(), before.end());
+        const double median = before[before.size() / 2];
+        const double interval = times[t] - times[t - 1];
+        if (median > 0 && interval >= 10 * median && interval >= 1) expected = median;
+      }
+      ASSERT_EQ(gap.has_value(), expected.has_value()) << "trial " << trial << " frame " << t;
+      if (gap) {
+        EXPECT_DOUBLE_EQ(gap->gap.median_interval, *expected);
+        EXPECT_EQ(gap->gap.frame, t);
+        EXPECT_TRUE(gap->session_break);
+      }
+    }
+  }
+}
+
+TEST(OnlineBreakFinder, APauseIsOneSessionACutIsNotAsOffline) {
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    std::vector<double> cut, pause, times;
+    for (int k = 0; k < 100; ++k) cut.push_back(k), pause.push_back(k), times.push_back(k);
+    for (int k = 0; k < 100; ++k) cut.push_back(1000 + k), pause.push_back(100 + k), times.push_back(5000 + k);
+    for (const bool is_cut : {true, false}) {
+      const Walk w = walk(is_cut ? cut : pause, seed);
+      OnlineBreakFinder finder;
+      finder.start_session();
+      std::vector<OnlineBreakFinder::Gap> gaps;
+      for (std::size_t t = 0; t < 200; ++t) {
+        if (auto g = finder.add(times[t], rows_of(w, t))) gaps.push_back(*g);
+      }
+      ASSERT_EQ(gaps.size(), 1U) << seed;
+      EXPECT_EQ(gaps[0].gap.frame, 100U);
+      EXPECT_EQ(gaps[0].session_break, is_cut) << seed;
+      // The offline rule on the whole walk says the same.
+      EXPECT_EQ(!looks_like_neighbours(std::cref(w), 99, 100, 0, 200), is_cut) << seed;
+    }
+  }
+}
+
+TEST(OnlineBreakFinder, EachSessionHasItsOwnIntervalsAndNoStepIntoIt) {
+  OnlineBreakFinder finder;
+  finder.start_session();
+  for (std::size_t t = 0; t < 5; ++t) EXPECT_FALSE(finder.add(0.1 * static_cast<double>(t), {std::vector<float>(t)}));
+  finder.start_session();  // a new input starting an hour later: not a gap, its first interval is its own
+  EXPECT_FALSE(finder.add(3600.0, {std::vector<float>(5)}));
+  EXPECT_FALSE(finder.add(3610.0, {std::vector<float>(6)}));
+  EXPECT_FALSE(finder.add(3620.0, {std::vector<float>(7)}));
+  EXPECT_TRUE(finder.add(4000.0, {std::vector<float>(8)}).has_value());
+}
+
+TEST(OnlineBreakFinder, RefusesRowsAndTimesThatDoNotFit) {
+  OnlineBreakFinder finder;
+  finder.start_session();
+  EXPECT_THROW(finder.add(0.0, {std::vector<float>(1)}), std::invalid_argument);
+  EXPECT_FALSE(finder.add(1.0, {std::vector<float>{}}));
+  EXPECT_THROW(finder.add(0.5, {std::vector<float>(1)}), std::invalid_argument);
 }
 
 }  // namespace

@@ -150,7 +150,10 @@ enum class OnlineEventKind {
   junction,
   place_merge,
   correction,
-  revisit_candidate
+  revisit_candidate,
+  // A session break inside an input, found by the pipeline from the frames' times and looks
+  // (timeline/session_breaks.hpp), not by the mapper: the map's later outputs start a new session at frame i.
+  session_break
 };
 std::string_view to_string(OnlineEventKind kind);
 
@@ -177,6 +180,9 @@ struct OnlineEvent {
   // revisit_candidate: its id (0, 1, ... in order); revisit_begin: the candidate it confirms; correction: the
   // candidate withdrawn (no loop closure withdrawn then).
   std::optional<std::size_t> candidate;
+  // session_break: the frame after the gap is i (j = i - 1); the gap in the frames' times and the recording's
+  // median interval so far [s].
+  double gap = 0, median_interval = 0;
 };
 
 // A loop closure still standing.

@@ -14,6 +14,8 @@
 //     if (!timeline::looks_like_neighbours(similarity, g.frame - 1, g.frame, 0, n)) ... a break before g.frame
 #include <cstddef>
 #include <functional>
+#include <optional>
+#include <queue>
 #include <span>
 #include <vector>
 
@@ -60,5 +62,40 @@ double neighbour_rank(const Similarity& similarity, std::size_t a, std::size_t b
 bool looks_like_neighbours(const Similarity& similarity, std::size_t a, std::size_t b, std::size_t begin,
                            std::size_t end, const std::function<bool(std::size_t)>& skip = {},
                            const SessionBreakConfig& config = {});
+
+// The same rule as the frames arrive (seqtopo map --online): the median interval and the recording's own step
+// ranks are those of the frames so far in the session, and the other frames a rank counts are the earlier ones.
+//
+//   OnlineBreakFinder finder;
+//   finder.start_session();                          // before each input's first frame
+//   auto gap = finder.add(time, rows);               // rows: the frame's similarity to every earlier frame
+//   if (gap && gap->session_break) ...
+class OnlineBreakFinder {
+ public:
+  explicit OnlineBreakFinder(const SessionBreakConfig& config = {}) : config_(config) {}
+  // The next frame begins a new session (an input's first frame): no step into it.
+  void start_session();
+  struct Gap {
+    TimeGap gap;
+    bool session_break = false;  // false: the frames either side look like neighbours (a pause)
+  };
+  // The next frame: its time [s] (nullopt: the session has no times) and its similarity to every earlier frame of
+  // the run, one row per descriptor (row[j] for frames j before it, higher = more alike). Returns the gap before
+  // it, if there is one, and whether it is a session break. Throws std::invalid_argument on a time that is not
+  // finite or goes back, or rows of the wrong length.
+  std::optional<Gap> add(std::optional<double> time, const std::vector<std::vector<float>>& rows);
+
+ private:
+  double median_interval() const;
+  void add_interval(double interval);
+
+  SessionBreakConfig config_;
+  std::size_t frames_ = 0, begin_ = 0;  // frames of the run so far; the session's first
+  std::optional<double> last_time_;
+  std::priority_queue<double> lower_;                                             // intervals, lower half
+  std::priority_queue<double, std::vector<double>, std::greater<double>> upper_;  // upper half
+  std::vector<std::vector<float>> previous_;                                      // the previous frame's rows
+  std::vector<std::vector<double>> step_ranks_;  // per descriptor, the session's steps so far
+};
 
 }  // namespace seqtopo::timeline
