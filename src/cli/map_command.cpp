@@ -408,8 +408,9 @@ const RegisterCommand registered{
                       "TUM or KITTI poses; with several inputs, once per session")
            ->allow_extra_args(false);
        app.add_option("--times", o->times_files,
-                      "image times for a timestamped --odometry: times.txt, one time per image [s] (default: "
-                      "times.txt in the folder, or numeric file names); with several inputs, once per session")
+                      "image times, for a timestamped --odometry and to find session breaks (a long gap where the "
+                      "images either side are unlike): times.txt, one time per image [s] (default: times.txt in the "
+                      "folder, or numeric file names); with several inputs, once per session")
            ->allow_extra_args(false);
        app.add_option("--odometry-topic", o->odometry_topic,
                       "bags: the nav_msgs/Odometry or PoseStamped topic matched to the images by time (default: "

@@ -202,7 +202,12 @@ PreparedSession prepare_session(const SessionSource& source) {
   s.odometry = std::move(poses);
   s.frames = count;
   // Frames kept one per D metres are uneven in time by design: their intervals say nothing of a cut.
-  if (!source.every_metres && count && times.size() == *count) s.times = std::move(times);
+  if (!source.every_metres && count && !times.empty()) {
+    if (times.size() != *count && !source.times.empty()) {
+      throw InputError(source.times.string(), fmt::format("{} image times for {} images", times.size(), *count));
+    }
+    if (times.size() == *count) s.times = std::move(times);
+  }
   return s;
 }
 

@@ -67,6 +67,29 @@ TEST(PrepareSession, TimesTxtInTheFolderAndEveryMetres) {
   EXPECT_EQ(s.frames, 4U);
 }
 
+// The frames' times are kept for finding session breaks (timeline/session_breaks.hpp), odometry or not: from
+// names that are times, a times.txt, --times (thinned by --every alike); none from names that are not times, nor
+// with --every-metres.
+TEST(PrepareSession, KeepsTheFramesTimesWhereTheRecordingHasThem) {
+  TempDir dir;
+  const fs::path numbered = dir.path / "numbered", named = dir.path / "named";
+  fs::create_directories(numbered);
+  fs::create_directories(named);
+  for (int k : {10, 11, 12, 500}) plot::write_png(numbered / (std::to_string(k) + ".png"), RgbImage(4, 4, 9));
+  for (const char* name : {"a.png", "b.png", "c.png"}) plot::write_png(named / name, RgbImage(4, 4, 9));
+  EXPECT_EQ(prepare_session(make(numbered)).times, (std::vector<double>{10, 11, 12, 500}));
+  SessionSource every = make(numbered);
+  every.input.every = 2;
+  EXPECT_EQ(prepare_session(every).times, (std::vector<double>{10, 12}));
+  EXPECT_TRUE(prepare_session(make(named)).times.empty());
+  const auto times = dir.write("times.txt", "0.5\n1.5\n9\n");
+  EXPECT_EQ(prepare_session(make(named, {}, times)).times, (std::vector<double>{0.5, 1.5, 9}));
+  // A times file the user gave must fit, odometry or not.
+  const auto short_times = dir.write("short.txt", "0.5\n1.5\n");
+  EXPECT_EQ(error_of([&] { prepare_session(make(named, {}, short_times)); }),
+            short_times.string() + ": 2 image times for 3 images");
+}
+
 TEST(PrepareSession, ErrorsBeforeAnyWork) {
   TempDir dir;
   for (const char* name : {"a.png", "b.png"}) plot::write_png(dir.path / name, RgbImage(4, 4, 9));
