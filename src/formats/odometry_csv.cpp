@@ -10,15 +10,12 @@
 #include "seqtopo/core/input_error.hpp"
 #include "seqtopo/core/text_file.hpp"
 #include "seqtopo/io/csv.hpp"
+#include "trim.hpp"
 
 namespace seqtopo::formats {
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
+using detail::trim;
 
 std::vector<std::string_view> split(std::string_view line) {
   std::vector<std::string_view> fields;

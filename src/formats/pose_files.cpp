@@ -12,17 +12,14 @@
 #include "seqtopo/core/text_file.hpp"
 #include "seqtopo/formats/odometry_csv.hpp"
 #include "seqtopo/io/csv.hpp"
+#include "trim.hpp"
 
 namespace seqtopo::formats {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
+using detail::trim;
 
 bool skipped(std::string_view line) {
   line = trim(line);

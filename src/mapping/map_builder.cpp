@@ -133,7 +133,8 @@ PhaseChecks phase_checks(const FitRun& fit, const MapConfig& c, double area_plac
 // length (the area scales them), and the fit then costs the same for 10^4 frames streamed as for 4,000.
 constexpr std::size_t kFitBlock = 2000, kFitBlocks = 4;
 // The global alignment rate is taken on a 256 x 256 table drawn from about 65,536 of the fit's cells.
-constexpr std::size_t kPhaseTable = 256, kPhaseCells = 65536;
+using significance::kPhaseCells;
+using significance::kPhaseTable;
 
 // The statistics' run's alignments, best first, in the full sequence's indices; `area` the cells searched.
 std::vector<align::LocalAlignment> fit_alignments(const align::ScoreSource& scores, align::AlignConfig engine,

@@ -34,7 +34,9 @@ constexpr std::size_t kTailFraction = 64;
 constexpr std::size_t kScaleLags = 200, kScaleFrames = 2000, kScaleEvery = 16;
 // The scores' own phase (significance/alignment_phase.hpp) is checked on a 256 x 256 table drawn from the first
 // scores, once 2,048 are in and again each time their number doubles, up to 65,536.
-constexpr std::size_t kPhaseTable = 256, kPhaseMinCells = 2048, kPhaseCells = 65536;
+using significance::kPhaseCells;
+using significance::kPhaseTable;
+constexpr std::size_t kPhaseMinCells = 2048;
 
 std::uint64_t cell(std::size_t i, std::size_t j) { return (static_cast<std::uint64_t>(i) << 32U) | j; }
 std::size_t cell_i(std::uint64_t c) { return static_cast<std::size_t>(c >> 32U); }

@@ -21,12 +21,7 @@ const char* confidence_label(const pipeline::LocalizeRun& r) {
                   : "confidence (probability the guess is right)";
 }
 
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using detail::read_file;
 
 detail::CurvePoints curve_points(const std::string& label, const std::string& colour,
                                  const evaluation::LocalizationMetrics& m) {

@@ -23,12 +23,7 @@ namespace {
 constexpr const char* kConfidenceKey = "confidence";
 constexpr const char* kConfidenceLabel = "confidence (P the pair is a revisit)";
 
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using detail::read_file;
 
 // {"fields": [{"key", "label"}], "rows": [{"i", "j", ...}]}: the fields the pair viewer shows, in order. A new
 // per-pair field (confidence, E-value) is one more key in each row and one more entry in `fields`.

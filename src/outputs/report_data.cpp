@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <fstream>
 #include <mutex>
+#include <sstream>
 #include <thread>
 
 #include "seqtopo/core/version.hpp"
@@ -18,6 +20,13 @@
 #include "seqtopo/report/interactive.hpp"
 
 namespace seqtopo::outputs::detail {
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 nlohmann::json loop_closure_metrics_json(const evaluation::LoopClosureMetrics& m) {
   return {{"tp", m.tp},         {"fp", m.fp}, {"fn", m.fn},   {"precision", m.precision},

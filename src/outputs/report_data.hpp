@@ -3,6 +3,7 @@
 // sequences with thumbnails, the matrix layer, alignments, PR curves, timings, and the page's skeleton.
 #include <chrono>
 #include <cstddef>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -18,6 +19,9 @@
 #include "seqtopo/report/html_report.hpp"
 
 namespace seqtopo::outputs::detail {
+
+// The bytes of a file the run wrote (a staged figure the page embeds); "" when it cannot be read.
+std::string read_file(const std::filesystem::path& path);
 
 // metrics.json's and online.json's loop-closure figures.
 nlohmann::json loop_closure_metrics_json(const evaluation::LoopClosureMetrics& m);

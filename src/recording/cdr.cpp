@@ -85,7 +85,7 @@ std::span<const std::uint8_t> CdrReader::bytes() {
 
 namespace {
 
-RosTime header(CdrReader& r) {
+RosTime read_header(CdrReader& r) {
   RosTime t;
   t.sec = r.i32();
   t.nanosec = r.u32();
@@ -108,7 +108,7 @@ void pose(CdrReader& r, RosPose& p) {
 RosImage decode_image_cdr(std::span<const std::uint8_t> message) {
   CdrReader r(message);
   RosImage m;
-  m.stamp = header(r);
+  m.stamp = read_header(r);
   m.height = r.u32();
   m.width = r.u32();
   m.encoding = r.string();
@@ -123,7 +123,7 @@ RosImage decode_compressed_image_cdr(std::span<const std::uint8_t> message) {
   CdrReader r(message);
   RosImage m;
   m.compressed = true;
-  m.stamp = header(r);
+  m.stamp = read_header(r);
   m.format = r.string();
   const auto data = r.bytes();
   m.data.assign(data.begin(), data.end());
@@ -133,7 +133,7 @@ RosImage decode_compressed_image_cdr(std::span<const std::uint8_t> message) {
 RosPose decode_odometry_cdr(std::span<const std::uint8_t> message) {
   CdrReader r(message);
   RosPose p;
-  p.stamp = header(r);
+  p.stamp = read_header(r);
   (void)r.string();  // child_frame_id
   pose(r, p);        // pose.pose; the covariance and the twist follow
   return p;
@@ -142,7 +142,7 @@ RosPose decode_odometry_cdr(std::span<const std::uint8_t> message) {
 RosPose decode_pose_stamped_cdr(std::span<const std::uint8_t> message) {
   CdrReader r(message);
   RosPose p;
-  p.stamp = header(r);
+  p.stamp = read_header(r);
   pose(r, p);
   return p;
 }

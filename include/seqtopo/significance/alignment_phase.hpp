@@ -18,6 +18,10 @@ namespace seqtopo::significance {
 // G(0, j) = -j gap, G(i, j) = max(G(i-1, j-1) + cell(i-1, j-1), G(i-1, j) - gap, G(i, j-1) - gap).
 double global_alignment_rate(std::span<const float> cells, std::size_t n, float gap);
 
+// The phase check's sample, the same offline and online: a kPhaseTable x kPhaseTable table drawn from up to
+// kPhaseCells of the sequence's scores.
+inline constexpr std::size_t kPhaseTable = 256, kPhaseCells = 65536;
+
 // The same for an n x n table drawn with replacement from `scores` (deterministic for a seed). Throws
 // std::invalid_argument when `scores` is empty or n is 0.
 double resampled_global_rate(std::span<const float> scores, std::size_t n, float gap, std::uint64_t seed = 1);
