@@ -56,6 +56,8 @@ class CMakeBuild(build_ext):
             "cmake", "-S", ROOT, "-B", build_dir,
             "-DCMAKE_BUILD_TYPE=Release",
             "-DSEQTOPO_BUILD_PYTHON=ON", "-DSEQTOPO_BUILD_TESTS=OFF", "-DSEQTOPO_BUILD_BENCH=OFF",
+            # Unity translation units (the library's files a module at a time; the run preset builds so too).
+            "-DCMAKE_UNITY_BUILD=ON",
             f"-DSEQTOPO_PYTHON={sys.executable}",
         ]
         if shutil.which("ninja") and not os.path.exists(os.path.join(build_dir, "CMakeCache.txt")):
