@@ -38,14 +38,20 @@ TEST(TimeGaps, ShortGapsOfAFastCameraAreNotGapsUnlessASecondLong) {
   EXPECT_EQ(gaps[0].frame, 99U);
 }
 
+// n frame times: intervals of mean 1 s, one in 20 forty times longer.
+std::vector<double> random_times(std::mt19937& rng, std::size_t n) {
+  std::vector<double> times{0};
+  std::exponential_distribution<double> step(1.0);
+  std::bernoulli_distribution jump(0.05);
+  while (times.size() < n) times.push_back(times.back() + (jump(rng) ? 40 * step(rng) : step(rng)));
+  return times;
+}
+
 TEST(TimeGaps, AgainstTheRuleReadDirectly) {
   std::mt19937 rng(7);
   for (int trial = 0; trial < 200; ++trial) {
     const std::size_t n = 3 + rng() % 60;
-    std::vector<double> times{0};
-    std::exponential_distribution<double> step(1.0);
-    std::bernoulli_distribution jump(0.05);
-    while (times.size() < n) times.push_back(times.back() + (jump(rng) ? 40 * step(rng) : step(rng)));
+    const std::vector<double> times = random_times(rng, n);
     std::vector<double> intervals;
     for (std::size_t k = 1; k < n; ++k) intervals.push_back(times[k] - times[k - 1]);
     std::vector<double> sorted = intervals;
@@ -184,10 +190,7 @@ TEST(OnlineBreakFinder, GapsByTheIntervalsBeforeAgainstTheRuleReadDirectly) {
   std::mt19937 rng(5);
   for (int trial = 0; trial < 100; ++trial) {
     const std::size_t n = 3 + rng() % 80;
-    std::vector<double> times{0};
-    std::exponential_distribution<double> step(1.0);
-    std::bernoulli_distribution jump(0.05);
-    while (times.size() < n) times.push_back(times.back() + (jump(rng) ? 40 * step(rng) : step(rng)));
+    const std::vector<double> times = random_times(rng, n);
     OnlineBreakFinder finder;
     finder.start_session();
     for (std::size_t t = 0; t < n; ++t) {
