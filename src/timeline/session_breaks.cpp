@@ -19,14 +19,31 @@ std::vector<std::size_t> spread(std::size_t begin, std::size_t end, std::size_t 
   return out;
 }
 
+// Throws std::invalid_argument unless frame k's time is finite and not before the previous frame's.
+void check_time(std::size_t k, double time, std::optional<double> previous) {
+  if (!std::isfinite(time)) throw std::invalid_argument("frame time " + std::to_string(k) + " is not finite");
+  if (previous && time < *previous) throw std::invalid_argument("frame times decrease at frame " + std::to_string(k));
+}
+
+// The gap rule: an interval long against the recording's median one, and long in itself.
+bool is_gap(double interval, double median, const SessionBreakConfig& config) {
+  return median > 0 && interval >= config.gap_factor * median && interval >= config.min_gap;
+}
+
+// The neighbour rule: `rank` reaches config.neighbour_quantile of the recording's own steps' ranks (none: it does
+// not) and config.min_neighbour_rank.
+bool ranks_as_neighbours(double rank, std::vector<double> steps, const SessionBreakConfig& config) {
+  if (steps.empty()) return false;
+  std::sort(steps.begin(), steps.end());
+  const auto at = static_cast<std::size_t>(config.neighbour_quantile * static_cast<double>(steps.size() - 1));
+  return rank >= std::max(steps[at], config.min_neighbour_rank);
+}
+
 }  // namespace
 
 std::vector<TimeGap> time_gaps(std::span<const double> times, const SessionBreakConfig& config) {
   for (std::size_t k = 0; k < times.size(); ++k) {
-    if (!std::isfinite(times[k])) throw std::invalid_argument("frame time " + std::to_string(k) + " is not finite");
-    if (k > 0 && times[k] < times[k - 1]) {
-      throw std::invalid_argument("frame times decrease at frame " + std::to_string(k));
-    }
+    check_time(k, times[k], k > 0 ? std::optional<double>(times[k - 1]) : std::nullopt);
   }
   if (times.size() < 3) return {};
   std::vector<double> intervals;
@@ -36,12 +53,9 @@ std::vector<TimeGap> time_gaps(std::span<const double> times, const SessionBreak
   const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
   std::nth_element(sorted.begin(), middle, sorted.end());
   const double median = *middle;
-  if (!(median > 0)) return {};
   std::vector<TimeGap> gaps;
   for (std::size_t k = 0; k < intervals.size(); ++k) {
-    if (intervals[k] >= config.gap_factor * median && intervals[k] >= config.min_gap) {
-      gaps.push_back({k + 1, intervals[k], median});
-    }
+    if (is_gap(intervals[k], median, config)) gaps.push_back({k + 1, intervals[k], median});
   }
   return gaps;
 }
@@ -72,9 +86,7 @@ bool looks_like_neighbours(const Similarity& similarity, std::size_t a, std::siz
     ranks.push_back(neighbour_rank(similarity, k - 1, k, begin, end, config));
   }
   if (ranks.empty()) return false;  // nothing to compare with: the times decide
-  std::sort(ranks.begin(), ranks.end());
-  const auto at = static_cast<std::size_t>(config.neighbour_quantile * static_cast<double>(ranks.size() - 1));
-  return neighbour_rank(similarity, a, b, begin, end, config) >= std::max(ranks[at], config.min_neighbour_rank);
+  return ranks_as_neighbours(neighbour_rank(similarity, a, b, begin, end, config), std::move(ranks), config);
 }
 
 void OnlineBreakFinder::start_session() {
@@ -114,13 +126,13 @@ std::optional<OnlineBreakFinder::Gap> OnlineBreakFinder::add(std::optional<doubl
                                   std::to_string(frames_));
     }
   }
-  if (time && !std::isfinite(*time)) {
-    throw std::invalid_argument("frame time " + std::to_string(frames_) + " is not finite");
-  }
-  if (time && last_time_ && *time < *last_time_) {
-    throw std::invalid_argument("frame times decrease at frame " + std::to_string(frames_));
-  }
   const std::size_t t = frames_++;
+  // A session without times has no gap: none of the work below (the step ranks, the rows kept) is needed.
+  if (!time) {
+    previous_.clear();
+    return std::nullopt;
+  }
+  check_time(t, *time, last_time_);
   // The step (t - 1, t) ranked, by each descriptor, against the session's frames before both.
   std::vector<double> ranks;
   if (t > begin_ + 1 && previous_.size() == rows.size()) {
@@ -136,26 +148,19 @@ std::optional<OnlineBreakFinder::Gap> OnlineBreakFinder::add(std::optional<doubl
     }
   }
   std::optional<Gap> gap;
-  if (time && last_time_) {
+  if (last_time_) {
     const double interval = *time - *last_time_;
     // By the intervals before this one (at least two), as time_gaps rules on the whole recording.
-    if (lower_.size() + upper_.size() >= 2) {
-      const double median = median_interval();
-      if (median > 0 && interval >= config_.gap_factor * median && interval >= config_.min_gap) {
-        bool neighbours = false;
-        for (std::size_t d = 0; d < ranks.size() && d < step_ranks_.size(); ++d) {
-          std::vector<double> own = step_ranks_[d];
-          if (own.empty()) continue;
-          std::sort(own.begin(), own.end());
-          const auto at = static_cast<std::size_t>(config_.neighbour_quantile * static_cast<double>(own.size() - 1));
-          neighbours = neighbours || ranks[d] >= std::max(own[at], config_.min_neighbour_rank);
-        }
-        gap = Gap{{t, interval, median}, !neighbours};
+    if (lower_.size() + upper_.size() >= 2 && is_gap(interval, median_interval(), config_)) {
+      bool neighbours = false;
+      for (std::size_t d = 0; d < ranks.size() && d < step_ranks_.size(); ++d) {
+        neighbours = neighbours || ranks_as_neighbours(ranks[d], step_ranks_[d], config_);
       }
+      gap = Gap{{t, interval, median_interval()}, !neighbours};
     }
     add_interval(interval);
   }
-  if (time) last_time_ = time;
+  last_time_ = time;
   if (!gap) {  // a gap's step is not one of the recording's own
     if (step_ranks_.size() < ranks.size()) step_ranks_.resize(ranks.size());
     for (std::size_t d = 0; d < ranks.size(); ++d) step_ranks_[d].push_back(ranks[d]);
