@@ -81,14 +81,19 @@ void record_sessions(std::span<const SequenceInput> inputs, const std::vector<st
   }
 }
 
-// The map settings with the sessions' boundaries and the breaks found inside them: no topological edge from one
-// session's last image to the next one's first.
+// The first image of each of the map's sessions after the first (the inputs' and those begun at a break found inside
+// one): no topological edge from one session's last image to the next one's first.
+std::vector<std::size_t> session_starts(const MapRun& run) {
+  const auto sessions = run.map_sessions();
+  std::vector<std::size_t> starts;
+  for (std::size_t k = 1; k < sessions.size(); ++k) starts.push_back(sessions[k].begin);
+  return starts;
+}
+
+// The map settings with the sessions' boundaries (session_starts).
 mapping::MapConfig map_config_of(const MapSettings& settings, const MapRun& run) {
   mapping::MapConfig config = settings.map;
-  auto& starts = config.graph.topology.session_starts;
-  for (std::size_t k = 1; k < run.sessions.size(); ++k) starts.push_back(run.sessions[k].begin);
-  for (const auto& b : run.session_breaks) starts.push_back(b.frame);
-  std::sort(starts.begin(), starts.end());
+  config.graph.topology.session_starts = session_starts(run);
   return config;
 }
 
@@ -262,7 +267,7 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   const auto& cosines = *streamed;
   find_session_breaks(times, {[&cosines](std::size_t i, std::size_t j) { return cosines.cosine(i, j); }}, masked,
                       observer, run);
-  config.graph.topology.session_starts = map_config_of(settings, run).graph.topology.session_starts;
+  config.graph.topology.session_starts = session_starts(run);
   described.descriptors = {};  // the streamed similarity keeps its own normalised copy
   // --sparse: the contrast-enhanced score at each frame's nearest neighbours (FAISS), the background elsewhere.
   std::optional<scale::SparseScores> candidates;
