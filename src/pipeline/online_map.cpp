@@ -234,9 +234,12 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
     breaks.start_session();
     session_begin = begin;
     session_times.clear();
+    // An image folder is listed once: its frames, and their times where its names or a times.txt give them.
+    SequenceInput listed = input;
     if (!from_stream && kinds[k] == InputKind::images) {
+      listed.listing = std::make_shared<const ImageListing>(list_input_images(input));
       try {  // only to find session breaks: names that are not times (or not increasing ones) give none
-        if (auto t = frame_times(input, {})) session_times = std::move(*t);
+        if (auto t = frame_times(listed, {})) session_times = std::move(*t);
         timeline::time_gaps(session_times);  // throws on times that are not a recording's own
       } catch (const InputError&) {
         session_times.clear();
@@ -256,8 +259,7 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
       }
       if (run.frame_names.empty()) throw InputError("stdin", "no image path was given (one path per line)");
     } else if (kinds[k] == InputKind::images) {
-      const ImageListing listing = list_input_images(input);
-      for (const auto& file : listing.files) {
+      for (const auto& file : listed.listing->files) {
         const RgbImage image = image::load_image(file);
         run.image_files.push_back(file);
         add_image(image_name(input.path, file, input.recursive), image, file.string());
