@@ -18,7 +18,7 @@
 #include "seqtopo/io/fasta.hpp"
 #include "seqtopo/io/npy.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::align_command {
 namespace {
 
 struct AlignOptions {
@@ -228,4 +228,4 @@ const RegisterCommand registered{
      }}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::align_command

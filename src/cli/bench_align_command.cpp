@@ -17,7 +17,7 @@
 #include "seqtopo/align/letter_problem.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::bench_align_command {
 namespace {
 
 constexpr std::size_t kLetters = align::LetterProblem::letters;
@@ -143,4 +143,4 @@ const RegisterBenchCommand registered{
      }}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::bench_align_command

@@ -11,6 +11,7 @@ std::vector<CommandSpec>& bench_registry() {
   return registry;
 }
 
+namespace bench_command {
 namespace {
 
 void setup(CLI::App& bench) {
@@ -23,4 +24,5 @@ void setup(CLI::App& bench) {
 const RegisterCommand registered{{"bench", "Measure speed and memory of the engine and the pipeline", setup}};
 
 }  // namespace
+}  // namespace bench_command
 }  // namespace seqtopo::cli

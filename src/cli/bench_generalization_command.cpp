@@ -20,7 +20,7 @@
 #include "seqtopo/pipeline/map_pipeline.hpp"
 #include "seqtopo/simulator/descriptor_sequences.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::bench_generalization_command {
 namespace {
 
 struct Options {
@@ -217,4 +217,4 @@ const RegisterBenchCommand registered{
      }}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::bench_generalization_command

@@ -33,7 +33,7 @@
 #include "seqtopo/scale/streaming_similarity.hpp"
 #include "seqtopo/scale/synthetic_route.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::bench_scale_command {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -434,4 +434,4 @@ const RegisterBenchCommand registered{
      setup}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::bench_scale_command

@@ -18,7 +18,7 @@
 #include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/strings/strings_file.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::fingerprint_command {
 namespace {
 
 struct FingerprintOptions {
@@ -121,4 +121,4 @@ const RegisterCommand registered{
      }}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::fingerprint_command

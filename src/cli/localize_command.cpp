@@ -25,7 +25,7 @@
 #include "seqtopo/pipeline/localize_pipeline.hpp"
 #include "sequence_options.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::localize_command {
 namespace {
 
 namespace fs = std::filesystem;
@@ -316,4 +316,4 @@ const RegisterCommand registered{
      }}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::localize_command

@@ -28,7 +28,7 @@
 #include "seqtopo/similarity/memory.hpp"
 #include "sequence_options.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::map_command {
 namespace {
 
 namespace fs = std::filesystem;
@@ -445,4 +445,4 @@ const RegisterCommand registered{
      }}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::map_command

@@ -17,7 +17,7 @@
 #include "seqtopo/strings/localization.hpp"
 #include "seqtopo/strings/strings_file.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::match_strings_command {
 namespace {
 
 struct MatchStringsOptions {
@@ -230,4 +230,4 @@ const RegisterCommand registered{
      }}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::match_strings_command

@@ -16,7 +16,7 @@
 #include "seqtopo/plot/png.hpp"
 #include "sequence_options.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::similarity_command {
 namespace {
 
 struct SimilarityOptions {
@@ -110,4 +110,4 @@ const RegisterCommand registered{
      }}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::similarity_command

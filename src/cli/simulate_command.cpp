@@ -18,7 +18,7 @@
 #include "seqtopo/plot/png.hpp"
 #include "seqtopo/simulator/scenarios.hpp"
 
-namespace seqtopo::cli {
+namespace seqtopo::cli::simulate_command {
 namespace {
 
 struct SimulateOptions {
@@ -235,4 +235,4 @@ const RegisterCommand registered{
      }}};
 
 }  // namespace
-}  // namespace seqtopo::cli
+}  // namespace seqtopo::cli::simulate_command

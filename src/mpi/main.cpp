@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -304,13 +305,19 @@ int run(const Options& opt, int rank, int ranks) {
 }
 
 }  // namespace
+
+// The rank a launcher gave this process, read before MPI_Init from its environment (Open MPI, PMIx, PMI,
+// MPICH's Hydra); a process started alone is rank 0.
+int launched_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"}) {
+    if (const char* value = std::getenv(name); value != nullptr && *value != '\0') return std::atoi(value);
+  }
+  return 0;
+}
+
 }  // namespace seqtopo::mpi
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   using seqtopo::mpi::Options;
   Options opt;
   CLI::App app{"seqtopo-mpi: the sparse mode's components aligned on several MPI ranks (run it with mpirun)"};
@@ -338,22 +345,34 @@ int main(int argc, char** argv) {
              "pairs closer in time never count [frames]");
   add_number(*sparse, "--threads", opt.threads, {.min = 1, .max = 2},
              "rank 0: threads for the two passes' fills (1 or 2)");
-  int code = 0;
+  // The command line is checked before MPI starts: a bad one costs no MPI start-up, and two singletons
+  // starting at once can race on Open MPI's shared session folder ("mkdir ... File exists"). Every rank
+  // parses the same arguments and stops here; the one launched as rank 0 speaks.
+  const bool speaks = seqtopo::mpi::launched_rank() == 0;
   try {
     seqtopo::cli::check_all_numeric_options(app);
     app.parse(argc, argv);
     if (!(opt.background < 0)) throw seqtopo::InputError("--background", "must be < 0");
-    code = seqtopo::mpi::run(opt, rank, ranks);
   } catch (const CLI::ParseError& e) {
-    // Every rank parses the same arguments and stops here; one of them speaks.
-    if (rank == 0) {
+    if (speaks) {
       if (e.get_exit_code() == 0) {
         app.exit(e);
       } else {
         std::cerr << "seqtopo-mpi: error: " << e.what() << " (see seqtopo-mpi --help)\n";
       }
     }
-    code = e.get_exit_code() == 0 ? 0 : 2;
+    return e.get_exit_code() == 0 ? 0 : 2;
+  } catch (const seqtopo::InputError& e) {
+    if (speaks) std::cerr << "seqtopo-mpi: error: " << e.subject() << ": " << e.what() << "\n";
+    return 1;
+  }
+  MPI_Init(&argc, &argv);
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  int code = 0;
+  try {
+    code = seqtopo::mpi::run(opt, rank, ranks);
   } catch (const seqtopo::InputError& e) {
     if (rank == 0) std::cerr << "seqtopo-mpi: error: " << e.subject() << ": " << e.what() << "\n";
     code = 1;

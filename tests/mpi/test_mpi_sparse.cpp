@@ -29,10 +29,12 @@ using test_support::read_file;
 
 // `seqtopo-mpi ARGS` under mpirun with `ranks` ranks (run_command: no terminal input, stdout and stderr
 // captured): offline and as root if need be (CI), shared memory and self transports only, no binding
-// (ctest runs tests side by side).
-CommandResult mpirun(int ranks, const std::string& args) {
+// (ctest runs tests side by side), and Open MPI's session folder in the test's own folder (two runs starting
+// at once race to create a shared one under /tmp).
+CommandResult mpirun(const fs::path& dir, int ranks, const std::string& args) {
   return test_support::run_command(
-      "exec env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 " +
+      "exec env TMPDIR=" + dir.string() +
+      " OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 " +
       std::string(SEQTOPO_MPIEXEC) + " -np " + std::to_string(ranks) +
       " --oversubscribe --bind-to none --mca btl self,vader --mca pml ob1 -q " + SEQTOPO_MPI_CLI + " " + args);
 }
@@ -45,9 +47,9 @@ TEST(SeqtopoMpi, TwoRanksWriteTheAlignmentsOfOneProcess) {
   io::write_npy(descriptors, DenseMatrix<float>(n, dim, std::move(route.descriptors)));
 
   const std::string input = "sparse " + descriptors.string() + " --out ";
-  const CommandResult one = mpirun(1, input + (dir.path / "one.json").string());
+  const CommandResult one = mpirun(dir.path, 1, input + (dir.path / "one.json").string());
   ASSERT_EQ(one.status, 0) << one.err;
-  const CommandResult two = mpirun(2, input + (dir.path / "two.json").string());
+  const CommandResult two = mpirun(dir.path, 2, input + (dir.path / "two.json").string());
   ASSERT_EQ(two.status, 0) << two.err;
   const std::string one_json = read_file(dir.path / "one.json"), two_json = read_file(dir.path / "two.json");
   EXPECT_EQ(one_json, two_json);
@@ -84,7 +86,7 @@ TEST(SeqtopoMpi, BadInputFailsOnEveryRankWithOneLine) {
   const fs::path bad = dir.path / "bad.npy";
   std::ofstream(bad) << "not a numpy file";
   const fs::path out = dir.path / "alignments.json";
-  const CommandResult run = mpirun(2, "sparse " + bad.string() + " --out " + out.string());
+  const CommandResult run = mpirun(dir.path, 2, "sparse " + bad.string() + " --out " + out.string());
   EXPECT_NE(run.status, 0);
   EXPECT_FALSE(fs::exists(out));
   // The tool's one line, from rank 0 only, naming the file.
@@ -97,9 +99,21 @@ TEST(SeqtopoMpi, BadInputFailsOnEveryRankWithOneLine) {
   ASSERT_EQ(ours.size(), 1U) << run.err;
   EXPECT_EQ(ours[0].rfind("seqtopo-mpi: error: " + bad.string() + ": ", 0), 0U) << run.err;
 
-  const CommandResult missing = mpirun(2, "sparse " + (dir.path / "missing.npy").string() + " --out " + out.string());
+  const CommandResult missing =
+      mpirun(dir.path, 2, "sparse " + (dir.path / "missing.npy").string() + " --out " + out.string());
   EXPECT_NE(missing.status, 0);
   EXPECT_NE(missing.err.find("seqtopo-mpi: error: "), std::string::npos) << missing.err;
+
+  // A bad command line is refused before MPI starts, still by the rank mpirun launched as 0 alone.
+  const CommandResult option = mpirun(dir.path, 2, "sparse " + bad.string() + " --neighbours 0 --out " + out.string());
+  EXPECT_NE(option.status, 0) << option.err;
+  std::istringstream option_lines(option.err);
+  std::vector<std::string> said;
+  while (std::getline(option_lines, line)) {
+    if (line.rfind("seqtopo-mpi:", 0) == 0) said.push_back(line);
+  }
+  ASSERT_EQ(said.size(), 1U) << option.err;
+  EXPECT_EQ(said[0].rfind("seqtopo-mpi: error: --neighbours", 0), 0U) << option.err;
 }
 
 }  // namespace
