@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Every mode next to the offline map, on the same frames: `seqtopo localize` (offline and --online, the default
-descriptors and each one alone) in both directions, and `seqtopo map` offline and --online.
+descriptors and each one alone; online also with --lag 10, each frame answered ten frames later with their evidence)
+in both directions, and `seqtopo map` offline and --online.
 
 Pairs of traversals (from ../shared/data): the bundled corridor split into its two laps (images 1-40 and 41-84,
 the ground truth from its image), and Nordland summer and winter (same index, within 2 frames).
@@ -19,6 +20,7 @@ import numpy as np
 from PIL import Image
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+LAG = 10  # frames: `localize --online --lag` (fixed-lag smoothing), measured beside the answers given at once
 
 
 def run(binary, args, out):
@@ -74,9 +76,13 @@ def main():
             cases.append(("Nordland winter in summer", summer, winter, ["--ground-truth", "same-index"]))
             cases.append(("Nordland summer in winter", winter, summer, ["--ground-truth", "same-index"]))
         for name, map_, query, truth in cases:
-            for mode in ("offline", "online"):
+            for mode in ("offline", "online", f"online, --lag {LAG}"):
                 for descriptor in (None, "joint-histogram", "patch"):
-                    extra = ["--online"] if mode == "online" else []
+                    if mode.startswith("online,") and descriptor:
+                        continue  # the lag with the default descriptors only
+                    extra = [] if mode == "offline" else ["--online"]
+                    if mode.startswith("online,"):
+                        extra += ["--lag", str(LAG)]
                     if descriptor:
                         extra += ["--descriptor", descriptor]
                     out = os.path.join(scratch, "out")

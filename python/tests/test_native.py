@@ -102,6 +102,10 @@ def test_localize_sequences_with_ground_truth_and_report(tmp_path):
     online = seqtopo.localize_sequences(s, online=True, ground_truth="same-index")
     assert online.online and len(online.latencies) == 40 and len(online.waits) == 40
     assert "latency median" in repr(online)
+    # With a lag (fixed-lag smoothing) every frame is answered once, the last ones at the end of the query.
+    lagged = seqtopo.localize_sequences(s, online=True, lag=5, ground_truth="same-index")
+    assert lagged.queries == 40 and len(lagged.map) == 40 and len(lagged.latencies) == 40
+    assert seqtopo.LocalizeConfig(lag=5).lag == 5 and seqtopo.LocalizeConfig().lag == 0
     with pytest.raises(TypeError, match="MapRun"):
         seqtopo.write_report(object(), tmp_path / "x")
 

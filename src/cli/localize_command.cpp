@@ -40,7 +40,7 @@ struct LocalizeOptions {
   std::string gt, gt_map_poses;
   std::optional<double> gt_radius;
   std::optional<std::size_t> tolerance;  // default by the ground truth's format (ground_truth.hpp)
-  std::size_t every = 1, window = 10, score_window = 10;
+  std::size_t every = 1, window = 10, score_window = 10, lag = 0;
   float gap = 2.0F, threshold = 10.0F, offset = 0.75F;
   double min_confidence = localize::LocalizeConfig{}.min_confidence;
   std::optional<float> cap;
@@ -79,6 +79,7 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o, std::size_t t
   c.tolerance = tolerance;  // the confidence is the probability of a match the evaluation counts as right
   c.min_confidence = o.min_confidence;
   c.search.reverse = !o.no_reverse;
+  c.lag = o.lag;
   c.threads = std::min(2U, resolve_threads(o.threads));
   try {
     localize::validate(c);
@@ -122,6 +123,7 @@ void run(LocalizeOptions o) {
   pipeline::LocalizeRequest request;
   request.settings.localize = localize_config(o, tolerance);
   request.online = o.online;
+  if (o.lag > 0 && !o.online) throw InputError("--lag", "is for --online (offline, every frame has the whole query)");
   const bool have_matrix = [&] {
     for (const auto* p : {&o.map_path, &o.query_path}) {
       if (!p->empty() && *p != "-" && !fs::exists(*p)) throw InputError(*p, "does not exist");
@@ -310,6 +312,9 @@ const RegisterCommand registered{
                   "file, which lists the true frames themselves); the confidence is the probability of such a "
                   "match");
        app.add_flag("--online", o->online, "take query frames one at a time; print the best map frame after each");
+       add_number(app, "--lag", o->lag, kNonNegative,
+                  "online: answer each frame once this many later frames have arrived, with their evidence "
+                  "(fixed-lag smoothing; 0 = at once)");
        add_number(app, "--threads", o->threads, kThreads,
                   "worker threads (0 = all cores; more than the cores are not used)");
        app.callback([o] { run(*o); });

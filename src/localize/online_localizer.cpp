@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -70,58 +71,124 @@ void OnlineLocalizer::step() {
   };
   fill(previous_forward_, forward_, forward_ends_, false);
   if (config_.search.reverse) fill(previous_reverse_, reverse_, reverse_ends_, true);
+  if (config_.lag == 0) return;
+  // The last lag + 1 frames' rows, for smoothed(); the oldest row's buffers are reused.
+  Rows rows;
+  if (history_.size() == config_.lag + 1) {
+    rows = std::move(history_.front());
+    history_.erase(history_.begin());
+  }
+  rows.forward = forward_;
+  rows.reverse = reverse_;
+  rows.scores = scores_;
+  rows.forward_ends = forward_ends_;
+  rows.reverse_ends = reverse_ends_;
+  history_.push_back(std::move(rows));
 }
 
 OnlineEstimate OnlineLocalizer::advance() {
   step();
-  const std::size_t m = map_frames_;
-  const bool reverse = config_.search.reverse;
   seen_.insert(seen_.end(), scores_.begin(), scores_.end());
-  OnlineEstimate e;
-  e.query = frames_seen_++;
+  const std::size_t frame = frames_seen_++;
   if (frames_seen_ == next_fit_) refit();
+  return estimate(frame, forward_, reverse_, forward_ends_, reverse_ends_, scores_, {}, {});
+}
+
+OnlineEstimate OnlineLocalizer::estimate(std::size_t frame, std::span<const float> forward,
+                                         std::span<const float> reverse, std::span<const std::uint8_t> forward_ends,
+                                         std::span<const std::uint8_t> reverse_ends, std::span<const float> scores,
+                                         std::span<const float> forward_after,
+                                         std::span<const float> reverse_after) const {
+  const std::size_t m = map_frames_;
+  const bool reverse_search = config_.search.reverse;
+  // G: the table value plus what the alignment gains after this frame (0 without later frames). A cell no alignment
+  // reaches (F = 0) stays 0: an alignment that starts later does not pass this frame.
+  const auto through = [&](std::span<const float> table, std::span<const float> after, std::size_t j) {
+    return after.empty() || !(table[j] > 0) ? table[j] : table[j] + after[j];
+  };
+  OnlineEstimate e;
+  e.query = frame;
   bool found = false;
   // Ties keep the first cell visited (forward before reverse, smaller j) unless the row score is higher.
   auto consider = [&](float value, std::size_t j, align::Direction d) {
-    const bool better = !found || value > e.score || (value == e.score && scores_[j] > scores_[e.map]);
+    const bool better = !found || value > e.score || (value == e.score && scores[j] > scores[e.map]);
     if (!better) return;
     found = true;
     e.score = value;
     e.map = j;
     e.direction = d;
   };
-  for (std::size_t j = 0; j < m; ++j) consider(forward_[j], j, align::Direction::forward);
-  if (reverse) {
-    for (std::size_t j = 0; j < m; ++j) consider(reverse_[j], j, align::Direction::reverse);
+  for (std::size_t j = 0; j < m; ++j) consider(through(forward, forward_after, j), j, align::Direction::forward);
+  if (reverse_search) {
+    for (std::size_t j = 0; j < m; ++j) consider(through(reverse, reverse_after, j), j, align::Direction::reverse);
   }
 
   // P(revisit | E): the score's E-value in the search so far (the fit's area scaled to it), as offline.
   double real = e.score >= config_.significance.threshold && e.score > 0 ? 1.0 : 0.0;
   if (fit_.valid() && e.score > 0) {
-    const double area = significance::search_area(frames_seen_, m, false, 0, reverse);
+    const double area = significance::search_area(frames_seen_, m, false, 0, reverse_search);
     e.e_value = fit_.e_value(e.score) * area / fit_.area;
     real = significance::revisit_probability(e.e_value, *config_.significance.max_e_value);
   }
-  // The posterior of where in this row the alignment ends: the guess's neighbourhood against every end. A local
-  // alignment ends on a matched pair, never on a gap, so the cells reached by a gap (the same path with gaps after
-  // it) are not ends of their own.
+  // The posterior of where in this row the alignment passes: the guess's neighbourhood against every matched pair
+  // of the row (without later frames, where an alignment ends). A local alignment ends on a matched pair, never on
+  // a gap, so the cells reached by a gap (the same path with gaps after it) are not ends of their own.
   double near = 0, all = 0;
-  const std::vector<float>& best_table = e.direction == align::Direction::forward ? forward_ : reverse_;
-  for (const std::vector<float>* table : {&forward_, &reverse_}) {
-    const bool backwards = table == &reverse_;
-    if (backwards && !reverse) break;
-    const std::vector<std::uint8_t>& ends = backwards ? reverse_ends_ : forward_ends_;
+  for (const bool backwards : {false, true}) {
+    if (backwards && !reverse_search) break;
+    const std::span<const float> table = backwards ? reverse : forward;
+    const std::span<const float> after = backwards ? reverse_after : forward_after;
+    const std::span<const std::uint8_t> ends = backwards ? reverse_ends : forward_ends;
+    const bool best_table = backwards == (e.direction == align::Direction::reverse);
     for (std::size_t j = 0; j < m; ++j) {
       if (ends[j] == 0) continue;
-      const float v = (*table)[j];
-      const double w = std::exp(lambda_ * (static_cast<double>(v) - e.score));
+      const double w = std::exp(lambda_ * (static_cast<double>(through(table, after, j)) - e.score));
       all += w;
-      if (table == &best_table && (j > e.map ? j - e.map : e.map - j) <= config_.tolerance) near += w;
+      if (best_table && (j > e.map ? j - e.map : e.map - j) <= config_.tolerance) near += w;
     }
   }
   e.confidence = all > 0 ? real * near / all : 0.0;
   e.in_map = e.confidence >= config_.min_confidence && e.confidence > 0;
   return e;
+}
+
+OnlineEstimate OnlineLocalizer::smoothed(std::size_t frame) const {
+  if (frame >= frames_seen_ || frames_seen_ - 1 - frame > config_.lag) {
+    throw std::out_of_range("frame " + std::to_string(frame) + " is not among the last " +
+                            std::to_string(config_.lag + 1) + " frames seen (" + std::to_string(frames_seen_) + ")");
+  }
+  const std::size_t m = map_frames_, later = frames_seen_ - 1 - frame;
+  if (later == 0) return estimate(frame, forward_, reverse_, forward_ends_, reverse_ends_, scores_, {}, {});
+  const Rows& at = history_[history_.size() - 1 - later];
+  // The suffix recurrence over the later frames, last first: q holds Q(r + 1, .) and becomes Q(r, .).
+  const float gap = config_.search.gap;
+  constexpr float kNone = -std::numeric_limits<float>::infinity();
+  const auto continuation = [&](bool backwards) {
+    std::vector<float> q(m, kNone), next(m, kNone);
+    for (std::size_t r = history_.size() - 1; r > history_.size() - 1 - later; --r) {
+      const std::vector<float>& s = history_[r].scores;
+      for (std::size_t k = 0; k < m; ++k) {
+        const std::size_t j = backwards ? k : m - 1 - k;  // Q(r, j) reads Q(r, j + 1) (forward) or Q(r, j - 1)
+        const bool has_diagonal = backwards ? j > 0 : j + 1 < m;
+        const std::size_t d = backwards ? j - 1 : j + 1;
+        const float matched = s[j] + std::max(0.0F, has_diagonal ? q[d] : kNone);
+        const float beside = has_diagonal ? next[d] - gap : kNone;
+        next[j] = std::max({matched, q[j] - gap, beside});
+      }
+      std::swap(q, next);
+    }
+    // C(frame, j) = max(0, Q(frame + 1, j + 1)) (forward), Q(frame + 1, j - 1) (reverse).
+    std::vector<float> after(m, 0.0F);
+    for (std::size_t j = 0; j < m; ++j) {
+      const bool has_diagonal = backwards ? j > 0 : j + 1 < m;
+      if (has_diagonal) after[j] = std::max(0.0F, q[backwards ? j - 1 : j + 1]);
+    }
+    return after;
+  };
+  const std::vector<float> forward_after = continuation(false);
+  const std::vector<float> reverse_after = config_.search.reverse ? continuation(true) : std::vector<float>(m, 0.0F);
+  return estimate(frame, at.forward, at.reverse, at.forward_ends, at.reverse_ends, at.scores, forward_after,
+                  reverse_after);
 }
 
 void OnlineLocalizer::refit() {

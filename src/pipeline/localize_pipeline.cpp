@@ -264,6 +264,16 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
     run.waits.push_back(wait);
     if (on_frame) on_frame(e.query, run.answers.back(), seconds, wait);
   };
+  // With a lag (fixed-lag smoothing), each feed answers the frame `lag` frames back; the last ones are answered when
+  // the query ends.
+  const auto answer = [&](const localize::OnlineLocalizer& localizer, const localize::OnlineEstimate& now,
+                          double seconds, double wait) {
+    if (config.lag == 0) return report(now, seconds, wait);
+    if (now.query >= config.lag) report(localizer.smoothed(now.query - config.lag), seconds, wait);
+  };
+  const auto answer_the_rest = [&](const localize::OnlineLocalizer& localizer) {
+    for (std::size_t q = run.answers.size(); q < localizer.frames_seen(); ++q) report(localizer.smoothed(q), 0.0, 0.0);
+  };
 
   if (request.similarity_file) {
     // The rows of a precomputed matrix arrive one by one.
@@ -273,8 +283,9 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
     for (std::size_t i = 0; i < s.rows; ++i) {
       const auto t = Clock::now();
       const auto e = localizer.feed(s.row(i));
-      report(e, seconds_since(t), 0.0);
+      answer(localizer, e, seconds_since(t), 0.0);
     }
+    answer_the_rest(localizer);
     run.similarity = s;
     run.queries = s.rows;
     run.maps = s.cols;
@@ -324,13 +335,14 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
         const auto e = localizer.feed_descriptors(row_of);
         const auto now = Clock::now();
         for (std::size_t d = 0; d < ds.size(); ++d) kept[d].insert(kept[d].end(), row_of[d].begin(), row_of[d].end());
-        report(e, std::chrono::duration<double>(now - arrival).count(),
+        answer(localizer, e, std::chrono::duration<double>(now - arrival).count(),
                std::chrono::duration<double>(arrival - answered).count());
         // The wait for the next frame starts at this answer (before it is reported: whoever waits for the answer
         // to send the next frame never sees a wait shorter than its own pause).
         answered = now;
       },
       &arrival);
+  answer_the_rest(localizer);
   run.queries = run.answers.size();
   if (run.queries == 0) throw InputError(request.query.path.string(), "no query frame");
   std::vector<SimilarityMatrix> seen;

@@ -153,12 +153,44 @@ TEST_F(LocalizeCli, OnlinePrintsOneEstimatePerFrame) {
   EXPECT_TRUE(fs::exists(dir_.path / "out" / "latency.csv"));
 }
 
+// With --lag, each line answers the frame `lag` frames back (the last ones at the end): one line per frame, in
+// order, and the planted revisit's frames found at least as often as at once.
+TEST_F(LocalizeCli, OnlineWithALagAnswersEveryFrameOnceInOrder) {
+  const auto s = planted();
+  const auto right = [](const std::string& out, std::vector<std::size_t>& order) {
+    std::istringstream lines(out);
+    std::string line;
+    std::getline(lines, line);
+    std::size_t found = 0;
+    while (std::getline(lines, line)) {
+      std::istringstream fields(line);
+      std::string query, map;
+      std::getline(fields, query, ',');
+      std::getline(fields, map, ',');
+      order.push_back(std::stoul(query));
+      if (order.back() < 30 && !map.empty() && std::stoul(map) == order.back() + 20) ++found;
+    }
+    return found;
+  };
+  std::vector<std::size_t> at_once, late;
+  const auto now = localize("--map " + s.string() + " --online --out " + (dir_.path / "now").string());
+  const auto lagged = localize("--map " + s.string() + " --online --lag 5 --out " + (dir_.path / "late").string());
+  ASSERT_EQ(now.status, 0) << now.err;
+  ASSERT_EQ(lagged.status, 0) << lagged.err;
+  const std::size_t found_now = right(now.out, at_once), found_late = right(lagged.out, late);
+  ASSERT_EQ(late.size(), 50U);
+  for (std::size_t q = 0; q < late.size(); ++q) EXPECT_EQ(late[q], q);
+  EXPECT_GE(found_late, found_now);
+  EXPECT_GE(found_late, 25U) << lagged.out;
+}
+
 TEST_F(LocalizeCli, RejectsBadInputWithoutLeavingOutput) {
   const auto s = planted();
   const auto out = dir_.path / "out";
   const std::vector<std::string> bad{
       "--map " + s.string() + " --gap -1 --out " + out.string(),
       "--map " + s.string() + " --cap 0 --out " + out.string(),
+      "--map " + s.string() + " --lag 3 --out " + out.string(),
       "--map " + (dir_.path / "missing.npy").string() + " --out " + out.string(),
       "--map " + s.string() + " --query " + dir_.path.string() + " --out " + out.string(),
       "--map " + s.string() + " --gt " + (dir_.path / "missing.csv").string() + " --out " + out.string(),

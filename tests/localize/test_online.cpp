@@ -151,6 +151,105 @@ TEST(Online, FollowsPlantedPathsInBothDirections) {
   }
 }
 
+// Brute force of the fixed-lag smoother's score: the best alignment through (k, j) using rows up to `last`, as the
+// table value plus the best path that starts with a matched pair after it, every later pair tried (no recurrence
+// shared with the localizer).
+float through_score(const SimilarityMatrix& scores, const std::vector<std::vector<float>>& table, std::size_t k,
+                    std::size_t j, std::size_t last, bool reverse, float gap) {
+  const std::size_t m = scores.cols;
+  const float f = table[k + 1][j + 1];
+  if (!(f > 0)) return f;
+  // P[r][c]: the best path whose first matched pair is (r, c), within rows <= last.
+  std::vector<std::vector<float>> p(last + 1, std::vector<float>(m, 0.0F));
+  const auto after = [&](std::size_t r, std::size_t c) {  // max(0, best path starting strictly after (r, c))
+    float best = 0;
+    for (std::size_t r2 = r + 1; r2 <= last; ++r2) {
+      for (std::size_t c2 = 0; c2 < m; ++c2) {
+        if (reverse ? c2 >= c : c2 <= c) continue;
+        const auto skipped = static_cast<float>((r2 - r - 1) + (reverse ? c - c2 - 1 : c2 - c - 1));
+        best = std::max(best, p[r2][c2] - gap * skipped);
+      }
+    }
+    return best;
+  };
+  for (std::size_t r = last; r > k; --r) {
+    for (std::size_t c = 0; c < m; ++c) p[r][c] = scores(r, c) + after(r, c);
+  }
+  return f + after(k, j);
+}
+
+TEST(Online, FixedLagSmoothingScoresTheBestAlignmentThroughTheFrame) {
+  std::mt19937 rng(5);
+  for (int round = 0; round < 24; ++round) {
+    const auto s = random_matrix(6 + rng() % 14, 3 + rng() % 12, rng);
+    LocalizeConfig c;
+    c.score.contrast_offset = 0.3F;
+    c.search.gap = 0.2F + 0.1F * static_cast<float>(rng() % 8);
+    c.search.reverse = round % 2 == 0;
+    c.significance.threshold = 1.0F;
+    c.lag = 1 + rng() % 5;
+    const auto scores = score_matrix(s, c);
+    const auto fwd = naive_table(scores, s.rows, false, c.search.gap, std::nullopt);
+    const auto rev = naive_table(scores, s.rows, true, c.search.gap, std::nullopt);
+    OnlineLocalizer online(s.cols, c);
+    for (std::size_t i = 0; i < s.rows; ++i) {
+      const auto now = online.feed(s.row(i));
+      const auto same = online.smoothed(i);  // no later frame: the frame's own estimate
+      EXPECT_EQ(same.map, now.map);
+      EXPECT_EQ(same.score, now.score);
+      EXPECT_EQ(same.confidence, now.confidence);
+      for (std::size_t k = i > c.lag ? i - c.lag : 0; k < i; ++k) {
+        const auto e = online.smoothed(k);
+        EXPECT_EQ(e.query, k);
+        float best = 0;
+        for (std::size_t j = 0; j < s.cols; ++j) {
+          best = std::max(best, through_score(scores, fwd, k, j, i, false, c.search.gap));
+          if (c.search.reverse) best = std::max(best, through_score(scores, rev, k, j, i, true, c.search.gap));
+        }
+        EXPECT_NEAR(e.score, best, 1e-4F * std::max(1.0F, best)) << "round " << round << " frame " << k << " of " << i;
+        const bool backwards = e.direction == align::Direction::reverse;
+        EXPECT_NEAR(through_score(scores, backwards ? rev : fwd, k, e.map, i, backwards, c.search.gap), e.score,
+                    1e-4F * std::max(1.0F, best));
+        EXPECT_GE(e.confidence, 0.0);
+        EXPECT_LE(e.confidence, 1.0);
+      }
+      if (i > c.lag) {
+        EXPECT_THROW((void)online.smoothed(i - c.lag - 1), std::out_of_range);
+      }
+    }
+    EXPECT_THROW((void)online.smoothed(s.rows), std::out_of_range);
+  }
+}
+
+// The smoother finds the planted path's frames that the filter, without the later frames, cannot tell yet.
+TEST(Online, FixedLagSmoothingRecoversTheFramesAtTheStartOfARevisit) {
+  std::mt19937 rng(3);
+  const std::size_t n = 60, m = 80, offset = 12;
+  std::normal_distribution<float> noise(0.0F, 1.0F);
+  SimilarityMatrix s(n, m);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < m; ++j) s(i, j) = noise(rng) + (j == i + offset ? 1.2F : 0.0F);
+  }
+  LocalizeConfig filter, smoother;
+  smoother.lag = 10;
+  OnlineLocalizer now(m, filter), late(m, smoother);
+  std::size_t right_now = 0, right_late = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto e = now.feed(s.row(i));
+    late.feed(s.row(i));
+    right_now += e.map + 2 >= i + offset && e.map <= i + offset + 2;
+    const auto check = [&](std::size_t k) {
+      const auto l = late.smoothed(k);
+      right_late += l.map + 2 >= k + offset && l.map <= k + offset + 2;
+    };
+    if (i >= smoother.lag) check(i - smoother.lag);
+    if (i + 1 == n) {
+      for (std::size_t k = n - smoother.lag; k < n; ++k) check(k);
+    }
+  }
+  EXPECT_GT(right_late, right_now + 3) << right_now << " of " << n << " at once, " << right_late << " with the lag";
+}
+
 TEST(Online, RejectsBadInput) {
   EXPECT_THROW(OnlineLocalizer(0), std::invalid_argument);
   LocalizeConfig bad;

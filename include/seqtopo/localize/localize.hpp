@@ -80,6 +80,9 @@ struct LocalizeConfig {
   std::size_t tolerance = 2;
   double min_confidence = 0.5;  // a frame's guess below this confidence is "not in the map"
   unsigned threads = 1;         // forward and reverse passes in parallel when > 1; result does not depend on it
+  // Online (OnlineLocalizer): each frame answered once this many later frames have arrived, with their evidence
+  // (fixed-lag smoothing, OnlineLocalizer::smoothed). 0: at once, from the frames so far.
+  std::size_t lag = 0;
 };
 
 struct FrameMatch {

@@ -35,6 +35,17 @@
 // with the weights descriptor_weights gives on the frames seen, made again at each refit; when they change the
 // tables are replayed with them.
 //
+// Fixed-lag smoothing (config.lag = L > 0; Anderson & Moore, Optimal Filtering, 1979, ch. 7): the frame L frames
+// back is answered with the evidence of the L frames since. Its cell (i, j) scores the best alignment
+// through it, G(i, j) = F(i, j) + C(i, j): the table value (the best alignment of the frames up to i ending there)
+// plus the best continuation of that alignment into the later frames, C(i, j) = max(0, Q(i + 1, j + 1)) with the
+// suffix recurrence of the same scores and gaps run backwards from the last frame,
+//   P(r, j) = s(r, j) + max(0, Q(r + 1, j + 1)),   Q(r, j) = max(P(r, j), Q(r + 1, j) - gap, Q(r, j + 1) - gap)
+// (mirrored in j for the reverse table; the continuation is uncapped). The guess, E-value and posterior are those
+// above with G in place of F, so with no later frame (C = 0) the answer is the frame's own estimate. The history
+// behind the filter is kept whole (F carries it), unlike a localization of a window of recent frames, which
+// loses a revisit through a stretch of weak frames. Work: O(L x map frames) a frame; memory: L + 1 rows of each table.
+//
 // Work per frame: O(map frames x descriptors), plus the refits (a localization of at most kFitFrames rows, D + 1 with
 // several descriptors, at 8, 16, ..., 256, 512, 768, ... frames: a bounded latency at those frames). Memory: the rows
 // seen, for the refits (frames x map frames floats, and as many again per descriptor with several).
@@ -75,6 +86,11 @@ class OnlineLocalizer {
   // The same with one row per descriptor.
   OnlineEstimate feed_descriptors(std::span<const std::span<const float>> similarity_rows);
 
+  // The estimate of frame `frame` with the evidence of every frame seen since (see fixed-lag smoothing above): any of
+  // the last config.lag + 1 frames. smoothed(frames_seen() - 1) is the estimate feed returned for the last frame.
+  // Throws std::out_of_range for a frame not seen or further back.
+  OnlineEstimate smoothed(std::size_t frame) const;
+
   std::size_t map_frames() const { return map_frames_; }
   std::size_t frames_seen() const { return frames_seen_; }
   // The table rows of the last frame (map_frames values each), for inspection and tests.
@@ -89,6 +105,18 @@ class OnlineLocalizer {
   void step();               // the recurrences' next rows from scores_
   OnlineEstimate advance();  // step, then the estimate of the frame
   void refit();              // the weights, statistics and lambda from the rows seen
+  // The estimate of a frame from its table rows and, per cell, the score the alignment gains after it (empty: none).
+  OnlineEstimate estimate(std::size_t frame, std::span<const float> forward, std::span<const float> reverse,
+                          std::span<const std::uint8_t> forward_ends, std::span<const std::uint8_t> reverse_ends,
+                          std::span<const float> scores, std::span<const float> forward_after,
+                          std::span<const float> reverse_after) const;
+
+  // One frame's rows, kept for the fixed-lag smoothing (the last config.lag + 1 frames, oldest first).
+  struct Rows {
+    std::vector<float> forward, reverse, scores;
+    std::vector<std::uint8_t> forward_ends, reverse_ends;
+  };
+  std::vector<Rows> history_;
 
   std::size_t map_frames_;
   LocalizeConfig config_;
