@@ -32,10 +32,13 @@ std::vector<std::string> decision_notes(const mapping::MapDecisions& d, std::spa
   if (!d.low_information_frames.empty()) {
     const auto& f = d.low_information_frames;  // sorted
     const std::size_t stretches = frame_stretches(f).size();
-    notes.push_back(
-        fmt::format("{} frame{} of little information (dark or near-uniform) in {} stretch{}: no evidence of a "
-                    "revisit (soft-masked), their loop closures only where a revisit runs through them",
-                    f.size(), f.size() == 1 ? "" : "s", stretches, stretches == 1 ? "" : "es"));
+    notes.push_back(fmt::format(
+        "{} frame{} of little information (dark or near-uniform{}) in {} stretch{}: no evidence of a "
+        "revisit (soft-masked), their loop closures only where a revisit runs through them",
+        f.size(), f.size() == 1 ? "" : "s",
+        d.tandem_repeat_frames == 0 ? std::string()
+                                    : fmt::format("; {} of them in tandem repeats, below", d.tandem_repeat_frames),
+        stretches, stretches == 1 ? "" : "es"));
   }
   for (const auto& p : d.linear_phase) {
     if (p.raised_to) {

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <memory>
@@ -646,29 +647,9 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
       },
       told_enhanced);
   each.clear();
-  // Tandem repeats of appearance (significance/tandem_repeats.hpp) are masked as the dark frames are.
-  std::vector<bool> masked_all = masked;
-  std::size_t repeats = 0;
-  if (config.mask_low_information && framed.score.contrast_window > 0 && framed.search.min_separation > 4) {
-    significance::TandemRepeatConfig rc;
-    // Periods up to the band (twice one fits in twice the band): a longer one is a revisit the band lets through.
-    rc.reach = 2 * framed.search.min_separation;
-    rc.min_frames = framed.search.min_separation;
-    rc.half_window = std::max<std::size_t>(framed.search.min_separation / 2, 2);
-    rc.near = std::clamp<std::size_t>(places_in_frames(2.0, place_frames), 2, framed.search.min_separation / 2);
-    const std::vector<std::size_t> in_repeats = significance::tandem_repeat_frames(enhanced, rc);
-    if (!in_repeats.empty() && masked_all.empty()) masked_all.assign(enhanced.rows, false);
-    for (std::size_t f : in_repeats) {
-      repeats += masked_all[f] ? 0 : 1;
-      masked_all[f] = true;
-    }
-  }
-  const std::vector<std::size_t> masked_frames =
-      framed.score.contrast_window > 0 ? flagged(masked_all) : std::vector<std::size_t>{};
   const double seconds_scores = seconds_since(start);
   MapResult result = build_map_from_enhanced(align::ScoreSource::dense(enhanced.values, enhanced.rows, enhanced.cols),
-                                             c, odometry, {}, masked_frames);
-  result.decisions.tandem_repeat_frames = repeats;
+                                             c, odometry, {}, low_information);
   result.decisions.similarities = similarities.size();
   result.decisions.blind_descriptors = blind;
   result.decisions.frames_per_place_estimated = estimate;
@@ -676,7 +657,8 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   // What was aligned: the enhanced scores minus the offset the run chose (or S itself without enhancement).
   if (framed.score.contrast_window > 0) {
     for (auto& v : enhanced.values) v -= result.decisions.contrast_offset;
-    detail::soft_mask(enhanced, masked_all, 0.0F);
+    const auto& aligned_masked = result.decisions.low_information_frames;  // with the tandem repeats
+    if (!aligned_masked.empty()) detail::soft_mask(enhanced, frame_flags(enhanced.rows, aligned_masked), 0.0F);
   }
   result.scores = std::move(enhanced);
   result.seconds_align += seconds_scores;
@@ -723,10 +705,27 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   align::AlignConfig engine = align_config(c);
 
   // Frames of little information carry no evidence of a revisit (with contrast enhancement, unless
-  // mask_low_information is off), in the statistics' fit as in the alignment.
-  const std::span<const std::size_t> low_information = config.mask_low_information && c.score.contrast_window > 0
-                                                           ? low_information_given
-                                                           : std::span<const std::size_t>{};
+  // mask_low_information is off), in the statistics' fit as in the alignment; nor do tandem repeats of appearance
+  // (significance/tandem_repeats.hpp), found here from the scores whatever computed them (dense or streamed).
+  std::vector<std::size_t> low_information;
+  if (config.mask_low_information && c.score.contrast_window > 0) {
+    low_information.assign(low_information_given.begin(), low_information_given.end());
+    if (c.search.min_separation > 4) {
+      significance::TandemRepeatConfig rc;
+      // Periods up to the band (twice one fits in twice the band): a longer one is a revisit the band lets through.
+      rc.reach = 2 * c.search.min_separation;
+      rc.min_frames = c.search.min_separation;
+      rc.half_window = std::max<std::size_t>(c.search.min_separation / 2, 2);
+      rc.near = std::clamp<std::size_t>(places_in_frames(2.0, d.frames_per_place), 2, c.search.min_separation / 2);
+      const std::vector<std::size_t> in_repeats = significance::tandem_repeat_frames(enhanced, rc);
+      const std::size_t given = low_information.size();
+      std::vector<std::size_t> merged;
+      std::set_union(low_information.begin(), low_information.end(), in_repeats.begin(), in_repeats.end(),
+                     std::back_inserter(merged));
+      d.tandem_repeat_frames = merged.size() - given;
+      low_information = std::move(merged);
+    }
+  }
   const std::vector<bool> masked = low_information.empty() ? std::vector<bool>{} : frame_flags(n, low_information);
   if (c.significance.max_e_value) {
     const double area_places = significance::search_area(n, n, true, c.search.min_separation, c.search.reverse) /

@@ -3,18 +3,34 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <span>
 #include <stdexcept>
 
 namespace seqtopo::significance {
 
 std::vector<std::size_t> tandem_repeat_frames(const SimilarityMatrix& s, const TandemRepeatConfig& c) {
   if (s.rows != s.cols) throw std::invalid_argument("the enhanced scores must be square");
+  return tandem_repeat_frames(align::ScoreSource::dense(std::span<const float>(s.values), s.rows, s.cols), c);
+}
+
+std::vector<std::size_t> tandem_repeat_frames(const align::ScoreSource& source, const TandemRepeatConfig& c) {
+  if (source.rows() != source.cols()) throw std::invalid_argument("the enhanced scores must be square");
   if (c.near >= c.reach) throw std::invalid_argument("near must be below reach");
   if (!(c.level > 0) || !std::isfinite(c.level)) throw std::invalid_argument("level must be a finite number > 0");
-  const std::size_t n = s.rows;
+  const std::size_t n = source.rows();
+  // The band s(k, k + d), 1 <= d <= reach, of the rows frame i reads (k - reach - half_window ... k + half_window),
+  // in a ring of rows: the scores are symmetric, so (k - d, k) is row k - d's cell d.
+  const std::size_t ring = c.reach + 2 * c.half_window + 1;
+  std::vector<float> band(ring * c.reach, 0.0F);
+  std::size_t loaded = 0;  // rows [0, loaded) read
+  const auto at = [&](std::size_t k, std::size_t d) { return band[(k % ring) * c.reach + d - 1]; };
   std::vector<bool> repeat(n, false);
   std::vector<double> diagonal(c.reach + 2, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
+    for (const std::size_t last = std::min(n - 1, i + c.half_window); loaded <= last; ++loaded) {
+      if (loaded + 1 < n)
+        source.read_row(loaded, loaded + 1, std::min(n, loaded + c.reach + 1), &band[(loaded % ring) * c.reach]);
+    }
     for (const bool ahead : {true, false}) {
       // The mean enhanced score along each diagonal d within the `half_window` frames around i: of the pairs
       // (k, k + d) ahead of it, or (k - d, k) behind it (a frame near a repeat's end sees its period on one side).
@@ -23,7 +39,7 @@ std::vector<std::size_t> tandem_repeat_frames(const SimilarityMatrix& s, const T
         double sum = 0;
         std::size_t count = 0;
         for (std::size_t k = lo; k <= hi; ++k) {
-          if (ahead ? k + d < n : k >= d) sum += ahead ? s(k, k + d) : s(k - d, k), ++count;
+          if (ahead ? k + d < n : k >= d) sum += ahead ? at(k, d) : at(k - d, d), ++count;
         }
         diagonal[d] = count == 0 ? 0.0 : sum / static_cast<double>(count);
       }

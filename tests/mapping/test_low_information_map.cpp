@@ -130,6 +130,40 @@ TEST(LowInformationMap, ACorridorOfIdenticalDoorsIsNoRevisit) {
   EXPECT_LE(masked_runs, seeds / 25);
 }
 
+// The same corridor through the engine the streamed similarities take (build_map_from_enhanced reading the scores
+// through a function, as `--streaming` and `--sparse` give them): the repeat is found from those scores and masked
+// there too, with the same frames and the same map as the dense path.
+TEST(LowInformationMap, ACorridorOfIdenticalDoorsIsNoRevisitForStreamedScores) {
+  SEQTOPO_SKIP_UNDER_SANITIZERS("10 sequences of 400 frames, each mapped three times");
+  std::size_t masked_runs = 0, unmasked_runs = 0;
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    Descriptors pass = route(400, seed);
+    const Descriptors door = route(6, seed + 1000);
+    std::mt19937 rng(seed + 2000);
+    std::normal_distribution<float> g(0.0F, 0.6F);
+    for (std::size_t i = 150; i < 270; ++i) {
+      for (std::size_t k = 0; k < kDim; ++k) pass[i][k] = 0.8F * door[(i - 150) % 6][k] + g(rng);
+    }
+    const std::vector<SimilarityMatrix> s{similarity(pass)};
+    MapConfig config;
+    config.frames_per_place = 1.0;
+    const MapResult dense = build_map(s, config);
+    const SimilarityMatrix enhanced = enhanced_scores(s, settings_in_frames(config, 1.0).score.contrast_window);
+    const auto streamed_source = align::ScoreSource::function(
+        enhanced.rows, enhanced.cols, [&enhanced](std::size_t i, std::size_t j) { return enhanced(i, j); });
+    const MapResult streamed = build_map_from_enhanced(streamed_source, config);
+    EXPECT_GT(streamed.decisions.tandem_repeat_frames, 50U) << seed;
+    EXPECT_EQ(streamed.decisions.low_information_frames, dense.decisions.low_information_frames) << seed;
+    EXPECT_EQ(streamed.pruning.pairs.size(), dense.pruning.pairs.size()) << seed;
+    masked_runs += streamed.pruning.pairs.empty() ? 0 : 1;
+    MapConfig off = config;
+    off.mask_low_information = false;
+    unmasked_runs += build_map_from_enhanced(streamed_source, off).pruning.pairs.empty() ? 0 : 1;
+  }
+  EXPECT_GE(unmasked_runs, 9U) << "the doors must look like a revisit without the mask";
+  EXPECT_LE(masked_runs, 1U);
+}
+
 // A route driven twice through the same tunnel: the revisit on either side of it is one revisit, the tunnel's
 // own pairs lie on the line between the evidence around it, and the map keeps (nearly) every closure the same
 // route without a tunnel has.

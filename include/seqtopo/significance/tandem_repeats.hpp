@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "seqtopo/align/score_source.hpp"
 #include "seqtopo/core/dense_matrix.hpp"
 
 namespace seqtopo::significance {
@@ -36,5 +37,9 @@ struct TandemRepeatConfig {
 // offset: mapping::enhanced_scores). Throws std::invalid_argument for a non-square matrix, near >= reach or a level
 // that is not a positive number.
 std::vector<std::size_t> tandem_repeat_frames(const SimilarityMatrix& enhanced, const TandemRepeatConfig& config = {});
+// The same read from any source (a streamed similarity: only the band of `reach` diagonals above the main one is
+// read, each row segment once, and at most reach + 2 half_window + 1 of them are held).
+std::vector<std::size_t> tandem_repeat_frames(const align::ScoreSource& enhanced,
+                                              const TandemRepeatConfig& config = {});
 
 }  // namespace seqtopo::significance
