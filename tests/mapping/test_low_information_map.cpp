@@ -81,6 +81,19 @@ std::vector<std::size_t> range(std::size_t begin, std::size_t end) {
   return out;
 }
 
+// One pass of 400 places with a corridor of identical doors at 150-269 (a 6-place door pattern passed 20 times, with
+// noise), no revisit.
+Descriptors door_corridor(unsigned seed) {
+  Descriptors pass = route(400, seed);
+  const Descriptors door = route(6, seed + 1000);
+  std::mt19937 rng(seed + 2000);
+  std::normal_distribution<float> g(0.0F, 0.6F);
+  for (std::size_t i = 150; i < 270; ++i) {
+    for (std::size_t k = 0; k < kDim; ++k) pass[i][k] = 0.8F * door[(i - 150) % 6][k] + g(rng);
+  }
+  return pass;
+}
+
 // One pass, no revisit, with two dark stretches far apart: dark matched with dark is not a revisit.
 TEST(LowInformationMap, DarkStretchesOfOnePassAreNoRevisit) {
   std::size_t with_mask = 0, without_mask = 0;
@@ -112,13 +125,7 @@ TEST(LowInformationMap, ACorridorOfIdenticalDoorsIsNoRevisit) {
   std::size_t masked_runs = 0, unmasked_runs = 0;
   const std::size_t seeds = 50;
   for (unsigned seed = 1; seed <= seeds; ++seed) {
-    Descriptors pass = route(400, seed);
-    const Descriptors door = route(6, seed + 1000);
-    std::mt19937 rng(seed + 2000);
-    std::normal_distribution<float> g(0.0F, 0.6F);
-    for (std::size_t i = 150; i < 270; ++i) {
-      for (std::size_t k = 0; k < kDim; ++k) pass[i][k] = 0.8F * door[(i - 150) % 6][k] + g(rng);
-    }
+    const Descriptors pass = door_corridor(seed);
     const SimilarityMatrix s = similarity(pass);
     const MapResult r = build_map(std::vector<SimilarityMatrix>{s}, MapConfig{});
     masked_runs += r.pruning.pairs.empty() ? 0 : 1;
@@ -137,13 +144,7 @@ TEST(LowInformationMap, ACorridorOfIdenticalDoorsIsNoRevisitForStreamedScores) {
   SEQTOPO_SKIP_UNDER_SANITIZERS("10 sequences of 400 frames, each mapped three times");
   std::size_t masked_runs = 0, unmasked_runs = 0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
-    Descriptors pass = route(400, seed);
-    const Descriptors door = route(6, seed + 1000);
-    std::mt19937 rng(seed + 2000);
-    std::normal_distribution<float> g(0.0F, 0.6F);
-    for (std::size_t i = 150; i < 270; ++i) {
-      for (std::size_t k = 0; k < kDim; ++k) pass[i][k] = 0.8F * door[(i - 150) % 6][k] + g(rng);
-    }
+    const Descriptors pass = door_corridor(seed);
     const std::vector<SimilarityMatrix> s{similarity(pass)};
     MapConfig config;
     config.frames_per_place = 1.0;
