@@ -82,6 +82,7 @@ std::size_t write_localize_outputs(const pipeline::LocalizeRun& r, io::OutputDir
     j["seqtopo_version"] = std::string(version());
     j["tolerance"] = r.tolerance;
     j["mode"] = r.online ? "online" : "offline";
+    if (r.online) j["lag"] = r.settings.localize.lag;
     j["ranked_by"] = "confidence";
     j["baselines"] = {{"single_frame", metrics_json(*r.single_frame)}, {"seqslam", metrics_json(*r.seqslam)}};
     j["baselines"]["seqslam"]["method"] = r.seqslam_method;

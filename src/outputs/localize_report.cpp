@@ -143,7 +143,7 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
   if (r.calibration) detail::reliability_section(html, *r.calibration, "query frames");
 
   html.heading("Parameters");
-  const std::vector<std::pair<std::string, std::string>> parameters{
+  std::vector<std::pair<std::string, std::string>> parameters{
       {"descriptor", pipeline::descriptor_names(r.settings.descriptors)},
       {"gap", fmt::format("{}", config.search.gap)},
       {"cap", config.search.cap ? fmt::format("{}", *config.search.cap) : "none"},
@@ -155,6 +155,9 @@ ReportResult write_localize_report(const pipeline::LocalizeRun& r, io::OutputDir
       {"enhancement window [frames]", std::to_string(config.score.contrast_window)},
       {"score window [frames]", std::to_string(config.score_window)},
       {"reverse pass", config.search.reverse ? "yes" : "no"}};
+  if (r.online)
+    parameters.emplace_back("online: lag [frames] (each frame answered this many frames later)",
+                            std::to_string(config.lag));
   html.key_values(parameters);
   data["parameters"] = parameters;
 

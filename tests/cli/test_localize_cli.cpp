@@ -182,6 +182,11 @@ TEST_F(LocalizeCli, OnlineWithALagAnswersEveryFrameOnceInOrder) {
   for (std::size_t q = 0; q < late.size(); ++q) EXPECT_EQ(late[q], q);
   EXPECT_GE(found_late, found_now);
   EXPECT_GE(found_late, 25U) << lagged.out;
+  // The report names the lag among the parameters.
+  EXPECT_NE(read_file(dir_.path / "late" / "report.html")
+                .find("lag [frames] (each frame answered this many frames "
+                      "later)</th><td>5<"),
+            std::string::npos);
 }
 
 TEST_F(LocalizeCli, RejectsBadInputWithoutLeavingOutput) {
