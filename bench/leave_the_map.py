@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A query that leaves the map: does `seqtopo localize` say so? Map: Nordland summer frames 0-899. Query: winter
 frames 300-599 (in the map, same index + 300) then winter frames 1200-1499 (a stretch the map does not hold).
-Offline and --online, each scored against the pairs of the first half (the second half has no true match): R@1,
+Offline, --online and --online --lag 10, each scored against the pairs of the first half (the second half has no true match): R@1,
 R@100P, ECE, frames declared in the map and their precision, and how many of the 300 off-map frames were declared
 in the map.
 
@@ -37,12 +37,14 @@ def main():
             f.write("query,map\n" + "".join(f"{q},{q + 300}\n" for q in range(300)))
         print("| mode | R@1 | R@100P | ECE | in the map | precision | off-map frames in the map |")
         print("|---|---|---|---|---|---|---|")
-        for mode in ("offline", "online"):
-            out = os.path.join(scratch, mode)
+        for mode in ("offline", "online", "online, --lag 10"):
+            out = os.path.join(scratch, mode.replace(", --", "_").replace(" ", "_"))
             command = [args.binary, "localize", "--map", os.path.join(scratch, "map"), "--query",
                        os.path.join(scratch, "query"), "--gt", truth, "--out", out]
-            if mode == "online":
+            if mode.startswith("online"):
                 command.append("--online")
+            if mode.endswith("--lag 10"):
+                command += ["--lag", "10"]
             subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             with open(os.path.join(out, "metrics.json")) as f:
                 m = json.load(f)
