@@ -55,7 +55,7 @@ struct FrameAnswer {
   // The best guess, given for every frame (offline and online).
   std::optional<std::size_t> map;
   bool in_map = false;  // the decision: confidence >= the minimum confidence
-  float score = 0;      // local alignment score (online: the table value)
+  float score = 0;      // local alignment score (online: the table value; with a lag, of the best path through it)
   // The probability that the guess is right (localize/localize.hpp; online from the frames so far,
   // localize/online_localizer.hpp).
   double confidence = 0;
