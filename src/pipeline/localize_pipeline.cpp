@@ -264,15 +264,22 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
     run.waits.push_back(wait);
     if (on_frame) on_frame(e.query, run.answers.back(), seconds, wait);
   };
-  // With a lag (fixed-lag smoothing), each feed answers the frame `lag` frames back; the last ones are answered when
-  // the query ends.
+  // With a lag (fixed-lag smoothing), each feed answers the frame `lag` frames back, its latency the feed's and the
+  // smoothing's; the last ones are answered when the query ends, each with the smoothing's time and no wait.
   const auto answer = [&](const localize::OnlineLocalizer& localizer, const localize::OnlineEstimate& now,
                           double seconds, double wait) {
     if (config.lag == 0) return report(now, seconds, wait);
-    if (now.query >= config.lag) report(localizer.smoothed(now.query - config.lag), seconds, wait);
+    if (now.query < config.lag) return;
+    const auto t = Clock::now();
+    const localize::OnlineEstimate late = localizer.smoothed(now.query - config.lag);
+    report(late, seconds + seconds_since(t), wait);
   };
   const auto answer_the_rest = [&](const localize::OnlineLocalizer& localizer) {
-    for (std::size_t q = run.answers.size(); q < localizer.frames_seen(); ++q) report(localizer.smoothed(q), 0.0, 0.0);
+    for (std::size_t q = run.answers.size(); q < localizer.frames_seen(); ++q) {
+      const auto t = Clock::now();
+      const localize::OnlineEstimate late = localizer.smoothed(q);
+      report(late, seconds_since(t), 0.0);
+    }
   };
 
   if (request.similarity_file) {
