@@ -17,10 +17,14 @@ namespace seqtopo::localize {
 
 namespace {
 
-void check_matrix(const SimilarityMatrix& s) {
+void check_shape(const SimilarityMatrix& s) {
   if (s.empty()) throw std::invalid_argument("empty similarity matrix");
   if (s.values.size() != s.rows * s.cols)
     throw std::invalid_argument("similarity matrix size does not match its shape");
+}
+
+void check_matrix(const SimilarityMatrix& s) {
+  check_shape(s);
   for (float v : s.values) {
     if (!std::isfinite(v)) throw std::invalid_argument("similarity matrix has a non-finite value");
   }
@@ -218,25 +222,21 @@ LocalizeResult localize_sequence(const SimilarityMatrix& s, const LocalizeConfig
   return localize_scores(score_matrix(s, c), c);
 }
 
-void fused_score_row(std::span<const float* const> rows, std::size_t cols, const LocalizeConfig& c, float* out,
-                     float* scratch, std::span<const double> weights) {
-  if (rows.empty()) throw std::invalid_argument("no similarity row");
-  if (!weights.empty() && weights.size() != rows.size()) throw std::invalid_argument("one weight per descriptor");
-  if (rows.size() == 1) {
-    score_row(rows.front(), cols, c, out);
-    return;
-  }
+namespace {
+
+// The fusion of one row from each descriptor's row as the alignment reads it (enhanced, or the similarity itself
+// without enhancement), `enhanced(d)` giving descriptor d's: the weighted average, then the offset.
+template <class Row>
+void fuse_row(std::size_t descriptors, std::size_t cols, float offset, std::span<const double> weights, float* out,
+              Row&& enhanced) {
+  if (!weights.empty() && weights.size() != descriptors) throw std::invalid_argument("one weight per descriptor");
   double total = 0;
-  for (std::size_t d = 0; d < rows.size(); ++d) total += weights.empty() ? 1.0 : weights[d];
+  for (std::size_t d = 0; d < descriptors; ++d) total += weights.empty() ? 1.0 : weights[d];
   if (!(total > 0)) throw std::invalid_argument("the descriptors' weights sum to 0");
   std::fill(out, out + cols, 0.0F);
-  for (std::size_t d = 0; d < rows.size(); ++d) {
+  for (std::size_t d = 0; d < descriptors; ++d) {
     if (!weights.empty() && weights[d] == 0) continue;
-    const float* row = rows[d];
-    if (c.enhance) {
-      similarity::enhance_row(row, cols, c.score.contrast_window == 0 ? cols : c.score.contrast_window, scratch);
-      row = scratch;
-    }
+    const float* row = enhanced(d);
     if (weights.empty()) {
       for (std::size_t j = 0; j < cols; ++j) out[j] += row[j];
     } else {
@@ -245,16 +245,34 @@ void fused_score_row(std::span<const float* const> rows, std::size_t cols, const
     }
   }
   // Equal weights: the sum divided by the count, as the map's fusion (mapping::enhanced_scores).
-  const float count = weights.empty() ? static_cast<float>(rows.size()) : 1.0F;
-  for (std::size_t j = 0; j < cols; ++j) out[j] = out[j] / count - c.score.contrast_offset;
+  const float count = weights.empty() ? static_cast<float>(descriptors) : 1.0F;
+  for (std::size_t j = 0; j < cols; ++j) out[j] = out[j] / count - offset;
+}
+
+}  // namespace
+
+void fused_score_row(std::span<const float* const> rows, std::size_t cols, const LocalizeConfig& c, float* out,
+                     float* scratch, std::span<const double> weights) {
+  if (rows.empty()) throw std::invalid_argument("no similarity row");
+  if (rows.size() == 1) {
+    if (!weights.empty() && weights.size() != 1) throw std::invalid_argument("one weight per descriptor");
+    score_row(rows.front(), cols, c, out);
+    return;
+  }
+  fuse_row(rows.size(), cols, c.score.contrast_offset, weights, out, [&](std::size_t d) {
+    if (!c.enhance) return rows[d];
+    similarity::enhance_row(rows[d], cols, c.score.contrast_window == 0 ? cols : c.score.contrast_window, scratch);
+    return static_cast<const float*>(scratch);
+  });
 }
 
 namespace {
 
+// The shapes only: the values are checked where each matrix is first read (score_matrix), once.
 void check_same_shape(std::span<const SimilarityMatrix> ss) {
   if (ss.empty()) throw std::invalid_argument("no similarity matrix");
   for (const auto& s : ss) {
-    check_matrix(s);
+    check_shape(s);
     if (s.rows != ss.front().rows || s.cols != ss.front().cols) {
       throw std::invalid_argument("the similarity matrices of the descriptors differ in shape (" +
                                   std::to_string(s.rows) + " x " + std::to_string(s.cols) + " and " +
@@ -265,32 +283,50 @@ void check_same_shape(std::span<const SimilarityMatrix> ss) {
 
 }  // namespace
 
-SimilarityMatrix fused_score_matrix(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c,
-                                    std::span<const double> weights) {
-  check_same_shape(ss);
-  validate(c);
-  if (ss.size() == 1) return score_matrix(ss.front(), c);
-  const std::size_t rows = ss.front().rows, cols = ss.front().cols;
+namespace {
+
+// Each similarity as the alignment reads it before the offset: its rows contrast-enhanced (the similarity itself
+// without enhancement). Made once for the weights and the fusion (each enhancement is a pass over the table).
+std::vector<SimilarityMatrix> enhanced_each(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c) {
+  LocalizeConfig unshifted = c;
+  unshifted.score.contrast_offset = 0;
+  std::vector<SimilarityMatrix> out;
+  out.reserve(ss.size());
+  for (const auto& s : ss) out.push_back(score_matrix(s, unshifted));
+  return out;
+}
+
+// score_matrix from its enhanced table: the same values (x - 0 - offset is x - offset).
+SimilarityMatrix minus(const SimilarityMatrix& enhanced, float offset) {
+  SimilarityMatrix out = enhanced;
+  for (auto& v : out.values) v -= offset;
+  return out;
+}
+
+// fused_score_matrix from the enhanced tables.
+SimilarityMatrix fuse_enhanced(const std::vector<SimilarityMatrix>& enhanced, std::span<const double> weights,
+                               float offset) {
+  const std::size_t rows = enhanced.front().rows, cols = enhanced.front().cols;
   SimilarityMatrix out(rows, cols);
-  std::vector<const float*> row(ss.size());
-  std::vector<float> scratch(cols);
   for (std::size_t i = 0; i < rows; ++i) {
-    for (std::size_t d = 0; d < ss.size(); ++d) row[d] = ss[d].row(i).data();
-    fused_score_row(row, cols, c, out.row(i).data(), scratch.data(), weights);
+    fuse_row(enhanced.size(), cols, offset, weights, out.row(i).data(),
+             [&](std::size_t d) { return enhanced[d].row(i).data(); });
   }
   return out;
 }
 
-std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c) {
-  check_same_shape(ss);
-  std::vector<double> equal(ss.size(), 1.0);
-  if (ss.size() < 2 || !c.enhance) return equal;
-  const double strict = *c.significance.max_e_value / static_cast<double>(ss.size());
-  std::vector<bool> sees_alone(ss.size(), false);
+// descriptor_weights from the enhanced tables (see the header).
+std::vector<double> weights_of_enhanced(const std::vector<SimilarityMatrix>& enhanced, const LocalizeConfig& c) {
+  const std::size_t descriptors = enhanced.size();
+  std::vector<double> equal(descriptors, 1.0);
+  if (descriptors < 2 || !c.enhance) return equal;
+  const float offset = c.score.contrast_offset;
+  const double strict = *c.significance.max_e_value / static_cast<double>(descriptors);
+  std::vector<bool> sees_alone(descriptors, false);
   std::vector<std::pair<std::size_t, std::size_t>> seen;  // the pairs of the alignments found at `strict`
-  for (std::size_t d = 0; d < ss.size(); ++d) {
+  for (std::size_t d = 0; d < descriptors; ++d) {
     // Its alignments and their E-values: the frames' answers (posteriors) are not needed here.
-    const LocalizeResult alone = search_scores(score_matrix(ss[d], c), c);
+    const LocalizeResult alone = search_scores(minus(enhanced[d], offset), c);
     if (!alone.statistics.valid()) continue;
     for (std::size_t k = 0; k < alone.alignments.size(); ++k) {
       sees_alone[d] = sees_alone[d] || alone.e_values[k] <= *c.significance.max_e_value;
@@ -302,15 +338,18 @@ std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> ss, con
   std::sort(seen.begin(), seen.end());
   seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
   if (seen.size() < 2) return equal;
-  std::vector<double> weights(ss.size(), 0.0);
-  for (std::size_t d = 0; d < ss.size(); ++d) {
-    // Scored again rather than kept from the loop above: one query x map table at a time, as the map's check.
-    const SimilarityMatrix e = score_matrix(ss[d], c);
+  std::vector<double> weights(descriptors, 0.0);
+  for (std::size_t d = 0; d < descriptors; ++d) {
+    // The aligned scores, enhanced minus the offset, read where they are.
+    const SimilarityMatrix& e = enhanced[d];
     double chance = 0;
-    for (float v : e.values) chance += v;
+    for (float v : e.values) chance += v - offset;
     chance /= static_cast<double>(e.values.size());
     double sum = 0, sum2 = 0;
-    for (const auto& [i, j] : seen) sum += e(i, j), sum2 += static_cast<double>(e(i, j)) * e(i, j);
+    for (const auto& [i, j] : seen) {
+      const float v = e(i, j) - offset;
+      sum += v, sum2 += static_cast<double>(v) * v;
+    }
     const auto m = static_cast<double>(seen.size());
     const double mean = sum / m, sd = std::sqrt(std::max(0.0, sum2 / m - mean * mean));
     const bool blind = !sees_alone[d] && mean - chance < 3 * sd / std::sqrt(m);
@@ -320,11 +359,33 @@ std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> ss, con
   return weights;
 }
 
+}  // namespace
+
+SimilarityMatrix fused_score_matrix(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c,
+                                    std::span<const double> weights) {
+  check_same_shape(ss);
+  validate(c);
+  if (ss.size() == 1) return score_matrix(ss.front(), c);
+  return fuse_enhanced(enhanced_each(ss, c), weights, c.score.contrast_offset);
+}
+
+std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c) {
+  check_same_shape(ss);
+  if (ss.size() < 2 || !c.enhance) {
+    for (const auto& s : ss) check_matrix(s);
+    return std::vector<double>(ss.size(), 1.0);
+  }
+  return weights_of_enhanced(enhanced_each(ss, c), c);
+}
+
 LocalizeResult localize_sequence(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c) {
   check_same_shape(ss);
   if (ss.size() == 1) return localize_sequence(ss.front(), c);
-  const std::vector<double> weights = descriptor_weights(ss, c);
-  LocalizeResult r = localize_scores(fused_score_matrix(ss, c, weights), c);
+  const std::vector<SimilarityMatrix> enhanced = enhanced_each(ss, c);
+  const std::vector<double> weights = weights_of_enhanced(enhanced, c);
+  SimilarityMatrix fused = fuse_enhanced(enhanced, weights, 0.0F);
+  LocalizeResult r = localize_scores(minus(fused, c.score.contrast_offset), c);
+  r.fused_enhanced = std::move(fused);
   r.descriptor_weights = weights;
   for (std::size_t d = 0; d < weights.size(); ++d) {
     if (weights[d] == 0) r.blind_descriptors.push_back(d);

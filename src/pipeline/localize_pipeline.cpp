@@ -100,7 +100,7 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
 
   const auto t1 = Clock::now();
   const auto& config = request.settings.localize;
-  const auto result = localize::localize_sequence(similarities, config);
+  auto result = localize::localize_sequence(similarities, config);
   run.timings.emplace_back("alignment (forward and reverse)", seconds_since(t1));
   run.blind_descriptors = result.blind_descriptors;
   run.descriptor_weights = result.descriptor_weights;
@@ -121,9 +121,7 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
     }
     // What the figure and the baselines see: the fused enhanced scores, before the offset (and, for the baselines,
     // each descriptor's own similarity).
-    localize::LocalizeConfig unshifted = config;
-    unshifted.score.contrast_offset = 0;
-    run.similarity = localize::fused_score_matrix(similarities, unshifted, result.descriptor_weights);
+    run.similarity = std::move(result.fused_enhanced);
     for (std::size_t d = 0; d < similarities.size(); ++d) {
       run.descriptor_similarities.emplace_back(descriptor_name(run.settings.descriptors[d]),
                                                std::move(similarities[d]));

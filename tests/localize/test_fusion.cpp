@@ -53,6 +53,19 @@ TEST(Fusion, EqualWeightsAverageTheEnhancedRowsThenSubtractTheOffset) {
   }
   // One matrix is score_matrix itself.
   EXPECT_EQ(fused_score_matrix(std::span(ss).first(1), c).values, score_matrix(ss[0], c).values);
+  // The localization keeps the fused enhanced scores it aligned, before the offset: fused_score_matrix's, bit for
+  // bit (each similarity enhanced once there, for the weights and the fusion alike), with the weights it chose; and
+  // the answers are those of the fused scores aligned on their own.
+  const LocalizeResult r = localize_sequence(ss, c);
+  EXPECT_EQ(r.fused_enhanced.values, fused_score_matrix(ss, unshifted, r.descriptor_weights).values);
+  EXPECT_EQ(r.descriptor_weights, descriptor_weights(ss, c));
+  const LocalizeResult again = localize_scores(fused_score_matrix(ss, c, r.descriptor_weights), c);
+  ASSERT_EQ(r.frames.size(), again.frames.size());
+  for (std::size_t q = 0; q < r.frames.size(); ++q) {
+    EXPECT_EQ(r.frames[q].map, again.frames[q].map);
+    EXPECT_EQ(r.frames[q].confidence, again.frames[q].confidence);
+  }
+  EXPECT_TRUE(localize_sequence(std::span(ss).first(1), c).fused_enhanced.empty());
   // The row version gives the matrix's rows.
   std::vector<float> row(ss[0].cols), scratch(ss[0].cols);
   for (std::size_t i = 0; i < ss[0].rows; i += 17) {

@@ -106,6 +106,9 @@ struct LocalizeResult {
   // (indices, ascending).
   std::vector<double> descriptor_weights;
   std::vector<std::size_t> blind_descriptors;
+  // Several similarities: the fused enhanced scores before the offset (fused_score_matrix with contrast_offset 0),
+  // what a figure of the run shows. Empty with one.
+  SimilarityMatrix fused_enhanced;
 };
 
 // The matrix the alignment scores: contrast-enhanced rows minus the contrast offset (see above). Throws
@@ -141,7 +144,8 @@ std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> query_x
                                        const LocalizeConfig& config = {});
 
 // The localization of several descriptors' similarities, fused with their weights (descriptor_weights; those of
-// weight 0 left out, result.blind_descriptors). One matrix: localize_sequence of it.
+// weight 0 left out, result.blind_descriptors). One matrix: localize_sequence of it. Each similarity is
+// contrast-enhanced once, for the weights and the fusion alike.
 LocalizeResult localize_sequence(std::span<const SimilarityMatrix> query_x_map, const LocalizeConfig& config = {});
 // The localization of a score matrix already made (score_matrix, fused_score_matrix): the rest of localize_sequence.
 LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeConfig& config = {});
