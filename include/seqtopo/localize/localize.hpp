@@ -145,7 +145,8 @@ std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> query_x
 
 // The localization of several descriptors' similarities, fused with their weights (descriptor_weights; those of
 // weight 0 left out, result.blind_descriptors). One matrix: localize_sequence of it. Each similarity is
-// contrast-enhanced once, for the weights and the fusion alike.
+// contrast-enhanced once, for the weights and the fusion alike: the D enhanced tables are held together (D query x
+// map tables of floats beside the similarities).
 LocalizeResult localize_sequence(std::span<const SimilarityMatrix> query_x_map, const LocalizeConfig& config = {});
 // The localization of a score matrix already made (score_matrix, fused_score_matrix): the rest of localize_sequence.
 LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeConfig& config = {});
