@@ -769,7 +769,8 @@ def localize_sequences(
 
     ``map``, ``query``: image folders, videos or ``descriptors.npy`` (the command's ``--map``/``--query``); or
     ``map`` alone a query x map similarity (a ``similarity.npy`` path or an array, rows = query frames).
-    ``config``: a :class:`LocalizeConfig`, keyword arguments override its fields. ``online``: frame by frame.
+    ``config``: a :class:`LocalizeConfig`, keyword arguments override its fields. ``online``: frame by frame
+    (with ``lag=L``, each frame answered once L later frames have arrived, with their evidence: fixed-lag smoothing).
     ``descriptor``: one name or several comma-separated (fused); ``None``, the map's default (joint histogram and
     patch, panorama for 360-degree images), as the command without ``--descriptor``.
     ``ground_truth``: ``"same-index"`` (query k is map k), a CSV of ``query,map`` pairs, or an array of such
