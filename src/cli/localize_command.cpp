@@ -312,7 +312,7 @@ const RegisterCommand registered{
                   "file, which lists the true frames themselves); the confidence is the probability of such a "
                   "match");
        app.add_flag("--online", o->online, "take query frames one at a time; print the best map frame after each");
-       add_number(app, "--lag", o->lag, {.min = 0, .max = localize::LocalizeConfig::kMaxLag},
+       add_number(app, "--lag", o->lag, {.min = 0, .max = localize::kMaxLag},
                   "online: answer each frame once this many later frames have arrived, with their evidence "
                   "(fixed-lag smoothing; 0 = at once)");
        add_number(app, "--threads", o->threads, kThreads,

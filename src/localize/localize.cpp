@@ -45,8 +45,7 @@ void validate(const LocalizeConfig& c) {
   if (c.candidates == 0) throw std::invalid_argument("candidates must be >= 1");
   if (!(c.min_confidence >= 0 && c.min_confidence <= 1))
     throw std::invalid_argument("min_confidence must be in [0, 1]");
-  if (c.lag > LocalizeConfig::kMaxLag)
-    throw std::invalid_argument("lag must be at most " + std::to_string(LocalizeConfig::kMaxLag) + " frames");
+  if (c.lag > kMaxLag) throw std::invalid_argument("lag must be at most " + std::to_string(kMaxLag) + " frames");
 }
 
 void score_row(const float* row, std::size_t cols, const LocalizeConfig& c, float* out) {

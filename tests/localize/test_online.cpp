@@ -256,9 +256,9 @@ TEST(Online, RejectsBadInput) {
   bad.search.gap = std::nanf("");
   EXPECT_THROW(OnlineLocalizer(3, bad), std::invalid_argument);
   LocalizeConfig too_late;  // a lag's answers cost lag x map frames each
-  too_late.lag = LocalizeConfig::kMaxLag + 1;
+  too_late.lag = kMaxLag + 1;
   EXPECT_THROW(OnlineLocalizer(3, too_late), std::invalid_argument);
-  too_late.lag = LocalizeConfig::kMaxLag;
+  too_late.lag = kMaxLag;
   EXPECT_NO_THROW(OnlineLocalizer(3, too_late));
   OnlineLocalizer online(3);
   const std::vector<float> short_row{1.0F, 2.0F};

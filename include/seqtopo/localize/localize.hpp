@@ -58,6 +58,10 @@
 
 namespace seqtopo::localize {
 
+// The longest lag LocalizeConfig::lag takes: each answer costs lag x map frames, and the last `lag` frames' answers
+// at the query's end lag^2 x map frames.
+inline constexpr std::size_t kMaxLag = 1000;
+
 struct LocalizeConfig {
   // The sections the map shares (align/settings.hpp), with localization's defaults. Row contrast enhancement
   // (similarity/contrast_enhancement.hpp): z-score against +-score.contrast_window map frames (0 = the whole row;
@@ -81,9 +85,7 @@ struct LocalizeConfig {
   double min_confidence = 0.5;  // a frame's guess below this confidence is "not in the map"
   unsigned threads = 1;         // forward and reverse passes in parallel when > 1; result does not depend on it
   // Online (OnlineLocalizer): each frame answered once this many later frames have arrived, with their evidence
-  // (fixed-lag smoothing, OnlineLocalizer::smoothed). 0: at once, from the frames so far. At most kMaxLag: each answer
-  // costs lag x map frames, and the last `lag` frames' answers at the query's end lag^2 x map frames.
-  static constexpr std::size_t kMaxLag = 1000;
+  // (fixed-lag smoothing, OnlineLocalizer::smoothed). 0: at once, from the frames so far. At most kMaxLag.
   std::size_t lag = 0;
 };
 
