@@ -13,13 +13,13 @@ namespace seqtopo::localize {
 OnlineLocalizer::OnlineLocalizer(std::size_t map_frames, const LocalizeConfig& config, std::size_t descriptors)
     : map_frames_(map_frames),
       config_(config),
-      forward_(map_frames, 0.0F),
-      reverse_(map_frames, 0.0F),
+      now_{.forward = std::vector<float>(map_frames, 0.0F),
+           .reverse = std::vector<float>(map_frames, 0.0F),
+           .scores = std::vector<float>(map_frames, 0.0F),
+           .forward_ends = std::vector<std::uint8_t>(map_frames, 0),
+           .reverse_ends = std::vector<std::uint8_t>(map_frames, 0)},
       previous_forward_(map_frames, 0.0F),
       previous_reverse_(map_frames, 0.0F),
-      scores_(map_frames, 0.0F),
-      forward_ends_(map_frames, 0),
-      reverse_ends_(map_frames, 0),
       raw_(descriptors > 1 ? descriptors : 0) {
   if (map_frames == 0) throw std::invalid_argument("the map has no frame");
   if (descriptors == 0) throw std::invalid_argument("at least one descriptor");
@@ -46,7 +46,7 @@ OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const
     }
   }
   if (raw_.empty()) {
-    score_row(rows.front().data(), map_frames_, config_, scores_.data());
+    score_row(rows.front().data(), map_frames_, config_, now_.scores.data());
   } else {
     std::vector<const float*> pointers;
     for (std::size_t d = 0; d < rows.size(); ++d) {
@@ -54,23 +54,23 @@ OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const
       pointers.push_back(rows[d].data());
     }
     scratch_.resize(map_frames_);
-    fused_score_row(pointers, map_frames_, config_, scores_.data(), scratch_.data(), weights_);
+    fused_score_row(pointers, map_frames_, config_, now_.scores.data(), scratch_.data(), weights_);
   }
   return advance();
 }
 
 void OnlineLocalizer::step() {
-  std::swap(previous_forward_, forward_);
-  std::swap(previous_reverse_, reverse_);
+  std::swap(previous_forward_, now_.forward);
+  std::swap(previous_reverse_, now_.reverse);
   const auto fill = [&](const std::vector<float>& previous, std::vector<float>& row, std::vector<std::uint8_t>& ends,
                         bool backwards) {
-    align::fill_online_row(previous, scores_, row, backwards, config_.search.gap, config_.search.cap,
+    align::fill_online_row(previous, now_.scores, row, backwards, config_.search.gap, config_.search.cap,
                            [&](std::size_t j, align::Step step, std::size_t, std::size_t) {
                              ends[j] = step == align::Step::diagonal ? 1 : 0;
                            });
   };
-  fill(previous_forward_, forward_, forward_ends_, false);
-  if (config_.search.reverse) fill(previous_reverse_, reverse_, reverse_ends_, true);
+  fill(previous_forward_, now_.forward, now_.forward_ends, false);
+  if (config_.search.reverse) fill(previous_reverse_, now_.reverse, now_.reverse_ends, true);
   if (config_.lag == 0) return;
   // The last lag + 1 frames' rows, for smoothed(); the oldest row's buffers are reused.
   Rows rows;
@@ -78,27 +78,22 @@ void OnlineLocalizer::step() {
     rows = std::move(history_.front());
     history_.erase(history_.begin());
   }
-  rows.forward = forward_;
-  rows.reverse = reverse_;
-  rows.scores = scores_;
-  rows.forward_ends = forward_ends_;
-  rows.reverse_ends = reverse_ends_;
+  rows = now_;
   history_.push_back(std::move(rows));
 }
 
 OnlineEstimate OnlineLocalizer::advance() {
   step();
-  seen_.insert(seen_.end(), scores_.begin(), scores_.end());
+  seen_.insert(seen_.end(), now_.scores.begin(), now_.scores.end());
   const std::size_t frame = frames_seen_++;
   if (frames_seen_ == next_fit_) refit();
-  return estimate(frame, forward_, reverse_, forward_ends_, reverse_ends_, scores_, {}, {});
+  return estimate(frame, now_, {}, {});
 }
 
-OnlineEstimate OnlineLocalizer::estimate(std::size_t frame, std::span<const float> forward,
-                                         std::span<const float> reverse, std::span<const std::uint8_t> forward_ends,
-                                         std::span<const std::uint8_t> reverse_ends, std::span<const float> scores,
-                                         std::span<const float> forward_after,
+OnlineEstimate OnlineLocalizer::estimate(std::size_t frame, const Rows& rows, std::span<const float> forward_after,
                                          std::span<const float> reverse_after) const {
+  const std::span<const float> forward = rows.forward, reverse = rows.reverse, scores = rows.scores;
+  const std::span<const std::uint8_t> forward_ends = rows.forward_ends, reverse_ends = rows.reverse_ends;
   const std::size_t m = map_frames_;
   const bool reverse_search = config_.search.reverse;
   // G: the table value plus what the alignment gains after this frame (0 without later frames). A cell no alignment
@@ -158,7 +153,7 @@ OnlineEstimate OnlineLocalizer::smoothed(std::size_t frame) const {
                             std::to_string(config_.lag + 1) + " frames seen (" + std::to_string(frames_seen_) + ")");
   }
   const std::size_t m = map_frames_, later = frames_seen_ - 1 - frame;
-  if (later == 0) return estimate(frame, forward_, reverse_, forward_ends_, reverse_ends_, scores_, {}, {});
+  if (later == 0) return estimate(frame, now_, {}, {});
   const Rows& at = history_[history_.size() - 1 - later];
   // The suffix recurrence over the later frames, last first: q holds Q(r + 1, .) and becomes Q(r, .).
   const float gap = config_.search.gap;
@@ -187,8 +182,7 @@ OnlineEstimate OnlineLocalizer::smoothed(std::size_t frame) const {
   };
   const std::vector<float> forward_after = continuation(false);
   const std::vector<float> reverse_after = config_.search.reverse ? continuation(true) : std::vector<float>(m, 0.0F);
-  return estimate(frame, at.forward, at.reverse, at.forward_ends, at.reverse_ends, at.scores, forward_after,
-                  reverse_after);
+  return estimate(frame, at, forward_after, reverse_after);
 }
 
 void OnlineLocalizer::refit() {
@@ -218,10 +212,10 @@ void OnlineLocalizer::refit() {
       for (const auto& raw : raw_) seen.emplace_back(frames_seen_, map_frames_, raw);
       const SimilarityMatrix scored = fused_score_matrix(seen, config_, weights_);
       seen_ = scored.values;
-      std::fill(forward_.begin(), forward_.end(), 0.0F);
-      std::fill(reverse_.begin(), reverse_.end(), 0.0F);
+      std::fill(now_.forward.begin(), now_.forward.end(), 0.0F);
+      std::fill(now_.reverse.begin(), now_.reverse.end(), 0.0F);
       for (std::size_t i = 0; i < frames_seen_; ++i) {
-        std::copy_n(scored.row(i).begin(), map_frames_, scores_.begin());
+        std::copy_n(scored.row(i).begin(), map_frames_, now_.scores.begin());
         step();
       }
     }

@@ -94,37 +94,35 @@ class OnlineLocalizer {
   std::size_t map_frames() const { return map_frames_; }
   std::size_t frames_seen() const { return frames_seen_; }
   // The table rows of the last frame (map_frames values each), for inspection and tests.
-  std::span<const float> forward_row() const { return forward_; }
-  std::span<const float> reverse_row() const { return reverse_; }
+  std::span<const float> forward_row() const { return now_.forward; }
+  std::span<const float> reverse_row() const { return now_.reverse; }
   // The statistics the confidences use now (valid() false before the first fit).
   const significance::ScoreStatistics& statistics() const { return fit_; }
   // The descriptors' weights in the fusion now (empty: equal, before the first fit or with one descriptor).
   const std::vector<double>& weights() const { return weights_; }
 
  private:
-  void step();               // the recurrences' next rows from scores_
-  OnlineEstimate advance();  // step, then the estimate of the frame
-  void refit();              // the weights, statistics and lambda from the rows seen
-  // The estimate of a frame from its table rows and, per cell, the score the alignment gains after it (empty: none).
-  OnlineEstimate estimate(std::size_t frame, std::span<const float> forward, std::span<const float> reverse,
-                          std::span<const std::uint8_t> forward_ends, std::span<const std::uint8_t> reverse_ends,
-                          std::span<const float> scores, std::span<const float> forward_after,
-                          std::span<const float> reverse_after) const;
-
-  // One frame's rows, kept for the fixed-lag smoothing (the last config.lag + 1 frames, oldest first).
+  // One frame's rows: the two tables, its scored row, and where an alignment ends on a matched pair (1).
   struct Rows {
     std::vector<float> forward, reverse, scores;
     std::vector<std::uint8_t> forward_ends, reverse_ends;
   };
-  std::vector<Rows> history_;
+
+  void step();               // the recurrences' next rows from now_.scores
+  OnlineEstimate advance();  // step, then the estimate of the frame
+  void refit();              // the weights, statistics and lambda from the rows seen
+  // The estimate of a frame from its rows and, per cell, the score the alignment gains after it (empty: none).
+  OnlineEstimate estimate(std::size_t frame, const Rows& rows, std::span<const float> forward_after,
+                          std::span<const float> reverse_after) const;
 
   std::size_t map_frames_;
   LocalizeConfig config_;
   std::size_t frames_seen_ = 0;
-  std::vector<float> forward_, reverse_, previous_forward_, previous_reverse_, scores_;
-  std::vector<std::uint8_t> forward_ends_, reverse_ends_;  // 1 where an alignment ends on a matched pair this row
-  std::vector<float> seen_;                                // the scored rows so far, for the refits
-  std::vector<std::vector<float>> raw_;                    // several descriptors: each one's similarity rows so far
+  Rows now_;                                                // the last frame's rows
+  std::vector<float> previous_forward_, previous_reverse_;  // the tables' rows before them
+  std::vector<Rows> history_;  // the last config.lag + 1 frames' rows, oldest first, for the fixed-lag smoothing
+  std::vector<float> seen_;    // the scored rows so far, for the refits
+  std::vector<std::vector<float>> raw_;  // several descriptors: each one's similarity rows so far
   std::vector<double> weights_;
   std::vector<float> scratch_;
   significance::ScoreStatistics fit_;
