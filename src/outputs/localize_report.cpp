@@ -5,8 +5,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "report_data.hpp"
 #include "seqtopo/outputs/localize_outputs.hpp"

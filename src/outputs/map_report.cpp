@@ -6,9 +6,8 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
+#include <filesystem>
 #include <map>
-#include <sstream>
 
 #include "figures.hpp"
 #include "report_data.hpp"
