@@ -1,8 +1,10 @@
 #include "seqtopo/align/score_source.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace seqtopo::align {
 namespace {
@@ -40,6 +42,33 @@ ScoreSource ScoreSource::dense(std::span<const double> values, std::size_t rows,
 
 ScoreSource ScoreSource::derived(RowReader reader, CellReader cell) const {
   ScoreSource source(rows_, cols_, std::move(reader), std::move(cell));
+  source.in_memory_ = in_memory_;
+  return source;
+}
+
+ScoreSource ScoreSource::subset(std::vector<std::size_t> frames) const {
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    if (frames[k] >= rows_ || frames[k] >= cols_ || (k > 0 && frames[k] <= frames[k - 1])) {
+      throw std::invalid_argument("score source subset: frames must ascend within the source");
+    }
+  }
+  const std::size_t n = frames.size();
+  auto shared = std::make_shared<const std::vector<std::size_t>>(std::move(frames));
+  ScoreSource source(
+      n, n,
+      [base = *this, shared](std::size_t i, std::size_t b, std::size_t e, Score* out) {
+        if (b >= e) return;
+        const auto& f = *shared;
+        const std::size_t first = f[b], last = f[e - 1];
+        if (last - first == e - b - 1) {  // no frame left out between them: one segment as it is
+          base.read_row(f[i], first, last + 1, out);
+          return;
+        }
+        std::vector<Score> row(last - first + 1);
+        base.read_row(f[i], first, last + 1, row.data());
+        for (std::size_t k = b; k < e; ++k) *out++ = row[f[k] - first];
+      },
+      [base = *this, shared](std::size_t i, std::size_t j) { return base.at((*shared)[i], (*shared)[j]); });
   source.in_memory_ = in_memory_;
   return source;
 }

@@ -34,7 +34,7 @@ std::vector<std::string> decision_notes(const mapping::MapDecisions& d, std::spa
     const std::size_t stretches = frame_stretches(f).size();
     notes.push_back(fmt::format(
         "{} frame{} of little information (dark or near-uniform{}) in {} stretch{}: no evidence of a "
-        "revisit (soft-masked), their loop closures only where a revisit runs through them",
+        "revisit (left out of the alignment), their loop closures only where a revisit runs through them",
         f.size(), f.size() == 1 ? "" : "s",
         d.tandem_repeat_frames == 0 ? std::string()
                                     : fmt::format("; {} of them in tandem repeats, below", d.tandem_repeat_frames),

@@ -69,6 +69,9 @@ ConsistentLabelling label_consistently(std::size_t images, const std::vector<ali
                                        const std::vector<double>& priority, const ConsistentLabellingConfig& config,
                                        double min_kept_fraction) {
   if (priority.size() != alignments.size()) throw std::invalid_argument("one priority per alignment needed");
+  if (!config.left_out.empty() && config.left_out.size() != images) {
+    throw std::invalid_argument("left_out needs one flag per image");
+  }
   for (const auto& a : alignments) {
     for (auto [i, j] : a.pairs) {
       if (i >= images || j >= images) {
@@ -135,14 +138,17 @@ ConsistentLabelling label_consistently(std::size_t images, const std::vector<ali
       const auto& a = alignments[k];
       for (std::size_t p = 1; p < a.pairs.size(); ++p) {
         if (!accepted[k][p] || !accepted[k][p - 1]) continue;
-        for (std::size_t i = a.pairs[p - 1].first + 1; i < a.pairs[p].first; ++i) {
+        const auto fills = [&](std::size_t f) { return config.left_out.empty() || !config.left_out[f]; };
+        for (std::size_t i = a.pairs[p - 1].first + 1; i < a.pairs[p].first && fills(i); ++i) {
           if (places.merge(i, i - 1, config.min_separation, config.max_visit_span)) {
             skipped[k].emplace_back(i, a.pairs[p - 1].second);
           }
         }
         const std::size_t j0 = std::min(a.pairs[p - 1].second, a.pairs[p].second);
         const std::size_t j1 = std::max(a.pairs[p - 1].second, a.pairs[p].second);
-        for (std::size_t j = j0 + 1; j < j1; ++j) places.merge(j, j - 1, config.min_separation, config.max_visit_span);
+        for (std::size_t j = j0 + 1; j < j1 && fills(j); ++j) {
+          places.merge(j, j - 1, config.min_separation, config.max_visit_span);
+        }
       }
     }
   }

@@ -425,7 +425,8 @@ void select_alignments(MapResult& result, const std::vector<std::size_t>& which)
 // (its scores are flat): it stands where the evidence on either side puts it, as sure as the less sure of the two,
 // and less where the two passes cross the stretch in different numbers of frames.
 void add_confidences(const align::ScoreSource& scores, const align::AlignConfig& engine, const MapConfig& c,
-                     const MapDecisions& d, const std::vector<bool>& masked, MapResult& result) {
+                     const MapDecisions& d, const std::vector<bool>& masked, const detail::UnmaskedFrames& unmasked,
+                     MapResult& result) {
   align::PosteriorConfig pc;
   pc.lambda = d.statistics.valid() ? d.statistics.lambda : 1.0;
   pc.gap_a = engine.gap_a;
@@ -445,23 +446,42 @@ void add_confidences(const align::ScoreSource& scores, const align::AlignConfig&
   // partner (the corridor's whole revisit right, its confidences 0.45-1: expected calibration error 0.13).
   align::PosteriorConfig wide = pc;
   wide.tolerance = pc.band;
+  // `scores` are those of the frames the alignment kept: each alignment's pairs of them get their posteriors there.
+  const auto kept = [&](const std::pair<std::size_t, std::size_t>& p) {
+    return unmasked.keeps(p.first) && unmasked.keeps(p.second);
+  };
   for (std::size_t k = 0; k < result.alignments.size(); ++k) {
     if (!needed[k]) continue;
-    result.posteriors[k] = align::pair_posteriors(result.alignments[k], scores, pc);
-    const std::vector<double> covered = align::pair_posteriors(result.alignments[k], scores, wide);
-    for (std::size_t t = 0; t < covered.size(); ++t) {
-      if (covered[t] > 0) result.posteriors[k][t] = std::min(1.0, result.posteriors[k][t] / covered[t]);
+    const align::LocalAlignment seen = unmasked.to_unmasked(result.alignments[k]);
+    std::vector<double> posteriors(seen.pairs.size(), 0.0);
+    if (!seen.pairs.empty()) {
+      posteriors = align::pair_posteriors(seen, scores, pc);
+      const std::vector<double> covered = align::pair_posteriors(seen, scores, wide);
+      for (std::size_t t = 0; t < covered.size(); ++t) {
+        if (covered[t] > 0) posteriors[t] = std::min(1.0, posteriors[t] / covered[t]);
+      }
     }
-    if (!masked.empty()) {
-      detail::posteriors_through_masked(result.alignments[k], masked, pc.tolerance, result.posteriors[k]);
+    auto& out = result.posteriors[k];
+    out.assign(result.alignments[k].pairs.size(), 0.0);
+    for (std::size_t t = 0, u = 0; t < out.size(); ++t) {
+      if (kept(result.alignments[k].pairs[t])) out[t] = posteriors[u++];
     }
+    if (!masked.empty()) detail::posteriors_through_masked(result.alignments[k], masked, pc.tolerance, out);
   }
   // A skipped image listed with the pairs (consistent_labels.hpp, Gaps): where the chains put its row.
   std::map<std::size_t, std::vector<align::RowPosterior>> rows;
   const auto row_posterior = [&](const RetainedPair& p) {
     auto it = rows.find(p.alignment);
-    if (it == rows.end())
-      it = rows.emplace(p.alignment, align::row_posteriors(result.alignments[p.alignment], scores, pc)).first;
+    if (it == rows.end()) {
+      const align::LocalAlignment seen = unmasked.to_unmasked(result.alignments[p.alignment]);
+      std::vector<align::RowPosterior> found;
+      if (!seen.pairs.empty()) found = align::row_posteriors(seen, scores, pc);
+      for (auto& r : found) {  // in the frames' indices, still ascending
+        r.row = unmasked.frame(r.row);
+        r.col = unmasked.frame(r.col);
+      }
+      it = rows.emplace(p.alignment, std::move(found)).first;
+    }
     const auto row = std::lower_bound(it->second.begin(), it->second.end(), p.i,
                                       [](const align::RowPosterior& r, std::size_t i) { return r.row < i; });
     const bool near =
@@ -727,9 +747,21 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     }
   }
   const std::vector<bool> masked = low_information.empty() ? std::vector<bool>{} : frame_flags(n, low_information);
-  if (c.significance.max_e_value) {
-    const double area_places = significance::search_area(n, n, true, c.search.min_separation, c.search.reverse) /
-                               (d.frames_per_place * d.frames_per_place);
+  // The statistics' fit, the alignment and the posteriors leave out long stretches of frames of little information
+  // and see the other masked frames soft-masked (detail::UnmaskedFrames).
+  const std::vector<bool> left_out =
+      masked.empty() ? std::vector<bool>{}
+                     : detail::long_stretches(frame_flags(n, low_information_given), c.search.min_separation);
+  const detail::UnmaskedFrames unmasked(n, left_out);
+  const std::vector<bool> masked_in_view = unmasked.of_view(masked);
+  const auto aligned = [&](const align::ScoreSource& s) {
+    return detail::soft_masked(unmasked.view(s), masked_in_view);
+  };
+  const std::size_t aligned_n = unmasked.size();
+  if (c.significance.max_e_value && aligned_n > 0) {
+    const double area_places =
+        significance::search_area(aligned_n, aligned_n, true, c.search.min_separation, c.search.reverse) /
+        (d.frames_per_place * d.frames_per_place);
     FitRun fit;
     const double bound = c.phase.max_global_rate.value_or(0.0F);
     // One fit per offset tried, of at most this many (the progress' total; the loop ends at the first in the
@@ -741,7 +773,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
                  : 1;
     std::size_t fitted = 0;
     while (true) {
-      fit = fit_looking_further(detail::soft_masked(minus(enhanced, offset), masked), c, d.frames_per_place);
+      fit = fit_looking_further(aligned(minus(enhanced, offset)), c, d.frames_per_place);
       if (c.progress) c.progress("statistics' fits", std::min(++fitted, fits), fits);
       const auto [short_chance, logarithmic] = phase_checks(fit, c, area_places);
       if (logarithmic || !fit.statistics.valid() || !c.phase.adapt_offset || c.score.contrast_window == 0 ||
@@ -758,7 +790,8 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     d.statistics = fit.statistics;
     // K is per cell: a fit on diagonal blocks of a long sequence counts the chance alignments of the whole
     // search (the chance agreement below keeps the fit's own area: which of its alignments are chance).
-    d.statistics.area = significance::search_area(n, n, true, c.search.min_separation, c.search.reverse);
+    d.statistics.area =
+        significance::search_area(aligned_n, aligned_n, true, c.search.min_separation, c.search.reverse);
     d.chance_length = fit.chance_length;
     d.chance_mean = fit.cell_mean;
     if (fit.statistics.valid()) {
@@ -788,7 +821,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
         const double e = d.statistics.e_value(fit.path_scores[k]);
         if (e * d.odometry_chance_agreement > *c.significance.max_e_value &&
             fit.alignments[k].score >= c.significance.threshold) {
-          result.insignificant.push_back(fit.alignments[k]);
+          result.insignificant.push_back(unmasked.to_frames(fit.alignments[k]));
           result.insignificant_e_values.push_back(e);
         }
       }
@@ -803,17 +836,17 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   d.cap = engine.cap;
   d.score_threshold = engine.threshold;
 
-  const auto searched =
-      static_cast<std::size_t>(significance::search_area(n, n, true, c.search.min_separation, c.search.reverse));
+  const auto searched = static_cast<std::size_t>(
+      significance::search_area(aligned_n, aligned_n, true, c.search.min_separation, c.search.reverse));
   std::function<void(std::size_t, std::size_t)> told_cells;
   if (c.progress) {
     told_cells = [progress = c.progress](std::size_t done, std::size_t total) {
       progress("cells aligned", done, total);
     };
   }
-  const align::ScoreSource scores =
-      told_progress(detail::soft_masked(minus(enhanced, offset), masked), searched, told_cells);
-  auto found = run_alignment ? run_alignment(engine, offset, masked)
+  const align::ScoreSource scores = told_progress(aligned(minus(enhanced, offset)), searched, told_cells);
+  auto found = aligned_n == 0  ? std::vector<align::LocalAlignment>{}
+               : run_alignment ? run_alignment(engine, offset, left_out, masked)
                : c.alignment_set == align::AlignmentSet::locally_optimal
                    ? (c.search.reverse ? align::locally_optimal_alignments_both(scores, engine, c.threads)
                                        : align::locally_optimal_alignments(scores, engine))
@@ -823,7 +856,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     const double path = align::path_score(a, scores, c.search.gap, c.search.gap);
     const double e = d.statistics.valid() ? d.statistics.e_value(path) : std::nan("");
     if (a.pairs.size() < d.min_revisit_pairs) {
-      result.insignificant.push_back(std::move(a));
+      result.insignificant.push_back(unmasked.to_frames(std::move(a)));
       result.insignificant_e_values.push_back(e);
       continue;
     }
@@ -845,6 +878,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
                                                places_in_frames(significance::kShadowReach, d.frames_per_place)));
   }
   if (!low_information.empty()) {
+    for (auto& a : result.alignments) a = unmasked.to_frames(std::move(a));
     select_alignments(result, detail::through_masked_frames(result.alignments, masked));
     d.low_information_frames.assign(low_information.begin(), low_information.end());
   }
@@ -895,6 +929,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     ConsistentLabellingConfig lc;
     lc.min_separation = c.search.min_separation;
     lc.max_visit_span = places_in_frames(c.labels.max_visit_span, d.frames_per_place);
+    lc.left_out = left_out;
     auto labelling =
         label_consistently(n, result.alignments, result.path_scores, lc, c.labels.pruning.min_retained_fraction);
     result.pruning = std::move(labelling.accepted);
@@ -921,7 +956,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   result.seconds_prune_label = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  add_confidences(scores, engine, c, d, masked, result);
+  add_confidences(scores, engine, c, d, masked, unmasked, result);
   describe_junctions(result.map, result.alignments, result.pruning, topology);  // with the pairs' confidences
   result.seconds_confidence = seconds_since(start);
   return result;

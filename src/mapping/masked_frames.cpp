@@ -2,8 +2,89 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace seqtopo::mapping::detail {
+namespace {
+constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+
+// The half-open ranges spanning the pairs again (kept as they were when there is none).
+void span_pairs(align::LocalAlignment& a) {
+  if (!a.pairs.empty()) a = align::pairs_between(a, 0, a.pairs.size() - 1);
+}
+}  // namespace
+
+UnmaskedFrames::UnmaskedFrames(std::size_t frames, const std::vector<bool>& left_out) {
+  if (!left_out.empty() && left_out.size() != frames)
+    throw std::invalid_argument("frames left out: one flag per frame");
+  index_.assign(frames, kNone);
+  for (std::size_t f = 0; f < frames; ++f) {
+    if (!left_out.empty() && left_out[f]) {
+      any_ = true;
+      continue;
+    }
+    index_[f] = frames_.size();
+    frames_.push_back(f);
+  }
+}
+
+std::vector<bool> UnmaskedFrames::of_view(const std::vector<bool>& flags) const {
+  if (!any_ || flags.empty()) return flags;
+  std::vector<bool> out(frames_.size());
+  for (std::size_t k = 0; k < frames_.size(); ++k) out[k] = flags[frames_[k]];
+  return out;
+}
+
+std::vector<bool> long_stretches(const std::vector<bool>& flags, std::size_t min_length) {
+  std::vector<bool> out(flags.size(), false);
+  bool any = false;
+  for (std::size_t f = 0; f < flags.size();) {
+    if (!flags[f]) {
+      ++f;
+      continue;
+    }
+    std::size_t end = f;
+    while (end < flags.size() && flags[end]) ++end;
+    if (end - f >= min_length) {
+      for (std::size_t k = f; k < end; ++k) out[k] = true;
+      any = true;
+    }
+    f = end;
+  }
+  return any ? out : std::vector<bool>{};
+}
+
+align::ScoreSource UnmaskedFrames::view(const align::ScoreSource& full) const {
+  return any_ ? full.subset(frames_) : full;
+}
+
+align::LocalAlignment UnmaskedFrames::to_frames(align::LocalAlignment a) const {
+  if (!any_) return a;
+  for (auto& [i, j] : a.pairs) {
+    i = frames_[i];
+    j = frames_[j];
+  }
+  if (!a.pairs.empty()) {
+    span_pairs(a);
+  } else if (a.a_end > a.a_begin && a.b_end > a.b_begin) {
+    a.a_begin = frames_[a.a_begin];
+    a.a_end = frames_[a.a_end - 1] + 1;
+    a.b_begin = frames_[a.b_begin];
+    a.b_end = frames_[a.b_end - 1] + 1;
+  }
+  return a;
+}
+
+align::LocalAlignment UnmaskedFrames::to_unmasked(const align::LocalAlignment& a) const {
+  if (!any_) return a;
+  align::LocalAlignment out = a;
+  out.pairs.clear();
+  for (const auto& [i, j] : a.pairs) {
+    if (index_[i] != kNone && index_[j] != kNone) out.pairs.emplace_back(index_[i], index_[j]);
+  }
+  span_pairs(out);
+  return out;
+}
 
 align::ScoreSource soft_masked(const align::ScoreSource& scores, const std::vector<bool>& masked) {
   if (std::find(masked.begin(), masked.end(), true) == masked.end()) return scores;
@@ -57,13 +138,30 @@ std::vector<std::size_t> through_masked_frames(std::vector<align::LocalAlignment
     }
     if (at.empty()) continue;
     kept.push_back(k);
-    if (at.size() == a.pairs.size()) continue;
+    // Whether both passes skip frames between two consecutive pairs of evidence, masked ones in at least one of
+    // them (a step of the alignment over a stretch left out of it, UnmaskedFrames), or masked pairs between them.
+    const auto crosses = [&](std::size_t u) {
+      const auto [i0, j0] = a.pairs[at[u]];
+      const auto [i1, j1] = a.pairs[at[u + 1]];
+      const auto masked_between = [&](std::size_t x, std::size_t y) {
+        for (std::size_t f = std::min(x, y) + 1; f < std::max(x, y); ++f) {
+          if (masked[f]) return true;
+        }
+        return false;
+      };
+      const auto skips = [](std::size_t x, std::size_t y) { return std::max(x, y) - std::min(x, y) > 1; };
+      return at[u + 1] != at[u] + 1 ||
+             (skips(i0, i1) && skips(j0, j1) && (masked_between(i0, i1) || masked_between(j0, j1)));
+    };
+    bool any = at.size() != a.pairs.size();
+    for (std::size_t u = 0; !any && u + 1 < at.size(); ++u) any = crosses(u);
+    if (!any) continue;
     std::vector<std::pair<std::size_t, std::size_t>> pairs;
     for (std::size_t u = 0; u < at.size(); ++u) {
       const auto [i0, j0] = a.pairs[at[u]];
       pairs.emplace_back(i0, j0);
-      if (u + 1 == at.size() || at[u + 1] == at[u] + 1) continue;
-      // Masked pairs between two pairs of evidence: as many steps as both sides allow, evenly spaced.
+      if (u + 1 == at.size() || !crosses(u)) continue;
+      // Masked frames between two pairs of evidence: as many steps as both sides allow, evenly spaced.
       const auto [i1, j1] = a.pairs[at[u + 1]];
       const double di = static_cast<double>(i1) - static_cast<double>(i0);
       const double dj = static_cast<double>(j1) - static_cast<double>(j0);

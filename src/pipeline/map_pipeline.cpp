@@ -289,19 +289,29 @@ void map_streamed(const MapRequest& request, std::span<const SequenceInput> inpu
   // streamed scores, mapping::build_map_from_enhanced).
   mapping::AlignmentRun sparse_run;
   if (candidates) {
-    sparse_run = [&](const align::AlignConfig& engine, float offset, const std::vector<bool>& masked) {
+    sparse_run = [&](const align::AlignConfig& engine, float offset, const std::vector<bool>& left_out,
+                     const std::vector<bool>& masked) {
+      // The frames not left out as one sequence, numbered in order (mapping::AlignmentRun).
+      constexpr std::uint32_t kLeftOut = std::numeric_limits<std::uint32_t>::max();
+      std::vector<std::uint32_t> index(n, kLeftOut);
+      std::uint32_t kept = 0;
+      for (std::size_t f = 0; f < n; ++f) {
+        if (left_out.empty() || !left_out[f]) index[f] = kept++;
+      }
+      const auto soft = [&](std::size_t f) { return !masked.empty() && masked[f]; };
       std::vector<scale::SparseEntry> entries;
       entries.reserve(candidates->entries());
       for (std::size_t i = 0; i < n; ++i) {
+        if (index[i] == kLeftOut) continue;
         const auto cols = candidates->row_columns(i);
         const auto values = candidates->row_values(i);
         for (std::size_t k = 0; k < cols.size(); ++k) {
+          if (index[cols[k]] == kLeftOut) continue;
           const float v = values[k] - offset;  // soft-masked as the dense scores are
-          entries.push_back({static_cast<std::uint32_t>(i), cols[k],
-                             !masked.empty() && (masked[i] || masked[cols[k]]) ? std::min(v, 0.0F) : v});
+          entries.push_back({index[i], index[cols[k]], soft(i) || soft(cols[k]) ? std::min(v, 0.0F) : v});
         }
       }
-      const scale::SparseScores shifted(n, n, candidates->background(), std::move(entries));
+      const scale::SparseScores shifted(kept, kept, candidates->background(), std::move(entries));
       return config.search.reverse ? scale::sparse_local_alignments_both(shifted, engine, settings.map.threads)
                                    : scale::sparse_local_alignments(shifted, engine);
     };

@@ -43,8 +43,9 @@ std::vector<double> scores_of(const std::vector<LocalAlignment>& alignments) {
 
 ConsistentLabelling label(std::size_t n, const std::vector<LocalAlignment>& alignments, std::size_t min_separation = 5,
                           std::size_t span = 2) {
-  return label_consistently(n, alignments, scores_of(alignments),
-                            {.min_separation = min_separation, .max_visit_span = span});
+  return label_consistently(
+      n, alignments, scores_of(alignments),
+      {.min_separation = min_separation, .max_visit_span = span, .fill_gaps = true, .left_out = {}});
 }
 
 std::size_t count_places(const std::vector<PlaceLabel>& labels) {
@@ -152,6 +153,30 @@ TEST(ConsistentLabels, AReverseTraversalPairsEachImageWithItsMirror) {
   expect_graph(r, alignments, labels_of(r, 0, 39) + labels_of(r, 19, 0), {r.labels[19]});
 }
 
+// A revisit whose later pass has a stretch left out of the alignment (masked: 30 dark frames, 60-89, the alignment
+// stepping from 59 to 90 over them): those frames are no slower pass holding a place, so they join no place and are
+// no loop closure; without the flags the gap would fill them into the place before it.
+TEST(ConsistentLabels, FramesLeftOutOfTheAlignmentAreNotFilledIntoItsGap) {
+  LocalAlignment a;
+  a.score = 10;
+  for (std::size_t k = 0; k < 20; ++k) a.pairs.emplace_back(40 + k, k);   // 40-59 with 0-19
+  for (std::size_t k = 20; k < 35; ++k) a.pairs.emplace_back(70 + k, k);  // 90-104 with 20-34
+  a.a_begin = 40;
+  a.a_end = 105;
+  a.b_begin = 0;
+  a.b_end = 35;
+  std::vector<bool> left_out(110, false);
+  for (std::size_t f = 60; f < 90; ++f) left_out[f] = true;
+  const auto r = label_consistently(
+      110, {a}, {10.0}, {.min_separation = 10, .max_visit_span = 2, .fill_gaps = true, .left_out = left_out});
+  for (const auto& p : r.accepted.pairs) EXPECT_FALSE(left_out[p.i] || left_out[p.j]) << p.i << " " << p.j;
+  EXPECT_EQ(r.accepted.pairs.size(), 35U);
+  for (std::size_t f = 60; f < 90; ++f) EXPECT_NE(r.labels[f], r.labels[19]) << f;
+  const auto filled = label(110, {a}, 10);  // no flags: the gap's first frames join 19's place
+  EXPECT_GT(filled.accepted.pairs.size(), 35U);
+  EXPECT_EQ(filled.labels[60], filled.labels[19]);
+}
+
 TEST(ConsistentLabels, AHalfSpeedPassFillsItsGapsWithoutBubbles) {
   // The second pass sees every image of the first twice: the alignment pairs every other frame.
   LocalAlignment a;
@@ -178,8 +203,8 @@ TEST(ConsistentLabels, AHalfSpeedPassFillsItsGapsWithoutBubbles) {
   // somewhere new: the path leaves at 19.
   EXPECT_EQ(count_places(r.labels), 41U);
   expect_graph(r, {a}, labels_of(r, 0, 39) + labels_of(r, 0, 19) + labels_of(r, 79, 79), {r.labels[19]});
-  const auto no_fill =
-      label_consistently(80, {a}, {10.0}, {.min_separation = 10, .max_visit_span = 2, .fill_gaps = false});
+  const auto no_fill = label_consistently(
+      80, {a}, {10.0}, {.min_separation = 10, .max_visit_span = 2, .fill_gaps = false, .left_out = {}});
   EXPECT_NE(no_fill.labels[41], no_fill.labels[0]);
   EXPECT_EQ(no_fill.accepted.pairs.size(), 20U);
   // With a span of one frame the slower pass may not hold a place for two frames.

@@ -205,6 +205,68 @@ TEST(LowInformationMap, ARevisitThroughATunnelStaysOneRevisit) {
   }
 }
 
+// The lights out in one pass only: a dark stretch inserted in each pass at a different place (the other pass has no
+// frames there), a route of 150 places driven twice, the stretches 12 and 14 places from its ends. The alignment leaves
+// the masked frames out, so a stretch is a free step for the pass that has it: the revisit on either side of each is
+// one revisit, not pieces too short to be significant (where a gap across the stretch would have cost its whole
+// evidence), and no dark frame is a closure.
+TEST(LowInformationMap, ARevisitWithTheLightsOutInOnePassStaysOneRevisit) {
+  constexpr std::size_t kDark = 50, cut1 = 12, cut2 = 136;  // pass 1 dark after place cut1, pass 2 after cut2
+  constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const Descriptors places = route(150, seed);
+    const Descriptors again = seen_again(places, seed + 100, 0.5F);
+    const Descriptors elsewhere = route(40, seed + 200);
+    // Clean: pass 1, 40 places elsewhere, pass 2 (its first frame `second`).
+    const std::size_t second = 190;
+    Descriptors clean = places;
+    append(clean, elsewhere);
+    append(clean, again);
+    // The same with the dark stretches; clean_frame[k]: frame k's frame in the clean sequence (kNone: dark).
+    Descriptors lights_out;
+    std::vector<std::size_t> clean_frame, masked;
+    const auto add = [&](const Descriptors& d, std::size_t from) {
+      for (std::size_t k = 0; k < d.size(); ++k) lights_out.push_back(d[k]), clean_frame.push_back(from + k);
+    };
+    const auto add_dark = [&](unsigned dark_seed) {
+      for (const auto& d : dark(kDark, dark_seed)) {
+        masked.push_back(lights_out.size());
+        lights_out.push_back(d), clean_frame.push_back(kNone);
+      }
+    };
+    add(Descriptors(places.begin(), places.begin() + cut1), 0);
+    add_dark(seed + 300);
+    add(Descriptors(places.begin() + cut1, places.end()), cut1);
+    add(elsewhere, 150);
+    add(Descriptors(again.begin(), again.begin() + cut2), second);
+    add_dark(seed + 400);
+    add(Descriptors(again.begin() + cut2, again.end()), second + cut2);
+
+    const MapResult base = build_map(std::vector<SimilarityMatrix>{similarity(clean)}, MapConfig{});
+    const MapResult r = build_map(std::vector<SimilarityMatrix>{similarity(lights_out)}, MapConfig{}, {}, masked);
+    EXPECT_EQ(r.decisions.low_information_frames, masked);
+    std::set<std::size_t> closed_base, closed;
+    for (const auto& p : base.pruning.pairs) closed_base.insert(p.i);
+    ASSERT_GT(closed_base.size(), 120U) << "the clean route must be mapped";
+    for (const auto& p : r.pruning.pairs) {
+      ASSERT_NE(clean_frame[p.i], kNone) << "a dark frame closed (seed " << seed << ")";
+      ASSERT_NE(clean_frame[p.j], kNone) << "a dark frame closed (seed " << seed << ")";
+      const auto place_i = static_cast<long>(clean_frame[p.i]) - static_cast<long>(second);
+      EXPECT_LE(std::abs(place_i - static_cast<long>(clean_frame[p.j])), 2L) << "seed " << seed;
+      closed.insert(clean_frame[p.i]);
+    }
+    std::size_t kept = 0;
+    for (std::size_t i : closed_base) kept += closed.count(i);
+    EXPECT_GE(kept * 10, closed_base.size() * 9) << "seed " << seed;
+    // Pass 2's first cut1 places and its last 150 - cut2 are each cut off by a dark stretch from the rest: one
+    // alignment spans both.
+    const std::size_t pass2 = 150 + kDark + 40;  // pass 2's first frame in the dark sequence
+    std::size_t spanning = 0;
+    for (const auto& a : r.alignments) spanning += a.a_begin < pass2 + cut1 && a.a_end > pass2 + cut2 + kDark ? 1 : 0;
+    EXPECT_GE(spanning, 1U) << "seed " << seed;
+  }
+}
+
 TEST(LowInformationMap, MaskedFramesOutOfRangeAreRefused) {
   const SimilarityMatrix s = similarity(route(50, 1));
   const std::vector<std::size_t> bad = {3, 50};

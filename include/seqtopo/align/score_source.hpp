@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <functional>
 #include <span>
+#include <vector>
 
 namespace seqtopo::align {
 
@@ -32,6 +33,9 @@ class ScoreSource {
   // The same rows and columns read through another reader, one that changes each cell of this source cheaply
   // (an offset, a mask): in memory when this source is.
   ScoreSource derived(RowReader reader, CellReader cell = {}) const;
+  // The rows and columns `frames` (ascending, each < rows() and < cols()) of this source, in that order: row k is
+  // this source's row frames[k] read at columns frames[...]. In memory when this source is (a gather of its rows).
+  ScoreSource subset(std::vector<std::size_t> frames) const;
 
   std::size_t rows() const { return rows_; }
   std::size_t cols() const { return cols_; }

@@ -42,6 +42,9 @@ struct ConsistentLabellingConfig {
   std::size_t min_separation = 10;  // [frames] images closer in time are one pass
   std::size_t max_visit_span = 2;   // [frames] the longest stretch of one pass within one place
   bool fill_gaps = true;
+  // Frames the alignments left out (masked: no evidence of where they are; empty: none): never filled into a
+  // gap, as a stretch of them skipped by one pass is not a slower pass holding a place.
+  std::vector<bool> left_out;
 };
 
 struct ConsistentLabelling {

@@ -123,11 +123,12 @@ struct MapConfig {
   bool drop_blind_descriptors = true;
   std::size_t max_blind_check_frames = 8000;
   // Frames of little information given to build_map (dark or near-uniform images: significance/low_information.hpp)
-  // carry no evidence of a revisit, as a sequence search soft-masks low-complexity regions: with contrast
-  // enhancement their enhanced scores are capped at the contrast offset (aligned, at most 0), so an alignment
-  // cannot be made of them but runs through them between two real matches (a revisit on either side of a tunnel
-  // stays one revisit); inside the stretch its pairs lie on the straight line between the evidence on either side,
-  // and a masked end is cut off. false: every frame is aligned as it scores.
+  // carry no evidence of a revisit, as a sequence search masks low-complexity regions: with contrast enhancement
+  // the statistics' fit and the alignment leave them out (a stretch of them is a free step), so an alignment cannot
+  // be made of them but runs across them between two real matches, whether the stretch is in both passes (a tunnel
+  // driven through twice) or in one (the lights out): a revisit on either side stays one revisit. Where both passes
+  // skip frames there, its pairs lie on the straight line between the evidence on either side. The outputs' scores
+  // show them capped at the contrast offset (aligned, at most 0). false: every frame is aligned as it scores.
   bool mask_low_information = true;
   // Not a setting: told the run's progress as (what, done, total), each step counting its own units: "similarities
   // enhanced" (of those fused), "descriptors mapped alone" (the blind check), "statistics' fits" (one per contrast
@@ -236,14 +237,18 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
 // exact engine fills an N x N table whatever the source; a source that is not held in memory wants
 // Engine::fast (1/8 byte per cell, docs/engine.md). seconds_align includes the reads of `enhanced`.
 // `run_alignment`, when given, replaces the engine of step 4 (the statistics' run of step 3 stays the fast engine on
-// `enhanced`): it gets the engine settings, the offset the scores it must align are `enhanced` minus, and the
-// frames whose scores it must soft-mask (at most 0 once shifted; empty: none), and returns their alignments best
-// first. The sparse mode aligns its candidate cells this way (pipeline).
+// `enhanced`): it gets the engine settings, the offset the scores it must align are `enhanced` minus, the frames
+// it must leave out and those whose scores it must soft-mask (at most 0 once shifted; each empty: none), and
+// returns the alignments, best first, of the frames not left out as one sequence (its frame k the k-th frame not
+// left out). The sparse mode aligns its candidate cells this way (pipeline).
 using AlignmentRun = std::function<std::vector<align::LocalAlignment>(const align::AlignConfig& engine, float offset,
+                                                                      const std::vector<bool>& left_out,
                                                                       const std::vector<bool>& masked)>;
 // `low_information` (sorted frame indices, build_map's) are frames of little information: with contrast
-// enhancement and mask_low_information (build_map's rule) their scores are soft-masked, their pairs placed between
-// the evidence on either side and cut at the alignments' ends.
+// enhancement and mask_low_information (build_map's rule) the statistics and the alignment leave out their
+// stretches at least the self-alignment band long (a free step, so a revisit runs across a tunnel in one pass or
+// both) and soft-mask the others; their pairs are placed between the evidence on either side and cut at the
+// alignments' ends.
 MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapConfig& config = {},
                                   std::span<const Pose2> odometry = {}, const AlignmentRun& run_alignment = {},
                                   std::span<const std::size_t> low_information = {});
