@@ -163,15 +163,12 @@ float StreamingSimilarity::score(std::size_t i, std::size_t j) const {
   const float v = cosine(i, j);
   if (w == 0) return combine(v, v, config_.contrast_offset);
   auto window_stats = [&](std::size_t fixed, std::size_t centre) {
-    const std::size_t lo = centre > w ? centre - w : 0;
-    const std::size_t hi = std::min(n_, centre + w + 1);
-    double sum = 0, sum2 = 0;
-    for (std::size_t k = lo; k < hi; ++k) {
-      const float r = cosine(fixed, k);
-      sum += r;
-      sum2 += static_cast<double>(r) * r;
-    }
-    return similarity::contrast_score(v, sum, sum2, static_cast<double>(hi - lo));
+    const std::size_t first = similarity::first_read(centre, w), end = std::min(n_, centre + w + 1);
+    std::vector<float> row(end - first);
+    for (std::size_t k = first; k < end; ++k) row[k - first] = cosine(fixed, k);
+    double sum = 0, sum2 = 0, count = 0;
+    similarity::window_sums_of(&sum, &sum2, &count, row.data(), first, n_, w, centre, centre + 1);
+    return similarity::contrast_score(v, sum, sum2, count);
   };
   // E(i, j): row i around column j; E(j, i): row j around column i.
   return combine(window_stats(i, j), window_stats(j, i), config_.contrast_offset);
@@ -181,8 +178,9 @@ std::vector<float> StreamingSimilarity::compute_tile(std::size_t tile_row, std::
   const std::size_t T = config_.tile, w = config_.contrast_window;
   const std::size_t r0 = tile_row * T, r1 = std::min(n_, r0 + T);
   const std::size_t c0 = tile_col * T, c1 = std::min(n_, c0 + T);
-  const std::size_t er0 = r0 > w ? r0 - w : 0, er1 = std::min(n_, r1 + w);
-  const std::size_t ec0 = c0 > w ? c0 - w : 0, ec1 = std::min(n_, c1 + w);
+  // Widened by the window (and for running sums back to the restart before the tile: similarity::first_read).
+  const std::size_t er0 = similarity::first_read(r0, w), er1 = std::min(n_, r1 + w);
+  const std::size_t ec0 = similarity::first_read(c0, w), ec1 = std::min(n_, c1 + w);
   const std::size_t ew = ec1 - ec0, tw = c1 - c0;
 
   // Raw cosine on the widened tile; each cell summed in dimension order (vectorised across columns).
@@ -191,38 +189,47 @@ std::vector<float> StreamingSimilarity::compute_tile(std::size_t tile_row, std::
                      ew);
 
   std::vector<float> tile((r1 - r0) * tw);
-  std::vector<double> rs(tw), rs2(tw), cs(tw), cs2(tw), row_count(tw);
-  for (std::size_t j = c0; j < c1; ++j) {
-    const std::size_t lo = j > w ? j - w : 0, hi = std::min(n_, j + w + 1);
-    row_count[j - c0] = static_cast<double>(hi - lo);
+  if (w == 0) {
+    for (std::size_t i = r0; i < r1; ++i) {
+      const float* row = raw.data() + (i - er0) * ew + (c0 - ec0);
+      for (std::size_t j = 0; j < tw; ++j) tile[(i - r0) * tw + j] = combine(row[j], row[j], config_.contrast_offset);
+    }
+    return tile;
   }
-  for (std::size_t i = r0; i < r1; ++i) {
-    const float* row = raw.data() + (i - er0) * ew;
-    float* out = tile.data() + (i - r0) * tw;
-    if (w == 0) {
-      for (std::size_t j = 0; j < tw; ++j) {
-        const float v = row[c0 - ec0 + j];
-        out[j] = combine(v, v, config_.contrast_offset);
-      }
-      continue;
-    }
-    // Row i around column j: columns j - w .. j + w, clipped to the matrix. Where no clipping happens
-    // (j in [w, n - w)) the window of cell j starts at row[j - w - ec0], one further for each cell.
-    const std::size_t in_lo = std::clamp(w, c0, c1), in_hi = std::clamp(n_ - std::min(n_, w), in_lo, c1);
-    if (in_hi > in_lo) {
-      similarity::window_sums(rs.data() + (in_lo - c0), rs2.data() + (in_lo - c0), row + (in_lo - w - ec0), 1,
-                              2 * w + 1, in_hi - in_lo);
-    }
-    for (std::size_t j = c0; j < c1; ++j) {
-      if (j >= in_lo && j < in_hi) continue;
-      const std::size_t lo = j > w ? j - w : 0, hi = std::min(n_, j + w + 1);
-      similarity::window_sums(rs.data() + (j - c0), rs2.data() + (j - c0), row + (lo - ec0), 1, hi - lo, 1);
-    }
-    // Column j around row i (= row j around column i): rows i - w .. i + w, clipped.
+  std::vector<double> rs(tw), rs2(tw), row_count(tw), cs(tw), cs2(tw);
+  // Column j around row i (= row j around column i, the cosine being symmetric bit for bit): rows i - w .. i + w,
+  // clipped, for all the tile's columns at once, by similarity::window_sums_of's arithmetic (a running sum from
+  // the restart before r0 for a wide window).
+  const bool running = w >= similarity::kRunningWindow;
+  const auto raw_row = [&](std::size_t k) { return raw.data() + (k - er0) * ew + (c0 - ec0); };
+  for (std::size_t i = running ? r0 - r0 % similarity::kRunningBlock : r0; i < r1; ++i) {
     const std::size_t klo = i > w ? i - w : 0, khi = std::min(n_, i + w + 1);
-    similarity::window_sums(cs.data(), cs2.data(), raw.data() + (klo - er0) * ew + (c0 - ec0), ew, khi - klo, tw);
-    kernels::finish(out, row + (c0 - ec0), rs.data(), rs2.data(), row_count.data(), cs.data(), cs2.data(),
-                    static_cast<double>(khi - klo), config_.contrast_offset, tw);
+    if (!running || i % similarity::kRunningBlock == 0) {
+      similarity::window_sums(cs.data(), cs2.data(), raw_row(klo), ew, khi - klo, tw);
+    } else {
+      if (i + w < n_) {
+        const float* in = raw_row(i + w);
+        for (std::size_t b = 0; b < tw; ++b) {
+          const double v = in[b];
+          cs[b] += v;
+          cs2[b] += v * v;
+        }
+      }
+      if (i > w) {
+        const float* out = raw_row(i - w - 1);
+        for (std::size_t b = 0; b < tw; ++b) {
+          const double v = out[b];
+          cs[b] -= v;
+          cs2[b] -= v * v;
+        }
+      }
+    }
+    if (i < r0) continue;
+    // Row i around column j: columns j - w .. j + w, clipped to the matrix.
+    const float* row = raw.data() + (i - er0) * ew;
+    similarity::window_sums_of(rs.data(), rs2.data(), row_count.data(), row, ec0, n_, w, c0, c1);
+    kernels::finish(tile.data() + (i - r0) * tw, row + (c0 - ec0), rs.data(), rs2.data(), row_count.data(), cs.data(),
+                    cs2.data(), static_cast<double>(khi - klo), config_.contrast_offset, tw);
   }
   return tile;
 }

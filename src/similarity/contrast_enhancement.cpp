@@ -71,29 +71,70 @@ void enhance_row(const float* row, std::size_t cols, std::size_t window, float* 
   enhance_row_prefix(row, cols, window, cols, out);
 }
 
+std::size_t first_read(std::size_t begin, std::size_t w) {
+  const std::size_t start = w >= kRunningWindow ? begin - begin % kRunningBlock : begin;
+  return start > w ? start - w : 0;
+}
+
+void window_sums_of(double* sum, double* sum2, double* count, const float* x, std::size_t x0, std::size_t n,
+                    std::size_t w, std::size_t begin, std::size_t end) {
+  if (end > n) throw std::invalid_argument("window sums: cells past the row");
+  if (begin >= end) return;
+  if (x0 > first_read(begin, w)) throw std::invalid_argument("window sums: the row's values start too late");
+  const auto lo = [w](std::size_t c) { return c > w ? c - w : 0; };
+  const auto hi = [w, n](std::size_t c) { return std::min(n, c + w + 1); };
+  for (std::size_t c = begin; c < end; ++c) count[c - begin] = static_cast<double>(hi(c) - lo(c));
+  if (w < kRunningWindow) {
+    // Cells whose window is not clipped (c in [w, n - w)) have windows of 2w + 1 values starting one apart: one
+    // call sums them all; each clipped cell takes a call of its own.
+    std::size_t in_lo = std::max(begin, w), in_hi = std::min(end, n > w ? n - w : 0);
+    if (in_hi > in_lo) {
+      window_sums(sum + (in_lo - begin), sum2 + (in_lo - begin), x + (in_lo - w - x0), 1, 2 * w + 1, in_hi - in_lo);
+    } else {
+      in_lo = in_hi = end;
+    }
+    for (std::size_t c = begin; c < end; ++c) {
+      if (c >= in_lo && c < in_hi) continue;
+      window_sums(sum + (c - begin), sum2 + (c - begin), x + (lo(c) - x0), 1, hi(c) - lo(c), 1);
+    }
+    return;
+  }
+  double s = 0, q = 0;
+  for (std::size_t c = begin - begin % kRunningBlock; c < end; ++c) {
+    if (c % kRunningBlock == 0) {  // term by term, as window_sums does
+      s = q = 0;
+      for (std::size_t k = lo(c); k < hi(c); ++k) {
+        const double v = x[k - x0];
+        s += v;
+        q += v * v;
+      }
+    } else {
+      if (c + w < n) {
+        const double v = x[c + w - x0];
+        s += v;
+        q += v * v;
+      }
+      if (c > w) {
+        const double v = x[c - w - 1 - x0];
+        s -= v;
+        q -= v * v;
+      }
+    }
+    if (c >= begin) sum[c - begin] = s, sum2[c - begin] = q;
+  }
+}
+
 void enhance_row_prefix(const float* row, std::size_t cols, std::size_t window, std::size_t end, float* out) {
   if (end > cols) throw std::invalid_argument("enhance_row_prefix: end past the row");
   const std::size_t w = std::min(window, cols);  // a wider window is the whole row
-  std::vector<double> sum(end), sum2(end);
-  // Cells whose window is not clipped (c in [w, cols - w)) have windows of 2w + 1 cells starting one apart:
-  // one call sums them all. The clipped cells at both ends take one call each. Each cell's sums are its own
-  // terms in order, so stopping at `end` changes no bit of the cells before it.
-  std::size_t in_lo = w, in_hi = std::min(end, cols > w ? cols - w : 0);
-  if (in_hi > in_lo) {
-    window_sums(sum.data() + in_lo, sum2.data() + in_lo, row + (in_lo - w), 1, 2 * w + 1, in_hi - in_lo);
-  } else {
-    in_lo = in_hi = 0;
-  }
-  for (std::size_t c = 0; c < end; ++c) {
-    if (c == in_lo && in_hi > in_lo) {
-      scores(row, sum.data(), sum2.data(), static_cast<double>(2 * w + 1), in_lo, in_hi, out);
-      c = in_hi - 1;
-      continue;
-    }
-    const std::size_t lo = c > w ? c - w : 0, hi = std::min(cols, c + w + 1);
-    window_sums(&sum[c], &sum2[c], row + lo, 1, hi - lo, 1);
-    out[c] = contrast_score(row[c], sum[c], sum2[c], static_cast<double>(hi - lo));
-  }
+  std::vector<double> sum(end), sum2(end), count(end);
+  // Each cell's sums depend on its window and the fixed restarts only, so stopping at `end` changes no bit of the
+  // cells before it.
+  window_sums_of(sum.data(), sum2.data(), count.data(), row, 0, cols, w, 0, end);
+  const std::size_t in_lo = std::min(w, end), in_hi = std::max(in_lo, std::min(end, cols > w ? cols - w : 0));
+  for (std::size_t c = 0; c < in_lo; ++c) out[c] = contrast_score(row[c], sum[c], sum2[c], count[c]);
+  scores(row, sum.data(), sum2.data(), static_cast<double>(2 * w + 1), in_lo, in_hi, out);
+  for (std::size_t c = in_hi; c < end; ++c) out[c] = contrast_score(row[c], sum[c], sum2[c], count[c]);
 }
 
 SimilarityMatrix enhance_contrast(const SimilarityMatrix& s, std::size_t window) {

@@ -69,8 +69,18 @@ TEST(StreamingSimilarity, EqualsDenseContrastEnhancementBitForBit) {
     float offset;
   };
   const Case cases[] = {
-      {1, 3, 10, 4, 0.5F},    {17, 5, 3, 4, 0.0F},     {120, 16, 10, 32, 0.5F}, {203, 9, 4, 7, 0.25F},
-      {150, 32, 0, 64, 0.5F}, {90, 12, 60, 256, 1.0F}, {700, 64, 10, 256, 0.5F}};  // the defaults, with interior tiles
+      {1, 3, 10, 4, 0.5F},
+      {17, 5, 3, 4, 0.0F},
+      {120, 16, 10, 32, 0.5F},
+      {203, 9, 4, 7, 0.25F},
+      {150, 32, 0, 64, 0.5F},
+      {90, 12, 60, 256, 1.0F},
+      {700, 64, 10, 256, 0.5F},  // the defaults, interior tiles
+      // Running sums (windows of 32 and more): tiles on and off the restarts, windows wider than the row.
+      {400, 8, 40, 64, 0.5F},
+      {333, 6, 100, 37, 0.5F},
+      {260, 10, 32, 100, 0.0F},
+      {70, 5, 200, 16, 0.5F}};
   for (const Case& c : cases) {
     const auto x = walk_descriptors(c.n, c.dim, static_cast<unsigned>(c.n + c.tile));
     const StreamingSimilarity s(x, c.n, c.dim, {c.window, c.offset, c.tile, 3});

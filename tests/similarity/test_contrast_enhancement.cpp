@@ -68,6 +68,75 @@ TEST(ContrastEnhancement, BitsOfTheFixedArithmetic) {
   }
 }
 
+// Wide windows: the running sums of the header, written out cell by cell (restart at each multiple of the block,
+// then add the value entering, subtract the one leaving), give the enhanced bits; and they stay within float
+// rounding of the definition computed directly in long double.
+TEST(ContrastEnhancement, RunningSumsOfWideWindows) {
+  for (unsigned seed = 0; seed < 10; ++seed) {
+    const std::size_t cols = 50 + 41 * seed, window = kRunningWindow + (seed * 23) % 130;
+    const auto s = random_matrix(2, cols, 500 + seed);
+    const auto e = enhance_contrast(s, window);
+    for (std::size_t r = 0; r < s.rows; ++r) {
+      double sum = 0, sum2 = 0;
+      for (std::size_t c = 0; c < cols; ++c) {
+        const std::size_t lo = c > window ? c - window : 0, hi = std::min(cols, c + window + 1);
+        if (c % kRunningBlock == 0) {
+          sum = sum2 = 0;
+          for (std::size_t k = lo; k < hi; ++k) {
+            const double x = s(r, k);
+            sum += x;
+            sum2 += x * x;
+          }
+        } else {
+          if (c + window < cols)
+            sum += s(r, c + window), sum2 += static_cast<double>(s(r, c + window)) * s(r, c + window);
+          if (c > window) {
+            const double x = s(r, c - window - 1);
+            sum -= x;
+            sum2 -= x * x;
+          }
+        }
+        const double count = static_cast<double>(hi - lo), mean = sum / count;
+        const double sd = std::sqrt(std::max(0.0, sum2 / count - mean * mean));
+        ASSERT_EQ(e(r, c), static_cast<float>((s(r, c) - mean) / std::max(sd, 1e-9))) << seed << ": " << r << "," << c;
+        long double m = 0, v = 0;
+        for (std::size_t k = lo; k < hi; ++k) m += s(r, k);
+        m /= static_cast<long double>(count);
+        for (std::size_t k = lo; k < hi; ++k) v += (s(r, k) - m) * (s(r, k) - m);
+        const auto direct = static_cast<double>((s(r, c) - m) / std::sqrt(v / static_cast<long double>(count)));
+        EXPECT_NEAR(e(r, c), direct, 1e-4 * (1 + std::abs(direct))) << seed << ": " << r << "," << c;
+      }
+    }
+  }
+}
+
+// A reader of cells [begin, end) of a row, given only the values from first_read(begin, w) on, gets the bits of the
+// whole row's sums, narrow windows and wide.
+TEST(ContrastEnhancement, WindowSumsOfAnyPartOfARowAreTheWholeRowsBits) {
+  std::mt19937 rng(11);
+  for (const std::size_t window : {3UL, 10UL, 31UL, 32UL, 70UL, 400UL}) {
+    const std::size_t n = 300;
+    const auto s = random_matrix(1, n, static_cast<unsigned>(window));
+    std::vector<double> sum(n), sum2(n), count(n);
+    window_sums_of(sum.data(), sum2.data(), count.data(), s.values.data(), 0, n, window, 0, n);
+    for (int trial = 0; trial < 40; ++trial) {
+      const std::size_t b = std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
+      const std::size_t e = std::uniform_int_distribution<std::size_t>(b + 1, n)(rng);
+      const std::size_t first = first_read(b, window);
+      ASSERT_LE(first, b);
+      std::vector<float> part(s.values.begin() + static_cast<long>(first),
+                              s.values.begin() + static_cast<long>(std::min(n, e + window)));
+      std::vector<double> ps(e - b), ps2(e - b), pc(e - b);
+      window_sums_of(ps.data(), ps2.data(), pc.data(), part.data(), first, n, window, b, e);
+      for (std::size_t c = b; c < e; ++c) {
+        ASSERT_EQ(ps[c - b], sum[c]) << window << ": " << b << "-" << e << ", cell " << c;
+        ASSERT_EQ(ps2[c - b], sum2[c]) << window << ": " << b << "-" << e << ", cell " << c;
+        ASSERT_EQ(pc[c - b], count[c]);
+      }
+    }
+  }
+}
+
 TEST(ContrastEnhancement, PrefixIsTheRowsFirstCellsBitForBit) {
   for (unsigned seed = 0; seed < 10; ++seed) {
     const std::size_t cols = 9 + 11 * seed, window = 1 + (seed * 5) % 17;

@@ -9,14 +9,31 @@
 // deviations better than its neighbours", which is comparable across the whole matrix.
 //
 // Arithmetic (fixed, so that every caller gets the same bits): the window's sum and sum of squares are
-// accumulated in double, in index order, from the float cells; then
+// accumulated in double from the float cells; then
 //   z = (v - mean) / max(sd, 1e-9),  mean = sum / count,  sd = sqrt(max(0, sum2 / count - mean^2))
-// in double, rounded to float once. Windows are clipped at the matrix's edges.
+// in double, rounded to float once. Windows are clipped at the matrix's edges. A window narrower than
+// kRunningWindow cells either side is summed term by term, in index order. A wider one is a running sum (O(1) a
+// cell whatever the window, as an integral image): at each multiple of kRunningBlock the window is summed term by
+// term, and each next cell adds the value entering its window, then subtracts the one leaving it. The restarts are
+// at fixed columns, so a reader of part of a row (a streamed tile) gets the bits of the whole row.
 #include <cstddef>
 
 #include "seqtopo/core/dense_matrix.hpp"
 
 namespace seqtopo::similarity {
+
+inline constexpr std::size_t kRunningWindow = 32;  // [cells either side] from this window on, running sums
+inline constexpr std::size_t kRunningBlock = 64;   // [cells] a running sum restarts at each multiple of this
+
+// The first index whose value the window sums of cells [begin, ...) read (window w either side): begin - w, or
+// for a running sum the block start of `begin` minus w (clipped at 0).
+std::size_t first_read(std::size_t begin, std::size_t w);
+
+// sum[c - begin], sum2[c - begin] and count[c - begin] for cells c in [begin, end) (end <= n) of a row of n
+// values, value k at x[k - x0] for k in [first_read(begin, w), min(n, end + w)) (x0 <= first_read(begin, w)): the
+// sums over the window [c - w, c + w] clipped to [0, n), by the arithmetic above.
+void window_sums_of(double* sum, double* sum2, double* count, const float* x, std::size_t x0, std::size_t n,
+                    std::size_t w, std::size_t begin, std::size_t end);
 
 // The z-score of v in a window of `count` cells with these sums.
 float contrast_score(float v, double sum, double sum2, double count);
