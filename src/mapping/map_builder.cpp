@@ -10,10 +10,12 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <unordered_map>
 
 #include "masked_frames.hpp"
 #include "median.hpp"
@@ -212,6 +214,35 @@ align::ScoreSource told_progress(align::ScoreSource source, std::size_t total,
   };
   align::ScoreSource::CellReader cell = source.cell_reader();
   return source.derived(std::move(read), std::move(cell));
+}
+
+// A source computed when read (streamed scores), whose single cells are read more than once: the path scores, the
+// end trimming and the bands' realignment each read every pair of every alignment, and a streamed cell costs its
+// two windows of cosines. Each cell is computed once (up to a bound on the cells held); rows are read as they are.
+align::ScoreSource remembering_cells(const align::ScoreSource& source) {
+  if (source.in_memory()) return source;
+  struct Memo {
+    std::mutex mutex;
+    std::unordered_map<std::uint64_t, align::Score> cells;
+  };
+  constexpr std::size_t kMaxCells = std::size_t{1} << 22;  // about 100 MB of map nodes at most
+  auto memo = std::make_shared<Memo>();
+  const std::uint64_t cols = source.cols();
+  auto cell = [source, memo, cols](std::size_t i, std::size_t j) {
+    const std::uint64_t key = i * cols + j;
+    {
+      const std::lock_guard lock(memo->mutex);
+      if (const auto it = memo->cells.find(key); it != memo->cells.end()) return it->second;
+    }
+    const align::Score v = source.at(i, j);
+    const std::lock_guard lock(memo->mutex);
+    if (memo->cells.size() >= kMaxCells) memo->cells.clear();
+    memo->cells.emplace(key, v);
+    return v;
+  };
+  return source.derived(
+      [source](std::size_t i, std::size_t b, std::size_t e, align::Score* out) { source.read_row(i, b, e, out); },
+      std::move(cell));
 }
 
 FitRun fit_statistics(const align::ScoreSource& scores, const MapConfig& c, double frames_per_place,
@@ -844,7 +875,8 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       progress("cells aligned", done, total);
     };
   }
-  const align::ScoreSource scores = told_progress(aligned(minus(enhanced, offset)), searched, told_cells);
+  const align::ScoreSource scores =
+      remembering_cells(told_progress(aligned(minus(enhanced, offset)), searched, told_cells));
   auto found = aligned_n == 0  ? std::vector<align::LocalAlignment>{}
                : run_alignment ? run_alignment(engine, offset, left_out, masked)
                : c.alignment_set == align::AlignmentSet::locally_optimal

@@ -26,22 +26,49 @@ std::vector<std::size_t> tandem_repeat_frames(const align::ScoreSource& source, 
   const auto at = [&](std::size_t k, std::size_t d) { return band[(k % ring) * c.reach + d - 1]; };
   std::vector<bool> repeat(n, false);
   std::vector<double> diagonal(c.reach + 2, 0.0);
+  // The sums along each diagonal d of the pairs (k, k + d) ahead of frame i and (k - d, k) behind it, k within
+  // `half_window` frames of i: running sums as i moves (the pair leaving, the pair entering), summed afresh every
+  // kRestart frames so rounding does not build up. O(reach) a frame, not O(reach x window).
+  constexpr std::size_t kRestart = 64;
+  const std::size_t h = c.half_window;
+  std::vector<double> sum_ahead(c.reach + 1, 0.0), sum_behind(c.reach + 1, 0.0);
+  std::vector<std::size_t> count_ahead(c.reach + 1, 0), count_behind(c.reach + 1, 0);
+  const auto add = [&](std::size_t k, bool entering) {  // frame k's pairs into the window's sums, or out
+    for (std::size_t d = c.near + 1; d <= c.reach; ++d) {
+      if (k + d < n) {
+        sum_ahead[d] += entering ? at(k, d) : -at(k, d);
+        count_ahead[d] = entering ? count_ahead[d] + 1 : count_ahead[d] - 1;
+      }
+      if (k >= d) {
+        sum_behind[d] += entering ? at(k - d, d) : -at(k - d, d);
+        count_behind[d] = entering ? count_behind[d] + 1 : count_behind[d] - 1;
+      }
+    }
+  };
   for (std::size_t i = 0; i < n; ++i) {
-    for (const std::size_t last = std::min(n - 1, i + c.half_window); loaded <= last; ++loaded) {
+    const bool afresh = i % kRestart == 0;
+    // The pair leaving the window, before its row leaves the ring.
+    if (!afresh && i > h) add(i - h - 1, false);
+    for (const std::size_t last = std::min(n - 1, i + h); loaded <= last; ++loaded) {
       if (loaded + 1 < n)
         source.read_row(loaded, loaded + 1, std::min(n, loaded + c.reach + 1), &band[(loaded % ring) * c.reach]);
     }
+    const std::size_t lo = i > h ? i - h : 0, hi = std::min(n - 1, i + h);
+    if (afresh) {
+      std::fill(sum_ahead.begin(), sum_ahead.end(), 0.0);
+      std::fill(sum_behind.begin(), sum_behind.end(), 0.0);
+      std::fill(count_ahead.begin(), count_ahead.end(), 0);
+      std::fill(count_behind.begin(), count_behind.end(), 0);
+      for (std::size_t k = lo; k <= hi; ++k) add(k, true);
+    } else if (i + h <= n - 1) {
+      add(i + h, true);  // the pair entering
+    }
     for (const bool ahead : {true, false}) {
-      // The mean enhanced score along each diagonal d within the `half_window` frames around i: of the pairs
-      // (k, k + d) ahead of it, or (k - d, k) behind it (a frame near a repeat's end sees its period on one side).
-      const std::size_t lo = i > c.half_window ? i - c.half_window : 0, hi = std::min(n - 1, i + c.half_window);
+      // The mean enhanced score along each diagonal d within the `half_window` frames around i, ahead of it or
+      // behind it (a frame near a repeat's end sees its period on one side).
       for (std::size_t d = c.near + 1; d <= c.reach; ++d) {
-        double sum = 0;
-        std::size_t count = 0;
-        for (std::size_t k = lo; k <= hi; ++k) {
-          if (ahead ? k + d < n : k >= d) sum += ahead ? at(k, d) : at(k - d, d), ++count;
-        }
-        diagonal[d] = count == 0 ? 0.0 : sum / static_cast<double>(count);
+        const std::size_t count = ahead ? count_ahead[d] : count_behind[d];
+        diagonal[d] = count == 0 ? 0.0 : (ahead ? sum_ahead[d] : sum_behind[d]) / static_cast<double>(count);
       }
       // The centres of the runs of diagonals above the level, but for a run next to the `near` ones (the sequence's
       // own smoothness, or a stop, continued).
