@@ -334,6 +334,14 @@ std::vector<OnlineEvent> OnlineMapper::add_similarities(const std::vector<std::v
 void OnlineMapper::fill_rows() {
   const std::size_t t = frames_;
   const std::size_t n = scores_.size();
+  // Frames of little information: their scores at most 0 once aligned (next_frame_low_information).
+  masked_.push_back(next_masked_);
+  next_masked_ = false;
+  if (contrast_.window() > 0) {
+    for (std::size_t j = 0; j < n; ++j) {
+      if (masked_[t] || masked_[j]) scores_[j] = std::min(scores_[j], 0.0F);
+    }
+  }
   const float gap = config_.search.gap;
   std::swap(previous_forward_, forward_);
   std::swap(previous_reverse_, reverse_);
@@ -571,7 +579,11 @@ void OnlineMapper::update_tracks(align::Direction direction, std::vector<OnlineE
       const std::vector<float>& previous = forward ? previous_forward_ : previous_reverse_;
       const std::size_t from = forward ? jb - 1 : jb + 1;  // wraps for jb = 0 forward: out of range, no diagonal
       const float diag = from < previous.size() ? previous[from] : 0.0F;
-      matching = scores_[jb] > 0 && align::capped(diag + scores_[jb], config_.search.cap) == value;
+      // A frame of little information scores 0 at most: a path through a tunnel seen twice neither gains nor
+      // loses, and still matches.
+      const bool masked = masked_[t] || masked_[jb];
+      matching = (scores_[jb] > 0 || (masked && scores_[jb] == 0)) &&
+                 align::capped(diag + scores_[jb], config_.search.cap) == value;
     }
     track.falling = best >= 0 && (value < track.last_value || !matching) ? track.falling + 1 : 0;
     if (best < 0 || value < threshold_ || value < track.best - config_.x_drop ||

@@ -18,6 +18,7 @@
 #include "seqtopo/io/npy.hpp"
 #include "seqtopo/pipeline/ground_truth.hpp"
 #include "seqtopo/pipeline/session_input.hpp"
+#include "seqtopo/significance/low_information.hpp"
 #include "seqtopo/similarity/distance.hpp"
 #include "seqtopo/timeline/session_breaks.hpp"
 
@@ -53,6 +54,10 @@ class Feeder {
     run_.statistics_from_table = mapper_.statistics_from_table();
     run_.contrast_offset = mapper_.contrast_offset();
     run_.offset_changes = mapper_.offset_changes();
+    const auto& masked = mapper_.low_information();
+    for (std::size_t t = 0; t < masked.size(); ++t) {
+      if (masked[t]) run_.low_information_frames.push_back(t);
+    }
   }
 
  private:
@@ -197,6 +202,8 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
   OnlineImageRows image_rows(request.similarity);
   // Session breaks inside an image folder with times (timeline/session_breaks.hpp), as the frames arrive.
   timeline::OnlineBreakFinder breaks;
+  // Frames of little information, by the offline rule as they arrive (significance/low_information.hpp).
+  significance::LowInformationStream low_information;
   std::vector<double> session_times;  // the current session's frame times, or empty
   std::size_t session_begin = 0;      // its first frame
   // `where`: the file, or the video and the frame, named by an error of the image's size.
@@ -213,6 +220,7 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
       const std::size_t k = t - session_begin;
       const auto gap =
           breaks.add(k < session_times.size() ? std::optional<double>(session_times[k]) : std::nullopt, rows);
+      if (low_information.add(significance::grey_entropy(image))) m.next_frame_low_information();
       std::vector<OnlineEvent> events = m.add_similarities(rows);
       if (gap && gap->session_break) {
         OnlineEvent e;

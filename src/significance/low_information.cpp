@@ -25,10 +25,16 @@ double grey_entropy(const RgbImage& image) {
   return h;
 }
 
-std::vector<std::size_t> low_information_frames(std::span<const double> entropy, const LowInformationConfig& config) {
+namespace {
+void check(const LowInformationConfig& config) {
   for (double v : {config.max_entropy, config.below_median}) {
     if (!std::isfinite(v) || v < 0) throw std::invalid_argument("low-information bounds must be finite and >= 0");
   }
+}
+}  // namespace
+
+std::vector<std::size_t> low_information_frames(std::span<const double> entropy, const LowInformationConfig& config) {
+  check(config);
   if (entropy.empty()) return {};
   std::vector<double> sorted(entropy.begin(), entropy.end());
   const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
@@ -39,6 +45,26 @@ std::vector<std::size_t> low_information_frames(std::span<const double> entropy,
     if (entropy[k] < bound) out.push_back(k);
   }
   return out;
+}
+
+LowInformationStream::LowInformationStream(const LowInformationConfig& config) : config_(config) { check(config); }
+
+bool LowInformationStream::add(double entropy) {
+  if (!upper_.empty() && entropy < upper_.top()) {
+    lower_.push(entropy);
+  } else {
+    upper_.push(entropy);
+  }
+  // Rebalance: upper holds ceil(count / 2).
+  while (upper_.size() > lower_.size() + 1) {
+    lower_.push(upper_.top());
+    upper_.pop();
+  }
+  while (upper_.size() < lower_.size()) {
+    upper_.push(lower_.top());
+    lower_.pop();
+  }
+  return entropy < std::min(config_.max_entropy, upper_.top() - config_.below_median);
 }
 
 }  // namespace seqtopo::significance

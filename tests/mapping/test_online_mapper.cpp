@@ -580,6 +580,81 @@ TEST(OnlineMapper, WindowsInPlacesAreTheirFramesAtTheGivenScale) {
   EXPECT_THROW(OnlineMapper{no_scale}, std::invalid_argument);
 }
 
+// Frames of little information online (next_frame_low_information): one pass with two dark stretches far apart
+// (nearly one descriptor each, a faint drifting light) and no revisit. Unmasked, dark matches dark and the mapper
+// reports a revisit; masked, none. A route driven twice through the same dark stretch keeps its revisit across it.
+TEST(OnlineMapper, FramesOfLittleInformationAreNoRevisit) {
+  const std::size_t dim = 24;
+  std::mt19937 rng(5);
+  std::normal_distribution<float> g(0.0F, 1.0F);
+  const auto walk = [&](std::size_t n) {
+    std::vector<std::vector<float>> out;
+    std::vector<float> x(dim);
+    for (auto& v : x) v = g(rng);
+    for (std::size_t k = 0; k < n; ++k) {
+      for (auto& v : x) v = 0.6F * v + 0.8F * g(rng);
+      out.push_back(x);
+    }
+    return out;
+  };
+  const auto dark = [&](std::size_t n, float phase) {
+    std::vector<std::vector<float>> out;
+    for (std::size_t k = 0; k < n; ++k) {
+      std::vector<float> d(dim, 0.0F);
+      d[0] = 3.0F;
+      d[1] = 0.3F * std::sin(0.3F * static_cast<float>(k) + phase);
+      d[2] = 0.3F * std::cos(0.2F * static_cast<float>(k) + phase);
+      for (auto& v : d) v += 0.05F * g(rng);
+      out.push_back(d);
+    }
+    return out;
+  };
+  const auto run = [&](const std::vector<std::vector<float>>& frames, const std::vector<bool>& masked) {
+    OnlineMapper m;
+    for (std::size_t t = 0; t < frames.size(); ++t) {
+      if (masked[t]) m.next_frame_low_information();
+      m.add_descriptor(frames[t]);
+    }
+    m.finish();
+    EXPECT_EQ(m.low_information(), masked);
+    return m.loop_closures();
+  };
+  // One pass: 150 frames, 40 dark, 150, 40 dark, 150.
+  std::vector<std::vector<float>> pass;
+  std::vector<bool> masked;
+  for (const auto& [part, is_dark] : {std::pair{walk(150), false},
+                                      {dark(40, 0.0F), true},
+                                      {walk(150), false},
+                                      {dark(40, 0.0F), true},
+                                      {walk(150), false}}) {
+    pass.insert(pass.end(), part.begin(), part.end());
+    masked.insert(masked.end(), part.size(), is_dark);
+  }
+  EXPECT_GT(run(pass, std::vector<bool>(pass.size(), false)).size(), 10U) << "dark must match dark unmasked";
+  EXPECT_TRUE(run(pass, masked).empty());
+  // The same route twice, the dark stretch in both passes at the same place: one revisit across it.
+  std::vector<std::vector<float>> route = walk(120), tunnel = dark(30, 0.0F), rest = walk(120);
+  std::vector<std::vector<float>> twice;
+  std::vector<bool> twice_masked;
+  for (int pass_no = 0; pass_no < 2; ++pass_no) {
+    for (const auto* part : {&route, &tunnel, &rest}) {
+      for (const auto& d : *part) {
+        std::vector<float> seen = d;
+        for (auto& v : seen) v += 0.2F * g(rng);
+        twice.push_back(seen);
+        twice_masked.push_back(part == &tunnel);
+      }
+    }
+  }
+  const auto closures = run(twice, twice_masked);
+  std::size_t after_tunnel = 0;
+  for (const auto& c : closures) {
+    EXPECT_LE(std::abs(static_cast<long>(c.i) - static_cast<long>(c.j) - 270L), 3L) << c.i << " " << c.j;
+    after_tunnel += c.i >= 270 + 150 + 10 ? 1 : 0;
+  }
+  EXPECT_GT(after_tunnel, 80U) << "the revisit goes on after the tunnel";
+}
+
 TEST(OnlineMapper, RefusesBadFrames) {
   OnlineMapper m;
   EXPECT_THROW(m.add_scores(std::vector<float>{1.0F}), std::invalid_argument);  // frame 0 has no scores

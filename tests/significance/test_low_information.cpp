@@ -49,6 +49,28 @@ TEST(LowInformation, FramesBelowBothBounds) {
   EXPECT_THROW(low_information_frames(entropy, {.below_median = std::nan("")}), std::invalid_argument);
 }
 
+// As frames arrive: each frame judged by the batch rule on the frames so far (the last of them), whatever order
+// the entropies come in (the running median against a sort each time).
+TEST(LowInformation, TheStreamJudgesEachFrameByTheFramesSoFar) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 8.0);
+  for (int run = 0; run < 20; ++run) {
+    LowInformationStream stream;
+    std::vector<double> so_far;
+    const std::size_t n = 1 + static_cast<std::size_t>(run) * 13;
+    for (std::size_t k = 0; k < n; ++k) {
+      // Ties and runs too: a tenth of the frames repeat the previous value.
+      const double e =
+          k > 0 && k % 10 == 0 ? so_far.back() : (run % 2 == 0 ? u(rng) : 7.0 - 0.05 * static_cast<double>(k));
+      so_far.push_back(e);
+      const auto batch = low_information_frames(so_far);
+      const bool expected = !batch.empty() && batch.back() == k;
+      ASSERT_EQ(stream.add(e), expected) << run << ": frame " << k;
+    }
+  }
+  EXPECT_THROW(LowInformationStream({.max_entropy = -1}), std::invalid_argument);
+}
+
 TEST(LowInformation, RandomTextureIsRichAndADarkFrameWithAFaintLightIsNot) {
   std::mt19937 rng(3);
   std::uniform_int_distribution<int> level(0, 255);

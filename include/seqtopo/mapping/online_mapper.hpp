@@ -209,6 +209,13 @@ class OnlineMapper {
   // The next frame as its alignment scores s(t, j), j = 0 .. t - min_separation (max(0, t - min_separation + 1)
   // values), aligned as they are: no enhancement, no offset (the engine's own view; tests and other sensors).
   std::vector<OnlineEvent> add_scores(std::span<const float> scores);
+  // The next frame added is of little information (a dark or near-uniform image: significance/low_information.hpp,
+  // its rule as the frames arrive): with contrast enhancement its scores, and later frames' scores with it, are at
+  // most 0 once aligned (soft-masked, as the offline map masks its short stretches), so it carries no evidence of a
+  // revisit and a run of them is no revisit. Without enhancement it is aligned as it scores.
+  void next_frame_low_information() { next_masked_ = true; }
+  // Which frames so far were of little information.
+  const std::vector<bool>& low_information() const { return masked_; }
   // Ends every live track (no junction: the run ended, not the revisit) and withdraws the open candidates. Further
   // frames may still be added.
   std::vector<OnlineEvent> finish();
@@ -291,6 +298,8 @@ class OnlineMapper {
   CausalContrast contrast_;         // the enhanced rows (without the offset)
   std::size_t channels_ = 0;
   std::vector<float> scores_;  // s(t, j), j <= t - min_separation
+  std::vector<bool> masked_;   // per frame so far: of little information
+  bool next_masked_ = false;   // next_frame_low_information() was called
   std::vector<float> forward_, reverse_, previous_forward_, previous_reverse_;
   // Start cell (frame, column) of the path attaining each cell, for the same rows.
   std::vector<std::uint64_t> forward_start_, reverse_start_, previous_forward_start_, previous_reverse_start_;

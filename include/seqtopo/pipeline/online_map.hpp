@@ -81,6 +81,8 @@ struct OnlineMapRun {
   // The contrast offset of the last frame, and where the logarithmic-phase check raised it (OnlineMapConfig).
   float contrast_offset = 0;
   std::vector<mapping::OnlineMapper::OffsetChange> offset_changes;
+  // Images of little information (dark or near-uniform: soft-masked, OnlineMapper::next_frame_low_information).
+  std::vector<std::size_t> low_information_frames;
   std::vector<std::string> warnings;  // about the input (a video that ended before the frames it announced)
   double seconds = 0;                 // the online run's wall time, reading and decoding included [s]
   std::map<std::string, std::size_t> event_counts;        // by event name (mapping::to_string)

@@ -16,6 +16,8 @@
 // every frame is dim (an infrared camera, a dark warehouse) keeps its frames: only those far below its own
 // typical frame are masked.
 #include <cstddef>
+#include <functional>
+#include <queue>
 #include <span>
 #include <vector>
 
@@ -35,5 +37,22 @@ struct LowInformationConfig {
 // that is negative or not finite.
 std::vector<std::size_t> low_information_frames(std::span<const double> entropy,
                                                 const LowInformationConfig& config = {});
+
+// The same rule as the frames arrive (online mapping): a frame is of little information when its entropy is below
+// max_entropy and the median of the entropies so far (its own included) less below_median. The median so far
+// stands in for the whole sequence's, so the first frames of a dim camera may be judged before its typical frame
+// is known; from a few dozen frames on the two rules agree but for frames near the bound.
+class LowInformationStream {
+ public:
+  explicit LowInformationStream(const LowInformationConfig& config = {});  // throws as low_information_frames
+  bool add(double entropy);
+
+ private:
+  LowInformationConfig config_;
+  // The entropies so far: the lower half in a max-heap, the upper half (one more for an odd count) in a min-heap,
+  // so the median low_information_frames takes (the element at index count / 2 sorted) is the upper's top.
+  std::priority_queue<double> lower_;
+  std::priority_queue<double, std::vector<double>, std::greater<>> upper_;
+};
 
 }  // namespace seqtopo::significance
