@@ -11,6 +11,7 @@
 #include "command_registry.hpp"
 #include "options/number_options.hpp"
 #include "seqtopo/core/input_error.hpp"
+#include "seqtopo/formats/decision_notes.hpp"
 #include "seqtopo/formats/online_events.hpp"
 #include "seqtopo/io/atomic_output.hpp"
 #include "seqtopo/outputs/online_outputs.hpp"
@@ -107,6 +108,14 @@ void run_map_online(const OnlineCliOptions& o) {
                   x.chance_length, x.frames_per_place);
     std::cerr << fmt::format("seqtopo map: online contrast offset {:.2f}: {}; raised to {:.2f} after frame {}\n",
                              x.from, why, x.to, x.frame);
+  }
+  if (!run.low_information_frames.empty()) {
+    const std::size_t stretches = formats::frame_stretches(run.low_information_frames).size();
+    std::cerr << fmt::format(
+        "seqtopo map: online: {} image{} of little information (dark or near-uniform) in {} stretch{}: no evidence "
+        "of a revisit (soft-masked)\n",
+        run.low_information_frames.size(), run.low_information_frames.size() == 1 ? "" : "s", stretches,
+        stretches == 1 ? "" : "es");
   }
   if (st.valid()) {
     std::cerr << fmt::format(

@@ -66,6 +66,8 @@ void write_online_map_outputs(const pipeline::OnlineMapRun& run, const mapping::
                        {"bound", x.bound},
                        {"frames_per_place", x.frames_per_place}});
   }
+  // As alignments.json: the images of little information, 0-based, sorted (absent when none).
+  if (!run.low_information_frames.empty()) significance["low_information_frames"] = run.low_information_frames;
   summary["significance"] = std::move(significance);
   if (run.metrics) summary["metrics"] = detail::loop_closure_metrics_json(*run.metrics);
   if (run.offline && run.offline->metrics) {

@@ -205,8 +205,8 @@ TEST_F(MapStreaming, ImageFolderWithOneVectorDescriptor) {
 }
 
 // Dark frames carry no evidence of a revisit whatever the engine: the corridor with 20 black frames after each
-// lap, streamed and sparse, lists the frames the dense map masks (alignments.json's low_information_frames) and says
-// so.
+// lap, streamed, sparse and online, lists the frames the dense map masks (alignments.json's low_information_frames)
+// and says so.
 TEST_F(MapStreaming, DarkFramesAreMaskedAsInTheDenseMap) {
   const fs::path corridor = fs::path(SEQTOPO_SOURCE_DIR) / "data" / "rtabmap-corridor";
   const fs::path frames = dir_.path / "frames";
@@ -238,6 +238,13 @@ TEST_F(MapStreaming, DarkFramesAreMaskedAsInTheDenseMap) {
   EXPECT_EQ(dense.back(), 123U);
   EXPECT_EQ(low_information("streaming"), dense);
   EXPECT_EQ(low_information("sparse"), dense);
+  // Online, judged as the frames arrive (the median so far): the same frames, in online.json and on stderr.
+  const fs::path online = dir_.path / "online";
+  const auto r = run_cli("map " + frames.string() + " --online --no-offline-outputs --out " + online.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("images of little information"), std::string::npos) << r.err;
+  const auto significance = nlohmann::json::parse(read_file(online / "online.json")).at("significance");
+  EXPECT_EQ(significance.value("low_information_frames", std::vector<std::size_t>{}), dense);
 }
 
 // Without --descriptor / --metric, images stream the nearest vector descriptor (patch, by cosine), and say so:
