@@ -143,7 +143,7 @@ struct PyOnlineMapper {
       std::vector<OnlineEvent> events;
       try {
         const py::gil_scoped_release release;
-        events = mapper.add_similarities(image_rows.add(rgb));
+        events = image_rows.feed(mapper, image_rows.add(rgb));
       } catch (const std::invalid_argument& e) {
         throw py::value_error(std::string("add: frame ") + std::to_string(mapper.frames()) + ": " + e.what());
       }
@@ -322,6 +322,18 @@ void bind_online(py::module_& m) {
       .def_property_readonly(
           "contrast_offset", [](const PyOnlineMapper& self) { return self.mapper.contrast_offset(); },
           "The contrast offset of the next frame: the config's, raised while chance paths grow with the sequence.")
+      .def_property_readonly(
+          "low_information_frames",
+          [](const PyOnlineMapper& self) {
+            py::list out;
+            const auto& masked = self.mapper.low_information();
+            for (std::size_t t = 0; t < masked.size(); ++t) {
+              if (masked[t]) out.append(t);
+            }
+            return out;
+          },
+          "The images so far judged of little information (dark or near-uniform) as they arrived: no evidence of a "
+          "revisit (docs/online.md).")
       .def_property_readonly("island_scores",
                              [](const PyOnlineMapper& self) { return copy_array<double>(self.mapper.island_scores()); })
       .def_property_readonly("last_scores",

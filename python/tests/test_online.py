@@ -97,6 +97,18 @@ def test_images_and_refusals():
     assert seqtopo.OnlineMapConfig(candidate_e_value=None).candidate_e_value is None
 
 
+def test_dark_images_are_of_little_information_as_they_arrive():
+    # Textured images, then black ones (a tunnel), then textured again: the black ones carry no evidence of a
+    # revisit, judged by the offline rule on the images so far (as `seqtopo map --online` judges them).
+    mapper = seqtopo.OnlineMapper()
+    rng = np.random.default_rng(2)
+    for k in range(50):
+        dark = 20 <= k < 30
+        image = np.zeros((48, 64, 3), np.uint8) if dark else rng.integers(0, 255, (48, 64, 3), dtype=np.uint8)
+        mapper.add(image)
+    assert mapper.low_information_frames == list(range(20, 30))
+
+
 def test_a_short_run_is_fitted_on_its_table_until_the_islands_suffice():
     frames = np.random.default_rng(4).standard_normal((150, 128)).astype(np.float32)
     early = seqtopo.OnlineMapper(seqtopo.OnlineMapConfig(contrast_offset=1.0))

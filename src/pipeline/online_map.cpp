@@ -85,6 +85,7 @@ std::vector<std::vector<float>> OnlineImageRows::add(const RgbImage& image) {
   }
   width_ = image.width;
   height_ = image.height;
+  last_low_information_ = low_information_.add(significance::grey_entropy(image));
   histograms_.push_back(image::joint_histogram(image, config_.joint_histogram));
   patches_.push_back(image::patch_thumbnail(image, config_.patch));
   const std::size_t t = histograms_.size() - 1;
@@ -94,6 +95,12 @@ std::vector<std::vector<float>> OnlineImageRows::add(const RgbImage& image) {
     rows[1][j] = -static_cast<float>(similarity::sad_distance(patches_[t], patches_[j]));
   }
   return rows;
+}
+
+std::vector<OnlineEvent> OnlineImageRows::feed(mapping::OnlineMapper& mapper,
+                                               const std::vector<std::vector<float>>& rows) const {
+  if (last_low_information_) mapper.next_frame_low_information();
+  return mapper.add_similarities(rows);
 }
 
 void apply_overrides(mapping::OnlineMapConfig& c, const MapOverrides& o) {
@@ -202,8 +209,6 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
   OnlineImageRows image_rows(request.similarity);
   // Session breaks inside an image folder with times (timeline/session_breaks.hpp), as the frames arrive.
   timeline::OnlineBreakFinder breaks;
-  // Frames of little information, by the offline rule as they arrive (significance/low_information.hpp).
-  significance::LowInformationStream low_information;
   std::vector<double> session_times;  // the current session's frame times, or empty
   std::size_t session_begin = 0;      // its first frame
   // `where`: the file, or the video and the frame, named by an error of the image's size.
@@ -220,8 +225,7 @@ OnlineMapRun run_online_map(const OnlineMapRequest& request, const OnlineMapFram
       const std::size_t k = t - session_begin;
       const auto gap =
           breaks.add(k < session_times.size() ? std::optional<double>(session_times[k]) : std::nullopt, rows);
-      if (low_information.add(significance::grey_entropy(image))) m.next_frame_low_information();
-      std::vector<OnlineEvent> events = m.add_similarities(rows);
+      std::vector<OnlineEvent> events = image_rows.feed(m, rows);
       if (gap && gap->session_break) {
         OnlineEvent e;
         e.kind = mapping::OnlineEventKind::session_break;

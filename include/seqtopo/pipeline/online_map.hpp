@@ -28,6 +28,7 @@
 #include "seqtopo/pipeline/map_request.hpp"
 #include "seqtopo/pipeline/sequence_input.hpp"
 #include "seqtopo/pipeline/sequence_similarity.hpp"
+#include "seqtopo/significance/low_information.hpp"
 
 namespace seqtopo::pipeline {
 
@@ -39,9 +40,15 @@ class OnlineImageRows {
  public:
   explicit OnlineImageRows(const SimilarityConfig& config = {}) : config_(config) {}
   std::vector<std::vector<float>> add(const RgbImage& image);
+  // The rows of the image added last given to `mapper`, told first when that image is of little information (dark
+  // or near-uniform, significance::LowInformationStream: the offline rule as the images arrive); its events.
+  std::vector<mapping::OnlineEvent> feed(mapping::OnlineMapper& mapper,
+                                         const std::vector<std::vector<float>>& rows) const;
 
  private:
   SimilarityConfig config_;
+  significance::LowInformationStream low_information_;
+  bool last_low_information_ = false;
   int width_ = 0, height_ = 0;  // the first image's
   std::vector<similarity::SparseHistogram> histograms_;
   std::vector<std::vector<float>> patches_;
