@@ -50,21 +50,8 @@ std::vector<std::size_t> low_information_frames(std::span<const double> entropy,
 LowInformationStream::LowInformationStream(const LowInformationConfig& config) : config_(config) { check(config); }
 
 bool LowInformationStream::add(double entropy) {
-  if (!upper_.empty() && entropy < upper_.top()) {
-    lower_.push(entropy);
-  } else {
-    upper_.push(entropy);
-  }
-  // Rebalance: upper holds ceil(count / 2).
-  while (upper_.size() > lower_.size() + 1) {
-    lower_.push(upper_.top());
-    upper_.pop();
-  }
-  while (upper_.size() < lower_.size()) {
-    upper_.push(lower_.top());
-    lower_.pop();
-  }
-  return entropy < std::min(config_.max_entropy, upper_.top() - config_.below_median);
+  entropies_.add(entropy);
+  return entropy < std::min(config_.max_entropy, entropies_.median() - config_.below_median);
 }
 
 }  // namespace seqtopo::significance

@@ -92,30 +92,9 @@ bool looks_like_neighbours(const Similarity& similarity, std::size_t a, std::siz
 void OnlineBreakFinder::start_session() {
   begin_ = frames_;
   last_time_.reset();
-  lower_ = {};
-  upper_ = {};
+  intervals_.clear();
   previous_.clear();
   step_ranks_.clear();
-}
-
-double OnlineBreakFinder::median_interval() const {
-  // The upper median, as time_gaps reads it: lower_ holds the lower half (one more on an odd count).
-  return lower_.size() == upper_.size() ? upper_.top() : lower_.top();
-}
-
-void OnlineBreakFinder::add_interval(double interval) {
-  if (lower_.empty() || interval <= lower_.top()) {
-    lower_.push(interval);
-  } else {
-    upper_.push(interval);
-  }
-  if (lower_.size() > upper_.size() + 1) {
-    upper_.push(lower_.top());
-    lower_.pop();
-  } else if (upper_.size() > lower_.size()) {
-    lower_.push(upper_.top());
-    upper_.pop();
-  }
 }
 
 std::optional<OnlineBreakFinder::Gap> OnlineBreakFinder::add(std::optional<double> time,
@@ -151,14 +130,14 @@ std::optional<OnlineBreakFinder::Gap> OnlineBreakFinder::add(std::optional<doubl
   if (last_time_) {
     const double interval = *time - *last_time_;
     // By the intervals before this one (at least two), as time_gaps rules on the whole recording.
-    if (lower_.size() + upper_.size() >= 2 && is_gap(interval, median_interval(), config_)) {
+    if (intervals_.size() >= 2 && is_gap(interval, intervals_.median(), config_)) {
       bool neighbours = false;
       for (std::size_t d = 0; d < ranks.size() && d < step_ranks_.size(); ++d) {
         neighbours = neighbours || ranks_as_neighbours(ranks[d], step_ranks_[d], config_);
       }
-      gap = Gap{{t, interval, median_interval()}, !neighbours};
+      gap = Gap{{t, interval, intervals_.median()}, !neighbours};
     }
-    add_interval(interval);
+    intervals_.add(interval);
   }
   last_time_ = time;
   if (!gap) {  // a gap's step is not one of the recording's own

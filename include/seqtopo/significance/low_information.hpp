@@ -16,12 +16,11 @@
 // every frame is dim (an infrared camera, a dark warehouse) keeps its frames: only those far below its own
 // typical frame are masked.
 #include <cstddef>
-#include <functional>
-#include <queue>
 #include <span>
 #include <vector>
 
 #include "seqtopo/core/rgb_image.hpp"
+#include "seqtopo/core/running_median.hpp"
 
 namespace seqtopo::significance {
 
@@ -49,10 +48,7 @@ class LowInformationStream {
 
  private:
   LowInformationConfig config_;
-  // The entropies so far: the lower half in a max-heap, the upper half (one more for an odd count) in a min-heap,
-  // so the median low_information_frames takes (the element at index count / 2 sorted) is the upper's top.
-  std::priority_queue<double> lower_;
-  std::priority_queue<double, std::vector<double>, std::greater<>> upper_;
+  RunningMedian entropies_;  // so far
 };
 
 }  // namespace seqtopo::significance

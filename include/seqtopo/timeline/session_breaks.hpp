@@ -15,9 +15,10 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
-#include <queue>
 #include <span>
 #include <vector>
+
+#include "seqtopo/core/running_median.hpp"
 
 namespace seqtopo::timeline {
 
@@ -86,15 +87,11 @@ class OnlineBreakFinder {
   std::optional<Gap> add(std::optional<double> time, const std::vector<std::vector<float>>& rows);
 
  private:
-  double median_interval() const;
-  void add_interval(double interval);
-
   SessionBreakConfig config_;
   std::size_t frames_ = 0, begin_ = 0;  // frames of the run so far; the session's first
   std::optional<double> last_time_;
-  std::priority_queue<double> lower_;                                             // intervals, lower half
-  std::priority_queue<double, std::vector<double>, std::greater<double>> upper_;  // upper half
-  std::vector<std::vector<float>> previous_;                                      // the previous frame's rows
+  RunningMedian intervals_;                      // the session's intervals so far
+  std::vector<std::vector<float>> previous_;     // the previous frame's rows
   std::vector<std::vector<double>> step_ranks_;  // per descriptor, the session's steps so far
 };
 
