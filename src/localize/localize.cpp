@@ -207,6 +207,41 @@ LocalizeResult search_scores(const SimilarityMatrix& scores, const LocalizeConfi
   return r;
 }
 
+namespace {
+
+// A frame not in the map by its own evidence (confidence below 1/2: only a chance alignment reaches it,
+// past the end of a revisit whose last frames are weak or dark, or a map frame near its edge) has no answer it can
+// be sure of. Its guess is the nearest frame in the map carried on along that frame's alignment, at its own (low)
+// confidence still: the robot most likely went on along the route it was localized on (before, the weak
+// alignment's cell, often a chance one elsewhere). Carried past either end of the map, its own guess stands.
+void carry_on(LocalizeResult& r, std::size_t cols) {
+  // More likely right than wrong, whatever min_confidence decides (the guesses do not move with it).
+  const auto sure = [&](std::size_t q) { return r.frames[q].confidence >= 0.5; };
+  const std::size_t n = r.frames.size();
+  std::vector<std::size_t> before(n, FrameMatch::npos), after(n, FrameMatch::npos);
+  for (std::size_t q = 0, last = FrameMatch::npos; q < n; ++q) before[q] = last = sure(q) ? q : last;
+  for (std::size_t q = n, next = FrameMatch::npos; q-- > 0;) after[q] = next = sure(q) ? q : next;
+  for (std::size_t q = 0; q < n; ++q) {
+    if (sure(q)) continue;
+    const std::size_t from = before[q] != FrameMatch::npos ? before[q] : after[q];
+    if (from == FrameMatch::npos) return;  // nothing localized at all
+    const FrameMatch& k = r.frames[from];
+    const auto step = static_cast<long long>(q) - static_cast<long long>(from);
+    const long long guess = static_cast<long long>(k.map) + (k.direction == align::Direction::forward ? step : -step);
+    // Carried past the map's end the robot has left the mapped route (or closed a loop): its own guess stands.
+    if (guess < 0 || guess >= static_cast<long long>(cols)) continue;
+    FrameMatch& f = r.frames[q];
+    f.map = static_cast<std::size_t>(guess);
+    f.candidates.insert(f.candidates.begin(), f.map);
+    f.candidates.erase(std::unique(f.candidates.begin(), f.candidates.end()), f.candidates.end());
+    for (std::size_t k2 = 1; k2 < f.candidates.size(); ++k2) {
+      if (f.candidates[k2] == f.map) f.candidates.erase(f.candidates.begin() + static_cast<std::ptrdiff_t>(k2--));
+    }
+  }
+}
+
+}  // namespace
+
 LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeConfig& c) {
   LocalizeResult r = search_scores(scores, c);
   // Without a fit, lambda from the cells (an upper bound on the gapped one), else 1.
@@ -216,6 +251,7 @@ LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeCon
     if (!(lambda > 0)) lambda = 1.0;
   }
   r.frames = frames_from_alignments(r.alignments, r.e_values, lambda, scores, c);
+  carry_on(r, scores.cols);
   return r;
 }
 
@@ -380,12 +416,39 @@ std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> ss, con
 }
 
 LocalizeResult localize_sequence(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c) {
+  return localize_sequence(ss, c, LowInformationFrames{});
+}
+
+void soft_mask(SimilarityMatrix& scores, const LowInformationFrames& frames) {
+  for (std::size_t q : frames.query) {
+    if (q >= scores.rows) throw std::invalid_argument("low-information query frame outside the matrix");
+    for (auto& v : scores.row(q)) v = std::min(v, 0.0F);
+  }
+  for (std::size_t m : frames.map) {
+    if (m >= scores.cols) throw std::invalid_argument("low-information map frame outside the matrix");
+    for (std::size_t q = 0; q < scores.rows; ++q) scores(q, m) = std::min(scores(q, m), 0.0F);
+  }
+}
+
+namespace {
+
+// The alignments over soft-masked scores (soft_mask).
+LocalizeResult localize_masked(SimilarityMatrix scores, const LocalizeConfig& c,
+                               const LowInformationFrames& low_information) {
+  soft_mask(scores, low_information);
+  return localize_scores(scores, c);
+}
+
+}  // namespace
+
+LocalizeResult localize_sequence(std::span<const SimilarityMatrix> ss, const LocalizeConfig& c,
+                                 const LowInformationFrames& low_information) {
   check_same_shape(ss);
-  if (ss.size() == 1) return localize_sequence(ss.front(), c);
+  if (ss.size() == 1) return localize_masked(score_matrix(ss.front(), c), c, low_information);
   const std::vector<SimilarityMatrix> enhanced = enhanced_each(ss, c);
   const std::vector<double> weights = weights_of_enhanced(enhanced, c);
   SimilarityMatrix fused = fuse_enhanced(enhanced, weights, 0.0F);
-  LocalizeResult r = localize_scores(minus(fused, c.score.contrast_offset), c);
+  LocalizeResult r = localize_masked(minus(fused, c.score.contrast_offset), c, low_information);
   r.fused_enhanced = std::move(fused);
   r.descriptor_weights = weights;
   for (std::size_t d = 0; d < weights.size(); ++d) {

@@ -18,6 +18,7 @@
 #include "seqtopo/localize/online_localizer.hpp"
 #include "seqtopo/pipeline/baselines.hpp"
 #include "seqtopo/pipeline/presets.hpp"
+#include "seqtopo/significance/low_information.hpp"
 #include "seqtopo/similarity/distance.hpp"
 #ifdef SEQTOPO_HAVE_RECORDING
 #include "seqtopo/recording/recording.hpp"
@@ -95,12 +96,24 @@ void run_offline(const LocalizeRequest& request, LocalizeRun& run) {
                      e.what());
   }
   run.timings.emplace_back("similarity matrix", seconds_since(t0));
+  // Dark or near-uniform images carry no evidence of place, in the query or the map (each by its own median).
+  localize::LowInformationFrames low_information;
+  if (!s.empty()) {
+    low_information.query = significance::low_information_frames(s.front().frame_entropy);
+    low_information.map = significance::low_information_frames(s.front().column_entropy);
+    if (!low_information.query.empty() || !low_information.map.empty()) {
+      run.notes.push_back(fmt::format(
+          "{} query and {} map images of little information (dark or near-uniform): no evidence of where the "
+          "query is (soft-masked); such a query frame is placed by the evidence around it",
+          low_information.query.size(), low_information.map.size()));
+    }
+  }
   std::vector<SimilarityMatrix> similarities;
   for (auto& r : s) similarities.push_back(std::move(r.similarity));
 
   const auto t1 = Clock::now();
   const auto& config = request.settings.localize;
-  auto result = localize::localize_sequence(similarities, config);
+  auto result = localize::localize_sequence(similarities, config, low_information);
   run.timings.emplace_back("alignment (forward and reverse)", seconds_since(t1));
   run.blind_descriptors = result.blind_descriptors;
   run.descriptor_weights = result.descriptor_weights;

@@ -781,6 +781,7 @@ std::vector<SimilarityResult> run(std::span<const SequenceInput> inputs_a, std::
     r.session_rows = da.session_rows;
     // Every session's images, or none: a descriptors.npy session has no picture to measure.
     if (da.entropy.size() == r.frame_names.size()) r.frame_entropy = da.entropy;
+    if (db && db->entropy.size() == r.column_names.size()) r.column_entropy = db->entropy;
     results.push_back(std::move(r));
   }
   return results;

@@ -149,6 +149,66 @@ TEST(Localize, BridgesAShortBadStretch) {
   }
 }
 
+// Dark stretches at different places: query frames 40-59 are dark where the map was lit, and the map is dark at
+// 120-139 where the query never goes; dark matches dark (0.95), the true cells of the dark query frames are poor.
+// Unmasked, the dark query frames are placed in the map's dark stretch with confidence; with both stretches given
+// as of little information, no frame is confidently wrong and the dark query frames are placed on the route around
+// them.
+TEST(Localize, DarkFramesAtDifferentPlacesAreNoEvidence) {
+  const std::size_t nq = 100, nm = 200;
+  auto s = noise(nq, nm, 11);
+  const auto truth = [](std::size_t q) { return q + 10; };
+  for (std::size_t q = 0; q < nq; ++q) s(q, truth(q)) = 1.0F;
+  LowInformationFrames dark;
+  for (std::size_t q = 40; q < 60; ++q) {
+    dark.query.push_back(q);
+    s(q, truth(q)) = 0.2F;
+    for (std::size_t m = 120; m < 140; ++m) s(q, m) = 0.95F;
+  }
+  for (std::size_t m = 120; m < 140; ++m) dark.map.push_back(m);
+  const auto config = plain_config();
+  const std::vector<SimilarityMatrix> one{s};
+  std::size_t confidently_wrong = 0;
+  for (const auto& f : localize_sequence(one, config).frames) {
+    confidently_wrong += f.confidence >= 0.5 && f.map >= 120 && f.map < 140 ? 1 : 0;
+  }
+  EXPECT_GE(confidently_wrong, 10U) << "unmasked, dark matches dark";
+  const auto r = localize_sequence(one, config, dark);
+  for (std::size_t q = 0; q < nq; ++q) {
+    const auto& f = r.frames[q];
+    if (f.confidence >= 0.5) {
+      EXPECT_LE(distance(f.map, truth(q)), 1U) << q << " confidence " << f.confidence;
+    }
+    EXPECT_LE(distance(f.map, truth(q)), 2U) << q;
+  }
+  SimilarityMatrix masked = score_matrix(s, config);
+  soft_mask(masked, dark);
+  EXPECT_LE(masked(45, 125), 0.0F);
+  EXPECT_EQ(masked(10, 20), score_matrix(s, config)(10, 20));
+  EXPECT_THROW(soft_mask(masked, {{nq}, {}}), std::invalid_argument);
+}
+
+// A query that goes on along the route with nothing to see for its last 20 frames: their guesses carry on along
+// the revisit (at their own low confidence, not in the map), but not past the map's end, where the robot has left
+// the mapped route.
+TEST(Localize, FramesWithoutEvidenceCarryOnAlongTheRoute) {
+  const std::size_t nq = 60;
+  for (const std::size_t nm : {100UL, 55UL}) {
+    auto s = noise(nq, nm, 12);
+    for (std::size_t q = 0; q < 40; ++q) s(q, q + 5) = 1.0F;
+    const auto r = localize_sequence(s, plain_config());
+    for (std::size_t q = 44; q < nq; ++q) {
+      const auto& f = r.frames[q];
+      EXPECT_FALSE(f.covered) << q;
+      EXPECT_LT(f.map, nm);
+      if (q + 5 < nm) {  // past the map's end its own guess stands (whatever the noise gives)
+        EXPECT_EQ(f.map, q + 5) << q << " of a map of " << nm;
+        EXPECT_EQ(f.candidates.front(), f.map);
+      }
+    }
+  }
+}
+
 TEST(Localize, EveryFrameTakesItsMostConfidentAlignmentsPosteriorGuessWithItsWindowedScore) {
   // Reference: per frame, the best over the alignments of P(revisit | E) x the row posterior (align::row_posteriors
   // called directly; between the alignment's first and last pair, over the row's posterior anywhere in the band),

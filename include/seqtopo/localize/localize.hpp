@@ -152,6 +152,20 @@ std::vector<double> descriptor_weights(std::span<const SimilarityMatrix> query_x
 // contrast-enhanced once, for the weights and the fusion alike: the D enhanced tables are held together (D query x
 // map tables of floats beside the similarities).
 LocalizeResult localize_sequence(std::span<const SimilarityMatrix> query_x_map, const LocalizeConfig& config = {});
+
+// Frames of little information (dark or near-uniform images: significance/low_information.hpp, each sequence by
+// its own median), sorted. Their scores are at most 0 once aligned (soft-masked, as the map masks them): a dark
+// query frame matching a dark map frame elsewhere (two different tunnels) is no evidence of where the query is,
+// and a query through a tunnel the map saw too is placed by the evidence on either side.
+struct LowInformationFrames {
+  std::vector<std::size_t> query, map;
+};
+// `scores` (query x map, aligned: after the offset) with every cell of a listed query row or map column at most 0.
+// Throws std::invalid_argument for a frame outside the matrix.
+void soft_mask(SimilarityMatrix& scores, const LowInformationFrames& frames);
+// localize_sequence with those frames soft-masked (none listed: the same as without).
+LocalizeResult localize_sequence(std::span<const SimilarityMatrix> query_x_map, const LocalizeConfig& config,
+                                 const LowInformationFrames& low_information);
 // The localization of a score matrix already made (score_matrix, fused_score_matrix): the rest of localize_sequence.
 LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeConfig& config = {});
 // Its first half: the alignments, their E-values and the statistics, without the per-frame answers (frames empty).

@@ -87,6 +87,7 @@ struct SimilarityResult {
   // The grey-level entropy of each row's image [bits] (significance/low_information.hpp); empty unless every row
   // is an image or a video or bag frame.
   std::vector<double> frame_entropy;
+  std::vector<double> column_entropy;  // the same of each column's image, when the columns are another sequence
   double seconds_descriptors = 0, seconds_matrix = 0;
 };
 
