@@ -30,7 +30,23 @@ OnlineEstimate OnlineLocalizer::feed(std::span<const float> row) {
   return feed_descriptors(std::span<const std::span<const float>>(&row, 1));
 }
 
-OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const float>> rows) {
+void OnlineLocalizer::set_low_information_map(std::span<const std::size_t> frames) {
+  if (frames_seen_ > 0) throw std::invalid_argument("the map's frames of little information come before the query");
+  map_masked_.assign(map_frames_, false);
+  for (std::size_t f : frames) {
+    if (f >= map_frames_) throw std::invalid_argument("low-information map frame outside the map");
+    map_masked_[f] = true;
+  }
+}
+
+void OnlineLocalizer::soft_mask_row(std::size_t query, float* scores) const {
+  const bool all = query < query_masked_.size() && query_masked_[query];
+  for (std::size_t j = 0; j < map_frames_; ++j) {
+    if (all || (!map_masked_.empty() && map_masked_[j])) scores[j] = std::min(scores[j], 0.0F);
+  }
+}
+
+OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const float>> rows, bool low_information) {
   const std::size_t descriptors = std::max<std::size_t>(raw_.size(), 1);
   if (rows.size() != descriptors) {
     throw std::invalid_argument(std::to_string(rows.size()) + " similarity rows for " + std::to_string(descriptors) +
@@ -56,6 +72,8 @@ OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const
     scratch_.resize(map_frames_);
     fused_score_row(pointers, map_frames_, config_, now_.scores.data(), scratch_.data(), weights_);
   }
+  query_masked_.push_back(low_information);
+  soft_mask_row(frames_seen_, now_.scores.data());
   return advance();
 }
 
@@ -216,6 +234,8 @@ void OnlineLocalizer::refit() {
       std::fill(now_.reverse.begin(), now_.reverse.end(), 0.0F);
       for (std::size_t i = 0; i < frames_seen_; ++i) {
         std::copy_n(scored.row(i).begin(), map_frames_, now_.scores.begin());
+        soft_mask_row(i, now_.scores.data());
+        std::copy_n(now_.scores.begin(), map_frames_, seen_.begin() + static_cast<std::ptrdiff_t>(i * map_frames_));
         step();
       }
     }

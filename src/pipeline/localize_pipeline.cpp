@@ -165,7 +165,10 @@ struct Describer {
   std::optional<std::pair<int, int>> first_size;
   std::string first_input;
 
+  std::vector<double> entropy;  // of each image described, in order (significance/low_information.hpp)
+
   std::vector<FrameDescriptor> operator()(const RgbImage& image) {
+    entropy.push_back(significance::grey_entropy(image));
     std::vector<FrameDescriptor> out;
     for (Descriptor d : descriptors) out.push_back(describe(image, d));
     return out;
@@ -317,7 +320,7 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
   const std::vector<Descriptor>& ds = run.settings.descriptors;
   std::vector<similarity::Distance> metrics;
   for (Descriptor d : ds) metrics.push_back(sc.distance.value_or(default_distance(d)));
-  Describer describe{ds, sc, {}, std::nullopt, {}};
+  Describer describe{ds, sc, {}, std::nullopt, {}, {}};
   const auto t0 = Clock::now();
   std::vector<std::vector<FrameDescriptor>> map;
   for (const auto& session : request.map) {
@@ -329,6 +332,11 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
   run.timings.emplace_back("map descriptors", seconds_since(t0));
   run.maps = map.size();
   localize::OnlineLocalizer localizer(map.size(), config, ds.size());
+  // Images of little information, as offline: the map's by its own median, each query frame's as it arrives.
+  const bool images = describe.entropy.size() == map.size();
+  if (images) localizer.set_low_information_map(significance::low_information_frames(describe.entropy));
+  describe.entropy.clear();
+  significance::LowInformationStream query_low_information;
   const std::size_t m = map.size();
   std::vector<float> rows(ds.size() * m);
   std::vector<std::span<const float>> row_of;
@@ -350,7 +358,8 @@ void run_online(const LocalizeRequest& request, const OnlineQueryCallback& on_fr
         } catch (const std::invalid_argument& e) {
           throw InputError(request.query.path.string(), e.what());
         }
-        const auto e = localizer.feed_descriptors(row_of);
+        const bool dark = images && !describe.entropy.empty() && query_low_information.add(describe.entropy.back());
+        const auto e = localizer.feed_descriptors(row_of, dark);
         const auto now = Clock::now();
         for (std::size_t d = 0; d < ds.size(); ++d) kept[d].insert(kept[d].end(), row_of[d].begin(), row_of[d].end());
         answer(localizer, e, std::chrono::duration<double>(now - arrival).count(),

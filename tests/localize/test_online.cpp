@@ -151,6 +151,51 @@ TEST(Online, FollowsPlantedPathsInBothDirections) {
   }
 }
 
+// Frames of little information online, as offline (LowInformationFrames): query frames 40-79 are dark where the map
+// was lit, the map is dark at 140-179. Told which frames are dark, the localizer's estimates are those of the same
+// rows with every score of a dark frame capped at 0 (without enhancement: the similarity capped at the offset), told
+// nothing; and none of its confident answers lies in the map's dark stretch. The map's frames come before the query.
+TEST(Online, FramesOfLittleInformationAreScoredAtMostZero) {
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<float> u(0.0F, 0.5F);
+  SimilarityMatrix s(120, 200);
+  for (auto& v : s.values) v = u(rng);
+  for (std::size_t q = 0; q < 120; ++q) s(q, q + 10) = q >= 40 && q < 80 ? 0.2F : 1.0F;
+  for (std::size_t q = 40; q < 80; ++q) {
+    for (std::size_t m = 140; m < 180; ++m) s(q, m) = 0.95F;
+  }
+  LocalizeConfig c;
+  c.enhance = false;
+  c.score.contrast_offset = 0.6F;
+  c.search.gap = 0.5F;
+  c.significance.threshold = 2.0F;
+  const auto dark_query = [](std::size_t q) { return q >= 40 && q < 80; };
+  const auto dark_map = [](std::size_t m) { return m >= 140 && m < 180; };
+  SimilarityMatrix capped = s;
+  for (std::size_t q = 0; q < s.rows; ++q) {
+    for (std::size_t m = 0; m < s.cols; ++m) {
+      if (dark_query(q) || dark_map(m)) capped(q, m) = std::min(capped(q, m), c.score.contrast_offset);
+    }
+  }
+  OnlineLocalizer told(s.cols, c), plain(s.cols, c);
+  std::vector<std::size_t> map_dark;
+  for (std::size_t m = 0; m < s.cols; ++m) {
+    if (dark_map(m)) map_dark.push_back(m);
+  }
+  told.set_low_information_map(map_dark);
+  EXPECT_THROW(told.set_low_information_map(std::vector<std::size_t>{200}), std::invalid_argument);
+  for (std::size_t q = 0; q < s.rows; ++q) {
+    const std::span<const float> row = s.row(q);
+    const auto e = told.feed_descriptors(std::span<const std::span<const float>>(&row, 1), dark_query(q));
+    const auto expected = plain.feed(capped.row(q));
+    ASSERT_EQ(e.map, expected.map) << q;
+    ASSERT_EQ(e.score, expected.score) << q;
+    ASSERT_EQ(e.confidence, expected.confidence) << q;
+    EXPECT_FALSE(e.in_map && dark_map(e.map)) << q;
+  }
+  EXPECT_THROW(told.set_low_information_map(map_dark), std::invalid_argument);
+}
+
 // Brute force of the fixed-lag smoother's score: the best alignment through (k, j) using rows up to `last`, as the
 // table value plus the best path that starts with a matched pair after it, every later pair tried (no recurrence
 // shared with the localizer).

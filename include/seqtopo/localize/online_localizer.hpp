@@ -83,8 +83,13 @@ class OnlineLocalizer {
 
   // Feeds the next query frame's similarities to every map frame (map_frames values, finite): one descriptor.
   OnlineEstimate feed(std::span<const float> similarity_row);
-  // The same with one row per descriptor.
-  OnlineEstimate feed_descriptors(std::span<const std::span<const float>> similarity_rows);
+  // The same with one row per descriptor. `low_information`: the frame is a dark or near-uniform image
+  // (significance/low_information.hpp): every score of it at most 0, as offline (LowInformationFrames).
+  OnlineEstimate feed_descriptors(std::span<const std::span<const float>> similarity_rows,
+                                  bool low_information = false);
+  // The map frames of little information (sorted; before the first frame): their scores at most 0, as offline.
+  // Throws std::invalid_argument for a frame outside the map or after the first feed.
+  void set_low_information_map(std::span<const std::size_t> frames);
 
   // The estimate of frame `frame` with the evidence of every frame seen since (see fixed-lag smoothing above): any of
   // the last config.lag + 1 frames. smoothed(frames_seen() - 1) is the estimate feed returned for the last frame.
@@ -120,8 +125,11 @@ class OnlineLocalizer {
   std::size_t frames_seen_ = 0;
   Rows now_;                                                // the last frame's rows
   std::vector<float> previous_forward_, previous_reverse_;  // the tables' rows before them
-  std::vector<Rows> history_;  // the last config.lag + 1 frames' rows, oldest first, for the fixed-lag smoothing
-  std::vector<float> seen_;    // the scored rows so far, for the refits
+  std::vector<Rows> history_;       // the last config.lag + 1 frames' rows, oldest first, for the fixed-lag smoothing
+  std::vector<float> seen_;         // the scored rows so far, for the refits
+  std::vector<bool> map_masked_;    // per map frame: of little information (empty: none)
+  std::vector<bool> query_masked_;  // per query frame seen: of little information
+  void soft_mask_row(std::size_t query, float* scores) const;
   std::vector<std::vector<float>> raw_;  // several descriptors: each one's similarity rows so far
   std::vector<double> weights_;
   std::vector<float> scratch_;
