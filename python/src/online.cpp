@@ -323,15 +323,7 @@ void bind_online(py::module_& m) {
           "contrast_offset", [](const PyOnlineMapper& self) { return self.mapper.contrast_offset(); },
           "The contrast offset of the next frame: the config's, raised while chance paths grow with the sequence.")
       .def_property_readonly(
-          "low_information_frames",
-          [](const PyOnlineMapper& self) {
-            py::list out;
-            const auto& masked = self.mapper.low_information();
-            for (std::size_t t = 0; t < masked.size(); ++t) {
-              if (masked[t]) out.append(t);
-            }
-            return out;
-          },
+          "low_information_frames", [](const PyOnlineMapper& self) { return self.mapper.low_information_frames(); },
           "The images so far judged of little information (dark or near-uniform) as they arrived: no evidence of a "
           "revisit (docs/online.md).")
       .def_property_readonly("island_scores",

@@ -48,14 +48,6 @@ std::vector<bool> frame_flags(std::size_t n, std::span<const std::size_t> frames
   return flags;
 }
 
-std::vector<std::size_t> flagged(const std::vector<bool>& flags) {
-  std::vector<std::size_t> out;
-  for (std::size_t k = 0; k < flags.size(); ++k) {
-    if (flags[k]) out.push_back(k);
-  }
-  return out;
-}
-
 using detail::median;
 
 // `source` minus a constant, read a row segment at a time.
@@ -679,7 +671,7 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   }
   const std::vector<SimilarityMatrix>& source = hub_k > 0 ? corrected : similarities;
   const std::vector<std::size_t> low_information =
-      framed.score.contrast_window > 0 ? flagged(masked) : std::vector<std::size_t>{};
+      framed.score.contrast_window > 0 ? detail::flagged_frames(masked) : std::vector<std::size_t>{};
   std::vector<SimilarityMatrix> each;  // each similarity enhanced, when the blind check has done it
   const std::vector<std::size_t> blind =
       blind_descriptors(source, c, framed.score.contrast_window, odometry, masked, low_information, each);
@@ -789,10 +781,10 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     return detail::soft_masked(unmasked.view(s), masked_in_view);
   };
   const std::size_t aligned_n = unmasked.size();
+  // The cells the alignment searches (the frames it sees, both directions, the band left out).
+  const double area = significance::search_area(aligned_n, aligned_n, true, c.search.min_separation, c.search.reverse);
   if (c.significance.max_e_value && aligned_n > 0) {
-    const double area_places =
-        significance::search_area(aligned_n, aligned_n, true, c.search.min_separation, c.search.reverse) /
-        (d.frames_per_place * d.frames_per_place);
+    const double area_places = area / (d.frames_per_place * d.frames_per_place);
     FitRun fit;
     const double bound = c.phase.max_global_rate.value_or(0.0F);
     // One fit per offset tried, of at most this many (the progress' total; the loop ends at the first in the
@@ -821,8 +813,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
     d.statistics = fit.statistics;
     // K is per cell: a fit on diagonal blocks of a long sequence counts the chance alignments of the whole
     // search (the chance agreement below keeps the fit's own area: which of its alignments are chance).
-    d.statistics.area =
-        significance::search_area(aligned_n, aligned_n, true, c.search.min_separation, c.search.reverse);
+    d.statistics.area = area;
     d.chance_length = fit.chance_length;
     d.chance_mean = fit.cell_mean;
     if (fit.statistics.valid()) {
@@ -867,8 +858,7 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
   d.cap = engine.cap;
   d.score_threshold = engine.threshold;
 
-  const auto searched = static_cast<std::size_t>(
-      significance::search_area(aligned_n, aligned_n, true, c.search.min_separation, c.search.reverse));
+  const auto searched = static_cast<std::size_t>(area);
   std::function<void(std::size_t, std::size_t)> told_cells;
   if (c.progress) {
     told_cells = [progress = c.progress](std::size_t done, std::size_t total) {

@@ -35,6 +35,14 @@ std::vector<bool> UnmaskedFrames::of_view(const std::vector<bool>& flags) const 
   return out;
 }
 
+std::vector<std::size_t> flagged_frames(const std::vector<bool>& flags) {
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < flags.size(); ++k) {
+    if (flags[k]) out.push_back(k);
+  }
+  return out;
+}
+
 std::vector<bool> long_stretches(const std::vector<bool>& flags, std::size_t min_length) {
   std::vector<bool> out(flags.size(), false);
   bool any = false;
@@ -138,29 +146,30 @@ std::vector<std::size_t> through_masked_frames(std::vector<align::LocalAlignment
     }
     if (at.empty()) continue;
     kept.push_back(k);
-    // Whether both passes skip frames between two consecutive pairs of evidence, masked ones in at least one of
-    // them (a step of the alignment over a stretch left out of it, UnmaskedFrames), or masked pairs between them.
-    const auto crosses = [&](std::size_t u) {
+    // Whether both passes skip frames between consecutive pairs of evidence u and u + 1, masked ones in at least one
+    // of them (a step of the alignment over a stretch left out of it, UnmaskedFrames), or masked pairs between them.
+    const auto masked_between = [&](std::size_t x, std::size_t y) {
+      for (std::size_t f = std::min(x, y) + 1; f < std::max(x, y); ++f) {
+        if (masked[f]) return true;
+      }
+      return false;
+    };
+    const auto skips = [](std::size_t x, std::size_t y) { return std::max(x, y) - std::min(x, y) > 1; };
+    std::vector<bool> crosses(at.size(), false);
+    bool any = at.size() != a.pairs.size();
+    for (std::size_t u = 0; u + 1 < at.size(); ++u) {
       const auto [i0, j0] = a.pairs[at[u]];
       const auto [i1, j1] = a.pairs[at[u + 1]];
-      const auto masked_between = [&](std::size_t x, std::size_t y) {
-        for (std::size_t f = std::min(x, y) + 1; f < std::max(x, y); ++f) {
-          if (masked[f]) return true;
-        }
-        return false;
-      };
-      const auto skips = [](std::size_t x, std::size_t y) { return std::max(x, y) - std::min(x, y) > 1; };
-      return at[u + 1] != at[u] + 1 ||
-             (skips(i0, i1) && skips(j0, j1) && (masked_between(i0, i1) || masked_between(j0, j1)));
-    };
-    bool any = at.size() != a.pairs.size();
-    for (std::size_t u = 0; !any && u + 1 < at.size(); ++u) any = crosses(u);
+      crosses[u] = at[u + 1] != at[u] + 1 ||
+                   (skips(i0, i1) && skips(j0, j1) && (masked_between(i0, i1) || masked_between(j0, j1)));
+      any = any || crosses[u];
+    }
     if (!any) continue;
     std::vector<std::pair<std::size_t, std::size_t>> pairs;
     for (std::size_t u = 0; u < at.size(); ++u) {
       const auto [i0, j0] = a.pairs[at[u]];
       pairs.emplace_back(i0, j0);
-      if (u + 1 == at.size() || !crosses(u)) continue;
+      if (!crosses[u]) continue;
       // Masked frames between two pairs of evidence: as many steps as both sides allow, evenly spaced.
       const auto [i1, j1] = a.pairs[at[u + 1]];
       const double di = static_cast<double>(i1) - static_cast<double>(i0);

@@ -22,7 +22,6 @@ class UnmaskedFrames {
  public:
   // Of `frames` frames, those flagged in `left_out` (empty: none) left out.
   UnmaskedFrames(std::size_t frames, const std::vector<bool>& left_out);
-  bool any_masked() const { return any_; }
   // The frame of unmasked index k.
   std::size_t frame(std::size_t k) const { return frames_[k]; }
   std::size_t size() const { return frames_.size(); }
@@ -41,6 +40,9 @@ class UnmaskedFrames {
   std::vector<std::size_t> index_;  // of each frame, or npos when masked
   bool any_ = false;
 };
+
+// The indices of the frames flagged, ascending.
+std::vector<std::size_t> flagged_frames(const std::vector<bool>& flags);
 
 // Frames flagged in runs of at least `min_length` consecutive flagged frames (empty when none).
 std::vector<bool> long_stretches(const std::vector<bool>& flags, std::size_t min_length);

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "masked_frames.hpp"
 #include "median.hpp"
 #include "seqtopo/align/capped_cell.hpp"
 #include "seqtopo/align/online_row.hpp"
@@ -330,6 +331,8 @@ std::vector<OnlineEvent> OnlineMapper::add_similarities(const std::vector<std::v
   fill_rows();
   return step();
 }
+
+std::vector<std::size_t> OnlineMapper::low_information_frames() const { return detail::flagged_frames(masked_); }
 
 void OnlineMapper::fill_rows() {
   const std::size_t t = frames_;

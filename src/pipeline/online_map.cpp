@@ -54,10 +54,7 @@ class Feeder {
     run_.statistics_from_table = mapper_.statistics_from_table();
     run_.contrast_offset = mapper_.contrast_offset();
     run_.offset_changes = mapper_.offset_changes();
-    const auto& masked = mapper_.low_information();
-    for (std::size_t t = 0; t < masked.size(); ++t) {
-      if (masked[t]) run_.low_information_frames.push_back(t);
-    }
+    run_.low_information_frames = mapper_.low_information_frames();
   }
 
  private:

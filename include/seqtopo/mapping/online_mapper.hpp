@@ -214,8 +214,8 @@ class OnlineMapper {
   // most 0 once aligned (soft-masked, as the offline map masks its short stretches), so it carries no evidence of a
   // revisit and a run of them is no revisit. Without enhancement it is aligned as it scores.
   void next_frame_low_information() { next_masked_ = true; }
-  // Which frames so far were of little information.
-  const std::vector<bool>& low_information() const { return masked_; }
+  // The frames so far of little information, ascending.
+  std::vector<std::size_t> low_information_frames() const;
   // Ends every live track (no junction: the run ended, not the revisit) and withdraws the open candidates. Further
   // frames may still be added.
   std::vector<OnlineEvent> finish();
