@@ -207,22 +207,8 @@ std::vector<float> StreamingSimilarity::compute_tile(std::size_t tile_row, std::
     if (!running || i % similarity::kRunningBlock == 0) {
       similarity::window_sums(cs.data(), cs2.data(), raw_row(klo), ew, khi - klo, tw);
     } else {
-      if (i + w < n_) {
-        const float* in = raw_row(i + w);
-        for (std::size_t b = 0; b < tw; ++b) {
-          const double v = in[b];
-          cs[b] += v;
-          cs2[b] += v * v;
-        }
-      }
-      if (i > w) {
-        const float* out = raw_row(i - w - 1);
-        for (std::size_t b = 0; b < tw; ++b) {
-          const double v = out[b];
-          cs[b] -= v;
-          cs2[b] -= v * v;
-        }
-      }
+      similarity::running_window_step(cs.data(), cs2.data(), i + w < n_ ? raw_row(i + w) : nullptr,
+                                      i > w ? raw_row(i - w - 1) : nullptr, tw);
     }
     if (i < r0) continue;
     // Row i around column j: columns j - w .. j + w, clipped to the matrix.

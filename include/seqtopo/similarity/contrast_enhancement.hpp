@@ -29,6 +29,11 @@ inline constexpr std::size_t kRunningBlock = 64;   // [cells] a running sum rest
 // for a running sum the block start of `begin` minus w (clipped at 0).
 std::size_t first_read(std::size_t begin, std::size_t w);
 
+// One step of the running sums of `count` windows at once (cells of a row, or the same cell of `count` columns):
+// the values entering the windows added (entering null: none), then the values leaving subtracted (leaving null:
+// none), each as x and x * x in double.
+void running_window_step(double* sum, double* sum2, const float* entering, const float* leaving, std::size_t count);
+
 // sum[c - begin], sum2[c - begin] and count[c - begin] for cells c in [begin, end) (end <= n) of a row of n
 // values, value k at x[k - x0] for k in [first_read(begin, w), min(n, end + w)) (x0 <= first_read(begin, w)): the
 // sums over the window [c - w, c + w] clipped to [0, n), by the arithmetic above.
