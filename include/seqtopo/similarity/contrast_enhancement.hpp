@@ -31,8 +31,24 @@ std::size_t first_read(std::size_t begin, std::size_t w);
 
 // One step of the running sums of `count` windows at once (cells of a row, or the same cell of `count` columns):
 // the values entering the windows added (entering null: none), then the values leaving subtracted (leaving null:
-// none), each as x and x * x in double.
-void running_window_step(double* sum, double* sum2, const float* entering, const float* leaving, std::size_t count);
+// none), each as x and x * x in double. Inline: a row's running sums take one step a cell.
+inline void running_window_step(double* sum, double* sum2, const float* entering, const float* leaving,
+                                std::size_t count) {
+  if (entering != nullptr) {
+    for (std::size_t b = 0; b < count; ++b) {
+      const double v = entering[b];
+      sum[b] += v;
+      sum2[b] += v * v;
+    }
+  }
+  if (leaving != nullptr) {
+    for (std::size_t b = 0; b < count; ++b) {
+      const double v = leaving[b];
+      sum[b] -= v;
+      sum2[b] -= v * v;
+    }
+  }
+}
 
 // sum[c - begin], sum2[c - begin] and count[c - begin] for cells c in [begin, end) (end <= n) of a row of n
 // values, value k at x[k - x0] for k in [first_read(begin, w), min(n, end + w)) (x0 <= first_read(begin, w)): the
