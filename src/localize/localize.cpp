@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "masked_scores.hpp"
 #include "seqtopo/align/pair_posterior.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
@@ -232,11 +233,11 @@ void carry_on(LocalizeResult& r, std::size_t cols) {
     if (guess < 0 || guess >= static_cast<long long>(cols)) continue;
     FrameMatch& f = r.frames[q];
     f.map = static_cast<std::size_t>(guess);
+    // The carried guess first, then the frame's own candidates but it, as many as it had.
+    const std::size_t kept = std::max<std::size_t>(f.candidates.size(), 1);
+    std::erase(f.candidates, f.map);
     f.candidates.insert(f.candidates.begin(), f.map);
-    f.candidates.erase(std::unique(f.candidates.begin(), f.candidates.end()), f.candidates.end());
-    for (std::size_t k2 = 1; k2 < f.candidates.size(); ++k2) {
-      if (f.candidates[k2] == f.map) f.candidates.erase(f.candidates.begin() + static_cast<std::ptrdiff_t>(k2--));
-    }
+    f.candidates.resize(std::min(f.candidates.size(), kept));
   }
 }
 
@@ -420,14 +421,18 @@ LocalizeResult localize_sequence(std::span<const SimilarityMatrix> ss, const Loc
 }
 
 void soft_mask(SimilarityMatrix& scores, const LowInformationFrames& frames) {
+  if (frames.query.empty() && frames.map.empty()) return;
+  std::vector<bool> query(scores.rows, false), map;
   for (std::size_t q : frames.query) {
     if (q >= scores.rows) throw std::invalid_argument("low-information query frame outside the matrix");
-    for (auto& v : scores.row(q)) v = std::min(v, 0.0F);
+    query[q] = true;
   }
+  if (!frames.map.empty()) map.assign(scores.cols, false);
   for (std::size_t m : frames.map) {
     if (m >= scores.cols) throw std::invalid_argument("low-information map frame outside the matrix");
-    for (std::size_t q = 0; q < scores.rows; ++q) scores(q, m) = std::min(scores(q, m), 0.0F);
+    map[m] = true;
   }
+  for (std::size_t q = 0; q < scores.rows; ++q) detail::soft_mask_row(scores.row(q).data(), scores.cols, query[q], map);
 }
 
 namespace {

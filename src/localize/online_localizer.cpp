@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "masked_scores.hpp"
 #include "seqtopo/align/online_row.hpp"
 
 namespace seqtopo::localize {
@@ -39,13 +40,6 @@ void OnlineLocalizer::set_low_information_map(std::span<const std::size_t> frame
   }
 }
 
-void OnlineLocalizer::soft_mask_row(std::size_t query, float* scores) const {
-  const bool all = query < query_masked_.size() && query_masked_[query];
-  for (std::size_t j = 0; j < map_frames_; ++j) {
-    if (all || (!map_masked_.empty() && map_masked_[j])) scores[j] = std::min(scores[j], 0.0F);
-  }
-}
-
 OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const float>> rows, bool low_information) {
   const std::size_t descriptors = std::max<std::size_t>(raw_.size(), 1);
   if (rows.size() != descriptors) {
@@ -73,7 +67,7 @@ OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const
     fused_score_row(pointers, map_frames_, config_, now_.scores.data(), scratch_.data(), weights_);
   }
   query_masked_.push_back(low_information);
-  soft_mask_row(frames_seen_, now_.scores.data());
+  detail::soft_mask_row(now_.scores.data(), map_frames_, low_information, map_masked_);
   return advance();
 }
 
@@ -228,16 +222,15 @@ void OnlineLocalizer::refit() {
       weights_ = std::move(weights);
       std::vector<SimilarityMatrix> seen;
       for (const auto& raw : raw_) seen.emplace_back(frames_seen_, map_frames_, raw);
-      const SimilarityMatrix scored = fused_score_matrix(seen, config_, weights_);
-      seen_ = scored.values;
+      SimilarityMatrix scored = fused_score_matrix(seen, config_, weights_);
       std::fill(now_.forward.begin(), now_.forward.end(), 0.0F);
       std::fill(now_.reverse.begin(), now_.reverse.end(), 0.0F);
       for (std::size_t i = 0; i < frames_seen_; ++i) {
+        detail::soft_mask_row(scored.row(i).data(), map_frames_, query_masked_[i], map_masked_);
         std::copy_n(scored.row(i).begin(), map_frames_, now_.scores.begin());
-        soft_mask_row(i, now_.scores.data());
-        std::copy_n(now_.scores.begin(), map_frames_, seen_.begin() + static_cast<std::ptrdiff_t>(i * map_frames_));
         step();
       }
+      seen_ = std::move(scored.values);
     }
   }
   // Karlin & Altschul's lambda of the cells bounds the gapped one of chance alignments from above (the revisit's

@@ -129,7 +129,6 @@ class OnlineLocalizer {
   std::vector<float> seen_;         // the scored rows so far, for the refits
   std::vector<bool> map_masked_;    // per map frame: of little information (empty: none)
   std::vector<bool> query_masked_;  // per query frame seen: of little information
-  void soft_mask_row(std::size_t query, float* scores) const;
   std::vector<std::vector<float>> raw_;  // several descriptors: each one's similarity rows so far
   std::vector<double> weights_;
   std::vector<float> scratch_;
