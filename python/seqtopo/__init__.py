@@ -762,7 +762,7 @@ def localize_sequences(
     threads: int = 0,
     online: bool = False,
     ground_truth=None,
-    tolerance: int = 2,
+    tolerance: "int | None" = None,
     **overrides,
 ) -> "LocalizeRun":
     """``seqtopo localize`` as one call: where in the mapped traverse ``map`` is each frame of ``query``?
@@ -775,9 +775,11 @@ def localize_sequences(
     patch, panorama for 360-degree images), as the command without ``--descriptor``.
     ``ground_truth``: ``"same-index"`` (query k is map k), a CSV of ``query,map`` pairs, or an array of such
     pairs; the answers are then scored within +-``tolerance`` map frames beside the single-frame and SeqSLAM
-    baselines. Returns a :class:`LocalizeRun`."""
+    baselines (``None``: as the command, 2 with ``"same-index"``, the frames as listed in a file or an array). The
+    answers do not depend on it (``config.tolerance`` sets the confidence's window). Returns a :class:`LocalizeRun`."""
     config = _config(config, LocalizeConfig, overrides)
-    every, threads, tolerance = _whole("every", every, 1), _whole("threads", threads), _whole("tolerance", tolerance)
+    every, threads = _whole("every", every, 1), _whole("threads", threads)
+    tolerance = None if tolerance is None else _whole("tolerance", tolerance)
     with _tempfile.TemporaryDirectory(prefix="seqtopo-") as scratch:
         written = {}  # files made here from arrays: an error names the argument, not the file
         if isinstance(map, _np.ndarray):

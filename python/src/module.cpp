@@ -479,7 +479,7 @@ pipeline::LocalizeRun localize_sequences(const std::filesystem::path& map, const
                                          const std::string& descriptor, const std::optional<std::string>& metric,
                                          std::optional<float> kappa, const std::string& input_kind, std::size_t every,
                                          unsigned threads, const localize::LocalizeConfig& config, bool online,
-                                         const std::string& ground_truth, std::size_t tolerance) {
+                                         const std::string& ground_truth, std::optional<std::size_t> tolerance) {
   pipeline::LocalizeRequest request;
   const auto kind = pipeline::parse_input_kind(input_kind);
   if (every == 0) throw std::invalid_argument("every must be >= 1");
@@ -502,7 +502,9 @@ pipeline::LocalizeRun localize_sequences(const std::filesystem::path& map, const
   pipeline::LocalizeRun run = pipeline::localize_sequences(request);
   if (source) {
     const auto truth = pipeline::localization_truth(*source, run.queries, run.maps);
-    pipeline::evaluate_localization_run(run, truth, tolerance, threads == 0 ? 2 : threads);
+    // As the command: by the truth's format unless given (2 frames around same-index, a file's frames as listed).
+    pipeline::evaluate_localization_run(
+        run, truth, tolerance.value_or(pipeline::default_localization_tolerance(*source)), threads == 0 ? 2 : threads);
   }
   return run;
 }

@@ -435,3 +435,13 @@ def test_localize_sequences_default_descriptors_equal_cli(cli, tmp_path):
     assert (tmp_path / "py" / "matches.csv").read_bytes() == (tmp_path / "cli" / "matches.csv").read_bytes()
     patch = seqtopo.localize_sequences(laps[0], laps[1], descriptor="patch")
     assert not np.array_equal(patch.map, run.map)  # the fusion is not the patch thumbnail alone
+    # With a pairs file both score its frames as listed (no tolerance given), with the same answers as without it.
+    truth = tmp_path / "truth.csv"
+    truth.write_text("query,map\n" + "".join(f"{q},{q}\n" for q in range(40)))
+    run_cli(cli, "localize", "--map", laps[0], "--query", laps[1], "--gt", truth, "--out", tmp_path / "cli-gt")
+    scored = seqtopo.localize_sequences(laps[0], laps[1], ground_truth=truth)
+    seqtopo.write_report(scored, tmp_path / "py-gt")
+    assert (tmp_path / "py-gt" / "matches.csv").read_bytes() == (tmp_path / "cli" / "matches.csv").read_bytes()
+    cli_metrics = json.loads((tmp_path / "cli-gt" / "metrics.json").read_text())
+    assert scored.tolerance == cli_metrics["tolerance"] == 0
+    assert scored.metrics["recall_at_1"] == cli_metrics["recall_at_1"]

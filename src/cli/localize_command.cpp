@@ -68,7 +68,7 @@ std::optional<fs::path> similarity_file(const LocalizeOptions& o, pipeline::Inpu
   return fs::path(map_s ? o.map_path : o.query_path);
 }
 
-localize::LocalizeConfig localize_config(const LocalizeOptions& o, std::size_t tolerance) {
+localize::LocalizeConfig localize_config(const LocalizeOptions& o, std::size_t confidence_tolerance) {
   localize::LocalizeConfig c;
   c.search.gap = o.gap;
   c.search.cap = o.cap;
@@ -76,7 +76,7 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o, std::size_t t
   c.score.contrast_offset = o.offset;
   c.score.contrast_window = o.window;
   c.score_window = o.score_window;
-  c.tolerance = tolerance;  // the confidence is the probability of a match the evaluation counts as right
+  c.tolerance = confidence_tolerance;
   c.min_confidence = o.min_confidence;
   c.search.reverse = !o.no_reverse;
   c.lag = o.lag;
@@ -121,7 +121,9 @@ void run(LocalizeOptions o) {
   const std::size_t tolerance =
       o.tolerance.value_or(truth_source ? pipeline::default_localization_tolerance(*truth_source) : 2);
   pipeline::LocalizeRequest request;
-  request.settings.localize = localize_config(o, tolerance);
+  // The confidence does not depend on the ground truth given: without --tolerance it is the probability of a
+  // guess within the place-recognition window (LocalizeConfig's, as the map's confidence_tolerance).
+  request.settings.localize = localize_config(o, o.tolerance.value_or(localize::LocalizeConfig{}.tolerance));
   request.online = o.online;
   if (o.lag > 0 && !o.online) throw InputError("--lag", "is for --online (offline, every frame has the whole query)");
   const bool have_matrix = [&] {
@@ -309,8 +311,8 @@ const RegisterCommand registered{
                   "same place when closer than this [m] (poses ground truth)");
        add_number(app, "--tolerance", o->tolerance, kNonNegative,
                   "a match within +-T map frames of a true one is correct (default 2 with same-index, 0 with a "
-                  "file, which lists the true frames themselves); the confidence is the probability of such a "
-                  "match");
+                  "file, which lists the true frames themselves); the confidence is the probability of a match "
+                  "within +-T (without --tolerance, +-2, whatever the ground truth)");
        app.add_flag("--online", o->online, "take query frames one at a time; print the best map frame after each");
        add_number(app, "--lag", o->lag, {.min = 0, .max = localize::kMaxLag},
                   "online: answer each frame once this many later frames have arrived, with their evidence "

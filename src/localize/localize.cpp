@@ -214,8 +214,15 @@ namespace {
 // past the end of a revisit whose last frames are weak or dark, or a map frame near its edge) has no answer it can
 // be sure of. Its guess is the nearest frame in the map carried on along that frame's alignment, at its own (low)
 // confidence still: the robot most likely went on along the route it was localized on (before, the weak
-// alignment's cell, often a chance one elsewhere). Carried past either end of the map, its own guess stands.
-void carry_on(LocalizeResult& r, std::size_t cols) {
+// alignment's cell, often a chance one elsewhere). Carried past an end of the map by at most `tolerance` frames, the
+// end is the nearest map frame (and a guess the tolerance counts right); further, the robot has left the mapped
+// route (or closed a loop): its own guess stands.
+//
+// Tried and left: a carried guess as probable as a two-state chain along it makes it (on the route or off it, each
+// cell's evidence exp(lambda * score)). On the corridor split the weak last frames of a revisit are right, but a
+// query that leaves the map's route at once scores the same in its first frames: ten frames somewhere new stayed
+// "in the map" at 0.6-0.96. Only the frame's own evidence gives its confidence.
+void carry_on(LocalizeResult& r, std::size_t cols, std::size_t tolerance) {
   // More likely right than wrong, whatever min_confidence decides (the guesses do not move with it).
   const auto sure = [&](std::size_t q) { return r.frames[q].confidence >= 0.5; };
   const std::size_t n = r.frames.size();
@@ -229,10 +236,10 @@ void carry_on(LocalizeResult& r, std::size_t cols) {
     const FrameMatch& k = r.frames[from];
     const auto step = static_cast<long long>(q) - static_cast<long long>(from);
     const long long guess = static_cast<long long>(k.map) + (k.direction == align::Direction::forward ? step : -step);
-    // Carried past the map's end the robot has left the mapped route (or closed a loop): its own guess stands.
-    if (guess < 0 || guess >= static_cast<long long>(cols)) continue;
+    const auto past = static_cast<long long>(tolerance);
+    if (guess < -past || guess >= static_cast<long long>(cols) + past) continue;
     FrameMatch& f = r.frames[q];
-    f.map = static_cast<std::size_t>(guess);
+    f.map = static_cast<std::size_t>(std::clamp(guess, 0LL, static_cast<long long>(cols) - 1));
     // The carried guess first, then the frame's own candidates but it, as many as it had.
     const std::size_t kept = std::max<std::size_t>(f.candidates.size(), 1);
     std::erase(f.candidates, f.map);
@@ -252,7 +259,7 @@ LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeCon
     if (!(lambda > 0)) lambda = 1.0;
   }
   r.frames = frames_from_alignments(r.alignments, r.e_values, lambda, scores, c);
-  carry_on(r, scores.cols);
+  carry_on(r, scores.cols, c.tolerance);
   return r;
 }
 

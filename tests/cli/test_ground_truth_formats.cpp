@@ -197,6 +197,18 @@ TEST_F(GroundTruthFormats, LocalizeTakesThePairsAsListedUnlessAToleranceIsGiven)
   };
   EXPECT_EQ(recall("", "as-listed"), 0.0);
   EXPECT_GT(recall(" --tolerance 1", "widened"), 0.8);
+  // The answers do not depend on the truth given: a file, same-index or none, the same matches.csv (the confidence
+  // of a guess within 2 frames, the map's, unless --tolerance says otherwise).
+  const auto matches = [&](const std::string& extra, const std::string& name) {
+    const auto out = dir_.path / name;
+    const auto r = run_cli("localize --map " + s.string() + extra + " --out " + out.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    return read_file(out / "matches.csv");
+  };
+  const std::string alone = matches("", "alone");
+  EXPECT_EQ(matches(" --ground-truth " + truth.string(), "with-file"), alone);
+  EXPECT_EQ(matches(" --ground-truth same-index", "with-same-index"), alone);
+  EXPECT_NE(matches(" --ground-truth " + truth.string() + " --tolerance 0", "tolerance-0"), alone);
 }
 
 // The data block of a report.html.

@@ -189,20 +189,23 @@ TEST(Localize, DarkFramesAtDifferentPlacesAreNoEvidence) {
 }
 
 // A query that goes on along the route with nothing to see for its last 20 frames: their guesses carry on along
-// the revisit (at their own low confidence, not in the map), but not past the map's end, where the robot has left
-// the mapped route.
+// the revisit (at their own low confidence, not in the map), up to the tolerance past the map's end (its last
+// frame, the nearest), not further, where the robot has left the mapped route.
 TEST(Localize, FramesWithoutEvidenceCarryOnAlongTheRoute) {
   const std::size_t nq = 60;
   for (const std::size_t nm : {100UL, 55UL}) {
     auto s = noise(nq, nm, 12);
     for (std::size_t q = 0; q < 40; ++q) s(q, q + 5) = 1.0F;
-    const auto r = localize_sequence(s, plain_config());
-    for (std::size_t q = 44; q < nq; ++q) {
-      const auto& f = r.frames[q];
-      EXPECT_FALSE(f.covered) << q;
-      EXPECT_LT(f.map, nm);
-      if (q + 5 < nm) {  // past the map's end its own guess stands (whatever the noise gives)
-        EXPECT_EQ(f.map, q + 5) << q << " of a map of " << nm;
+    for (const std::size_t tolerance : {0UL, 2UL}) {
+      LocalizeConfig c = plain_config();
+      c.tolerance = tolerance;
+      const auto r = localize_sequence(s, c);
+      for (std::size_t q = 44; q < nq; ++q) {
+        const auto& f = r.frames[q];
+        EXPECT_FALSE(f.covered) << q;
+        EXPECT_LT(f.map, nm);
+        if (q + 5 >= nm + tolerance) continue;  // further past the map's end its own guess stands (any noise cell)
+        EXPECT_EQ(f.map, std::min(q + 5, nm - 1)) << q << " of a map of " << nm << ", tolerance " << tolerance;
         EXPECT_EQ(f.candidates.front(), f.map);
       }
     }
