@@ -114,7 +114,9 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
     float score;
     std::size_t map;
     align::Direction direction;
-    std::size_t rank;  // position of the alignment in `alignments` (the engine's best-first order)
+    std::size_t rank;   // position of the alignment in `alignments` (the engine's best-first order)
+    bool inside;        // the row is between the alignment's first and last pair
+    double log_weight;  // ln(P(revisit | E) * exp(lambda * path score))
   };
   std::vector<std::vector<Candidate>> per_frame(scores.rows);
   align::PosteriorConfig pc;
@@ -145,7 +147,7 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
                                    : r.posterior;
       per_frame[r.row].push_back({real * posterior,
                                   static_cast<float>(local_score(a, path, scores, r.row, c.score_window)), r.col,
-                                  a.direction, rank});
+                                  a.direction, rank, inside, std::log(real) + lambda * path.back()});
     }
   }
 
@@ -159,6 +161,32 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
       f.map = static_cast<std::size_t>(std::max_element(row.begin(), row.end()) - row.begin());
       f.candidates = {f.map};
       continue;
+    }
+    // Split evidence: alignments that each run through the frame (it lies between their first and last pairs) at
+    // places further apart than the tolerance are rival accounts of it (a look-alike stretch of the map driven
+    // once), each as likely as its share of their weights P(revisit | E) exp(lambda * score) (their chains' shares
+    // of the partition function, each alignment's summed as its best chain). One alignment through the frame, or
+    // rivals of chance, leave the confidence as it was; an alignment that reaches the frame only past an end
+    // (the route before or after a revisit) is no rival: several revisits follow one another along a query.
+    double top = -std::numeric_limits<double>::infinity();
+    for (const auto& cand : cands) {
+      if (cand.inside) top = std::max(top, cand.log_weight);
+    }
+    if (std::isfinite(top)) {
+      std::vector<double> weight(cands.size(), 0.0);
+      double total = 0;
+      for (std::size_t k = 0; k < cands.size(); ++k) {
+        if (cands[k].inside) total += weight[k] = std::exp(cands[k].log_weight - top);
+      }
+      for (auto& cand : cands) {
+        if (!cand.inside) continue;
+        double near = 0;
+        for (std::size_t k = 0; k < cands.size(); ++k) {
+          const std::size_t d = cands[k].map > cand.map ? cands[k].map - cand.map : cand.map - cands[k].map;
+          if (d <= c.tolerance) near += weight[k];
+        }
+        cand.confidence *= std::min(1.0, near / total);
+      }
     }
     std::sort(cands.begin(), cands.end(), [](const Candidate& x, const Candidate& y) {
       if (x.confidence != y.confidence) return x.confidence > y.confidence;

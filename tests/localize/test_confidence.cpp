@@ -157,6 +157,57 @@ TEST(Confidence, AWrongPairInsideALongCorrectAlignmentIsLessSureThanItsNeighbour
   }
 }
 
+// A map whose frames 130-159 look like its frames 40-69 (a look-alike stretch), and a query of 30 frames driven
+// through one of the two copies, starting `before` frames ahead of it.
+Case look_alike(unsigned seed, std::size_t before) {
+  std::mt19937 rng(seed);
+  const std::size_t map_frames = 200, dim = 24, length = 30 + before;
+  auto map = route(map_frames, dim, rng);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (std::size_t k = 0; k < 30; ++k) {
+    for (std::size_t d = 0; d < dim; ++d) map[130 + k][d] = map[40 + k][d] + 0.05 * g(rng);
+  }
+  const std::size_t start = (seed % 2 == 0 ? 40 : 130) - before;
+  Case c;
+  c.similarity = SimilarityMatrix(length, map_frames);
+  for (std::size_t q = 0; q < length; ++q) {
+    auto f = map[start + q];
+    for (auto& v : f) v += 0.6 * g(rng);
+    for (std::size_t m = 0; m < map_frames; ++m) c.similarity(q, m) = static_cast<float>(cosine(f, map[m]));
+    c.truth.push_back(static_cast<long>(start + q));
+  }
+  return c;
+}
+
+TEST(Confidence, LookAlikePlacesSplitItAndTheRouteBeforeThemDecides) {
+  // Driven through the look-alike stretch alone, the query is right about half the time whatever it does: the
+  // confidence says so (it was 1.00 on every frame when each alignment counted alone). Driven into it from 30
+  // frames of its own, the route decides, confidently and rightly.
+  Reliability alone, led;
+  const LocalizeConfig config;
+  for (unsigned seed = 0; seed < 16; ++seed) {
+    for (const std::size_t before : {0UL, 30UL}) {
+      const Case c = look_alike(seed, before);
+      const auto r = localize_sequence(c.similarity, config);
+      for (std::size_t q = before; q < r.frames.size(); ++q) {
+        (before == 0 ? alone : led).add(r.frames[q].confidence, right_guess(c, q, r.frames[q].map, config.tolerance));
+      }
+    }
+  }
+  double alone_confidence = 0, alone_right = 0;
+  for (std::size_t k = 0; k < alone.count.size(); ++k) {
+    alone_confidence += alone.sum_confidence[k];
+    alone_right += alone.right[k];
+  }
+  EXPECT_GT(alone_right / alone.frames, 0.4);
+  EXPECT_LT(alone_right / alone.frames, 0.7);
+  EXPECT_LT(alone_confidence / alone.frames, 0.85);
+  constexpr int kTop = Reliability::kBins - 1;
+  EXPECT_LT(alone.count[kTop], alone.frames / 3);
+  EXPECT_EQ(led.count[kTop], led.frames);
+  EXPECT_EQ(led.right[kTop], led.frames);
+}
+
 TEST(Confidence, EveryFrameHasAGuessAndTheThresholdDecidesWhatIsInTheMap) {
   const Case c = drive(0.8, 7);
   for (double threshold : {0.0, 0.3, 0.5, 0.9, 1.0}) {

@@ -237,7 +237,15 @@ TEST(Localize, EveryFrameTakesItsMostConfidentAlignmentsPosteriorGuessWithItsWin
     pc.gap_a = pc.gap_b = c.search.gap;
     pc.band = c.posterior_band;
     pc.tolerance = c.tolerance;
-    std::vector<double> best(s.rows, -1.0);
+    // Per row, each alignment's account: its map frame, real x posterior, whether the row lies between its first
+    // and last pair, and its weight P(revisit | E) exp(lambda x path score) (the path summed pair by pair here).
+    struct Account {
+      std::size_t col;
+      double confidence;
+      bool inside;
+      double weight;
+    };
+    std::vector<std::vector<Account>> accounts(s.rows);
     for (std::size_t k = 0; k < r.alignments.size(); ++k) {
       const double e = r.e_values[k];
       const double real = std::isfinite(e) ? 1.0 / (1.0 + e / *c.significance.max_e_value)
@@ -246,15 +254,40 @@ TEST(Localize, EveryFrameTakesItsMostConfidentAlignmentsPosteriorGuessWithItsWin
       align::PosteriorConfig wide = pc;
       wide.tolerance = pc.band;
       const auto& a = r.alignments[k];
+      double path = 0;
+      for (std::size_t p = 0; p < a.pairs.size(); ++p) {
+        path += scores(a.pairs[p].first, a.pairs[p].second);
+        if (p > 0) {
+          path -= c.search.gap * static_cast<double>(a.pairs[p].first - a.pairs[p - 1].first - 1 +
+                                                     distance(a.pairs[p].second, a.pairs[p - 1].second) - 1);
+        }
+      }
       for (const auto& row : align::row_posteriors(a, source, pc)) {
         double posterior = row.posterior;
-        if (row.row >= a.pairs.front().first && row.row <= a.pairs.back().first) {
+        const bool inside = row.row >= a.pairs.front().first && row.row <= a.pairs.back().first;
+        if (inside) {
           // Anywhere in the band: the same row of the wide decoding.
           for (const auto& w : align::row_posteriors(a, source, wide)) {
             if (w.row == row.row && w.posterior > 0) posterior = std::min(1.0, row.posterior / w.posterior);
           }
         }
-        best[row.row] = std::max(best[row.row], real * posterior);
+        accounts[row.row].push_back({row.col, real * posterior, inside, real * std::exp(lambda * path)});
+      }
+    }
+    // The best account of each row, an account through the row shared with the others through it at places more
+    // than the tolerance away.
+    std::vector<double> best(s.rows, -1.0);
+    for (std::size_t q = 0; q < s.rows; ++q) {
+      double through = 0;
+      for (const auto& x : accounts[q]) through += x.inside ? x.weight : 0.0;
+      for (const auto& x : accounts[q]) {
+        double share = 1;
+        if (x.inside && through > 0) {
+          double near = 0;
+          for (const auto& y : accounts[q]) near += y.inside && distance(x.col, y.col) <= c.tolerance ? y.weight : 0.0;
+          share = near / through;
+        }
+        best[q] = std::max(best[q], x.confidence * share);
       }
     }
     for (std::size_t q = 0; q < s.rows; ++q) {

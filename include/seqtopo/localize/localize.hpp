@@ -37,7 +37,10 @@
 // that the row is on the alignment, between its first and last pair), with lambda from the fit. Without a
 // fit (a search too small for one, or one with too few chance alignments) P(revisit | E) is replaced by 1 for
 // alignments scoring at least `threshold`, 0 below, and lambda is Karlin & Altschul's of the cells
-// (significance::ungapped_lambda). Among the
+// (significance::ungapped_lambda). Alignments that run through a frame (between their first and last pair) at map
+// frames more than `tolerance` apart are rival accounts of it (a look-alike stretch of the map): each one's
+// confidence there is multiplied by its share of their weights P(revisit | E) exp(lambda * path score), so a
+// frame whose evidence is split between look-alike places says so. Among the
 // alignments whose band reaches a frame the most confident wins (then the higher local score, then the
 // better-ranked alignment); the others give the runner-up candidates (recall@5). A frame no band reaches
 // takes the best cell of its scored row, confidence 0. Every frame so has a best guess; it is "in the map"
