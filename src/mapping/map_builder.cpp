@@ -830,8 +830,10 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
         // Masking takes the look-alike chance alignments of dark frames out of the fit, so its tail is lighter
         // and the cap lower than the sequence as recorded gives: never lower than that, so a revisit that runs
         // through a weak stretch beside a tunnel stays one (Nordland's frames 127-182, winter against summer).
+        // "As recorded" is the sequence the alignment sees: the long stretches it leaves out are not in it (dark
+        // stretches aligned with each other raised the cap past a revisit's weak last frames).
         if (!masked.empty()) {
-          const FitRun recorded = fit_looking_further(minus(enhanced, offset), c, d.frames_per_place);
+          const FitRun recorded = fit_looking_further(unmasked.view(minus(enhanced, offset)), c, d.frames_per_place);
           if (recorded.statistics.valid()) {
             engine.cap = std::max(*engine.cap,
                                   grid(c.cap_factor * grid(recorded.statistics.score_at(*c.significance.max_e_value))));
