@@ -305,11 +305,13 @@ void bind_localize(py::module_& m) {
       "frame), posterior_band [frames], tolerance [map frames] (the confidence is the probability of a guess\n"
       "within it of the truth), min_confidence (below: not in the map), threads, even_odds_e_value (the E-value at\n"
       "which an alignment is as likely a revisit as chance), lag (online: each frame answered once this many later\n"
-      "frames have arrived, with their evidence; 0: at once).");
+      "frames have arrived, with their evidence; 0: at once), speeds (offline: the query's speeds against the map\n"
+      "searched, map frames per query frame, 1 first; the others where 1 leaves frames unsure).");
   c.def(py::init([](std::size_t contrast_window, bool enhance, float contrast_offset, float gap,
                     std::optional<float> cap, float threshold, bool reverse, std::size_t max_alignments,
                     std::size_t score_window, std::size_t candidates, std::size_t posterior_band, std::size_t tolerance,
-                    double min_confidence, unsigned threads, double even_odds_e_value, std::size_t lag) {
+                    double min_confidence, unsigned threads, double even_odds_e_value, std::size_t lag,
+                    std::vector<double> speeds) {
           LocalizeConfig config;
           config.score.contrast_window = contrast_window;
           config.enhance = enhance;
@@ -327,6 +329,8 @@ void bind_localize(py::module_& m) {
           config.threads = threads;
           config.significance.max_e_value = even_odds_e_value;
           config.lag = lag;
+          localize::validate_speeds(speeds);
+          config.speeds = std::move(speeds);
           return config;
         }),
         py::kw_only(), py::arg("contrast_window") = d.score.contrast_window, py::arg("enhance") = d.enhance,
@@ -336,7 +340,7 @@ void bind_localize(py::module_& m) {
         py::arg("score_window") = d.score_window, py::arg("candidates") = d.candidates,
         py::arg("posterior_band") = d.posterior_band, py::arg("tolerance") = d.tolerance,
         py::arg("min_confidence") = d.min_confidence, py::arg("threads") = d.threads,
-        py::arg("even_odds_e_value") = d.significance.max_e_value, py::arg("lag") = d.lag)
+        py::arg("even_odds_e_value") = d.significance.max_e_value, py::arg("lag") = d.lag, py::arg("speeds") = d.speeds)
       .def_property("contrast_window", section_getter(&LocalizeConfig::score, &align::ScoreSettings::contrast_window),
                     section_setter(&LocalizeConfig::score, &align::ScoreSettings::contrast_window))
       .def_readwrite("enhance", &LocalizeConfig::enhance)
@@ -360,10 +364,11 @@ void bind_localize(py::module_& m) {
       .def_property("even_odds_e_value",
                     section_getter(&LocalizeConfig::significance, &align::SignificanceSettings::max_e_value),
                     section_setter(&LocalizeConfig::significance, &align::SignificanceSettings::max_e_value))
-      .def_readwrite("lag", &LocalizeConfig::lag);
+      .def_readwrite("lag", &LocalizeConfig::lag)
+      .def_readwrite("speeds", &LocalizeConfig::speeds);
   add_repr(c, "LocalizeConfig",
            {"contrast_window", "enhance", "contrast_offset", "gap", "cap", "threshold", "reverse", "max_alignments",
-            "score_window", "candidates", "posterior_band", "tolerance", "min_confidence", "threads", "lag"});
+            "score_window", "candidates", "posterior_band", "tolerance", "min_confidence", "threads", "lag", "speeds"});
 }
 
 void bind_strings(py::module_& m) {

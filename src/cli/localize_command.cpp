@@ -44,9 +44,37 @@ struct LocalizeOptions {
   float gap = 2.0F, threshold = 10.0F, offset = 0.75F;
   double min_confidence = localize::LocalizeConfig{}.min_confidence;
   std::optional<float> cap;
+  std::optional<std::string> speeds;  // comma-separated; default LocalizeConfig's
   bool online = false, no_reverse = false;
   unsigned threads = 0;
 };
+
+// --speeds: numbers separated by commas, 1 first.
+std::vector<double> parse_speeds(const std::string& text) {
+  std::vector<double> out;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, comma - at);
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size())
+      throw InputError("--speeds", "'" + item + "' is not a number (speeds are numbers separated by commas)");
+    out.push_back(v);
+    at = comma + 1;
+  }
+  try {
+    localize::validate_speeds(out);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--speeds", e.what());
+  }
+  return out;
+}
 
 // ---- offline ---------------------------------------------------------------------------------------
 
@@ -80,6 +108,7 @@ localize::LocalizeConfig localize_config(const LocalizeOptions& o, std::size_t c
   c.min_confidence = o.min_confidence;
   c.search.reverse = !o.no_reverse;
   c.lag = o.lag;
+  if (o.speeds) c.speeds = parse_speeds(*o.speeds);
   c.threads = std::min(2U, resolve_threads(o.threads));
   try {
     localize::validate(c);
@@ -126,6 +155,7 @@ void run(LocalizeOptions o) {
   request.settings.localize = localize_config(o, o.tolerance.value_or(localize::LocalizeConfig{}.tolerance));
   request.online = o.online;
   if (o.lag > 0 && !o.online) throw InputError("--lag", "is for --online (offline, every frame has the whole query)");
+  if (o.speeds && o.online) throw InputError("--speeds", "is offline only (--online searches the query as recorded)");
   const bool have_matrix = [&] {
     for (const auto* p : {&o.map_path, &o.query_path}) {
       if (!p->empty() && *p != "-" && !fs::exists(*p)) throw InputError(*p, "does not exist");
@@ -301,6 +331,9 @@ const RegisterCommand registered{
        add_number(app, "--score-window", o->score_window, kNonNegative,
                   "per-frame score: +-W query frames of the alignment");
        app.add_flag("--no-reverse", o->no_reverse, "do not search the map driven backwards");
+       app.add_option("--speeds", o->speeds,
+                      "offline: the query's speeds against the map searched, map frames per query frame, 1 first "
+                      "(default 1,1.5,2,0.667,0.5: as recorded, then the others where that leaves frames unsure)");
        app.add_option("--ground-truth,--gt", o->gt,
                       "ground truth: same-index (query k is map k), a query x map image or .npy matrix, a pairs CSV "
                       "(query,map), VPR-Bench's ground_truth_new.npy, or the query frames' poses (index,x,y CSV, "

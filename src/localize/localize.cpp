@@ -47,6 +47,7 @@ void validate(const LocalizeConfig& c) {
   if (!(c.min_confidence >= 0 && c.min_confidence <= 1))
     throw std::invalid_argument("min_confidence must be in [0, 1]");
   if (c.lag > kMaxLag) throw std::invalid_argument("lag must be at most " + std::to_string(kMaxLag) + " frames");
+  validate_speeds(c.speeds);
 }
 
 void score_row(const float* row, std::size_t cols, const LocalizeConfig& c, float* out) {
@@ -105,9 +106,12 @@ double local_score(const align::LocalAlignment& a, const std::vector<double>& pa
 
 }  // namespace
 
-std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAlignment>& alignments,
-                                               const std::vector<double>& e_values, double lambda,
-                                               const SimilarityMatrix& scores, const LocalizeConfig& c) {
+namespace {
+
+// frames_from_alignments, alignments less likely real than `min_real` left out.
+std::vector<FrameMatch> frames_of(const std::vector<align::LocalAlignment>& alignments,
+                                  const std::vector<double>& e_values, double lambda, const SimilarityMatrix& scores,
+                                  const LocalizeConfig& c, double min_real) {
   if (e_values.size() != alignments.size()) throw std::invalid_argument("one E-value per alignment expected");
   struct Candidate {
     double confidence;
@@ -132,6 +136,7 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
     const double e = e_values[rank];
     const double real = std::isfinite(e) ? significance::revisit_probability(e, *c.significance.max_e_value)
                                          : (a.score >= c.significance.threshold ? 1.0 : 0.0);
+    if (real < min_real) continue;
     const std::vector<double> path = path_prefix(a, scores, c.search.gap);
     // Between the alignment's first and last pair the row is on it: where along it, given that (as the map's
     // pairs). Past its ends, whether a chain extending it reaches the row at all is part of the answer.
@@ -210,6 +215,14 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
   return frames;
 }
 
+}  // namespace
+
+std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAlignment>& alignments,
+                                               const std::vector<double>& e_values, double lambda,
+                                               const SimilarityMatrix& scores, const LocalizeConfig& c) {
+  return frames_of(alignments, e_values, lambda, scores, c, 0.0);
+}
+
 LocalizeResult search_scores(const SimilarityMatrix& scores, const LocalizeConfig& c) {
   check_matrix(scores);
   validate(c);
@@ -250,7 +263,23 @@ namespace {
 // cell's evidence exp(lambda * score)). On the corridor split the weak last frames of a revisit are right, but a
 // query that leaves the map's route at once scores the same in its first frames: ten frames somewhere new stayed
 // "in the map" at 0.6-0.96. Only the frame's own evidence gives its confidence.
-void carry_on(LocalizeResult& r, std::size_t cols, std::size_t tolerance) {
+//
+// A frame is carried on at the pace of its anchor's alignment: map frames per query frame from its first pair to its
+// last (a query driven at 1.5 times the map's speed but aligned as it was recorded, with a gap every other frame,
+// goes on at 1.5; a window of its pairs around the anchor drifted 3-7 frames over a long weak stretch), else
+// `speed[anchor]`, the speed of the search that answered it (empty: 1).
+void carry_on(LocalizeResult& r, std::size_t cols, std::size_t tolerance, const std::vector<double>& speed) {
+  const auto pace = [&](std::size_t from) {
+    const double searched = speed.empty() ? 1.0 : speed[from];
+    const FrameMatch& k = r.frames[from];
+    if (k.alignment >= r.alignments.size()) return searched;
+    const auto& pairs = r.alignments[k.alignment].pairs;
+    if (pairs.size() < 2 || pairs.back().first == pairs.front().first) return searched;
+    const auto [i0, j0] = pairs.front();
+    const auto [i1, j1] = pairs.back();
+    const double frames = static_cast<double>(j1 > j0 ? j1 - j0 : j0 - j1);
+    return std::clamp(frames / static_cast<double>(i1 - i0), 1.0 / kMaxSpeed, kMaxSpeed);
+  };
   // More likely right than wrong, whatever min_confidence decides (the guesses do not move with it).
   const auto sure = [&](std::size_t q) { return r.frames[q].confidence >= 0.5; };
   const std::size_t n = r.frames.size();
@@ -262,7 +291,8 @@ void carry_on(LocalizeResult& r, std::size_t cols, std::size_t tolerance) {
     const std::size_t from = before[q] != FrameMatch::npos ? before[q] : after[q];
     if (from == FrameMatch::npos) return;  // nothing localized at all
     const FrameMatch& k = r.frames[from];
-    const auto step = static_cast<long long>(q) - static_cast<long long>(from);
+    const double frames = static_cast<double>(static_cast<long long>(q) - static_cast<long long>(from)) * pace(from);
+    const long long step = std::llround(frames);
     const long long guess = static_cast<long long>(k.map) + (k.direction == align::Direction::forward ? step : -step);
     const auto past = static_cast<long long>(tolerance);
     if (guess < -past || guess >= static_cast<long long>(cols) + past) continue;
@@ -276,19 +306,195 @@ void carry_on(LocalizeResult& r, std::size_t cols, std::size_t tolerance) {
   }
 }
 
-}  // namespace
-
-LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeConfig& c) {
+// The alignments and frames' own answers of one search (no carrying on): its E-values multiplied by `searches` (the
+// speeds tried, each a search of its own), the alignments less likely real than `min_real` giving no answer.
+LocalizeResult search_and_answer(const SimilarityMatrix& scores, const LocalizeConfig& c, double searches,
+                                 double min_real) {
   LocalizeResult r = search_scores(scores, c);
+  for (double& e : r.e_values) e *= searches;
   // Without a fit, lambda from the cells (an upper bound on the gapped one), else 1.
   double lambda = r.statistics.lambda;
   if (!r.statistics.valid()) {
     lambda = significance::ungapped_lambda(scores.values);
     if (!(lambda > 0)) lambda = 1.0;
   }
-  r.frames = frames_from_alignments(r.alignments, r.e_values, lambda, scores, c);
-  carry_on(r, scores.cols, c.tolerance);
+  r.frames = frames_of(r.alignments, r.e_values, lambda, scores, c, min_real);
   return r;
+}
+
+// The map driven at `speed` map frames per query frame: column k is map frame round(k * speed).
+std::vector<std::size_t> columns_at_speed(std::size_t cols, double speed) {
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0;; ++k) {
+    const auto m = static_cast<std::size_t>(std::llround(static_cast<double>(k) * speed));
+    if (m >= cols) break;
+    out.push_back(m);
+  }
+  return out;
+}
+
+// The config on the map resampled at `speed`: its tolerance in map frames as columns.
+LocalizeConfig at_speed(const LocalizeConfig& c, double speed) {
+  LocalizeConfig at = c;
+  at.tolerance = static_cast<std::size_t>(std::llround(static_cast<double>(c.tolerance) / speed));
+  return at;
+}
+
+// A localization over resampled columns with its map frames put back: `frame[k]` is column k's map frame.
+void to_map_frames(LocalizeResult& r, const std::vector<std::size_t>& frame) {
+  for (auto& a : r.alignments) {
+    for (auto& p : a.pairs) p.second = frame[p.second];
+    if (a.b_end > a.b_begin) {
+      a.b_begin = frame[a.b_begin];
+      a.b_end = frame[a.b_end - 1] + 1;
+    }
+  }
+  for (auto& f : r.frames) {
+    f.map = frame[f.map];
+    for (auto& m : f.candidates) m = frame[m];
+    // Columns of one repeated map frame are one candidate.
+    std::vector<std::size_t> distinct;
+    for (std::size_t m : f.candidates) {
+      if (std::find(distinct.begin(), distinct.end(), m) == distinct.end()) distinct.push_back(m);
+    }
+    f.candidates = std::move(distinct);
+  }
+}
+
+}  // namespace
+
+void validate_speeds(std::span<const double> speeds) {
+  if (speeds.empty() || speeds.front() != 1.0)
+    throw std::invalid_argument("speeds must list 1 (the query as recorded) first, then any others");
+  for (double v : speeds) {
+    if (!(std::isfinite(v) && v >= 1.0 / kMaxSpeed && v <= kMaxSpeed))
+      throw std::invalid_argument("speeds must be between 1/" + std::to_string(static_cast<int>(kMaxSpeed)) + " and " +
+                                  std::to_string(static_cast<int>(kMaxSpeed)) + " map frames per query frame");
+  }
+}
+
+namespace {
+
+// The stretches of frames [begin, end) the answers leave unsure (confidence below 1/2), each widened by `margin`
+// frames either side (merged where they meet).
+std::vector<std::pair<std::size_t, std::size_t>> unsure_stretches(const std::vector<FrameMatch>& frames,
+                                                                  std::size_t margin) {
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  const std::size_t n = frames.size();
+  for (std::size_t q = 0; q < n; ++q) {
+    if (frames[q].confidence >= 0.5) continue;
+    const std::size_t begin = q > margin ? q - margin : 0, end = std::min(n, q + margin + 1);
+    if (!out.empty() && begin <= out.back().second) {
+      out.back().second = std::max(out.back().second, end);
+    } else {
+      out.emplace_back(begin, end);
+    }
+  }
+  return out;
+}
+
+// The query at `speed` against the map, where rows [begin, end) are: a faster query (speed > 1) against the map's
+// frames round(k * speed), a slower one against every map frame with its rows begin + round(k / speed) only (a map
+// frame repeated for a slower query makes chance alignments of look-alike neighbours: those rows answer, the others
+// are carried on). Its E-values come from `statistics` (the first speed's fit: the same cells, the same chance tail)
+// over the whole search at this speed, times `searches`; only alignments more likely a revisit than not answer (a
+// chance one cannot win a frame; their posteriors were most of the cost). Returns the answers (one per row of
+// `rows`, in query rows and map frames) and the alignments.
+LocalizeResult search_stretch(const SimilarityMatrix& scores, std::size_t begin, std::size_t end, double speed,
+                              const LocalizeConfig& c, const significance::ScoreStatistics& statistics, double searches,
+                              std::vector<std::size_t>& rows) {
+  const std::vector<std::size_t> frame =
+      speed >= 1 ? columns_at_speed(scores.cols, speed) : columns_at_speed(scores.cols, 1.0);
+  rows.clear();
+  for (std::size_t k = 0;; ++k) {
+    const std::size_t q = begin + static_cast<std::size_t>(std::llround(static_cast<double>(k) / std::min(1.0, speed)));
+    if (q >= end) break;
+    rows.push_back(q);
+  }
+  SimilarityMatrix sub(rows.size(), frame.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (std::size_t k = 0; k < frame.size(); ++k) sub(i, k) = scores(rows[i], frame[k]);
+  }
+  const LocalizeConfig at = at_speed(c, std::max(1.0, speed));
+  LocalizeResult r = search_scores(sub, at);
+  significance::ScoreStatistics whole = statistics;
+  whole.area = significance::search_area(
+      static_cast<std::size_t>(std::llround(static_cast<double>(scores.rows) * std::min(1.0, speed))), frame.size(),
+      false, 0, c.search.reverse);
+  const auto source = align::ScoreSource::dense(std::span<const float>(sub.values), sub.rows, sub.cols);
+  for (std::size_t k = 0; k < r.alignments.size(); ++k) {
+    const auto& a = r.alignments[k];
+    r.e_values[k] = searches * whole.e_value(c.search.cap ? align::path_score(a, source, c.search.gap, c.search.gap)
+                                                          : static_cast<double>(a.score));
+  }
+  r.frames = frames_of(r.alignments, r.e_values, statistics.lambda, sub, at, 0.5);
+  for (auto& a : r.alignments) {
+    for (auto& p : a.pairs) p.first = rows[p.first];
+    if (a.a_end > a.a_begin) {
+      a.a_begin = rows[a.a_begin];
+      a.a_end = rows[a.a_end - 1] + 1;
+    }
+  }
+  to_map_frames(r, frame);
+  if (speed < 1) {
+    // The rows a slower query's search skipped lie on its alignment between the rows either side of them, when
+    // one alignment answered both: at the map frame between theirs, as sure as the less sure of the two.
+    std::vector<FrameMatch> all(end - begin);
+    for (std::size_t i = 0; i < rows.size(); ++i) all[rows[i] - begin] = std::move(r.frames[i]);
+    for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
+      const FrameMatch &x = all[rows[i] - begin], &y = all[rows[i + 1] - begin];
+      if (x.alignment == FrameMatch::npos || x.alignment != y.alignment) continue;
+      for (std::size_t q = rows[i] + 1; q < rows[i + 1]; ++q) {
+        const double t = static_cast<double>(q - rows[i]) / static_cast<double>(rows[i + 1] - rows[i]);
+        FrameMatch& f = all[q - begin];
+        f = x.confidence <= y.confidence ? x : y;
+        f.map = static_cast<std::size_t>(
+            std::llround(static_cast<double>(x.map) + t * (static_cast<double>(y.map) - static_cast<double>(x.map))));
+        f.candidates = {f.map};
+      }
+    }
+    r.frames = std::move(all);
+    rows.resize(end - begin);
+    std::iota(rows.begin(), rows.end(), begin);
+  }
+  return r;
+}
+
+}  // namespace
+
+LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeConfig& c) {
+  validate_speeds(c.speeds);
+  const auto searches = static_cast<double>(c.speeds.size());
+  LocalizeResult best = search_and_answer(scores, c, searches, 0.0);  // speeds[0] is 1 (validate_speeds)
+  std::vector<double> speed(best.frames.size(), 1.0);                 // of the search that answered each frame
+  // The other speeds where the first leaves frames unsure, with its statistics (none: no other speed).
+  const std::vector<std::pair<std::size_t, std::size_t>> stretches =
+      best.statistics.valid() ? unsure_stretches(best.frames, c.posterior_band) : decltype(stretches){};
+  std::vector<std::size_t> rows;
+  for (std::size_t s = 1; s < c.speeds.size(); ++s) {
+    const double v = c.speeds[s];
+    for (const auto& [begin, end] : stretches) {
+      LocalizeResult r = search_stretch(scores, begin, end, v, c, best.statistics, searches, rows);
+      if (r.alignments.empty()) continue;
+      // An unsure frame takes the most confident answer of the other speeds (the first listed on a tie); every
+      // speed's alignments are kept, each answer pointing at its own.
+      const std::size_t offset = best.alignments.size();
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        const std::size_t q = rows[i];
+        FrameMatch& f = r.frames[i];
+        if (speed[q] == 1.0 && best.frames[q].confidence >= 0.5) continue;
+        if (!(f.confidence > best.frames[q].confidence)) continue;
+        if (f.alignment != FrameMatch::npos) f.alignment += offset;
+        best.frames[q] = std::move(f);
+        speed[q] = v;
+      }
+      best.alignments.insert(best.alignments.end(), std::make_move_iterator(r.alignments.begin()),
+                             std::make_move_iterator(r.alignments.end()));
+      best.e_values.insert(best.e_values.end(), r.e_values.begin(), r.e_values.end());
+    }
+  }
+  carry_on(best, scores.cols, c.tolerance, speed);
+  return best;
 }
 
 LocalizeResult localize_sequence(const SimilarityMatrix& s, const LocalizeConfig& c) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 #include <string>
@@ -189,6 +190,30 @@ TEST_F(LocalizeCli, OnlineWithALagAnswersEveryFrameOnceInOrder) {
             std::string::npos);
 }
 
+// A query driven at twice the map's speed (query frame q at map frame 2q + 10): found by the default speeds, not by
+// the recorded speed alone.
+TEST_F(LocalizeCli, FindsAQueryDrivenFasterThanTheMap) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> u(0.0F, 0.6F);
+  std::vector<float> v(40 * 100);
+  for (auto& x : v) x = u(rng);
+  for (std::size_t q = 0; q < 40; ++q) v[q * 100 + 2 * q + 10] = 0.75F;
+  const auto s = write_npy("fast_similarity.npy", 40, 100, v);
+  std::string truth = "query,map\n";
+  for (std::size_t q = 0; q < 40; ++q) truth += std::to_string(q) + "," + std::to_string(2 * q + 10) + "\n";
+  const auto gt = dir_.write("fast.csv", truth);
+  const auto recall = [&](const std::string& extra, const std::string& name) {
+    const auto out = dir_.path / name;
+    const auto r =
+        localize("--map " + s.string() + " --gt " + gt.string() + " --tolerance 1" + extra + " --out " + out.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    return nlohmann::json::parse(read_file(out / "metrics.json")).at("recall_at_1").get<double>();
+  };
+  EXPECT_GE(recall("", "default"), 0.9);
+  EXPECT_LT(recall(" --speeds 1", "recorded"), 0.5);
+  EXPECT_GE(recall(" --speeds 1,2", "two"), 0.9);
+}
+
 TEST_F(LocalizeCli, RejectsBadInputWithoutLeavingOutput) {
   const auto s = planted();
   const auto out = dir_.path / "out";
@@ -196,6 +221,11 @@ TEST_F(LocalizeCli, RejectsBadInputWithoutLeavingOutput) {
       "--map " + s.string() + " --gap -1 --out " + out.string(),
       "--map " + s.string() + " --cap 0 --out " + out.string(),
       "--map " + s.string() + " --lag 3 --out " + out.string(),
+      "--map " + s.string() + " --speeds 1,x --out " + out.string(),
+      "--map " + s.string() + " --speeds 2,1 --out " + out.string(),
+      "--map " + s.string() + " --speeds 1,,2 --out " + out.string(),
+      "--map " + s.string() + " --speeds 1,20 --out " + out.string(),
+      "--map " + s.string() + " --speeds 1,2 --online --out " + out.string(),
       "--map " + (dir_.path / "missing.npy").string() + " --out " + out.string(),
       "--map " + s.string() + " --query " + dir_.path.string() + " --out " + out.string(),
       "--map " + s.string() + " --gt " + (dir_.path / "missing.csv").string() + " --out " + out.string(),

@@ -19,7 +19,11 @@
 //
 // Speed. A query recorded at another speed than the map is a path that is not at 45 degrees: every map
 // frame skipped (faster) or every query frame repeated on one map frame (slower) costs one gap. The path still
-// pays while a matched frame gains more than the gaps per frame cost, e.g. at half speed gain > gap.
+// pays while a matched frame gains more than the gaps per frame cost, e.g. at half speed gain > gap, which a
+// query at 1.5 or 2 times the map's speed does not (Nordland winter at 1.5x in summer: R@1 0.51; at 2x 0.02).
+// So the map is also searched at other speeds (LocalizeConfig::speeds, as SeqSLAM searches trajectories of several
+// velocities, Milford & Wyeth 2012): its columns resampled so the query's path is at 45 degrees again. Every
+// E-value counts all the searches, so the speeds tried cost significance (a Bonferroni correction).
 //
 // Significance (significance/score_statistics.hpp). The alignments are found down to any positive score, best
 // first, and the declumped ones that are not shadows of earlier ones are a sample of chance alignments once the
@@ -50,6 +54,7 @@
 // pairs there minus the gaps there), kept beside the confidence as the evidence in score units.
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 #include <optional>
 #include <span>
 #include <vector>
@@ -64,6 +69,11 @@ namespace seqtopo::localize {
 // The longest lag LocalizeConfig::lag takes: each answer costs lag x map frames, and the last `lag` frames' answers
 // at the query's end lag^2 x map frames.
 inline constexpr std::size_t kMaxLag = 1000;
+// The fastest and slowest speeds LocalizeConfig::speeds takes: kMaxSpeed and 1 / kMaxSpeed map frames per query frame.
+inline constexpr double kMaxSpeed = 8;
+// The speeds the query is searched at by default [map frames per query frame]: as recorded, and the query 1.5 and
+// 2 times faster or slower.
+inline constexpr double kDefaultSpeeds[] = {1.0, 1.5, 2.0, 1.0 / 1.5, 0.5};
 
 struct LocalizeConfig {
   // The sections the map shares (align/settings.hpp), with localization's defaults. Row contrast enhancement
@@ -90,7 +100,15 @@ struct LocalizeConfig {
   // Online (OnlineLocalizer): each frame answered once this many later frames have arrived, with their evidence
   // (fixed-lag smoothing, OnlineLocalizer::smoothed). 0: at once, from the frames so far. At most kMaxLag.
   std::size_t lag = 0;
+  // Offline: the speeds of the query against the map searched [map frames per query frame], each within
+  // [1 / kMaxSpeed, kMaxSpeed] (see "Speeds" above). The map's columns are resampled to each speed (frame
+  // round(k * speed) at column k) and aligned; every E-value counts all the searches (times speeds.size()), and each
+  // query frame takes the most confident answer. The online localizer searches the recorded speed (1) only.
+  std::vector<double> speeds = std::vector<double>(std::begin(kDefaultSpeeds), std::end(kDefaultSpeeds));
 };
+
+// Throws std::invalid_argument unless `speeds` lists at least one speed, each within [1 / kMaxSpeed, kMaxSpeed].
+void validate_speeds(std::span<const double> speeds);
 
 struct FrameMatch {
   bool covered = false;           // "in the map": confidence >= min_confidence (false = "not in the map")
