@@ -322,16 +322,20 @@ LocalizeResult search_and_answer(const SimilarityMatrix& scores, const LocalizeC
   return r;
 }
 
-// The map driven at `speed` map frames per query frame: column k is map frame round(k * speed).
-std::vector<std::size_t> columns_at_speed(std::size_t cols, double speed) {
+// The frames first + round(k * step), k = 0, 1, ..., below `end`.
+std::vector<std::size_t> frames_at_step(std::size_t first, std::size_t end, double step) {
   std::vector<std::size_t> out;
   for (std::size_t k = 0;; ++k) {
-    const auto m = static_cast<std::size_t>(std::llround(static_cast<double>(k) * speed));
-    if (m >= cols) break;
+    const auto m = first + static_cast<std::size_t>(std::llround(static_cast<double>(k) * step));
+    if (m >= end) break;
     out.push_back(m);
   }
   return out;
 }
+
+// The searches a speed makes: one per phase of the frames it skips (2 at 1.5 and 2: the even and the odd map frames
+// for a query twice as fast, which may have been taken between the map's frames).
+std::size_t phases(double speed) { return static_cast<std::size_t>(std::ceil(std::max(speed, 1.0 / speed) - 1e-9)); }
 
 // The config on the map resampled at `speed`: its tolerance in map frames as columns.
 LocalizeConfig at_speed(const LocalizeConfig& c, double speed) {
@@ -394,23 +398,19 @@ std::vector<std::pair<std::size_t, std::size_t>> unsure_stretches(const std::vec
 }
 
 // The query at `speed` against the map, where rows [begin, end) are: a faster query (speed > 1) against the map's
-// frames round(k * speed), a slower one against every map frame with its rows begin + round(k / speed) only (a map
-// frame repeated for a slower query makes chance alignments of look-alike neighbours: those rows answer, the others
-// are carried on). Its E-values come from `statistics` (the first speed's fit: the same cells, the same chance tail)
-// over the whole search at this speed, times `searches`; only alignments more likely a revisit than not answer (a
-// chance one cannot win a frame; their posteriors were most of the cost). Returns the answers (one per row of
-// `rows`, in query rows and map frames) and the alignments.
+// frames phase + round(k * speed), a slower one against every map frame with its rows begin + phase +
+// round(k / speed) only (a map frame repeated for a slower query makes chance alignments of look-alike neighbours;
+// the rows between lie on the alignment between them). Its E-values come from `statistics` (the first speed's fit: the
+// same cells, the same chance tail) over the whole search at this speed, times `searches`; only alignments more likely
+// a revisit than not answer (a chance one cannot win a frame; their posteriors were most of the cost). Returns the
+// answers (one per row of `rows`, in query rows and map frames) and the alignments.
 LocalizeResult search_stretch(const SimilarityMatrix& scores, std::size_t begin, std::size_t end, double speed,
-                              const LocalizeConfig& c, const significance::ScoreStatistics& statistics, double searches,
+                              std::size_t phase, const LocalizeConfig& c,
+                              const significance::ScoreStatistics& statistics, double searches,
                               std::vector<std::size_t>& rows) {
-  const std::vector<std::size_t> frame =
-      speed >= 1 ? columns_at_speed(scores.cols, speed) : columns_at_speed(scores.cols, 1.0);
-  rows.clear();
-  for (std::size_t k = 0;; ++k) {
-    const std::size_t q = begin + static_cast<std::size_t>(std::llround(static_cast<double>(k) / std::min(1.0, speed)));
-    if (q >= end) break;
-    rows.push_back(q);
-  }
+  const std::vector<std::size_t> frame = frames_at_step(speed >= 1 ? phase : 0, scores.cols, std::max(1.0, speed));
+  rows = frames_at_step(begin + (speed < 1 ? phase : 0), end, 1 / std::min(1.0, speed));
+  if (frame.size() < 2 || rows.size() < 2) return {};
   SimilarityMatrix sub(rows.size(), frame.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     for (std::size_t k = 0; k < frame.size(); ++k) sub(i, k) = scores(rows[i], frame[k]);
@@ -464,7 +464,8 @@ LocalizeResult search_stretch(const SimilarityMatrix& scores, std::size_t begin,
 
 LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeConfig& c) {
   validate_speeds(c.speeds);
-  const auto searches = static_cast<double>(c.speeds.size());
+  double searches = 0;
+  for (const double v : c.speeds) searches += static_cast<double>(phases(v));
   LocalizeResult best = search_and_answer(scores, c, searches, 0.0);  // speeds[0] is 1 (validate_speeds)
   std::vector<double> speed(best.frames.size(), 1.0);                 // of the search that answered each frame
   // The other speeds where the first leaves frames unsure, with its statistics (none: no other speed).
@@ -473,24 +474,26 @@ LocalizeResult localize_scores(const SimilarityMatrix& scores, const LocalizeCon
   std::vector<std::size_t> rows;
   for (std::size_t s = 1; s < c.speeds.size(); ++s) {
     const double v = c.speeds[s];
-    for (const auto& [begin, end] : stretches) {
-      LocalizeResult r = search_stretch(scores, begin, end, v, c, best.statistics, searches, rows);
-      if (r.alignments.empty()) continue;
-      // An unsure frame takes the most confident answer of the other speeds (the first listed on a tie); every
-      // speed's alignments are kept, each answer pointing at its own.
-      const std::size_t offset = best.alignments.size();
-      for (std::size_t i = 0; i < rows.size(); ++i) {
-        const std::size_t q = rows[i];
-        FrameMatch& f = r.frames[i];
-        if (speed[q] == 1.0 && best.frames[q].confidence >= 0.5) continue;
-        if (!(f.confidence > best.frames[q].confidence)) continue;
-        if (f.alignment != FrameMatch::npos) f.alignment += offset;
-        best.frames[q] = std::move(f);
-        speed[q] = v;
+    for (std::size_t phase = 0; phase < phases(v); ++phase) {
+      for (const auto& [begin, end] : stretches) {
+        LocalizeResult r = search_stretch(scores, begin, end, v, phase, c, best.statistics, searches, rows);
+        if (r.alignments.empty()) continue;
+        // An unsure frame takes the most confident answer of the other speeds (the first listed on a tie); every
+        // speed's alignments are kept, each answer pointing at its own.
+        const std::size_t offset = best.alignments.size();
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+          const std::size_t q = rows[i];
+          FrameMatch& f = r.frames[i];
+          if (speed[q] == 1.0 && best.frames[q].confidence >= 0.5) continue;
+          if (!(f.confidence > best.frames[q].confidence)) continue;
+          if (f.alignment != FrameMatch::npos) f.alignment += offset;
+          best.frames[q] = std::move(f);
+          speed[q] = v;
+        }
+        best.alignments.insert(best.alignments.end(), std::make_move_iterator(r.alignments.begin()),
+                               std::make_move_iterator(r.alignments.end()));
+        best.e_values.insert(best.e_values.end(), r.e_values.begin(), r.e_values.end());
       }
-      best.alignments.insert(best.alignments.end(), std::make_move_iterator(r.alignments.begin()),
-                             std::make_move_iterator(r.alignments.end()));
-      best.e_values.insert(best.e_values.end(), r.e_values.begin(), r.e_values.end());
     }
   }
   carry_on(best, scores.cols, c.tolerance, speed);
