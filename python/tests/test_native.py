@@ -110,6 +110,22 @@ def test_localize_sequences_with_ground_truth_and_report(tmp_path):
         seqtopo.write_report(object(), tmp_path / "x")
 
 
+def test_localize_finds_a_query_driven_twice_as_fast_at_its_speed():
+    # Query frame q was taken at map frame 2q + 10: found at the default speeds, lost at the recorded speed alone.
+    rng = np.random.default_rng(8)
+    s = rng.uniform(0.0, 0.6, (40, 100)).astype(np.float32)
+    for q in range(40):
+        s[q, 2 * q + 10] = 0.75
+    truth = 2 * np.arange(40) + 10
+    assert seqtopo.LocalizeConfig().speeds[0] == 1.0 and len(seqtopo.LocalizeConfig().speeds) > 1
+    found = seqtopo.localize(s)
+    alone = seqtopo.localize(s, seqtopo.LocalizeConfig(speeds=[1.0]))
+    assert np.mean(np.abs(found.map - truth) <= 1) >= 0.9
+    assert np.mean(np.abs(alone.map - truth) <= 1) < 0.5
+    with pytest.raises(ValueError, match="speeds"):
+        seqtopo.LocalizeConfig(speeds=[2.0, 1.0])
+
+
 def test_the_console_entry_point_runs_the_tool():
     from seqtopo import _cli
 
