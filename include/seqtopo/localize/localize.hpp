@@ -100,10 +100,12 @@ struct LocalizeConfig {
   // Online (OnlineLocalizer): each frame answered once this many later frames have arrived, with their evidence
   // (fixed-lag smoothing, OnlineLocalizer::smoothed). 0: at once, from the frames so far. At most kMaxLag.
   std::size_t lag = 0;
-  // Offline: the speeds of the query against the map searched [map frames per query frame], each within
-  // [1 / kMaxSpeed, kMaxSpeed] (see "Speeds" above). The map's columns are resampled to each speed (frame
-  // round(k * speed) at column k) and aligned; every E-value counts all the searches (times speeds.size()), and each
-  // query frame takes the most confident answer. The online localizer searches the recorded speed (1) only.
+  // Offline: the speeds of the query against the map searched [map frames per query frame], 1 first, each within
+  // [1 / kMaxSpeed, kMaxSpeed] (see "Speed" above). The query is aligned as recorded; the stretches where that leaves
+  // frames unsure are aligned again at each other speed, once per phase of the frames it skips (a faster query
+  // against the map's frames p + round(k * speed), a slower one with its frames p + round(k / speed)), with the
+  // first search's statistics; every E-value counts all the searches, and an unsure frame takes the most confident
+  // answer. The online localizer searches the recorded speed (1) only.
   std::vector<double> speeds = std::vector<double>(std::begin(kDefaultSpeeds), std::end(kDefaultSpeeds));
 };
 
