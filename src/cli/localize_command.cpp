@@ -49,24 +49,14 @@ struct LocalizeOptions {
   unsigned threads = 0;
 };
 
-// --speeds: numbers separated by commas, 1 first.
+// --speeds: numbers separated by commas (each by the one number parser), 1 first (localize::validate_speeds).
 std::vector<double> parse_speeds(const std::string& text) {
   std::vector<double> out;
-  std::size_t at = 0;
-  while (at <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', at), text.size());
-    const std::string item = text.substr(at, comma - at);
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (item.empty() || used != item.size())
-      throw InputError("--speeds", "'" + item + "' is not a number (speeds are numbers separated by commas)");
-    out.push_back(v);
-    at = comma + 1;
+  for (std::size_t from = 0;;) {
+    const auto comma = text.find(',', from);
+    out.push_back(parse_number<double>("--speeds", text.substr(from, comma - from)));
+    if (comma == std::string::npos) break;
+    from = comma + 1;
   }
   try {
     localize::validate_speeds(out);

@@ -33,6 +33,16 @@ void check_matrix(const SimilarityMatrix& s) {
 
 }  // namespace
 
+void validate_speeds(std::span<const double> speeds) {
+  if (speeds.empty() || speeds.front() != 1.0)
+    throw std::invalid_argument("speeds must list 1 (the query as recorded) first, then any others");
+  for (double v : speeds) {
+    if (!(std::isfinite(v) && v >= 1.0 / kMaxSpeed && v <= kMaxSpeed))
+      throw std::invalid_argument("speeds must be between 1/" + std::to_string(static_cast<int>(kMaxSpeed)) + " and " +
+                                  std::to_string(static_cast<int>(kMaxSpeed)) + " map frames per query frame");
+  }
+}
+
 void validate(const LocalizeConfig& c) {
   if (!std::isfinite(c.search.gap) || c.search.gap < 0) throw std::invalid_argument("gap must be a finite number >= 0");
   if (!std::isfinite(c.score.contrast_offset)) throw std::invalid_argument("contrast_offset must be a finite number");
@@ -103,10 +113,6 @@ double local_score(const align::LocalAlignment& a, const std::vector<double>& pa
   const auto last = static_cast<std::size_t>(hi - a.pairs.begin()) - 1;
   return path[last] - path[first] + scores(a.pairs[first].first, a.pairs[first].second);
 }
-
-}  // namespace
-
-namespace {
 
 // frames_from_alignments, alignments less likely real than `min_real` left out.
 std::vector<FrameMatch> frames_of(const std::vector<align::LocalAlignment>& alignments,
@@ -223,25 +229,41 @@ std::vector<FrameMatch> frames_from_alignments(const std::vector<align::LocalAli
   return frames_of(alignments, e_values, lambda, scores, c, 0.0);
 }
 
-LocalizeResult search_scores(const SimilarityMatrix& scores, const LocalizeConfig& c) {
+namespace {
+
+// Every positive alignment of the scores, best first (the real ones and the chance ones, the statistics' sample), and
+// each one's evidence: its own path's score (a capped alignment's is its path).
+std::vector<align::LocalAlignment> align_scores(const SimilarityMatrix& scores, const LocalizeConfig& c,
+                                                std::vector<double>& path_scores) {
   check_matrix(scores);
   validate(c);
   align::AlignConfig ac;
   ac.gap_a = c.search.gap;
   ac.gap_b = c.search.gap;
   ac.cap = c.search.cap;
-  ac.threshold = 0.0F;  // every positive alignment: the chance ones are the statistics' sample
+  ac.threshold = 0.0F;
   ac.max_alignments = c.max_alignments;
   const auto source = align::ScoreSource::dense(std::span<const float>(scores.values), scores.rows, scores.cols);
-  LocalizeResult r;
-  r.alignments =
+  std::vector<align::LocalAlignment> alignments =
       c.search.reverse ? align::local_alignments_both(source, ac, c.threads) : align::local_alignments(source, ac);
-  // The fit: the alignments' own path scores (a capped alignment's evidence is its path), shadows left out.
-  std::vector<double> path_scores, best_first;
-  for (std::size_t k = 0; k < r.alignments.size(); ++k) {
-    const auto& a = r.alignments[k];
+  path_scores.clear();
+  for (const auto& a : alignments) {
     path_scores.push_back(c.search.cap ? align::path_score(a, source, c.search.gap, c.search.gap) : a.score);
-    if (!significance::shadows_earlier(r.alignments, k, significance::kShadowReach)) best_first.push_back(a.score);
+  }
+  return alignments;
+}
+
+}  // namespace
+
+LocalizeResult search_scores(const SimilarityMatrix& scores, const LocalizeConfig& c) {
+  LocalizeResult r;
+  std::vector<double> path_scores;
+  r.alignments = align_scores(scores, c, path_scores);
+  // The fit on the declumped alignments, shadows left out.
+  std::vector<double> best_first;
+  for (std::size_t k = 0; k < r.alignments.size(); ++k) {
+    if (!significance::shadows_earlier(r.alignments, k, significance::kShadowReach))
+      best_first.push_back(r.alignments[k].score);
   }
   r.statistics = significance::fit_declumped_scores(
       best_first, significance::search_area(scores.rows, scores.cols, false, 0, c.search.reverse));
@@ -344,14 +366,20 @@ LocalizeConfig at_speed(const LocalizeConfig& c, double speed) {
   return at;
 }
 
-// A localization over resampled columns with its map frames put back: `frame[k]` is column k's map frame.
-void to_map_frames(LocalizeResult& r, const std::vector<std::size_t>& frame) {
-  for (auto& a : r.alignments) {
-    for (auto& p : a.pairs) p.second = frame[p.second];
-    if (a.b_end > a.b_begin) {
-      a.b_begin = frame[a.b_begin];
-      a.b_end = frame[a.b_end - 1] + 1;
+// A localization of a submatrix with its query frames and map frames put back: `row[i]` is row i's query frame,
+// `frame[k]` column k's map frame (both increasing).
+void to_query_and_map_frames(LocalizeResult& r, const std::vector<std::size_t>& row,
+                             const std::vector<std::size_t>& frame) {
+  const auto put_back = [](std::size_t& begin, std::size_t& end, const std::vector<std::size_t>& to) {
+    if (end > begin) {
+      begin = to[begin];
+      end = to[end - 1] + 1;
     }
+  };
+  for (auto& a : r.alignments) {
+    for (auto& p : a.pairs) p = {row[p.first], frame[p.second]};
+    put_back(a.a_begin, a.a_end, row);
+    put_back(a.b_begin, a.b_end, frame);
   }
   for (auto& f : r.frames) {
     f.map = frame[f.map];
@@ -364,20 +392,6 @@ void to_map_frames(LocalizeResult& r, const std::vector<std::size_t>& frame) {
     f.candidates = std::move(distinct);
   }
 }
-
-}  // namespace
-
-void validate_speeds(std::span<const double> speeds) {
-  if (speeds.empty() || speeds.front() != 1.0)
-    throw std::invalid_argument("speeds must list 1 (the query as recorded) first, then any others");
-  for (double v : speeds) {
-    if (!(std::isfinite(v) && v >= 1.0 / kMaxSpeed && v <= kMaxSpeed))
-      throw std::invalid_argument("speeds must be between 1/" + std::to_string(static_cast<int>(kMaxSpeed)) + " and " +
-                                  std::to_string(static_cast<int>(kMaxSpeed)) + " map frames per query frame");
-  }
-}
-
-namespace {
 
 // The stretches of frames [begin, end) the answers leave unsure (confidence below 1/2), each widened by `margin`
 // frames either side (merged where they meet).
@@ -416,26 +430,16 @@ LocalizeResult search_stretch(const SimilarityMatrix& scores, std::size_t begin,
     for (std::size_t k = 0; k < frame.size(); ++k) sub(i, k) = scores(rows[i], frame[k]);
   }
   const LocalizeConfig at = at_speed(c, std::max(1.0, speed));
-  LocalizeResult r = search_scores(sub, at);
+  LocalizeResult r;
+  std::vector<double> path_scores;
+  r.alignments = align_scores(sub, at, path_scores);
   significance::ScoreStatistics whole = statistics;
   whole.area = significance::search_area(
       static_cast<std::size_t>(std::llround(static_cast<double>(scores.rows) * std::min(1.0, speed))), frame.size(),
       false, 0, c.search.reverse);
-  const auto source = align::ScoreSource::dense(std::span<const float>(sub.values), sub.rows, sub.cols);
-  for (std::size_t k = 0; k < r.alignments.size(); ++k) {
-    const auto& a = r.alignments[k];
-    r.e_values[k] = searches * whole.e_value(c.search.cap ? align::path_score(a, source, c.search.gap, c.search.gap)
-                                                          : static_cast<double>(a.score));
-  }
+  for (double p : path_scores) r.e_values.push_back(searches * whole.e_value(p));
   r.frames = frames_of(r.alignments, r.e_values, statistics.lambda, sub, at, 0.5);
-  for (auto& a : r.alignments) {
-    for (auto& p : a.pairs) p.first = rows[p.first];
-    if (a.a_end > a.a_begin) {
-      a.a_begin = rows[a.a_begin];
-      a.a_end = rows[a.a_end - 1] + 1;
-    }
-  }
-  to_map_frames(r, frame);
+  to_query_and_map_frames(r, rows, frame);
   if (speed < 1) {
     // The rows a slower query's search skipped lie on its alignment between the rows either side of them, when
     // one alignment answered both: at the map frame between theirs, as sure as the less sure of the two.
@@ -562,10 +566,6 @@ void check_same_shape(std::span<const SimilarityMatrix> ss) {
     }
   }
 }
-
-}  // namespace
-
-namespace {
 
 // Each similarity as the alignment reads it before the offset: its rows contrast-enhanced (the similarity itself
 // without enhancement). Made once for the weights and the fusion (each enhancement is a pass over the table).
