@@ -666,16 +666,11 @@ LocalizeResult localize_sequence(std::span<const SimilarityMatrix> ss, const Loc
 
 void soft_mask(SimilarityMatrix& scores, const LowInformationFrames& frames) {
   if (frames.query.empty() && frames.map.empty()) return;
-  std::vector<bool> query(scores.rows, false), map;
-  for (std::size_t q : frames.query) {
-    if (q >= scores.rows) throw std::invalid_argument("low-information query frame outside the matrix");
-    query[q] = true;
-  }
-  if (!frames.map.empty()) map.assign(scores.cols, false);
-  for (std::size_t m : frames.map) {
-    if (m >= scores.cols) throw std::invalid_argument("low-information map frame outside the matrix");
-    map[m] = true;
-  }
+  const std::vector<bool> query =
+      detail::frame_flags(frames.query, scores.rows, "low-information query frame outside the matrix");
+  const std::vector<bool> map =
+      frames.map.empty() ? std::vector<bool>{}
+                         : detail::frame_flags(frames.map, scores.cols, "low-information map frame outside the matrix");
   for (std::size_t q = 0; q < scores.rows; ++q) detail::soft_mask_row(scores.row(q).data(), scores.cols, query[q], map);
 }
 

@@ -33,11 +33,7 @@ OnlineEstimate OnlineLocalizer::feed(std::span<const float> row) {
 
 void OnlineLocalizer::set_low_information_map(std::span<const std::size_t> frames) {
   if (frames_seen_ > 0) throw std::invalid_argument("the map's frames of little information come before the query");
-  map_masked_.assign(map_frames_, false);
-  for (std::size_t f : frames) {
-    if (f >= map_frames_) throw std::invalid_argument("low-information map frame outside the map");
-    map_masked_[f] = true;
-  }
+  map_masked_ = detail::frame_flags(frames, map_frames_, "low-information map frame outside the map");
 }
 
 OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const float>> rows, bool low_information) {
