@@ -18,9 +18,17 @@ OnlineLocalizer::OnlineLocalizer(std::size_t map_frames, const LocalizeConfig& c
            .reverse = std::vector<float>(map_frames, 0.0F),
            .scores = std::vector<float>(map_frames, 0.0F),
            .forward_ends = std::vector<std::uint8_t>(map_frames, 0),
-           .reverse_ends = std::vector<std::uint8_t>(map_frames, 0)},
+           .reverse_ends = std::vector<std::uint8_t>(map_frames, 0),
+           .forward_peaks = std::vector<float>(map_frames, 0.0F),
+           .reverse_peaks = std::vector<float>(map_frames, 0.0F),
+           .forward_gaps = std::vector<float>(map_frames, 0.0F),
+           .reverse_gaps = std::vector<float>(map_frames, 0.0F)},
       previous_forward_(map_frames, 0.0F),
       previous_reverse_(map_frames, 0.0F),
+      previous_forward_peaks_(map_frames, 0.0F),
+      previous_reverse_peaks_(map_frames, 0.0F),
+      previous_forward_gaps_(map_frames, 0.0F),
+      previous_reverse_gaps_(map_frames, 0.0F),
       raw_(descriptors > 1 ? descriptors : 0) {
   if (map_frames == 0) throw std::invalid_argument("the map has no frame");
   if (descriptors == 0) throw std::invalid_argument("at least one descriptor");
@@ -70,15 +78,37 @@ OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const
 void OnlineLocalizer::step() {
   std::swap(previous_forward_, now_.forward);
   std::swap(previous_reverse_, now_.reverse);
-  const auto fill = [&](const std::vector<float>& previous, std::vector<float>& row, std::vector<std::uint8_t>& ends,
+  std::swap(previous_forward_peaks_, now_.forward_peaks);
+  std::swap(previous_reverse_peaks_, now_.reverse_peaks);
+  std::swap(previous_forward_gaps_, now_.forward_gaps);
+  std::swap(previous_reverse_gaps_, now_.reverse_gaps);
+  const auto fill = [&](const std::vector<float>& previous, const std::vector<float>& previous_peaks,
+                        const std::vector<float>& previous_gaps, std::vector<float>& row,
+                        std::vector<std::uint8_t>& ends, std::vector<float>& peaks, std::vector<float>& gaps,
                         bool backwards) {
     align::fill_online_row(previous, now_.scores, row, backwards, config_.search.gap, config_.search.cap,
-                           [&](std::size_t j, align::Step step, std::size_t, std::size_t) {
+                           [&](std::size_t j, align::Step step, std::size_t diagonal_at, std::size_t left_at) {
                              ends[j] = step == align::Step::diagonal ? 1 : 0;
+                             // The path's maximum and what its gaps cost since: the predecessor's, a new
+                             // maximum resetting the cost.
+                             float before = 0.0F, cost = 0.0F;
+                             if (step == align::Step::diagonal && diagonal_at != align::kNoCell)
+                               before = previous_peaks[diagonal_at], cost = previous_gaps[diagonal_at];
+                             if (step == align::Step::up)
+                               before = previous_peaks[j], cost = previous_gaps[j] + config_.search.gap;
+                             if (step == align::Step::left)
+                               before = peaks[left_at], cost = gaps[left_at] + config_.search.gap;
+                             const bool higher = step == align::Step::none || row[j] >= before;
+                             peaks[j] = step == align::Step::none ? 0.0F : std::max(before, row[j]);
+                             gaps[j] = higher ? 0.0F : cost;
                            });
   };
-  fill(previous_forward_, now_.forward, now_.forward_ends, false);
-  if (config_.search.reverse) fill(previous_reverse_, now_.reverse, now_.reverse_ends, true);
+  fill(previous_forward_, previous_forward_peaks_, previous_forward_gaps_, now_.forward, now_.forward_ends,
+       now_.forward_peaks, now_.forward_gaps, false);
+  if (config_.search.reverse) {
+    fill(previous_reverse_, previous_reverse_peaks_, previous_reverse_gaps_, now_.reverse, now_.reverse_ends,
+         now_.reverse_peaks, now_.reverse_gaps, true);
+  }
   if (config_.lag == 0) return;
   // The last lag + 1 frames' rows, for smoothed(); the oldest row's buffers are reused.
   Rows rows;
@@ -126,13 +156,22 @@ OnlineEstimate OnlineLocalizer::estimate(std::size_t frame, const Rows& rows, st
     for (std::size_t j = 0; j < m; ++j) consider(through(reverse, reverse_after, j), j, align::Direction::reverse);
   }
 
-  // P(revisit | E): the score's E-value in the search so far (the fit's area scaled to it), as offline.
-  double real = e.score >= config_.significance.threshold && e.score > 0 ? 1.0 : 0.0;
-  if (fit_.valid() && e.score > 0) {
+  // The guess's alignment: its path up to the path's maximum (with later frames, the best continuation's value when
+  // it is higher), and how far the frame's cell has fallen below it.
+  const bool forward_best = e.direction == align::Direction::forward;
+  const float peak = std::max((forward_best ? rows.forward_peaks : rows.reverse_peaks)[e.map], e.score);
+  const double fallen = std::min(static_cast<double>(peak) - static_cast<double>(e.score),
+                                 static_cast<double>((forward_best ? rows.forward_gaps : rows.reverse_gaps)[e.map]));
+  // P(revisit | E): the alignment's E-value in the search so far (the fit's area scaled to it), as offline.
+  double real = peak >= config_.significance.threshold && peak > 0 ? 1.0 : 0.0;
+  if (fit_.valid() && peak > 0) {
     const double area = significance::search_area(frames_seen_, m, false, 0, reverse_search);
-    e.e_value = fit_.e_value(e.score) * area / fit_.area;
+    e.e_value = fit_.e_value(peak) * area / fit_.area;
     real = significance::revisit_probability(e.e_value, *config_.significance.max_e_value);
   }
+  // Past the maximum, the frame is on the alignment with the odds exp(-lambda D) : 1 / m of the path going on against
+  // its end there (D: what its gaps cost since; the end a priori anywhere along the map's m frames).
+  if (fallen > 0) real /= 1.0 + std::exp(lambda_ * fallen) / static_cast<double>(m);
   // The posterior of where in this row the alignment passes: the guess's neighbourhood against every matched pair
   // of the row (without later frames, where an alignment ends). A local alignment ends on a matched pair, never on
   // a gap, so the cells reached by a gap (the same path with gaps after it) are not ends of their own.
@@ -142,7 +181,7 @@ OnlineEstimate OnlineLocalizer::estimate(std::size_t frame, const Rows& rows, st
     const std::span<const float> table = backwards ? reverse : forward;
     const std::span<const float> after = backwards ? reverse_after : forward_after;
     const std::span<const std::uint8_t> ends = backwards ? reverse_ends : forward_ends;
-    const bool best_table = backwards == (e.direction == align::Direction::reverse);
+    const bool best_table = backwards != forward_best;
     for (std::size_t j = 0; j < m; ++j) {
       if (ends[j] == 0) continue;
       const double w = std::exp(lambda_ * (static_cast<double>(through(table, after, j)) - e.score));
@@ -219,8 +258,9 @@ void OnlineLocalizer::refit() {
       std::vector<SimilarityMatrix> seen;
       for (const auto& raw : raw_) seen.emplace_back(frames_seen_, map_frames_, raw);
       SimilarityMatrix scored = fused_score_matrix(seen, config_, weights_);
-      std::fill(now_.forward.begin(), now_.forward.end(), 0.0F);
-      std::fill(now_.reverse.begin(), now_.reverse.end(), 0.0F);
+      for (auto* row : {&now_.forward, &now_.reverse, &now_.forward_peaks, &now_.reverse_peaks, &now_.forward_gaps,
+                        &now_.reverse_gaps})
+        std::fill(row->begin(), row->end(), 0.0F);
       for (std::size_t i = 0; i < frames_seen_; ++i) {
         detail::soft_mask_row(scored.row(i).data(), map_frames_, query_masked_[i], map_masked_);
         std::copy_n(scored.row(i).begin(), map_frames_, now_.scores.begin());

@@ -295,6 +295,48 @@ TEST(Online, FixedLagSmoothingRecoversTheFramesAtTheStartOfARevisit) {
   EXPECT_GT(right_late, right_now + 3) << right_now << " of " << n << " at once, " << right_late << " with the lag";
 }
 
+// The query drives the whole map and on past its end (a route longer than the map): past the end the table keeps
+// the revisit's value, falling by a gap a frame, and a chance matched pair in the map's last frames now and then ends
+// a path there. Such a frame is past its path's maximum by the gaps it took, and is not confident; the frames along
+// the map are. Eight seeds, 60 map frames, 40 query frames past them.
+TEST(Online, FramesPastTheEndOfTheMapAreNotConfident) {
+  const std::size_t m = 60, n = 100;
+  std::size_t confident_past = 0, confident_on = 0, on = 0;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> noise(0.0F, 1.0F);
+    SimilarityMatrix s(n, m);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < m; ++j) s(i, j) = noise(rng) + (i == j ? 2.0F : 0.0F);
+    }
+    for (const std::size_t lag : {0, 10}) {
+      LocalizeConfig c;
+      c.lag = lag;
+      OnlineLocalizer localizer(m, c);
+      for (std::size_t i = 0; i < n; ++i) {
+        localizer.feed(s.row(i));
+        if (i < lag) continue;
+        const std::size_t k = i - lag;
+        const auto answer = [&](std::size_t frame) {
+          const auto e = localizer.smoothed(frame);
+          if (frame >= m + 2) {
+            confident_past += e.confidence >= 0.5;
+          } else if (frame >= 10) {
+            ++on;
+            confident_on += e.confidence >= 0.5 && e.map + 2 >= frame && e.map <= frame + 2;
+          }
+        };
+        answer(k);
+        if (i + 1 == n) {
+          for (std::size_t later = k + 1; later < n; ++later) answer(later);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(confident_past, 0U);
+  EXPECT_GT(confident_on, on * 9 / 10) << confident_on << " of " << on;
+}
+
 TEST(Online, RejectsBadInput) {
   EXPECT_THROW(OnlineLocalizer(0), std::invalid_argument);
   LocalizeConfig bad;

@@ -27,9 +27,18 @@
 // +-tolerance of the guess in its table over that of every alignment end of both tables. Before a fit P(revisit | E) is
 // 1 when v >= `threshold` and 0 below, and lambda is Karlin & Altschul's of the scores seen
 // (significance::ungapped_lambda), as offline without a fit. The frame is "in the map" when the confidence is at least
-// `min_confidence`. Limit: past the end of a revisit (the query leaves the map) the table keeps the alignment's value
-// for as many frames as the evidence takes to fall, and the confidence with it; offline, the later frames show where
-// the revisit ended.
+// `min_confidence`.
+//
+// Past the end of a revisit (the query leaves the map, or drives on past the map's last frame) the table keeps the
+// alignment's value for as many frames as the evidence takes to fall, and a chance matched pair now and then ends a
+// path there again. As offline, where a local alignment ends at its maximum, the guess's alignment is its path up to
+// the path's highest value P (E is that of P). A frame past P is on it with the odds exp(-lambda D) : 1/m of the path
+// going on against its end at P (m map frames: the end a priori anywhere along the map), where D is what the path's
+// gaps cost since P, at most P - v: the confidence is multiplied by 1 / (1 + exp(lambda D) / m). Only the gaps count:
+// a path that stops matching (the map ends, the route leaves it) pays a gap a frame, while a path through weak frames
+// that still match in order (a stretch of poor light) loses little to them and is still the route (on Nordland a
+// weak stretch 70 frames long is 23 below its maximum and right all along). A frame that raises its path's maximum
+// (D = 0) is on the alignment. Measured in docs/results.md (mode parity).
 //
 // Several descriptors (the constructor's `descriptors`): each frame's rows are fused as offline (fused_score_row)
 // with the weights descriptor_weights gives on the frames seen, made again at each refit; when they change the
@@ -107,10 +116,13 @@ class OnlineLocalizer {
   const std::vector<double>& weights() const { return weights_; }
 
  private:
-  // One frame's rows: the two tables, its scored row, and where an alignment ends on a matched pair (1).
+  // One frame's rows: the two tables, its scored row, where an alignment ends on a matched pair (1), and the
+  // highest value on each cell's path (its alignment's score: a local alignment ends at its maximum).
   struct Rows {
     std::vector<float> forward, reverse, scores;
     std::vector<std::uint8_t> forward_ends, reverse_ends;
+    std::vector<float> forward_peaks, reverse_peaks;
+    std::vector<float> forward_gaps, reverse_gaps;  // what the path's gaps cost since its maximum
   };
 
   void step();               // the recurrences' next rows from now_.scores
@@ -125,6 +137,7 @@ class OnlineLocalizer {
   std::size_t frames_seen_ = 0;
   Rows now_;                                                // the last frame's rows
   std::vector<float> previous_forward_, previous_reverse_;  // the tables' rows before them
+  std::vector<float> previous_forward_peaks_, previous_reverse_peaks_, previous_forward_gaps_, previous_reverse_gaps_;
   std::vector<Rows> history_;       // the last config.lag + 1 frames' rows, oldest first, for the fixed-lag smoothing
   std::vector<float> seen_;         // the scored rows so far, for the refits
   std::vector<bool> map_masked_;    // per map frame: of little information (empty: none)
