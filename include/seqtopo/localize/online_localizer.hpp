@@ -16,7 +16,8 @@
 // whole query, later frames included, and so may differ.)
 //
 // Confidence, as offline (localize.hpp): the probability that the guess is within `tolerance` map frames of the
-// truth, P(revisit | E) x posterior. E is the E-value of v, an alignment ending at the frame, in the search so far:
+// truth, P(revisit | E) x posterior. E is the E-value of the guess's alignment (its path up to the path's highest
+// value P; P = v while the path rises, see below) in the search so far:
 // the extreme-value fit of the declumped alignments of the frames seen (significance/score_statistics.hpp, as
 // localize_sequence fits them), made again each time the frames seen double from kFirstFit up to kFitFrames, then
 // every kFitFrames frames on the last kFitFrames rows, its area scaled to the whole search so far. A fit whose lambda
