@@ -383,13 +383,7 @@ void to_query_and_map_frames(LocalizeResult& r, const std::vector<std::size_t>& 
   }
   for (auto& f : r.frames) {
     f.map = frame[f.map];
-    for (auto& m : f.candidates) m = frame[m];
-    // Columns of one repeated map frame are one candidate.
-    std::vector<std::size_t> distinct;
-    for (std::size_t m : f.candidates) {
-      if (std::find(distinct.begin(), distinct.end(), m) == distinct.end()) distinct.push_back(m);
-    }
-    f.candidates = std::move(distinct);
+    for (auto& m : f.candidates) m = frame[m];  // distinct columns stay distinct frames: `frame` increases
   }
 }
 
