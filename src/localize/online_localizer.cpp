@@ -14,21 +14,9 @@ namespace seqtopo::localize {
 OnlineLocalizer::OnlineLocalizer(std::size_t map_frames, const LocalizeConfig& config, std::size_t descriptors)
     : map_frames_(map_frames),
       config_(config),
-      now_{.forward = std::vector<float>(map_frames, 0.0F),
-           .reverse = std::vector<float>(map_frames, 0.0F),
-           .scores = std::vector<float>(map_frames, 0.0F),
-           .forward_ends = std::vector<std::uint8_t>(map_frames, 0),
-           .reverse_ends = std::vector<std::uint8_t>(map_frames, 0),
-           .forward_peaks = std::vector<float>(map_frames, 0.0F),
-           .reverse_peaks = std::vector<float>(map_frames, 0.0F),
-           .forward_gaps = std::vector<float>(map_frames, 0.0F),
-           .reverse_gaps = std::vector<float>(map_frames, 0.0F)},
-      previous_forward_(map_frames, 0.0F),
-      previous_reverse_(map_frames, 0.0F),
-      previous_forward_peaks_(map_frames, 0.0F),
-      previous_reverse_peaks_(map_frames, 0.0F),
-      previous_forward_gaps_(map_frames, 0.0F),
-      previous_reverse_gaps_(map_frames, 0.0F),
+      now_{.forward = Table(map_frames), .reverse = Table(map_frames), .scores = std::vector<float>(map_frames, 0.0F)},
+      previous_forward_(map_frames),
+      previous_reverse_(map_frames),
       raw_(descriptors > 1 ? descriptors : 0) {
   if (map_frames == 0) throw std::invalid_argument("the map has no frame");
   if (descriptors == 0) throw std::invalid_argument("at least one descriptor");
@@ -78,37 +66,26 @@ OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const
 void OnlineLocalizer::step() {
   std::swap(previous_forward_, now_.forward);
   std::swap(previous_reverse_, now_.reverse);
-  std::swap(previous_forward_peaks_, now_.forward_peaks);
-  std::swap(previous_reverse_peaks_, now_.reverse_peaks);
-  std::swap(previous_forward_gaps_, now_.forward_gaps);
-  std::swap(previous_reverse_gaps_, now_.reverse_gaps);
-  const auto fill = [&](const std::vector<float>& previous, const std::vector<float>& previous_peaks,
-                        const std::vector<float>& previous_gaps, std::vector<float>& row,
-                        std::vector<std::uint8_t>& ends, std::vector<float>& peaks, std::vector<float>& gaps,
-                        bool backwards) {
-    align::fill_online_row(previous, now_.scores, row, backwards, config_.search.gap, config_.search.cap,
+  const auto fill = [&](const Table& previous, Table& now, bool backwards) {
+    align::fill_online_row(previous.values, now_.scores, now.values, backwards, config_.search.gap, config_.search.cap,
                            [&](std::size_t j, align::Step step, std::size_t diagonal_at, std::size_t left_at) {
-                             ends[j] = step == align::Step::diagonal ? 1 : 0;
+                             now.ends[j] = step == align::Step::diagonal ? 1 : 0;
                              // The path's maximum and what its gaps cost since: the predecessor's, a new
                              // maximum resetting the cost.
                              float before = 0.0F, cost = 0.0F;
                              if (step == align::Step::diagonal && diagonal_at != align::kNoCell)
-                               before = previous_peaks[diagonal_at], cost = previous_gaps[diagonal_at];
+                               before = previous.peaks[diagonal_at], cost = previous.gaps[diagonal_at];
                              if (step == align::Step::up)
-                               before = previous_peaks[j], cost = previous_gaps[j] + config_.search.gap;
+                               before = previous.peaks[j], cost = previous.gaps[j] + config_.search.gap;
                              if (step == align::Step::left)
-                               before = peaks[left_at], cost = gaps[left_at] + config_.search.gap;
-                             const bool higher = step == align::Step::none || row[j] >= before;
-                             peaks[j] = step == align::Step::none ? 0.0F : std::max(before, row[j]);
-                             gaps[j] = higher ? 0.0F : cost;
+                               before = now.peaks[left_at], cost = now.gaps[left_at] + config_.search.gap;
+                             const bool higher = step == align::Step::none || now.values[j] >= before;
+                             now.peaks[j] = step == align::Step::none ? 0.0F : std::max(before, now.values[j]);
+                             now.gaps[j] = higher ? 0.0F : cost;
                            });
   };
-  fill(previous_forward_, previous_forward_peaks_, previous_forward_gaps_, now_.forward, now_.forward_ends,
-       now_.forward_peaks, now_.forward_gaps, false);
-  if (config_.search.reverse) {
-    fill(previous_reverse_, previous_reverse_peaks_, previous_reverse_gaps_, now_.reverse, now_.reverse_ends,
-         now_.reverse_peaks, now_.reverse_gaps, true);
-  }
+  fill(previous_forward_, now_.forward, false);
+  if (config_.search.reverse) fill(previous_reverse_, now_.reverse, true);
   if (config_.lag == 0) return;
   // The last lag + 1 frames' rows, for smoothed(); the oldest row's buffers are reused.
   Rows rows;
@@ -130,8 +107,7 @@ OnlineEstimate OnlineLocalizer::advance() {
 
 OnlineEstimate OnlineLocalizer::estimate(std::size_t frame, const Rows& rows, std::span<const float> forward_after,
                                          std::span<const float> reverse_after) const {
-  const std::span<const float> forward = rows.forward, reverse = rows.reverse, scores = rows.scores;
-  const std::span<const std::uint8_t> forward_ends = rows.forward_ends, reverse_ends = rows.reverse_ends;
+  const std::span<const float> scores = rows.scores;
   const std::size_t m = map_frames_;
   const bool reverse_search = config_.search.reverse;
   // G: the table value plus what the alignment gains after this frame (0 without later frames). A cell no alignment
@@ -151,17 +127,21 @@ OnlineEstimate OnlineLocalizer::estimate(std::size_t frame, const Rows& rows, st
     e.map = j;
     e.direction = d;
   };
-  for (std::size_t j = 0; j < m; ++j) consider(through(forward, forward_after, j), j, align::Direction::forward);
+  for (std::size_t j = 0; j < m; ++j) {
+    consider(through(rows.forward.values, forward_after, j), j, align::Direction::forward);
+  }
   if (reverse_search) {
-    for (std::size_t j = 0; j < m; ++j) consider(through(reverse, reverse_after, j), j, align::Direction::reverse);
+    for (std::size_t j = 0; j < m; ++j) {
+      consider(through(rows.reverse.values, reverse_after, j), j, align::Direction::reverse);
+    }
   }
 
   // The guess's alignment: its path up to the path's maximum (with later frames, the best continuation's value when
   // it is higher), and how far the frame's cell has fallen below it.
-  const bool forward_best = e.direction == align::Direction::forward;
-  const float peak = std::max((forward_best ? rows.forward_peaks : rows.reverse_peaks)[e.map], e.score);
-  const double fallen = std::min(static_cast<double>(peak) - static_cast<double>(e.score),
-                                 static_cast<double>((forward_best ? rows.forward_gaps : rows.reverse_gaps)[e.map]));
+  const Table& best = e.direction == align::Direction::forward ? rows.forward : rows.reverse;
+  const float peak = std::max(best.peaks[e.map], e.score);
+  const double fallen =
+      std::min(static_cast<double>(peak) - static_cast<double>(e.score), static_cast<double>(best.gaps[e.map]));
   // P(revisit | E): the alignment's E-value in the search so far (the fit's area scaled to it), as offline.
   double real = peak >= config_.significance.threshold && peak > 0 ? 1.0 : 0.0;
   if (fit_.valid() && peak > 0) {
@@ -178,13 +158,12 @@ OnlineEstimate OnlineLocalizer::estimate(std::size_t frame, const Rows& rows, st
   double near = 0, all = 0;
   for (const bool backwards : {false, true}) {
     if (backwards && !reverse_search) break;
-    const std::span<const float> table = backwards ? reverse : forward;
+    const Table& table = backwards ? rows.reverse : rows.forward;
     const std::span<const float> after = backwards ? reverse_after : forward_after;
-    const std::span<const std::uint8_t> ends = backwards ? reverse_ends : forward_ends;
-    const bool best_table = backwards != forward_best;
+    const bool best_table = &table == &best;
     for (std::size_t j = 0; j < m; ++j) {
-      if (ends[j] == 0) continue;
-      const double w = std::exp(lambda_ * (static_cast<double>(through(table, after, j)) - e.score));
+      if (table.ends[j] == 0) continue;
+      const double w = std::exp(lambda_ * (static_cast<double>(through(table.values, after, j)) - e.score));
       all += w;
       if (best_table && (j > e.map ? j - e.map : e.map - j) <= config_.tolerance) near += w;
     }
@@ -258,9 +237,8 @@ void OnlineLocalizer::refit() {
       std::vector<SimilarityMatrix> seen;
       for (const auto& raw : raw_) seen.emplace_back(frames_seen_, map_frames_, raw);
       SimilarityMatrix scored = fused_score_matrix(seen, config_, weights_);
-      for (auto* row : {&now_.forward, &now_.reverse, &now_.forward_peaks, &now_.reverse_peaks, &now_.forward_gaps,
-                        &now_.reverse_gaps})
-        std::fill(row->begin(), row->end(), 0.0F);
+      now_.forward = Table(map_frames_);
+      now_.reverse = Table(map_frames_);
       for (std::size_t i = 0; i < frames_seen_; ++i) {
         detail::soft_mask_row(scored.row(i).data(), map_frames_, query_masked_[i], map_masked_);
         std::copy_n(scored.row(i).begin(), map_frames_, now_.scores.begin());

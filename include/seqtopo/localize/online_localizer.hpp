@@ -109,21 +109,28 @@ class OnlineLocalizer {
   std::size_t map_frames() const { return map_frames_; }
   std::size_t frames_seen() const { return frames_seen_; }
   // The table rows of the last frame (map_frames values each), for inspection and tests.
-  std::span<const float> forward_row() const { return now_.forward; }
-  std::span<const float> reverse_row() const { return now_.reverse; }
+  std::span<const float> forward_row() const { return now_.forward.values; }
+  std::span<const float> reverse_row() const { return now_.reverse.values; }
   // The statistics the confidences use now (valid() false before the first fit).
   const significance::ScoreStatistics& statistics() const { return fit_; }
   // The descriptors' weights in the fusion now (empty: equal, before the first fit or with one descriptor).
   const std::vector<double>& weights() const { return weights_; }
 
  private:
-  // One frame's rows: the two tables, its scored row, where an alignment ends on a matched pair (1), and the
-  // highest value on each cell's path (its alignment's score: a local alignment ends at its maximum).
+  // One frame's row of a table, and per cell: whether an alignment ends there on a matched pair (1), the highest
+  // value on its path (its alignment's score: a local alignment ends at its maximum) and what the path's gaps cost
+  // since that value.
+  struct Table {
+    explicit Table(std::size_t cells = 0)
+        : values(cells, 0.0F), ends(cells, 0), peaks(cells, 0.0F), gaps(cells, 0.0F) {}
+    std::vector<float> values;
+    std::vector<std::uint8_t> ends;
+    std::vector<float> peaks, gaps;
+  };
+  // One frame's rows: the two tables' and its scored row.
   struct Rows {
-    std::vector<float> forward, reverse, scores;
-    std::vector<std::uint8_t> forward_ends, reverse_ends;
-    std::vector<float> forward_peaks, reverse_peaks;
-    std::vector<float> forward_gaps, reverse_gaps;  // what the path's gaps cost since its maximum
+    Table forward, reverse;
+    std::vector<float> scores;
   };
 
   void step();               // the recurrences' next rows from now_.scores
@@ -136,9 +143,8 @@ class OnlineLocalizer {
   std::size_t map_frames_;
   LocalizeConfig config_;
   std::size_t frames_seen_ = 0;
-  Rows now_;                                                // the last frame's rows
-  std::vector<float> previous_forward_, previous_reverse_;  // the tables' rows before them
-  std::vector<float> previous_forward_peaks_, previous_reverse_peaks_, previous_forward_gaps_, previous_reverse_gaps_;
+  Rows now_;                                   // the last frame's rows
+  Table previous_forward_, previous_reverse_;  // the tables' rows before them
   std::vector<Rows> history_;       // the last config.lag + 1 frames' rows, oldest first, for the fixed-lag smoothing
   std::vector<float> seen_;         // the scored rows so far, for the refits
   std::vector<bool> map_masked_;    // per map frame: of little information (empty: none)
