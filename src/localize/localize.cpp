@@ -12,6 +12,7 @@
 #include "masked_scores.hpp"
 #include "seqtopo/align/pair_posterior.hpp"
 #include "seqtopo/align/smith_waterman.hpp"
+#include "seqtopo/significance/low_information.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 
 namespace seqtopo::localize {
@@ -660,11 +661,10 @@ LocalizeResult localize_sequence(std::span<const SimilarityMatrix> ss, const Loc
 
 void soft_mask(SimilarityMatrix& scores, const LowInformationFrames& frames) {
   if (frames.query.empty() && frames.map.empty()) return;
-  const std::vector<bool> query =
-      detail::frame_flags(frames.query, scores.rows, "low-information query frame outside the matrix");
-  const std::vector<bool> map =
-      frames.map.empty() ? std::vector<bool>{}
-                         : detail::frame_flags(frames.map, scores.cols, "low-information map frame outside the matrix");
+  const std::vector<bool> query = significance::frame_flags(frames.query, scores.rows, "low-information query frame");
+  const std::vector<bool> map = frames.map.empty()
+                                    ? std::vector<bool>{}
+                                    : significance::frame_flags(frames.map, scores.cols, "low-information map frame");
   for (std::size_t q = 0; q < scores.rows; ++q) detail::soft_mask_row(scores.row(q).data(), scores.cols, query[q], map);
 }
 

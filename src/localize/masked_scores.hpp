@@ -1,23 +1,12 @@
 #pragma once
 // Frames of little information in localization (LowInformationFrames): one query frame's aligned scores masked, the
-// one rule of the offline matrix (soft_mask) and the online localizer's rows.
+// one rule of the offline matrix (soft_mask) and the online localizer's rows (the frames as flags:
+// significance::frame_flags).
 #include <algorithm>
 #include <cstddef>
-#include <span>
-#include <stdexcept>
 #include <vector>
 
 namespace seqtopo::localize::detail {
-
-// The listed frames (each below n) as n flags. Throws std::invalid_argument(`outside`) for one that is not.
-inline std::vector<bool> frame_flags(std::span<const std::size_t> frames, std::size_t n, const char* outside) {
-  std::vector<bool> flags(n, false);
-  for (std::size_t f : frames) {
-    if (f >= n) throw std::invalid_argument(outside);
-    flags[f] = true;
-  }
-  return flags;
-}
 
 // Every score of the row at most 0 when the query frame is of little information, else those of the map frames
 // flagged in `map_masked` (empty: none).

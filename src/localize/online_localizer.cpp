@@ -8,6 +8,7 @@
 
 #include "masked_scores.hpp"
 #include "seqtopo/align/online_row.hpp"
+#include "seqtopo/significance/low_information.hpp"
 
 namespace seqtopo::localize {
 
@@ -29,7 +30,7 @@ OnlineEstimate OnlineLocalizer::feed(std::span<const float> row) {
 
 void OnlineLocalizer::set_low_information_map(std::span<const std::size_t> frames) {
   if (frames_seen_ > 0) throw std::invalid_argument("the map's frames of little information come before the query");
-  map_masked_ = detail::frame_flags(frames, map_frames_, "low-information map frame outside the map");
+  map_masked_ = significance::frame_flags(frames, map_frames_, "low-information map frame");
 }
 
 OnlineEstimate OnlineLocalizer::feed_descriptors(std::span<const std::span<const float>> rows, bool low_information) {

@@ -28,25 +28,13 @@
 #include "seqtopo/mapping/place_scale.hpp"
 #include "seqtopo/significance/alignment_ends.hpp"
 #include "seqtopo/significance/alignment_phase.hpp"
+#include "seqtopo/significance/low_information.hpp"
 #include "seqtopo/significance/tandem_repeats.hpp"
 #include "seqtopo/similarity/contrast_enhancement.hpp"
 #include "seqtopo/similarity/hubness.hpp"
 
 namespace seqtopo::mapping {
 namespace {
-
-// Sorted frame indices as one flag per frame; throws std::invalid_argument for one past the sequence.
-std::vector<bool> frame_flags(std::size_t n, std::span<const std::size_t> frames) {
-  std::vector<bool> flags(n, false);
-  for (std::size_t f : frames) {
-    if (f >= n) {
-      throw std::invalid_argument("low-information frame " + std::to_string(f) + " is past the sequence's " +
-                                  std::to_string(n) + " frames");
-    }
-    flags[f] = true;
-  }
-  return flags;
-}
 
 using detail::median;
 
@@ -701,7 +689,8 @@ MapResult build_map_masked(const std::vector<SimilarityMatrix>& similarities, co
   if (framed.score.contrast_window > 0) {
     for (auto& v : enhanced.values) v -= result.decisions.contrast_offset;
     const auto& aligned_masked = result.decisions.low_information_frames;  // with the tandem repeats
-    if (!aligned_masked.empty()) detail::soft_mask(enhanced, frame_flags(enhanced.rows, aligned_masked), 0.0F);
+    if (!aligned_masked.empty())
+      detail::soft_mask(enhanced, significance::frame_flags(aligned_masked, enhanced.rows), 0.0F);
   }
   result.scores = std::move(enhanced);
   result.seconds_align += seconds_scores;
@@ -718,7 +707,7 @@ MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const Map
 MapResult build_map(const std::vector<SimilarityMatrix>& similarities, const MapConfig& config,
                     std::span<const Pose2> odometry, std::span<const std::size_t> low_information) {
   if (similarities.empty() || similarities.front().empty()) throw std::invalid_argument("empty similarity matrix");
-  const std::vector<bool> masked = frame_flags(similarities.front().rows, low_information);
+  const std::vector<bool> masked = significance::frame_flags(low_information, similarities.front().rows);
   return build_map_masked(similarities, config, odometry, config.mask_low_information ? masked : std::vector<bool>{});
 }
 
@@ -769,12 +758,14 @@ MapResult build_map_from_enhanced(const align::ScoreSource& enhanced, const MapC
       low_information = std::move(merged);
     }
   }
-  const std::vector<bool> masked = low_information.empty() ? std::vector<bool>{} : frame_flags(n, low_information);
+  const std::vector<bool> masked =
+      low_information.empty() ? std::vector<bool>{} : significance::frame_flags(low_information, n);
   // The statistics' fit, the alignment and the posteriors leave out long stretches of frames of little information
   // and see the other masked frames soft-masked (detail::UnmaskedFrames).
   const std::vector<bool> left_out =
-      masked.empty() ? std::vector<bool>{}
-                     : detail::long_stretches(frame_flags(n, low_information_given), c.search.min_separation);
+      masked.empty()
+          ? std::vector<bool>{}
+          : detail::long_stretches(significance::frame_flags(low_information_given, n), c.search.min_separation);
   const detail::UnmaskedFrames unmasked(n, left_out);
   const std::vector<bool> masked_in_view = unmasked.of_view(masked);
   const auto aligned = [&](const align::ScoreSource& s) {

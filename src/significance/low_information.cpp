@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace seqtopo::significance {
 
@@ -32,6 +33,18 @@ void check(const LowInformationConfig& config) {
   }
 }
 }  // namespace
+
+std::vector<bool> frame_flags(std::span<const std::size_t> frames, std::size_t n, const char* what) {
+  std::vector<bool> flags(n, false);
+  for (std::size_t f : frames) {
+    if (f >= n) {
+      throw std::invalid_argument(std::string(what) + " " + std::to_string(f) + " is past the sequence's " +
+                                  std::to_string(n) + " frames");
+    }
+    flags[f] = true;
+  }
+  return flags;
+}
 
 std::vector<std::size_t> low_information_frames(std::span<const double> entropy, const LowInformationConfig& config) {
   check(config);

@@ -49,6 +49,18 @@ TEST(LowInformation, FramesBelowBothBounds) {
   EXPECT_THROW(low_information_frames(entropy, {.below_median = std::nan("")}), std::invalid_argument);
 }
 
+TEST(LowInformation, FrameFlagsMarkTheListedFramesAndNameOnePastTheSequence) {
+  const std::vector<std::size_t> frames{0, 3, 4};
+  EXPECT_EQ(frame_flags(frames, 6), (std::vector<bool>{true, false, false, true, true, false}));
+  EXPECT_EQ(frame_flags({}, 2), (std::vector<bool>{false, false}));
+  try {
+    frame_flags(frames, 4, "low-information map frame");
+    FAIL() << "frame 4 of 4 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "low-information map frame 4 is past the sequence's 4 frames");
+  }
+}
+
 // As frames arrive: each frame judged by the batch rule on the frames so far (the last of them), whatever order
 // the entropies come in (the running median against a sort each time).
 TEST(LowInformation, TheStreamJudgesEachFrameByTheFramesSoFar) {

@@ -37,6 +37,11 @@ struct LowInformationConfig {
 std::vector<std::size_t> low_information_frames(std::span<const double> entropy,
                                                 const LowInformationConfig& config = {});
 
+// The listed frames of a sequence of n frames as n flags. Throws std::invalid_argument "`what` F is past the
+// sequence's n frames" for a frame F >= n.
+std::vector<bool> frame_flags(std::span<const std::size_t> frames, std::size_t n,
+                              const char* what = "low-information frame");
+
 // The same rule as the frames arrive (online mapping): a frame is of little information when its entropy is below
 // max_entropy and the median of the entropies so far (its own included) less below_median. The median so far
 // stands in for the whole sequence's, so the first frames of a dim camera may be judged before its typical frame
